@@ -1,0 +1,280 @@
+//! Material properties (LIGGGHTS `fix property/global`) and their mixing into one table of
+//! per-type-pair contact coefficients, computed once before a run.
+
+use crate::error::{check, Error, Result};
+
+/// Material properties as a LIGGGHTS script gives them: per type (`peratomtype`), per type
+/// pair (`peratomtypepair`, row-major `ntypes × ntypes`, symmetric) and scalars. Types are
+/// 1-based in scripts; index `t - 1` here.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Materials {
+    /// Number of atom (material) types.
+    pub ntypes: usize,
+    /// `youngsModulus` per type.
+    pub youngs_modulus: Vec<f64>,
+    /// `poissonsRatio` per type.
+    pub poissons_ratio: Vec<f64>,
+    /// `coefficientRestitution` per type pair.
+    pub restitution: Vec<f64>,
+    /// `coefficientFriction` per type pair.
+    pub friction: Vec<f64>,
+    /// `coefficientRollingFriction` per type pair (rolling models only).
+    pub rolling_friction: Vec<f64>,
+    /// `coefficientRollingViscousDamping` per type pair (epsd only).
+    pub rolling_viscous_damping: Vec<f64>,
+    /// `cohesionEnergyDensity` per type pair (sjkr, sjkr2 only).
+    pub cohesion_energy_density: Vec<f64>,
+    /// `characteristicVelocity` scalar (hooke models only).
+    pub characteristic_velocity: Option<f64>,
+    /// `coefficientAdhesionStiffness` per type pair (hooke/hysteresis: kc = value · k1).
+    pub adhesion_stiffness: Vec<f64>,
+    /// `coefficientPlasticityDepth` per type pair (hooke/hysteresis).
+    pub plasticity_depth: Vec<f64>,
+    /// `coefficientMaxElasticStiffness` per type pair (hooke/hysteresis: k2max = value · k1).
+    pub max_elastic_stiffness: Vec<f64>,
+}
+
+impl Materials {
+    /// Materials for `ntypes` types with every type pair given the same e and μ: the common
+    /// one-material case.
+    pub fn uniform(ntypes: usize, youngs: f64, poisson: f64, restitution: f64, friction: f64) -> Self {
+        let nn = ntypes * ntypes;
+        Self {
+            ntypes,
+            youngs_modulus: vec![youngs; ntypes],
+            poissons_ratio: vec![poisson; ntypes],
+            restitution: vec![restitution; nn],
+            friction: vec![friction; nn],
+            ..Default::default()
+        }
+    }
+
+    /// Sets a per-pair table to one value for every pair.
+    pub fn fill_pairs(table: &mut Vec<f64>, ntypes: usize, value: f64) {
+        *table = vec![value; ntypes * ntypes];
+    }
+}
+
+/// Mixed coefficients of one type pair (or particle type × wall type).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PairCoeff {
+    /// Effective Young's modulus E*.
+    pub e_star: f64,
+    /// Effective shear modulus G*.
+    pub g_star: f64,
+    /// β = ln e / √(ln²e + π²) (≤ 0).
+    pub beta: f64,
+    /// ln²e / (ln²e + π²), used by the Hooke damping.
+    pub ln_e_ratio: f64,
+    /// Coulomb friction coefficient μ.
+    pub mu: f64,
+    /// Rolling friction coefficient μ_r.
+    pub mu_r: f64,
+    /// Rolling viscous damping η_r (epsd).
+    pub eta_r: f64,
+    /// Cohesion energy density (J/m³).
+    pub cohesion: f64,
+    /// Characteristic impact velocity (hooke).
+    pub vc: f64,
+    /// Adhesion stiffness ratio kc/k1 (hooke/hysteresis).
+    pub kc_ratio: f64,
+    /// Plasticity depth φ_f (hooke/hysteresis).
+    pub phi_f: f64,
+    /// Maximum unloading stiffness ratio k2max/k1 (hooke/hysteresis).
+    pub k2max_ratio: f64,
+}
+
+/// Which optional properties a contact model needs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Needs {
+    /// Rolling friction coefficient.
+    pub rolling_friction: bool,
+    /// Rolling viscous damping.
+    pub rolling_damping: bool,
+    /// Cohesion energy density.
+    pub cohesion: bool,
+    /// Characteristic velocity.
+    pub characteristic_velocity: bool,
+    /// Hysteresis coefficients.
+    pub hysteresis: bool,
+}
+
+/// Mixed coefficients for every ordered type pair.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CoeffTable {
+    ntypes: usize,
+    coeffs: Vec<PairCoeff>,
+}
+
+fn pair_table(
+    name: &'static str,
+    table: &[f64],
+    n: usize,
+    needed: bool,
+    ok: impl Fn(f64) -> bool,
+    range: &'static str,
+) -> Result<Vec<f64>> {
+    if !needed {
+        return Ok(vec![0.0; n * n]);
+    }
+    if table.len() != n * n {
+        return Err(Error::Invalid {
+            what: name,
+            reason: format!(
+                "needs {} values (one per type pair for {n} types), got {}",
+                n * n,
+                table.len()
+            ),
+        });
+    }
+    for a in 0..n {
+        for b in 0..n {
+            let v = table[a * n + b];
+            check(name, v, ok(v), range)?;
+            if v != table[b * n + a] {
+                return Err(Error::Invalid {
+                    what: name,
+                    reason: format!(
+                        "must be symmetric: value for types {} {} is {v}, for {} {} it is {}",
+                        a + 1,
+                        b + 1,
+                        b + 1,
+                        a + 1,
+                        table[b * n + a]
+                    ),
+                });
+            }
+        }
+    }
+    Ok(table.to_vec())
+}
+
+impl CoeffTable {
+    /// Validates `m` and mixes it: E* and G* from the per-type E and ν, the rest per pair.
+    pub fn new(m: &Materials, needs: Needs) -> Result<Self> {
+        let n = m.ntypes;
+        if n == 0 {
+            return Err(Error::Invalid {
+                what: "materials",
+                reason: "at least one atom type is needed".into(),
+            });
+        }
+        for (name, v) in [("youngsModulus", &m.youngs_modulus), ("poissonsRatio", &m.poissons_ratio)] {
+            if v.len() != n {
+                return Err(Error::Invalid {
+                    what: name,
+                    reason: format!("needs one value per type ({n}), got {}", v.len()),
+                });
+            }
+        }
+        for &e in &m.youngs_modulus {
+            check("youngsModulus", e, e > 0.0, "must be > 0")?;
+        }
+        for &nu in &m.poissons_ratio {
+            check("poissonsRatio", nu, nu > -1.0 && nu < 0.5, "must be in (-1, 0.5)")?;
+        }
+        let rest = pair_table("coefficientRestitution", &m.restitution, n, true, |e| e > 0.0 && e <= 1.0, "must be in (0, 1]")?;
+        let fric = pair_table("coefficientFriction", &m.friction, n, true, |v| v >= 0.0, "must be >= 0")?;
+        let rf = pair_table("coefficientRollingFriction", &m.rolling_friction, n, needs.rolling_friction, |v| v >= 0.0, "must be >= 0")?;
+        let rd = pair_table("coefficientRollingViscousDamping", &m.rolling_viscous_damping, n, needs.rolling_damping, |v| v >= 0.0, "must be >= 0")?;
+        let coh = pair_table("cohesionEnergyDensity", &m.cohesion_energy_density, n, needs.cohesion, |v| v >= 0.0, "must be >= 0")?;
+        let kc = pair_table("coefficientAdhesionStiffness", &m.adhesion_stiffness, n, needs.hysteresis, |v| v >= 0.0, "must be >= 0")?;
+        let phi = pair_table("coefficientPlasticityDepth", &m.plasticity_depth, n, needs.hysteresis, |v| v > 0.0, "must be > 0")?;
+        let k2 = pair_table("coefficientMaxElasticStiffness", &m.max_elastic_stiffness, n, needs.hysteresis, |v| v > 1.0, "must be > 1")?;
+        let vc = if needs.characteristic_velocity {
+            let v = m.characteristic_velocity.ok_or_else(|| Error::Invalid {
+                what: "characteristicVelocity",
+                reason: "the hooke models need fix property/global characteristicVelocity scalar".into(),
+            })?;
+            check("characteristicVelocity", v, v > 0.0, "must be > 0")?
+        } else {
+            0.0
+        };
+        let mut coeffs = Vec::with_capacity(n * n);
+        for a in 0..n {
+            for b in 0..n {
+                let (ea, eb) = (m.youngs_modulus[a], m.youngs_modulus[b]);
+                let (na, nb) = (m.poissons_ratio[a], m.poissons_ratio[b]);
+                let e_star = 1.0 / ((1.0 - na * na) / ea + (1.0 - nb * nb) / eb);
+                let g_star =
+                    1.0 / (2.0 * (2.0 - na) * (1.0 + na) / ea + 2.0 * (2.0 - nb) * (1.0 + nb) / eb);
+                let k = a * n + b;
+                let ln_e = rest[k].ln();
+                let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+                coeffs.push(PairCoeff {
+                    e_star,
+                    g_star,
+                    beta: ln_e / (ln_e * ln_e + pi2).sqrt(),
+                    ln_e_ratio: ln_e * ln_e / (ln_e * ln_e + pi2),
+                    mu: fric[k],
+                    mu_r: rf[k],
+                    eta_r: rd[k],
+                    cohesion: coh[k],
+                    vc,
+                    kc_ratio: kc[k],
+                    phi_f: phi[k],
+                    k2max_ratio: k2[k],
+                });
+            }
+        }
+        Ok(Self { ntypes: n, coeffs })
+    }
+
+    /// Number of types.
+    pub fn ntypes(&self) -> usize {
+        self.ntypes
+    }
+
+    /// Coefficients of the 1-based type pair `(ti, tj)`.
+    #[inline(always)]
+    pub fn get(&self, ti: u32, tj: u32) -> &PairCoeff {
+        &self.coeffs[(ti as usize - 1) * self.ntypes + (tj as usize - 1)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mixing_same_material() {
+        let m = Materials::uniform(1, 5e6, 0.45, 0.3, 0.5);
+        let t = CoeffTable::new(&m, Needs::default()).unwrap();
+        let c = t.get(1, 1);
+        assert!((c.e_star - 5e6 / (2.0 * (1.0 - 0.45 * 0.45))).abs() < 1e-6);
+        assert!((c.g_star - 5e6 / (4.0 * 1.55 * 1.45)).abs() < 1e-6);
+        let b = 0.3f64.ln() / (0.3f64.ln().powi(2) + std::f64::consts::PI.powi(2)).sqrt();
+        assert!((c.beta - b).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_materials_are_refused() {
+        let ok = Materials::uniform(1, 5e6, 0.3, 0.5, 0.5);
+        assert!(CoeffTable::new(&ok, Needs::default()).is_ok());
+        let mut m = ok.clone();
+        m.poissons_ratio = vec![0.5];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let mut m = ok.clone();
+        m.poissons_ratio = vec![-1.0];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let mut m = ok.clone();
+        m.youngs_modulus = vec![0.0];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let mut m = ok.clone();
+        m.restitution = vec![0.0];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let mut m = ok.clone();
+        m.restitution = vec![1.1];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let mut m = ok.clone();
+        m.friction = vec![0.5, 0.5];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        let needs = Needs { rolling_friction: true, ..Default::default() };
+        assert!(CoeffTable::new(&ok, needs).is_err());
+        let needs = Needs { characteristic_velocity: true, ..Default::default() };
+        assert!(CoeffTable::new(&ok, needs).is_err());
+        let mut m = Materials::uniform(2, 5e6, 0.3, 0.5, 0.5);
+        m.friction = vec![0.1, 0.2, 0.3, 0.4];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+    }
+}

@@ -1,0 +1,326 @@
+//! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
+//! hooke/hysteresis), tangential (history, no_history), rolling friction (off, cdt, epsd,
+//! epsd2) and cohesion (off, sjkr, sjkr2). Each sub-model is a zero-sized type; a
+//! [`ContactModel`] value picks one of each and [`ContactModel::dispatch`] turns that
+//! choice into one monomorphized kernel per pass, so the per-contact code has no dynamic
+//! dispatch. Particle–particle and particle–wall contacts share [`contact`].
+
+pub mod cohesion;
+pub mod materials;
+pub mod normal;
+pub mod rolling;
+pub mod tangential;
+
+use glam::DVec3;
+
+pub use materials::{CoeffTable, Materials, Needs, PairCoeff};
+
+/// Normal force model (`model ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NormalKind {
+    /// `hertz`.
+    Hertz,
+    /// `hooke`.
+    Hooke,
+    /// `hooke/hysteresis` (Walton–Braun).
+    HookeHysteresis,
+}
+
+/// Tangential model (`tangential ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentialKind {
+    /// `history`: incremental spring with Coulomb cap.
+    History,
+    /// `no_history`: damping only, with Coulomb cap.
+    NoHistory,
+}
+
+/// Rolling friction model (`rolling_friction ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RollingKind {
+    /// No rolling friction.
+    Off,
+    /// `cdt`: constant directional torque.
+    Cdt,
+    /// `epsd`: elastic–plastic spring–dashpot (Ai et al.).
+    Epsd,
+    /// `epsd2`: Iwashita–Oda spring, no damping.
+    Epsd2,
+}
+
+/// Cohesion model (`cohesion ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CohesionKind {
+    /// No cohesion.
+    Off,
+    /// `sjkr`: F = k · (exact lens contact area).
+    Sjkr,
+    /// `sjkr2`: F = k · 2π δ (2R*).
+    Sjkr2,
+}
+
+/// Model keywords that are plain switches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Flags {
+    /// `tangential_damping on|off` (default on).
+    pub tangential_damping: bool,
+    /// `limitForce on|off` (default off): no attractive normal contact force.
+    pub limit_force: bool,
+    /// `torsionTorque on|off` (rolling models, default off).
+    pub torsion_torque: bool,
+    /// `tangential_reduce on|off` (cohesion models, default off).
+    pub tangential_reduce: bool,
+}
+
+impl Default for Flags {
+    fn default() -> Self {
+        Self {
+            tangential_damping: true,
+            limit_force: false,
+            torsion_torque: false,
+            tangential_reduce: false,
+        }
+    }
+}
+
+/// A full contact model selection, as `pair_style gran` or `fix wall/gran` give it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ContactModel {
+    /// Normal model.
+    pub normal: NormalKind,
+    /// Tangential model.
+    pub tangential: TangentialKind,
+    /// Rolling friction model.
+    pub rolling: RollingKind,
+    /// Cohesion model.
+    pub cohesion: CohesionKind,
+    /// Switches.
+    pub flags: Flags,
+}
+
+impl Default for ContactModel {
+    fn default() -> Self {
+        Self::hertz_history()
+    }
+}
+
+impl ContactModel {
+    /// `model hertz tangential history`, the most common choice.
+    pub fn hertz_history() -> Self {
+        Self {
+            normal: NormalKind::Hertz,
+            tangential: TangentialKind::History,
+            rolling: RollingKind::Off,
+            cohesion: CohesionKind::Off,
+            flags: Flags::default(),
+        }
+    }
+
+    /// Which optional material properties this model needs.
+    pub fn needs(&self) -> Needs {
+        Needs {
+            rolling_friction: self.rolling != RollingKind::Off,
+            rolling_damping: self.rolling == RollingKind::Epsd,
+            cohesion: self.cohesion != CohesionKind::Off,
+            characteristic_velocity: matches!(self.normal, NormalKind::Hooke | NormalKind::HookeHysteresis),
+            hysteresis: self.normal == NormalKind::HookeHysteresis,
+        }
+    }
+
+    /// Number of f64 history values per contact.
+    pub fn history_width(&self) -> usize {
+        self.dispatch(HistoryWidth)
+    }
+
+    /// Of the history values, how many leading ones change sign when the two particles of
+    /// a pair swap roles (vectors attached to the i→j orientation).
+    pub fn history_odd(&self) -> usize {
+        self.dispatch(HistoryOdd)
+    }
+
+    /// Calls `v.visit::<K>()` with the kernel type `K` of this selection: the one place
+    /// where the runtime choice becomes a type.
+    pub fn dispatch<V: Visitor>(&self, v: V) -> V::Output {
+        match self.normal {
+            NormalKind::Hertz => self.d_tan::<normal::Hertz, V>(v),
+            NormalKind::Hooke => self.d_tan::<normal::Hooke, V>(v),
+            NormalKind::HookeHysteresis => self.d_tan::<normal::HookeHysteresis, V>(v),
+        }
+    }
+    fn d_tan<N: normal::Normal, V: Visitor>(&self, v: V) -> V::Output {
+        match self.tangential {
+            TangentialKind::History => self.d_roll::<N, tangential::History, V>(v),
+            TangentialKind::NoHistory => self.d_roll::<N, tangential::NoHistory, V>(v),
+        }
+    }
+    fn d_roll<N: normal::Normal, T: tangential::Tangential, V: Visitor>(&self, v: V) -> V::Output {
+        match self.rolling {
+            RollingKind::Off => self.d_coh::<N, T, rolling::Off, V>(v),
+            RollingKind::Cdt => self.d_coh::<N, T, rolling::Cdt, V>(v),
+            RollingKind::Epsd => self.d_coh::<N, T, rolling::Epsd, V>(v),
+            RollingKind::Epsd2 => self.d_coh::<N, T, rolling::Epsd2, V>(v),
+        }
+    }
+    fn d_coh<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, V: Visitor>(
+        &self,
+        v: V,
+    ) -> V::Output {
+        match self.cohesion {
+            CohesionKind::Off => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
+            CohesionKind::Sjkr => v.visit::<Kernel<N, T, R, cohesion::Sjkr>>(),
+            CohesionKind::Sjkr2 => v.visit::<Kernel<N, T, R, cohesion::Sjkr2>>(),
+        }
+    }
+}
+
+/// Something to run with a concrete kernel type (a pair pass, a wall pass, ...).
+pub trait Visitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs with kernel `K`.
+    fn visit<K: ContactKernel>(self) -> Self::Output;
+}
+
+struct HistoryWidth;
+impl Visitor for HistoryWidth {
+    type Output = usize;
+    fn visit<K: ContactKernel>(self) -> usize {
+        K::HIST
+    }
+}
+struct HistoryOdd;
+impl Visitor for HistoryOdd {
+    type Output = usize;
+    fn visit<K: ContactKernel>(self) -> usize {
+        K::HIST_ODD
+    }
+}
+
+/// Geometry and kinematics of one contact, as seen from particle i. For a wall, j is the
+/// wall: `rj = ∞`, `inertia_j = ∞`, `cj = 0`, `wj = 0`.
+#[derive(Debug, Clone, Copy)]
+pub struct Geom {
+    /// Unit normal pointing from j to i.
+    pub n: DVec3,
+    /// Overlap δ > 0.
+    pub delta: f64,
+    /// Centre distance (for a wall: distance from the wall to the centre).
+    pub dist: f64,
+    /// Radius of i.
+    pub ri: f64,
+    /// Radius of j (∞ for a wall).
+    pub rj: f64,
+    /// Effective radius R*.
+    pub r_star: f64,
+    /// Effective mass m*.
+    pub m_star: f64,
+    /// Lever arm of i, r_i − δ/2.
+    pub ci: f64,
+    /// Lever arm of j, r_j − δ/2 (0 for a wall).
+    pub cj: f64,
+    /// v_i − v_j (for a wall: v_i − v_wall).
+    pub vr: DVec3,
+    /// Angular velocity of i.
+    pub wi: DVec3,
+    /// Angular velocity of j (0 for a wall).
+    pub wj: DVec3,
+    /// Factor on ω_i in the rolling models: 1 for a pair; for a wall LIGGGHTS uses
+    /// c_i/(r_i − δ) = (r_i − δ/2)/(r_i − δ).
+    pub roll_scale: f64,
+    /// Rolling inertia of i about the contact, I_i + m_i r_i².
+    pub inertia_i: f64,
+    /// Rolling inertia of j about the contact (∞ for a wall).
+    pub inertia_j: f64,
+    /// Timestep.
+    pub dt: f64,
+}
+
+/// Result of one contact: the force on i (j gets the opposite) and the torques on both.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactForce {
+    /// Force on i.
+    pub f_i: DVec3,
+    /// Torque on i.
+    pub t_i: DVec3,
+    /// Torque on j.
+    pub t_j: DVec3,
+    /// Normal force magnitude (positive = repulsive), cohesion included.
+    pub fn_total: f64,
+}
+
+/// What the normal sub-model hands on to the others.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NormalOut {
+    /// Normal contact force, elastic plus damping, after `limitForce` (positive = repulsive).
+    pub fn_contact: f64,
+    /// Elastic part alone.
+    pub fn_elastic: f64,
+    /// Normal stiffness k_n.
+    pub kn: f64,
+    /// Tangential stiffness k_t.
+    pub kt: f64,
+    /// Tangential damping coefficient γ_t.
+    pub gamma_t: f64,
+}
+
+/// A complete contact law: one type per sub-model combination.
+pub trait ContactKernel {
+    /// History values per contact.
+    const HIST: usize;
+    /// Leading history values that flip sign when i and j swap.
+    const HIST_ODD: usize;
+    /// Force and torques of one contact; `hist` has `HIST` values.
+    fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce;
+}
+
+/// The kernel made of normal model `N`, tangential `T`, rolling `R` and cohesion `C`.
+pub struct Kernel<N, T, R, C>(std::marker::PhantomData<(N, T, R, C)>);
+
+impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohesion::Cohesion>
+    ContactKernel for Kernel<N, T, R, C>
+{
+    // Layout: [tangential | rolling | normal]; the first two are vectors tied to i→j.
+    const HIST: usize = T::HIST + R::HIST + N::HIST;
+    const HIST_ODD: usize = T::HIST + R::HIST;
+
+    #[inline(always)]
+    fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce {
+        contact::<N, T, R, C>(g, c, flags, hist)
+    }
+}
+
+/// One contact: normal force, cohesion, tangential force with Coulomb cap, torques from the
+/// tangential force on the lever arms c_i, c_j, and the rolling torque.
+#[inline(always)]
+pub fn contact<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohesion::Cohesion>(
+    g: &Geom,
+    c: &PairCoeff,
+    flags: Flags,
+    hist: &mut [f64],
+) -> ContactForce {
+    let (h_tan, rest) = hist.split_at_mut(T::HIST);
+    let (h_roll, h_norm) = rest.split_at_mut(R::HIST);
+    let vn = g.vr.dot(g.n);
+    let vt = g.vr - vn * g.n;
+    // Relative tangential velocity of the contact points.
+    let vt_rel = vt - (g.ci * g.wi + g.cj * g.wj).cross(g.n);
+    let no = N::normal(g, c, vn, flags, h_norm);
+    let f_coh = C::force(g, c);
+    // The normal load that sets the Coulomb and rolling limits: the normal model's force
+    // (damping included); with `tangential_reduce on` the cohesive pull is added to it and
+    // the magnitude taken, as LIGGGHTS 3.8 does (its manual words it the other way round).
+    let load = if flags.tangential_reduce { (no.fn_contact - f_coh).abs() } else { no.fn_contact.abs() };
+    let ft = T::force(g, c, &no, load, vt_rel, flags, h_tan);
+    let fn_total = no.fn_contact - f_coh;
+    let f_i = fn_total * g.n + ft;
+    let nxft = g.n.cross(ft);
+    let mut t_i = -g.ci * nxft;
+    let mut t_j = -g.cj * nxft;
+    let tr = R::torque(g, c, &no, load, flags, h_roll);
+    t_i += tr;
+    t_j -= tr;
+    ContactForce { f_i, t_i, t_j, fn_total }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,132 @@
+//! Normal force sub-models. Each returns the normal contact force (elastic + damping,
+//! positive = repulsive, after `limitForce`) and the stiffness and damping the tangential
+//! and rolling sub-models need.
+
+use super::{Flags, Geom, NormalOut, PairCoeff};
+
+/// A normal force law.
+pub trait Normal {
+    /// History values it keeps per contact.
+    const HIST: usize;
+    /// Normal force for normal relative velocity `vn` (negative while approaching).
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut;
+}
+
+#[inline(always)]
+fn finish(fn_elastic: f64, fn_damp: f64, flags: Flags) -> f64 {
+    let f = fn_elastic + fn_damp;
+    if flags.limit_force && f < 0.0 {
+        0.0
+    } else {
+        f
+    }
+}
+
+/// `model hertz`: k_n = 4/3 E*√(R*δ), k_t = 8G*√(R*δ),
+/// γ_{n,t} = −2√(5/6) β √(S_{n,t} m*) with S_n = 2E*√(R*δ), S_t = k_t.
+pub struct Hertz;
+
+impl Normal for Hertz {
+    const HIST: usize = 0;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
+        let sq = (g.r_star * g.delta).sqrt();
+        let sn = 2.0 * c.e_star * sq;
+        let kt = 8.0 * c.g_star * sq;
+        let kn = 4.0 / 3.0 * c.e_star * sq;
+        // -2 sqrt(5/6) = -1.8257418583505538
+        let pre = -1.825_741_858_350_553_8 * c.beta;
+        let gamma_n = pre * (sn * g.m_star).sqrt();
+        let gamma_t = pre * (kt * g.m_star).sqrt();
+        let fn_elastic = kn * g.delta;
+        NormalOut {
+            fn_contact: finish(fn_elastic, -gamma_n * vn, flags),
+            fn_elastic,
+            kn,
+            kt,
+            gamma_t,
+        }
+    }
+}
+
+/// Hooke stiffness from the characteristic velocity V_c (LIGGGHTS `gran_model_hooke`):
+/// k_n = 16/15 √R* E* (15 m* V_c² / (16 √R* E*))^{1/5}.
+#[inline(always)]
+pub fn hooke_kn(c: &PairCoeff, r_star: f64, m_star: f64) -> f64 {
+    let sr = r_star.sqrt();
+    16.0 / 15.0 * sr * c.e_star * (15.0 * m_star * c.vc * c.vc / (16.0 * sr * c.e_star)).powf(0.2)
+}
+
+/// Hooke damping: γ_n = √(4 m* k_n ln²e / (ln²e + π²)).
+#[inline(always)]
+pub fn hooke_gamma(c: &PairCoeff, kn: f64, m_star: f64) -> f64 {
+    (4.0 * m_star * kn * c.ln_e_ratio).sqrt()
+}
+
+/// `model hooke`: linear spring with k_t = k_n and γ_t = γ_n.
+pub struct Hooke;
+
+impl Normal for Hooke {
+    const HIST: usize = 0;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
+        let kn = hooke_kn(c, g.r_star, g.m_star);
+        let gamma_n = hooke_gamma(c, kn, g.m_star);
+        let fn_elastic = kn * g.delta;
+        NormalOut {
+            fn_contact: finish(fn_elastic, -gamma_n * vn, flags),
+            fn_elastic,
+            kn,
+            kt: kn,
+            gamma_t: gamma_n,
+        }
+    }
+}
+
+/// `model hooke/hysteresis` (Walton–Braun, as LIGGGHTS 3.8): loading along k1 (the Hooke
+/// k_n); unloading and reloading along k2 = k1 + (k2max − k1) δ_max/δ_lim, which reaches
+/// k2max = `coefficientMaxElasticStiffness`·k1 at δ_lim = k2max/(k2max − k1) · φ_f · 2R*
+/// (φ_f = `coefficientPlasticityDepth`); below zero force an adhesive branch of stiffness
+/// kc = `coefficientAdhesionStiffness`·k1. History: the largest overlap δ_max. Damping as
+/// Hooke; `limitForce` does not apply (the adhesive branch is the point of the model).
+pub struct HookeHysteresis;
+
+impl Normal for HookeHysteresis {
+    const HIST: usize = 1;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, _flags: Flags, hist: &mut [f64]) -> NormalOut {
+        let k1 = hooke_kn(c, g.r_star, g.m_star);
+        let gamma_n = hooke_gamma(c, k1, g.m_star);
+        let k2max = c.k2max_ratio * k1;
+        let kc = c.kc_ratio * k1;
+        let delta = g.delta;
+        let dmax = hist[0].max(delta);
+        hist[0] = dmax;
+        let dlim = k2max / (k2max - k1) * c.phi_f * 2.0 * g.r_star;
+        let branch = if dmax >= dlim {
+            k2max * (delta - dlim) + k1 * dlim
+        } else {
+            let k2 = k1 + (k2max - k1) * dmax / dlim;
+            let f = k2 * (delta - dmax) + k1 * dmax;
+            if f >= k1 * delta {
+                k1 * delta
+            } else {
+                f
+            }
+        };
+        let fe = if branch > -kc * delta {
+            branch
+        } else {
+            // Adhesive branch: the unloading line is moved to meet it.
+            hist[0] = 0.5 * (delta + (delta * delta + 4.0 * (k1 + kc) * delta * dlim / (k2max - k1)).sqrt());
+            -kc * delta
+        };
+        NormalOut {
+            fn_contact: fe - gamma_n * vn,
+            fn_elastic: fe,
+            kn: k1,
+            kt: k1,
+            gamma_t: gamma_n,
+        }
+    }
+}

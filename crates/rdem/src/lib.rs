@@ -1,0 +1,34 @@
+//! rdem engine: the state of a granular DEM simulation and one timestep of it — particles,
+//! domain, neighbor lists, granular contact laws with history, primitive walls and time
+//! integration. No parsing and no files: the script front end and the writers live in
+//! other crates.
+//!
+//! The order of a timestep is written down once, in [`step`].
+
+#![warn(missing_docs)]
+
+pub mod comm;
+pub mod contact;
+pub mod domain;
+pub mod error;
+pub mod fix;
+pub mod neighbor;
+pub mod pair;
+pub mod particles;
+pub mod sort;
+pub mod step;
+pub mod timers;
+pub mod wall;
+pub mod world;
+
+pub use glam::DVec3;
+
+pub use contact::{CohesionKind, ContactModel, Flags, Materials, NormalKind, RollingKind, TangentialKind};
+pub use domain::{Boundary, Domain};
+pub use error::{Error, Result};
+pub use fix::{Fix, FixKind};
+pub use neighbor::NeighborSettings;
+pub use pair::PairGran;
+pub use particles::{NewParticle, Particles, Tag};
+pub use wall::{PrimitiveWall, WallShape};
+pub use world::{LostPolicy, SortSettings, World};

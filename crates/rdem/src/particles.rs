@@ -1,0 +1,655 @@
+//! Particle storage (seed 002): struct of arrays, owned ("local") particles first, then
+//! ghost copies. Every per-particle array, including the named properties that fixes add,
+//! has the same length, grows, is permuted by the spatial sort and is compacted when
+//! particles are removed, so data added by a fix always moves with its particle.
+
+use glam::DVec3;
+
+use crate::error::{check, Error, Result};
+
+/// Global particle identifier. 0 means "not yet assigned".
+pub type Tag = u64;
+
+/// Moment of inertia factor of a solid sphere: I = 0.4 m r².
+pub const INERTIA_SPHERE: f64 = 0.4;
+
+/// Handle of a named per-particle property.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PropId(pub usize);
+
+/// A named per-particle property: `width` f64 values per particle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Property {
+    /// Name, unique in the container.
+    pub name: String,
+    /// Values per particle.
+    pub width: usize,
+    /// Value given to new particles.
+    pub default: Vec<f64>,
+    /// `width * len` values, particle-major.
+    pub data: Vec<f64>,
+}
+
+impl Property {
+    /// Values of particle `i`.
+    pub fn get(&self, i: usize) -> &[f64] {
+        &self.data[i * self.width..(i + 1) * self.width]
+    }
+    /// Mutable values of particle `i`.
+    pub fn get_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self.data[i * self.width..(i + 1) * self.width]
+    }
+}
+
+/// Everything needed to create one particle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewParticle {
+    /// Tag, or 0 to have one assigned by [`Particles::extend_tags`].
+    pub tag: Tag,
+    /// Particle type, 1-based as in LIGGGHTS.
+    pub ty: u32,
+    /// Group bit mask (bit 0 is group `all` and is always set).
+    pub mask: u32,
+    /// Position.
+    pub x: DVec3,
+    /// Velocity.
+    pub v: DVec3,
+    /// Angular velocity.
+    pub omega: DVec3,
+    /// Radius (> 0).
+    pub radius: f64,
+    /// Density (> 0); the mass follows as density · 4/3 π r³.
+    pub density: f64,
+}
+
+impl NewParticle {
+    /// A particle of type 1 at rest, in group `all`.
+    pub fn at(x: DVec3, radius: f64, density: f64) -> Self {
+        Self {
+            tag: 0,
+            ty: 1,
+            mask: 1,
+            x,
+            v: DVec3::ZERO,
+            omega: DVec3::ZERO,
+            radius,
+            density,
+        }
+    }
+    /// Sets the velocity.
+    pub fn with_v(mut self, v: DVec3) -> Self {
+        self.v = v;
+        self
+    }
+    /// Sets the angular velocity.
+    pub fn with_omega(mut self, omega: DVec3) -> Self {
+        self.omega = omega;
+        self
+    }
+    /// Sets the type.
+    pub fn with_type(mut self, ty: u32) -> Self {
+        self.ty = ty;
+        self
+    }
+    /// Sets the tag.
+    pub fn with_tag(mut self, tag: Tag) -> Self {
+        self.tag = tag;
+        self
+    }
+}
+
+/// Struct-of-arrays particle container: indices `0..nlocal` are owned particles,
+/// `nlocal..len` are ghosts (periodic images or, with MPI, copies of other ranks' particles).
+#[derive(Debug, Clone, Default)]
+pub struct Particles {
+    nlocal: usize,
+    /// Global identifiers.
+    pub tag: Vec<Tag>,
+    /// Types, 1-based.
+    pub ty: Vec<u32>,
+    /// Group membership bits.
+    pub mask: Vec<u32>,
+    /// Positions.
+    pub x: Vec<DVec3>,
+    /// Velocities.
+    pub v: Vec<DVec3>,
+    /// Angular velocities.
+    pub omega: Vec<DVec3>,
+    /// Forces.
+    pub f: Vec<DVec3>,
+    /// Torques.
+    pub torque: Vec<DVec3>,
+    /// Radii.
+    pub radius: Vec<f64>,
+    /// Masses.
+    pub rmass: Vec<f64>,
+    /// Densities.
+    pub density: Vec<f64>,
+    /// Periodic image counts.
+    pub image: Vec<[i32; 3]>,
+    /// For a ghost: index of the particle it copies (the owner, for serial periodic images).
+    /// For a local particle: its own index.
+    pub origin: Vec<usize>,
+    /// Named per-particle properties added by fixes.
+    pub props: Vec<Property>,
+}
+
+/// Applies `new[i] = old[perm[i]]` in place, cycle by cycle with one temporary
+/// (seed 002 eq. 9). `done` is scratch of length `perm.len()`.
+fn permute_in_place<T: Copy>(data: &mut [T], perm: &[usize], done: &mut [bool]) {
+    done.iter_mut().for_each(|d| *d = false);
+    for start in 0..perm.len() {
+        if done[start] || perm[start] == start {
+            done[start] = true;
+            continue;
+        }
+        let tmp = data[start];
+        let mut i = start;
+        loop {
+            done[i] = true;
+            let src = perm[i];
+            if src == start {
+                data[i] = tmp;
+                break;
+            }
+            data[i] = data[src];
+            i = src;
+        }
+    }
+}
+
+/// Same as [`permute_in_place`] for `width` values per particle.
+fn permute_chunks_in_place(data: &mut [f64], width: usize, perm: &[usize], done: &mut [bool]) {
+    if width == 1 {
+        return permute_in_place(data, perm, done);
+    }
+    done.iter_mut().for_each(|d| *d = false);
+    let mut tmp = vec![0.0; width];
+    for start in 0..perm.len() {
+        if done[start] || perm[start] == start {
+            done[start] = true;
+            continue;
+        }
+        tmp.copy_from_slice(&data[start * width..(start + 1) * width]);
+        let mut i = start;
+        loop {
+            done[i] = true;
+            let src = perm[i];
+            if src == start {
+                data[i * width..(i + 1) * width].copy_from_slice(&tmp);
+                break;
+            }
+            data.copy_within(src * width..(src + 1) * width, i * width);
+            i = src;
+        }
+    }
+}
+
+impl Particles {
+    /// An empty container.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of owned particles.
+    pub fn nlocal(&self) -> usize {
+        self.nlocal
+    }
+    /// Number of ghosts.
+    pub fn nghost(&self) -> usize {
+        self.tag.len() - self.nlocal
+    }
+    /// Owned plus ghosts.
+    pub fn len(&self) -> usize {
+        self.tag.len()
+    }
+    /// True when there are no particles at all.
+    pub fn is_empty(&self) -> bool {
+        self.tag.is_empty()
+    }
+
+    /// Adds a named property with `width` values per particle, filled with `default`
+    /// for existing and future particles. Adding an existing name with the same width
+    /// returns the existing handle.
+    pub fn add_property(&mut self, name: &str, width: usize, default: &[f64]) -> Result<PropId> {
+        if width == 0 || default.len() != width {
+            return Err(Error::Invalid {
+                what: "per-particle property",
+                reason: format!(
+                    "'{name}' needs width >= 1 and one default per component (width {width}, {} defaults)",
+                    default.len()
+                ),
+            });
+        }
+        if let Some(id) = self.property(name) {
+            if self.props[id.0].width == width {
+                return Ok(id);
+            }
+            return Err(Error::Invalid {
+                what: "per-particle property",
+                reason: format!(
+                    "'{name}' exists with width {}, not {width}",
+                    self.props[id.0].width
+                ),
+            });
+        }
+        let n = self.len();
+        let mut data = Vec::with_capacity(n * width);
+        for _ in 0..n {
+            data.extend_from_slice(default);
+        }
+        self.props.push(Property {
+            name: name.to_string(),
+            width,
+            default: default.to_vec(),
+            data,
+        });
+        Ok(PropId(self.props.len() - 1))
+    }
+
+    /// Handle of the property called `name`.
+    pub fn property(&self, name: &str) -> Option<PropId> {
+        self.props.iter().position(|p| p.name == name).map(PropId)
+    }
+
+    /// Validates and appends an owned particle; returns its index. Ghosts must be
+    /// cleared first (see [`Particles::clear_ghosts`]).
+    pub fn add_local(&mut self, p: &NewParticle) -> Result<usize> {
+        check("radius", p.radius, p.radius > 0.0, "must be > 0")?;
+        check("density", p.density, p.density > 0.0, "must be > 0")?;
+        for (what, vec) in [("position", p.x), ("velocity", p.v), ("angular velocity", p.omega)] {
+            if !vec.is_finite() {
+                return Err(Error::Invalid {
+                    what,
+                    reason: format!("{vec} is not finite"),
+                });
+            }
+        }
+        if p.ty == 0 {
+            return Err(Error::Invalid {
+                what: "particle type",
+                reason: "types start at 1".into(),
+            });
+        }
+        debug_assert_eq!(self.nghost(), 0, "add_local with ghosts present");
+        self.clear_ghosts();
+        let mass = p.density * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+        self.push_raw(
+            p.tag,
+            p.ty,
+            p.mask | 1,
+            p.x,
+            p.v,
+            p.omega,
+            p.radius,
+            mass,
+            p.density,
+            [0; 3],
+        );
+        let i = self.len() - 1;
+        self.origin[i] = i;
+        for prop in &mut self.props {
+            prop.data.extend_from_slice(&prop.default);
+        }
+        self.nlocal += 1;
+        Ok(i)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn push_raw(
+        &mut self,
+        tag: Tag,
+        ty: u32,
+        mask: u32,
+        x: DVec3,
+        v: DVec3,
+        omega: DVec3,
+        radius: f64,
+        rmass: f64,
+        density: f64,
+        image: [i32; 3],
+    ) {
+        self.tag.push(tag);
+        self.ty.push(ty);
+        self.mask.push(mask);
+        self.x.push(x);
+        self.v.push(v);
+        self.omega.push(omega);
+        self.f.push(DVec3::ZERO);
+        self.torque.push(DVec3::ZERO);
+        self.radius.push(radius);
+        self.rmass.push(rmass);
+        self.density.push(density);
+        self.image.push(image);
+        self.origin.push(0);
+    }
+
+    /// Appends a ghost copy of particle `src` displaced by `shift`; returns its index.
+    /// Properties are copied too, so pair code may read them on ghosts.
+    pub fn push_ghost(&mut self, src: usize, shift: DVec3) -> usize {
+        let origin = self.origin[src];
+        self.push_raw(
+            self.tag[src],
+            self.ty[src],
+            self.mask[src],
+            self.x[src] + shift,
+            self.v[src],
+            self.omega[src],
+            self.radius[src],
+            self.rmass[src],
+            self.density[src],
+            self.image[src],
+        );
+        let i = self.len() - 1;
+        self.origin[i] = origin;
+        for prop in &mut self.props {
+            let w = prop.width;
+            prop.data.extend_from_within(src * w..(src + 1) * w);
+        }
+        i
+    }
+
+    /// Drops all ghosts.
+    pub fn clear_ghosts(&mut self) {
+        let n = self.nlocal;
+        self.tag.truncate(n);
+        self.ty.truncate(n);
+        self.mask.truncate(n);
+        self.x.truncate(n);
+        self.v.truncate(n);
+        self.omega.truncate(n);
+        self.f.truncate(n);
+        self.torque.truncate(n);
+        self.radius.truncate(n);
+        self.rmass.truncate(n);
+        self.density.truncate(n);
+        self.image.truncate(n);
+        self.origin.truncate(n);
+        for prop in &mut self.props {
+            prop.data.truncate(n * prop.width);
+        }
+    }
+
+    /// Removes the owned particles for which `remove[i]` is true, keeping the order of
+    /// the others. Ghosts are dropped. Returns how many were removed.
+    pub fn remove_locals(&mut self, remove: &[bool]) -> usize {
+        self.clear_ghosts();
+        let n = self.nlocal;
+        assert_eq!(remove.len(), n);
+        let mut dst = 0;
+        for src in 0..n {
+            if remove[src] {
+                continue;
+            }
+            if dst != src {
+                self.tag[dst] = self.tag[src];
+                self.ty[dst] = self.ty[src];
+                self.mask[dst] = self.mask[src];
+                self.x[dst] = self.x[src];
+                self.v[dst] = self.v[src];
+                self.omega[dst] = self.omega[src];
+                self.f[dst] = self.f[src];
+                self.torque[dst] = self.torque[src];
+                self.radius[dst] = self.radius[src];
+                self.rmass[dst] = self.rmass[src];
+                self.density[dst] = self.density[src];
+                self.image[dst] = self.image[src];
+                for prop in &mut self.props {
+                    let w = prop.width;
+                    prop.data.copy_within(src * w..(src + 1) * w, dst * w);
+                }
+            }
+            dst += 1;
+        }
+        let removed = n - dst;
+        self.nlocal = dst;
+        self.clear_ghosts();
+        for (i, o) in self.origin.iter_mut().enumerate() {
+            *o = i;
+        }
+        removed
+    }
+
+    /// Reorders the owned particles: new index `i` holds what was at `perm[i]`. Applied to
+    /// every per-particle array, named properties included. Ghosts are dropped.
+    pub fn permute(&mut self, perm: &[usize]) {
+        self.clear_ghosts();
+        assert_eq!(perm.len(), self.nlocal);
+        let mut done = vec![false; perm.len()];
+        permute_in_place(&mut self.tag, perm, &mut done);
+        permute_in_place(&mut self.ty, perm, &mut done);
+        permute_in_place(&mut self.mask, perm, &mut done);
+        permute_in_place(&mut self.x, perm, &mut done);
+        permute_in_place(&mut self.v, perm, &mut done);
+        permute_in_place(&mut self.omega, perm, &mut done);
+        permute_in_place(&mut self.f, perm, &mut done);
+        permute_in_place(&mut self.torque, perm, &mut done);
+        permute_in_place(&mut self.radius, perm, &mut done);
+        permute_in_place(&mut self.rmass, perm, &mut done);
+        permute_in_place(&mut self.density, perm, &mut done);
+        permute_in_place(&mut self.image, perm, &mut done);
+        for prop in &mut self.props {
+            permute_chunks_in_place(&mut prop.data, prop.width, perm, &mut done);
+        }
+    }
+
+    /// Smallest and largest tag among owned particles (`(0, 0)` when empty).
+    pub fn tag_extent(&self) -> (Tag, Tag) {
+        let tags = &self.tag[..self.nlocal];
+        let min = tags.iter().copied().min().unwrap_or(0);
+        let max = tags.iter().copied().max().unwrap_or(0);
+        (min, max)
+    }
+
+    /// Number of owned particles without a tag.
+    pub fn untagged(&self) -> usize {
+        self.tag[..self.nlocal].iter().filter(|&&t| t == 0).count()
+    }
+
+    /// Seed 002 eq. (2): gives untagged owned particles the tags `first, first+1, ...` in
+    /// storage order, where `first` is one more than the global maximum tag plus the
+    /// untagged counts of lower ranks (the caller provides `first`; serially it is max+1).
+    pub fn assign_tags_from(&mut self, first: Tag) {
+        let mut next = first;
+        for t in &mut self.tag[..self.nlocal] {
+            if *t == 0 {
+                *t = next;
+                next += 1;
+            }
+        }
+    }
+
+    /// Serial form of tag extension: untagged particles get max+1, max+2, ...
+    pub fn extend_tags(&mut self) {
+        let (_, max) = self.tag_extent();
+        self.assign_tags_from(max + 1);
+    }
+
+    /// Seed 002 eq. (3): tags are consecutive iff min = 1 and max = N. Also reports a
+    /// tag used twice.
+    pub fn check_tags_consecutive(&self) -> Result<()> {
+        let n = self.nlocal;
+        if n == 0 {
+            return Ok(());
+        }
+        let (min, max) = self.tag_extent();
+        if min != 1 || max != n as Tag {
+            return Err(Error::TagsNotConsecutive {
+                min,
+                max,
+                count: n,
+            });
+        }
+        let mut seen = vec![false; n + 1];
+        for &t in &self.tag[..n] {
+            if seen[t as usize] {
+                return Err(Error::DuplicateTag(t));
+            }
+            seen[t as usize] = true;
+        }
+        Ok(())
+    }
+
+    /// Seed 002 eq. (10): every particle of one type has the same radius.
+    pub fn check_radius_per_type(&self) -> Result<()> {
+        let mut first: Vec<Option<f64>> = Vec::new();
+        for i in 0..self.nlocal {
+            let t = self.ty[i] as usize;
+            if first.len() <= t {
+                first.resize(t + 1, None);
+            }
+            match first[t] {
+                None => first[t] = Some(self.radius[i]),
+                Some(r) if r != self.radius[i] => {
+                    return Err(Error::InconsistentRadius {
+                        ty: t as u32,
+                        r1: r,
+                        r2: self.radius[i],
+                    })
+                }
+                Some(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// Seed 002 eq. (13): bytes held by the per-particle arrays of this process
+    /// (allocated capacity, so it is what the process really holds).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.tag.capacity() * size_of::<Tag>()
+            + self.ty.capacity() * size_of::<u32>()
+            + self.mask.capacity() * size_of::<u32>()
+            + (self.x.capacity()
+                + self.v.capacity()
+                + self.omega.capacity()
+                + self.f.capacity()
+                + self.torque.capacity())
+                * size_of::<DVec3>()
+            + (self.radius.capacity() + self.rmass.capacity() + self.density.capacity())
+                * size_of::<f64>()
+            + self.image.capacity() * size_of::<[i32; 3]>()
+            + self.origin.capacity() * size_of::<usize>()
+            + self
+                .props
+                .iter()
+                .map(|p| p.data.capacity() * size_of::<f64>())
+                .sum::<usize>()
+    }
+
+    /// Moment of inertia of particle `i` (solid sphere).
+    pub fn inertia(&self, i: usize) -> f64 {
+        INERTIA_SPHERE * self.rmass[i] * self.radius[i] * self.radius[i]
+    }
+
+    /// Sets the radius of particle `i`, keeping its density (the mass follows).
+    pub fn set_radius(&mut self, i: usize, radius: f64) -> Result<()> {
+        check("radius", radius, radius > 0.0, "must be > 0")?;
+        self.radius[i] = radius;
+        self.rmass[i] = self.density[i] * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+        Ok(())
+    }
+
+    /// Index of the owned particle with tag `t` (linear search; for tests and set-up).
+    pub fn find_tag(&self, t: Tag) -> Option<usize> {
+        self.tag[..self.nlocal].iter().position(|&x| x == t)
+    }
+
+    /// Total kinetic energy (translation + rotation) of the owned particles.
+    pub fn kinetic_energy(&self) -> (f64, f64) {
+        let mut et = 0.0;
+        let mut er = 0.0;
+        for i in 0..self.nlocal {
+            et += 0.5 * self.rmass[i] * self.v[i].length_squared();
+            er += 0.5 * self.inertia(i) * self.omega[i].length_squared();
+        }
+        (et, er)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn three() -> Particles {
+        let mut p = Particles::new();
+        for k in 0..3 {
+            p.add_local(&NewParticle::at(DVec3::new(k as f64, 0.0, 0.0), 0.1 + 0.1 * k as f64, 1000.0))
+                .unwrap();
+        }
+        p
+    }
+
+    #[test]
+    fn tags_extend_from_max() {
+        let mut p = three();
+        p.tag[1] = 7;
+        p.extend_tags();
+        assert_eq!(p.tag, vec![8, 7, 9]);
+        assert!(matches!(
+            p.check_tags_consecutive(),
+            Err(Error::TagsNotConsecutive { min: 7, max: 9, count: 3 })
+        ));
+        p.tag = vec![1, 2, 3];
+        assert!(p.check_tags_consecutive().is_ok());
+        p.tag = vec![1, 3, 3];
+        assert!(p.check_tags_consecutive().is_err());
+    }
+
+    #[test]
+    fn mass_from_density() {
+        let p = three();
+        let m = 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.1f64.powi(3);
+        assert!((p.rmass[0] - m).abs() < 1e-15 * m);
+    }
+
+    #[test]
+    fn bad_particles_are_refused() {
+        let mut p = Particles::new();
+        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 0.0, 1.0)).is_err());
+        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, -1.0, 1.0)).is_err());
+        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 1.0, 0.0)).is_err());
+        assert!(p.add_local(&NewParticle::at(DVec3::NAN, 1.0, 1.0)).is_err());
+        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 1.0, 1.0).with_type(0)).is_err());
+        assert_eq!(p.nlocal(), 0);
+    }
+
+    #[test]
+    fn permutation_moves_properties() {
+        let mut p = three();
+        let id = p.add_property("hist", 2, &[0.0, 0.0]).unwrap();
+        for i in 0..3 {
+            p.props[id.0].get_mut(i).copy_from_slice(&[i as f64, 10.0 * i as f64]);
+        }
+        p.extend_tags();
+        p.permute(&[2, 0, 1]);
+        assert_eq!(p.tag, vec![3, 1, 2]);
+        assert_eq!(p.props[id.0].data, vec![2.0, 20.0, 0.0, 0.0, 1.0, 10.0]);
+        assert_eq!(p.x[0].x, 2.0);
+    }
+
+    #[test]
+    fn remove_keeps_order() {
+        let mut p = three();
+        p.extend_tags();
+        let id = p.add_property("w", 1, &[5.0]).unwrap();
+        p.props[id.0].data[2] = 9.0;
+        assert_eq!(p.remove_locals(&[false, true, false]), 1);
+        assert_eq!(p.tag, vec![1, 3]);
+        assert_eq!(p.props[id.0].data, vec![5.0, 9.0]);
+    }
+
+    #[test]
+    fn radius_consistency() {
+        let mut p = three();
+        assert!(p.check_radius_per_type().is_ok() == false);
+        p.radius = vec![0.1; 3];
+        assert!(p.check_radius_per_type().is_ok());
+    }
+
+    #[test]
+    fn memory_is_reported() {
+        let p = three();
+        assert!(p.memory_bytes() >= 3 * (8 * 3 * 5 + 8 * 3));
+    }
+}

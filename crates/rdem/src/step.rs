@@ -1,0 +1,128 @@
+//! One timestep, in the LAMMPS/LIGGGHTS order so that scripts behave the same. This is the
+//! one place where the order is written down:
+//!
+//! 1. `step += 1`
+//! 2. initial integrate (`nve/sphere`: half kick, drift)
+//! 3. neighbor decision: if a rebuild is due (delay/every/check), full re-neighboring
+//!    (periodic remap, shrink-wrap, lost particles, exchange, sort, borders, list build);
+//!    otherwise forward communication of ghost positions and velocities
+//! 4. force clear
+//! 5. pair forces (particle–particle contacts)
+//! 6. reverse communication (ghost forces onto their owners)
+//! 7. post-force fixes in definition order: walls (`wall/gran`), gravity, addforce,
+//!    setforce, viscous, freeze
+//! 8. final integrate (half kick)
+//! 9. finiteness check (a NaN or infinite force, velocity or position stops the run with
+//!    the tag and the step)
+//!
+//! Set-up before a run ([`World::setup`]) does 3 (a full re-neighboring), 4–7.
+
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::error::{Error, Result};
+use crate::fix::{integrate, FixKind};
+use crate::timers::Stage;
+use crate::world::World;
+
+impl World {
+    /// Runs `n` timesteps after a set-up.
+    pub fn run(&mut self, n: u64) -> Result<()> {
+        self.setup()?;
+        for _ in 0..n {
+            self.advance()?;
+        }
+        Ok(())
+    }
+
+    /// One timestep (the set-up must have been done; a particle added since forces a
+    /// full set-up first).
+    pub fn advance(&mut self) -> Result<()> {
+        if self.needs_reneighbor {
+            self.setup()?;
+        }
+        let t0 = Instant::now();
+        self.step += 1;
+        let dt = self.dt;
+        for fix in &self.fixes {
+            if fix.integrates() {
+                integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
+            }
+        }
+        let t1 = self.timers.lap(Stage::Modify, t0);
+        let nlocal = self.particles.nlocal();
+        if self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
+            self.timers.lap(Stage::Neigh, t1);
+            self.reneighbor()?;
+        } else {
+            self.comm.forward(&mut self.particles);
+            self.timers.lap(Stage::Comm, t1);
+        }
+        self.compute_forces()?;
+        let t2 = Instant::now();
+        for fix in &self.fixes {
+            if fix.integrates() {
+                integrate::final_integrate(&mut self.particles, fix.groupbit, dt);
+            }
+        }
+        let t3 = self.timers.lap(Stage::Modify, t2);
+        self.check_finite("velocity", |p, i| p.v[i])?;
+        self.check_finite("position", |p, i| p.x[i])?;
+        self.timers.lap(Stage::Other, t3);
+        Ok(())
+    }
+
+    /// Steps 4–7: force clear, pair, reverse communication, post-force fixes.
+    pub(crate) fn compute_forces(&mut self) -> Result<()> {
+        let t0 = Instant::now();
+        let p = &mut self.particles;
+        p.f.iter_mut().for_each(|f| *f = DVec3::ZERO);
+        p.torque.iter_mut().for_each(|t| *t = DVec3::ZERO);
+        let t1 = self.timers.lap(Stage::Other, t0);
+        if let Some(pair) = &self.pair {
+            pair.compute(&mut self.particles, &mut self.neighbor.list, self.dt);
+        }
+        let t2 = self.timers.lap(Stage::Pair, t1);
+        self.comm.reverse(&mut self.particles);
+        let t3 = self.timers.lap(Stage::Comm, t2);
+        let dt = self.dt;
+        for fix in &mut self.fixes {
+            if let FixKind::WallGran(wall) = &mut fix.kind {
+                wall.apply(&mut self.particles, fix.groupbit, dt);
+            } else if fix.post_force() {
+                fix.apply_post_force(&mut self.particles);
+            }
+        }
+        let t4 = self.timers.lap(Stage::Modify, t3);
+        self.check_finite("force", |p, i| p.f[i])?;
+        self.check_finite("torque", |p, i| p.torque[i])?;
+        self.timers.lap(Stage::Other, t4);
+        Ok(())
+    }
+
+    /// Stops with the first particle whose `quantity` is not finite. A single sum over all
+    /// particles is checked first (NaN and infinity propagate), so the common case costs
+    /// one pass.
+    fn check_finite(
+        &self,
+        quantity: &'static str,
+        get: impl Fn(&crate::particles::Particles, usize) -> DVec3,
+    ) -> Result<()> {
+        let p = &self.particles;
+        let n = p.nlocal();
+        let mut sum = 0.0;
+        for i in 0..n {
+            let v = get(p, i);
+            sum += v.x + v.y + v.z;
+        }
+        if sum.is_finite() {
+            return Ok(());
+        }
+        match (0..n).find(|&i| !get(p, i).is_finite()) {
+            Some(i) => Err(Error::NonFinite { quantity, tag: p.tag[i], step: self.step }),
+            // The sum overflowed although every value is finite: not an error.
+            None => Ok(()),
+        }
+    }
+}

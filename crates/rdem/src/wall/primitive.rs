@@ -1,0 +1,204 @@
+//! `fix wall/gran ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder`:
+//! a flat or cylindrical wall of infinite radius and mass, with the particle–particle
+//! contact law and one history slot per particle, stored as a named per-particle property
+//! so it moves with its particle through sorting and migration.
+
+use glam::DVec3;
+
+use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
+use crate::error::{Error, Result};
+use crate::particles::{Particles, PropId, INERTIA_SPHERE};
+
+/// Shape of a primitive wall.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WallShape {
+    /// Plane normal to `axis` (0 = x) at coordinate `pos`; particles on either side.
+    Plane {
+        /// Normal axis.
+        axis: usize,
+        /// Position along it.
+        pos: f64,
+    },
+    /// Cylinder parallel to `axis` with the given radius, its axis through (c1, c2) in the
+    /// other two coordinates in cyclic order (xcylinder: y z; ycylinder: z x; zcylinder:
+    /// x y); particles inside or outside.
+    Cylinder {
+        /// Axis direction.
+        axis: usize,
+        /// Radius.
+        radius: f64,
+        /// First other coordinate of the axis.
+        c1: f64,
+        /// Second other coordinate of the axis.
+        c2: f64,
+    },
+}
+
+impl WallShape {
+    /// Distance from the wall to `x` and the unit normal from the wall towards `x`.
+    #[inline(always)]
+    pub fn distance(&self, x: DVec3) -> (f64, DVec3) {
+        match *self {
+            WallShape::Plane { axis, pos } => {
+                let d = x[axis] - pos;
+                let mut n = DVec3::ZERO;
+                n[axis] = if d >= 0.0 { 1.0 } else { -1.0 };
+                (d.abs(), n)
+            }
+            WallShape::Cylinder { axis, radius, c1, c2 } => {
+                let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
+                // c1, c2 follow the cyclic order (x: y z, y: z x, z: x y), as in LIGGGHTS.
+                let (o1, o2) = (c1, c2);
+                let mut r = DVec3::ZERO;
+                r[a1] = x[a1] - o1;
+                r[a2] = x[a2] - o2;
+                let d = r.length();
+                if d == 0.0 {
+                    // Exactly on the axis: no direction, no contact (as LIGGGHTS).
+                    return (f64::INFINITY, DVec3::ZERO);
+                }
+                let u = r / d;
+                if d <= radius {
+                    (radius - d, -u)
+                } else {
+                    (d - radius, u)
+                }
+            }
+        }
+    }
+
+    /// Checks the shape's numbers.
+    pub fn validate(&self) -> Result<()> {
+        match *self {
+            WallShape::Plane { axis, pos } => {
+                if axis > 2 || !pos.is_finite() {
+                    return Err(Error::Invalid { what: "wall plane", reason: format!("axis {axis}, position {pos}") });
+                }
+            }
+            WallShape::Cylinder { axis, radius, c1, c2 } => {
+                if axis > 2 || !(radius > 0.0 && radius.is_finite()) || !c1.is_finite() || !c2.is_finite() {
+                    return Err(Error::Invalid {
+                        what: "wall cylinder",
+                        reason: format!("needs a finite radius > 0 and a finite axis position (axis {axis}, radius {radius}, centre {c1} {c2})"),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A primitive granular wall.
+#[derive(Debug, Clone)]
+pub struct PrimitiveWall {
+    /// Contact model (must match the pair style's, as LIGGGHTS requires).
+    pub model: ContactModel,
+    /// Material type of the wall (1-based).
+    pub wall_type: u32,
+    /// Geometry.
+    pub shape: WallShape,
+    /// In-plane velocity of the wall surface (LIGGGHTS keyword `shear`).
+    pub velocity: DVec3,
+    /// Name of the per-particle history property.
+    pub history_name: String,
+    table: CoeffTable,
+    hist: Option<PropId>,
+}
+
+impl PrimitiveWall {
+    /// A wall called `id` (the fix ID) of material `wall_type`.
+    pub fn new(id: &str, model: ContactModel, wall_type: u32, shape: WallShape) -> Result<Self> {
+        shape.validate()?;
+        if wall_type == 0 {
+            return Err(Error::Invalid { what: "wall type", reason: "types start at 1".into() });
+        }
+        Ok(Self {
+            model,
+            wall_type,
+            shape,
+            velocity: DVec3::ZERO,
+            history_name: format!("wallhist_{id}"),
+            table: CoeffTable::default(),
+            hist: None,
+        })
+    }
+
+    /// Mixes the material table and registers the history property; called before a run.
+    pub fn setup(&mut self, materials: &Materials, p: &mut Particles) -> Result<()> {
+        self.table = CoeffTable::new(materials, self.model.needs())?;
+        if self.wall_type as usize > materials.ntypes {
+            return Err(Error::TypeOutOfRange { ty: self.wall_type, ntypes: materials.ntypes as u32 });
+        }
+        let w = self.model.history_width();
+        self.hist = if w > 0 { Some(p.add_property(&self.history_name, w, &vec![0.0; w])?) } else { None };
+        Ok(())
+    }
+
+    /// Adds the wall forces and torques on the owned particles of group `groupbit`.
+    pub fn apply(&mut self, p: &mut Particles, groupbit: u32, dt: f64) {
+        let model = self.model;
+        model.dispatch(WallPass { wall: self, p, groupbit, dt });
+    }
+}
+
+struct WallPass<'a> {
+    wall: &'a mut PrimitiveWall,
+    p: &'a mut Particles,
+    groupbit: u32,
+    dt: f64,
+}
+
+impl Visitor for WallPass<'_> {
+    type Output = ();
+    fn visit<K: ContactKernel>(self) {
+        let WallPass { wall, p, groupbit, dt } = self;
+        let flags = wall.model.flags;
+        let mut empty: [f64; 0] = [];
+        let nlocal = p.nlocal();
+        let w = K::HIST;
+        // Split the borrow: the history property separately from the particle arrays.
+        let mut hist_data = match wall.hist {
+            Some(id) => std::mem::take(&mut p.props[id.0].data),
+            None => Vec::new(),
+        };
+        for i in 0..nlocal {
+            if p.mask[i] & groupbit == 0 {
+                continue;
+            }
+            let r = p.radius[i];
+            let (d, n) = wall.shape.distance(p.x[i]);
+            let hist: &mut [f64] = if w > 0 { &mut hist_data[i * w..(i + 1) * w] } else { &mut empty };
+            if d >= r {
+                hist.iter_mut().for_each(|h| *h = 0.0);
+                continue;
+            }
+            let delta = r - d;
+            let m = p.rmass[i];
+            let g = Geom {
+                n,
+                delta,
+                dist: d,
+                ri: r,
+                rj: f64::INFINITY,
+                r_star: r,
+                m_star: m,
+                ci: r - 0.5 * delta,
+                cj: 0.0,
+                vr: p.v[i] - wall.velocity,
+                wi: p.omega[i],
+                wj: DVec3::ZERO,
+                roll_scale: (r - 0.5 * delta) / d,
+                inertia_i: (INERTIA_SPHERE + 1.0) * m * r * r,
+                inertia_j: f64::INFINITY,
+                dt,
+            };
+            let c = wall.table.get(p.ty[i], wall.wall_type);
+            let out = K::contact(&g, c, flags, hist);
+            p.f[i] += out.f_i;
+            p.torque[i] += out.t_i;
+        }
+        if let Some(id) = wall.hist {
+            p.props[id.0].data = hist_data;
+        }
+    }
+}

@@ -1,0 +1,275 @@
+//! The simulation state: particles, box, materials, pair style, neighbor list, fixes and
+//! the communicator, with the set-up done before a run and the full re-neighboring.
+//! [`crate::step`] holds the timestep itself.
+
+use glam::DVec3;
+
+use crate::comm::{Comm, Serial};
+use crate::contact::Materials;
+use crate::domain::Domain;
+use crate::error::{Error, Result};
+use crate::fix::{Fix, FixKind};
+use crate::neighbor::{Neighbor, NeighborSettings};
+use crate::pair::PairGran;
+use crate::particles::{NewParticle, Particles};
+use crate::sort::sort_particles;
+use crate::timers::Timers;
+
+/// What to do when particles leave a fixed boundary (`thermo_modify lost`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LostPolicy {
+    /// Stop the run (LIGGGHTS default).
+    #[default]
+    Error,
+    /// Count them and report a warning.
+    Warn,
+    /// Count them silently.
+    Ignore,
+}
+
+/// `atom_modify sort Nfreq binsize`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SortSettings {
+    /// Sort every this many steps (0 = never). LIGGGHTS default 1000.
+    pub every: u64,
+    /// Bin size; 0 means half the neighbor cutoff.
+    pub binsize: f64,
+}
+
+impl Default for SortSettings {
+    fn default() -> Self {
+        Self { every: 1000, binsize: 0.0 }
+    }
+}
+
+/// The whole simulation state.
+#[derive(Debug)]
+pub struct World {
+    /// Particles (owned, then ghosts).
+    pub particles: Particles,
+    /// Box and subdomain.
+    pub domain: Domain,
+    /// Material properties.
+    pub materials: Materials,
+    /// Particle–particle contact (`pair_style gran`), if any.
+    pub pair: Option<PairGran>,
+    /// Neighbor list and its settings.
+    pub neighbor: Neighbor,
+    /// Fixes, in definition order.
+    pub fixes: Vec<Fix>,
+    /// Timestep size.
+    pub dt: f64,
+    /// Current timestep number.
+    pub step: u64,
+    /// Communicator.
+    pub comm: Box<dyn Comm>,
+    /// Lost-particle policy.
+    pub lost_policy: LostPolicy,
+    /// Spatial sort settings.
+    pub sort: SortSettings,
+    /// Time per stage.
+    pub timers: Timers,
+    /// Particles lost so far (all ranks).
+    pub lost: u64,
+    /// Warnings raised during runs (lost particles under `warn`, ...), oldest first.
+    pub warnings: Vec<String>,
+    pub(crate) next_sort: u64,
+    pub(crate) needs_reneighbor: bool,
+}
+
+impl World {
+    /// An empty world in `domain`, serial.
+    pub fn new(domain: Domain) -> Self {
+        Self {
+            particles: Particles::new(),
+            domain,
+            materials: Materials::default(),
+            pair: None,
+            neighbor: Neighbor::new(NeighborSettings::default()),
+            fixes: Vec::new(),
+            dt: 1e-8,
+            step: 0,
+            comm: Box::new(Serial::new()),
+            lost_policy: LostPolicy::Error,
+            sort: SortSettings::default(),
+            timers: Timers::default(),
+            lost: 0,
+            warnings: Vec::new(),
+            next_sort: 0,
+            needs_reneighbor: true,
+        }
+    }
+
+    /// Sets the timestep (must be finite and > 0).
+    pub fn set_timestep(&mut self, dt: f64) -> Result<()> {
+        crate::error::check("timestep", dt, dt > 0.0, "must be > 0")?;
+        self.dt = dt;
+        Ok(())
+    }
+
+    /// Adds an owned particle after checking it lies inside the fixed faces of the box.
+    /// Untagged particles get tags at the next set-up or re-neighboring.
+    pub fn add_particle(&mut self, np: &NewParticle) -> Result<usize> {
+        self.domain.check_inside_fixed(np.x)?;
+        if self.particles.nghost() > 0 {
+            self.neighbor.save_history(&self.particles);
+            self.particles.clear_ghosts();
+        }
+        let i = self.particles.add_local(np)?;
+        self.needs_reneighbor = true;
+        Ok(i)
+    }
+
+    /// Adds a fix (its ID must be new).
+    pub fn add_fix(&mut self, fix: Fix) -> Result<()> {
+        if self.fixes.iter().any(|f| f.id == fix.id) {
+            return Err(Error::Invalid { what: "fix ID", reason: format!("'{}' is already used", fix.id) });
+        }
+        self.fixes.push(fix);
+        Ok(())
+    }
+
+    /// Removes the fix `id`; returns false if there was none.
+    pub fn remove_fix(&mut self, id: &str) -> bool {
+        let n = self.fixes.len();
+        self.fixes.retain(|f| f.id != id);
+        n != self.fixes.len()
+    }
+
+    /// Gives untagged owned particles new tags: max+1, max+2, ... over all ranks, each rank
+    /// starting after the untagged particles of the ranks below it (seed 002 eq. 2).
+    pub fn extend_tags(&mut self) {
+        let (_, max) = self.particles.tag_extent();
+        let gmax = self.comm.max(max as f64) as u64;
+        let mine = self.particles.untagged() as u64;
+        let before = self.comm.exclusive_prefix_count(mine);
+        self.particles.assign_tags_from(gmax + 1 + before);
+    }
+
+    /// Total number of owned particles over all ranks.
+    pub fn natoms(&self) -> u64 {
+        self.comm.sum_count(self.particles.nlocal() as u64)
+    }
+
+    /// Prepares a run: checks the set-up, mixes coefficient tables, re-neighbors and
+    /// computes the forces of the current state (LAMMPS `setup`).
+    pub fn setup(&mut self) -> Result<()> {
+        crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
+        self.extend_tags();
+        let ntypes = self.materials.ntypes as u32;
+        let uses_materials = self.pair.is_some() || self.fixes.iter().any(|f| matches!(f.kind, FixKind::WallGran(_)));
+        if uses_materials {
+            if let Some(&ty) = self.particles.ty[..self.particles.nlocal()].iter().find(|&&t| t > ntypes) {
+                return Err(Error::TypeOutOfRange { ty, ntypes });
+            }
+        }
+        if let Some(pair) = &mut self.pair {
+            pair.setup(&self.materials)?;
+            let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
+            self.neighbor.set_history_layout(w, odd);
+        } else {
+            self.neighbor.set_history_layout(0, 0);
+        }
+        for fix in &mut self.fixes {
+            if let FixKind::WallGran(wall) = &mut fix.kind {
+                self.neighbor.save_history(&self.particles);
+                self.particles.clear_ghosts();
+                wall.setup(&self.materials, &mut self.particles)?;
+            }
+        }
+        self.reneighbor()?;
+        // As in LIGGGHTS, the set-up force evaluation does not advance contact history:
+        // keep a copy and put it back.
+        let list_hist = self.neighbor.list.hist.clone();
+        let wall_hist: Vec<(usize, Vec<f64>)> = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                FixKind::WallGran(w) => self.particles.property(&w.history_name),
+                _ => None,
+            })
+            .map(|id| (id.0, self.particles.props[id.0].data.clone()))
+            .collect();
+        self.compute_forces()?;
+        self.neighbor.list.hist = list_hist;
+        for (id, data) in wall_hist {
+            self.particles.props[id].data = data;
+        }
+        self.needs_reneighbor = false;
+        Ok(())
+    }
+
+    /// Full re-neighboring: periodic remap, shrink-wrap, lost particles, migration,
+    /// spatial sort when due, ghosts, neighbor list (history carried by tag).
+    pub(crate) fn reneighbor(&mut self) -> Result<()> {
+        let t0 = std::time::Instant::now();
+        self.neighbor.save_history(&self.particles);
+        self.particles.clear_ghosts();
+        let nlocal = self.particles.nlocal();
+        {
+            let p = &mut self.particles;
+            for i in 0..nlocal {
+                self.domain.remap(&mut p.x[i], &mut p.image[i]);
+            }
+        }
+        if self.domain.has_shrink() {
+            let mut lo = DVec3::splat(f64::INFINITY);
+            let mut hi = DVec3::splat(f64::NEG_INFINITY);
+            for &x in &self.particles.x[..nlocal] {
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+            let lo = DVec3::new(self.comm.min(lo.x), self.comm.min(lo.y), self.comm.min(lo.z));
+            let hi = DVec3::new(self.comm.max(hi.x), self.comm.max(hi.y), self.comm.max(hi.z));
+            self.domain.shrink_wrap(lo, hi);
+        }
+        self.remove_lost()?;
+        let t1 = self.timers.lap(crate::timers::Stage::Neigh, t0);
+        self.comm.exchange(&mut self.particles, &self.domain);
+        let t2 = self.timers.lap(crate::timers::Stage::Comm, t1);
+        if self.sort.every > 0 && self.step >= self.next_sort {
+            let rmax = self.comm.max(self.particles.radius.iter().copied().fold(0.0, f64::max));
+            let h = if self.sort.binsize > 0.0 { self.sort.binsize } else { 0.5 * self.neighbor.cutoff_for(rmax) };
+            sort_particles(&mut self.particles, self.domain.sublo, self.domain.subhi, h);
+            self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
+        }
+        let rmax = self.comm.max(self.particles.radius[..self.particles.nlocal()].iter().copied().fold(0.0, f64::max));
+        let cutoff = self.neighbor.cutoff_for(rmax);
+        self.domain.check_periodic_cutoff(cutoff)?;
+        let t3 = self.timers.lap(crate::timers::Stage::Neigh, t2);
+        self.comm.borders(&mut self.particles, &self.domain, cutoff);
+        let t4 = self.timers.lap(crate::timers::Stage::Comm, t3);
+        self.neighbor.build(&self.particles, self.step);
+        self.timers.lap(crate::timers::Stage::Neigh, t4);
+        Ok(())
+    }
+
+    fn remove_lost(&mut self) -> Result<()> {
+        let nlocal = self.particles.nlocal();
+        let lost: Vec<bool> = self.particles.x[..nlocal].iter().map(|&x| self.domain.is_lost(x)).collect();
+        let nlost_local = lost.iter().filter(|&&l| l).count();
+        let first_tag = lost.iter().position(|&l| l).map(|i| self.particles.tag[i]).unwrap_or(0);
+        let nlost = self.comm.sum_count(nlost_local as u64);
+        if nlost == 0 {
+            return Ok(());
+        }
+        if self.lost_policy == LostPolicy::Error {
+            return Err(Error::LostParticles { count: nlost as usize, first_tag, step: self.step });
+        }
+        self.particles.remove_locals(&lost);
+        self.lost += nlost;
+        if self.lost_policy == LostPolicy::Warn {
+            self.warnings.push(format!("{nlost} particle(s) lost at step {} (left a fixed boundary)", self.step));
+        }
+        Ok(())
+    }
+
+    /// Seed 002 eq. (13) for this process: bytes held by particles and the neighbor list.
+    pub fn memory_bytes(&self) -> usize {
+        let l = &self.neighbor.list;
+        self.particles.memory_bytes()
+            + l.first.capacity() * 4
+            + l.partner.capacity() * 4
+            + l.hist.capacity() * 8
+    }
+}
