@@ -72,7 +72,11 @@ impl Comm for Serial {
             let mut l = DVec3::ZERO;
             l[a] = prd[a];
             for i in 0..n {
-                let base = if i < nlocal { DVec3::ZERO } else { self.shift[i - nlocal] };
+                let base = if i < nlocal {
+                    DVec3::ZERO
+                } else {
+                    self.shift[i - nlocal]
+                };
                 let xa = p.x[i][a];
                 if xa < domain.boxlo[a] + cutoff {
                     p.push_ghost(i, l);

@@ -177,7 +177,11 @@ impl Domain {
     /// Smallest distance from `x` to the six subdomain faces.
     pub fn dist_subbox_borders(&self, x: DVec3) -> f64 {
         (0..3)
-            .map(|a| (x[a] - self.sublo[a]).abs().min((x[a] - self.subhi[a]).abs()))
+            .map(|a| {
+                (x[a] - self.sublo[a])
+                    .abs()
+                    .min((x[a] - self.subhi[a]).abs())
+            })
             .fold(f64::INFINITY, f64::min)
     }
 

@@ -108,12 +108,7 @@ pub enum Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// Checks `value` with `ok`, else an [`Error::InvalidParameter`].
-pub(crate) fn check(
-    what: &'static str,
-    value: f64,
-    ok: bool,
-    reason: &'static str,
-) -> Result<f64> {
+pub(crate) fn check(what: &'static str, value: f64, ok: bool, reason: &'static str) -> Result<f64> {
     if ok && value.is_finite() {
         Ok(value)
     } else {

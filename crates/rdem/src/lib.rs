@@ -23,7 +23,9 @@ pub mod world;
 
 pub use glam::DVec3;
 
-pub use contact::{CohesionKind, ContactModel, Flags, Materials, NormalKind, RollingKind, TangentialKind};
+pub use contact::{
+    CohesionKind, ContactModel, Flags, Materials, NormalKind, RollingKind, TangentialKind,
+};
 pub use domain::{Boundary, Domain};
 pub use error::{Error, Result};
 pub use fix::{Fix, FixKind};

@@ -248,7 +248,11 @@ impl Neighbor {
                 *b = (*b).div_ceil(2);
             }
         }
-        let inv = DVec3::new(nb[0] as f64 / ext.x, nb[1] as f64 / ext.y, nb[2] as f64 / ext.z);
+        let inv = DVec3::new(
+            nb[0] as f64 / ext.x,
+            nb[1] as f64 / ext.y,
+            nb[2] as f64 / ext.z,
+        );
         let nbins = nb[0] * nb[1] * nb[2];
         let coord = |x: DVec3| -> [usize; 3] {
             let c = (x - lo) * inv;

@@ -18,7 +18,10 @@ pub struct PairGran {
 impl PairGran {
     /// A pair style with `model`; coefficients are mixed by [`PairGran::setup`].
     pub fn new(model: ContactModel) -> Self {
-        Self { model, table: CoeffTable::default() }
+        Self {
+            model,
+            table: CoeffTable::default(),
+        }
     }
 
     /// Mixes the material table (called before every run).
@@ -36,7 +39,12 @@ impl PairGran {
     /// reverse communication moves those to their owners). History of pairs out of
     /// contact is zeroed.
     pub fn compute(&self, p: &mut Particles, list: &mut NeighborList, dt: f64) {
-        self.model.dispatch(PairPass { pair: self, p, list, dt });
+        self.model.dispatch(PairPass {
+            pair: self,
+            p,
+            list,
+            dt,
+        });
     }
 }
 
@@ -73,7 +81,11 @@ impl Visitor for PairPass<'_> {
                 let rj = radius[j];
                 let radsum = ri + rj;
                 let rsq = d.length_squared();
-                let hist: &mut [f64] = if w > 0 { &mut list.hist[k * w..(k + 1) * w] } else { &mut empty };
+                let hist: &mut [f64] = if w > 0 {
+                    &mut list.hist[k * w..(k + 1) * w]
+                } else {
+                    &mut empty
+                };
                 if rsq >= radsum * radsum {
                     if w > 0 {
                         hist.iter_mut().for_each(|h| *h = 0.0);

@@ -257,7 +257,11 @@ impl Particles {
     pub fn add_local(&mut self, p: &NewParticle) -> Result<usize> {
         check("radius", p.radius, p.radius > 0.0, "must be > 0")?;
         check("density", p.density, p.density > 0.0, "must be > 0")?;
-        for (what, vec) in [("position", p.x), ("velocity", p.v), ("angular velocity", p.omega)] {
+        for (what, vec) in [
+            ("position", p.x),
+            ("velocity", p.v),
+            ("angular velocity", p.omega),
+        ] {
             if !vec.is_finite() {
                 return Err(Error::Invalid {
                     what,
@@ -474,11 +478,7 @@ impl Particles {
         }
         let (min, max) = self.tag_extent();
         if min != 1 || max != n as Tag {
-            return Err(Error::TagsNotConsecutive {
-                min,
-                max,
-                count: n,
-            });
+            return Err(Error::TagsNotConsecutive { min, max, count: n });
         }
         let mut seen = vec![false; n + 1];
         for &t in &self.tag[..n] {
@@ -574,8 +574,12 @@ mod tests {
     fn three() -> Particles {
         let mut p = Particles::new();
         for k in 0..3 {
-            p.add_local(&NewParticle::at(DVec3::new(k as f64, 0.0, 0.0), 0.1 + 0.1 * k as f64, 1000.0))
-                .unwrap();
+            p.add_local(&NewParticle::at(
+                DVec3::new(k as f64, 0.0, 0.0),
+                0.1 + 0.1 * k as f64,
+                1000.0,
+            ))
+            .unwrap();
         }
         p
     }
@@ -588,7 +592,11 @@ mod tests {
         assert_eq!(p.tag, vec![8, 7, 9]);
         assert!(matches!(
             p.check_tags_consecutive(),
-            Err(Error::TagsNotConsecutive { min: 7, max: 9, count: 3 })
+            Err(Error::TagsNotConsecutive {
+                min: 7,
+                max: 9,
+                count: 3
+            })
         ));
         p.tag = vec![1, 2, 3];
         assert!(p.check_tags_consecutive().is_ok());
@@ -606,11 +614,19 @@ mod tests {
     #[test]
     fn bad_particles_are_refused() {
         let mut p = Particles::new();
-        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 0.0, 1.0)).is_err());
-        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, -1.0, 1.0)).is_err());
-        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 1.0, 0.0)).is_err());
+        assert!(p
+            .add_local(&NewParticle::at(DVec3::ZERO, 0.0, 1.0))
+            .is_err());
+        assert!(p
+            .add_local(&NewParticle::at(DVec3::ZERO, -1.0, 1.0))
+            .is_err());
+        assert!(p
+            .add_local(&NewParticle::at(DVec3::ZERO, 1.0, 0.0))
+            .is_err());
         assert!(p.add_local(&NewParticle::at(DVec3::NAN, 1.0, 1.0)).is_err());
-        assert!(p.add_local(&NewParticle::at(DVec3::ZERO, 1.0, 1.0).with_type(0)).is_err());
+        assert!(p
+            .add_local(&NewParticle::at(DVec3::ZERO, 1.0, 1.0).with_type(0))
+            .is_err());
         assert_eq!(p.nlocal(), 0);
     }
 
@@ -619,7 +635,9 @@ mod tests {
         let mut p = three();
         let id = p.add_property("hist", 2, &[0.0, 0.0]).unwrap();
         for i in 0..3 {
-            p.props[id.0].get_mut(i).copy_from_slice(&[i as f64, 10.0 * i as f64]);
+            p.props[id.0]
+                .get_mut(i)
+                .copy_from_slice(&[i as f64, 10.0 * i as f64]);
         }
         p.extend_tags();
         p.permute(&[2, 0, 1]);

@@ -73,10 +73,17 @@ mod tests {
     #[test]
     fn bin_count_is_floor_of_extent_over_size() {
         // extent 1, h = 0.4 -> floor(2.5) = 2 bins of width 0.5 each.
-        let x = vec![DVec3::new(0.45, 0.0, 0.0), DVec3::new(0.55, 0.0, 0.0), DVec3::new(0.05, 0.0, 0.0)];
+        let x = vec![
+            DVec3::new(0.45, 0.0, 0.0),
+            DVec3::new(0.55, 0.0, 0.0),
+            DVec3::new(0.05, 0.0, 0.0),
+        ];
         let perm = sort_permutation(&x, DVec3::ZERO, DVec3::ONE, 0.4);
         assert_eq!(perm, vec![0, 2, 1]);
         // h larger than the extent -> a single bin, identity.
-        assert_eq!(sort_permutation(&x, DVec3::ZERO, DVec3::ONE, 5.0), vec![0, 1, 2]);
+        assert_eq!(
+            sort_permutation(&x, DVec3::ZERO, DVec3::ONE, 5.0),
+            vec![0, 1, 2]
+        );
     }
 }

@@ -120,7 +120,11 @@ impl World {
             return Ok(());
         }
         match (0..n).find(|&i| !get(p, i).is_finite()) {
-            Some(i) => Err(Error::NonFinite { quantity, tag: p.tag[i], step: self.step }),
+            Some(i) => Err(Error::NonFinite {
+                quantity,
+                tag: p.tag[i],
+                step: self.step,
+            }),
             // The sum overflowed although every value is finite: not an error.
             None => Ok(()),
         }

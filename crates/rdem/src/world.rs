@@ -38,7 +38,10 @@ pub struct SortSettings {
 
 impl Default for SortSettings {
     fn default() -> Self {
-        Self { every: 1000, binsize: 0.0 }
+        Self {
+            every: 1000,
+            binsize: 0.0,
+        }
     }
 }
 
@@ -123,7 +126,10 @@ impl World {
     /// Adds a fix (its ID must be new).
     pub fn add_fix(&mut self, fix: Fix) -> Result<()> {
         if self.fixes.iter().any(|f| f.id == fix.id) {
-            return Err(Error::Invalid { what: "fix ID", reason: format!("'{}' is already used", fix.id) });
+            return Err(Error::Invalid {
+                what: "fix ID",
+                reason: format!("'{}' is already used", fix.id),
+            });
         }
         self.fixes.push(fix);
         Ok(())
@@ -157,9 +163,16 @@ impl World {
         crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
         self.extend_tags();
         let ntypes = self.materials.ntypes as u32;
-        let uses_materials = self.pair.is_some() || self.fixes.iter().any(|f| matches!(f.kind, FixKind::WallGran(_)));
+        let uses_materials = self.pair.is_some()
+            || self
+                .fixes
+                .iter()
+                .any(|f| matches!(f.kind, FixKind::WallGran(_)));
         if uses_materials {
-            if let Some(&ty) = self.particles.ty[..self.particles.nlocal()].iter().find(|&&t| t > ntypes) {
+            if let Some(&ty) = self.particles.ty[..self.particles.nlocal()]
+                .iter()
+                .find(|&&t| t > ntypes)
+            {
                 return Err(Error::TypeOutOfRange { ty, ntypes });
             }
         }
@@ -219,8 +232,16 @@ impl World {
                 lo = lo.min(x);
                 hi = hi.max(x);
             }
-            let lo = DVec3::new(self.comm.min(lo.x), self.comm.min(lo.y), self.comm.min(lo.z));
-            let hi = DVec3::new(self.comm.max(hi.x), self.comm.max(hi.y), self.comm.max(hi.z));
+            let lo = DVec3::new(
+                self.comm.min(lo.x),
+                self.comm.min(lo.y),
+                self.comm.min(lo.z),
+            );
+            let hi = DVec3::new(
+                self.comm.max(hi.x),
+                self.comm.max(hi.y),
+                self.comm.max(hi.z),
+            );
             self.domain.shrink_wrap(lo, hi);
         }
         self.remove_lost()?;
@@ -228,12 +249,23 @@ impl World {
         self.comm.exchange(&mut self.particles, &self.domain);
         let t2 = self.timers.lap(crate::timers::Stage::Comm, t1);
         if self.sort.every > 0 && self.step >= self.next_sort {
-            let rmax = self.comm.max(self.particles.radius.iter().copied().fold(0.0, f64::max));
-            let h = if self.sort.binsize > 0.0 { self.sort.binsize } else { 0.5 * self.neighbor.cutoff_for(rmax) };
+            let rmax = self
+                .comm
+                .max(self.particles.radius.iter().copied().fold(0.0, f64::max));
+            let h = if self.sort.binsize > 0.0 {
+                self.sort.binsize
+            } else {
+                0.5 * self.neighbor.cutoff_for(rmax)
+            };
             sort_particles(&mut self.particles, self.domain.sublo, self.domain.subhi, h);
             self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
         }
-        let rmax = self.comm.max(self.particles.radius[..self.particles.nlocal()].iter().copied().fold(0.0, f64::max));
+        let rmax = self.comm.max(
+            self.particles.radius[..self.particles.nlocal()]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max),
+        );
         let cutoff = self.neighbor.cutoff_for(rmax);
         self.domain.check_periodic_cutoff(cutoff)?;
         let t3 = self.timers.lap(crate::timers::Stage::Neigh, t2);
@@ -246,20 +278,34 @@ impl World {
 
     fn remove_lost(&mut self) -> Result<()> {
         let nlocal = self.particles.nlocal();
-        let lost: Vec<bool> = self.particles.x[..nlocal].iter().map(|&x| self.domain.is_lost(x)).collect();
+        let lost: Vec<bool> = self.particles.x[..nlocal]
+            .iter()
+            .map(|&x| self.domain.is_lost(x))
+            .collect();
         let nlost_local = lost.iter().filter(|&&l| l).count();
-        let first_tag = lost.iter().position(|&l| l).map(|i| self.particles.tag[i]).unwrap_or(0);
+        let first_tag = lost
+            .iter()
+            .position(|&l| l)
+            .map(|i| self.particles.tag[i])
+            .unwrap_or(0);
         let nlost = self.comm.sum_count(nlost_local as u64);
         if nlost == 0 {
             return Ok(());
         }
         if self.lost_policy == LostPolicy::Error {
-            return Err(Error::LostParticles { count: nlost as usize, first_tag, step: self.step });
+            return Err(Error::LostParticles {
+                count: nlost as usize,
+                first_tag,
+                step: self.step,
+            });
         }
         self.particles.remove_locals(&lost);
         self.lost += nlost;
         if self.lost_policy == LostPolicy::Warn {
-            self.warnings.push(format!("{nlost} particle(s) lost at step {} (left a fixed boundary)", self.step));
+            self.warnings.push(format!(
+                "{nlost} particle(s) lost at step {} (left a fixed boundary)",
+                self.step
+            ));
         }
         Ok(())
     }

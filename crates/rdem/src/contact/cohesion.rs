@@ -28,7 +28,9 @@ impl Cohesion for Sjkr {
         let d = g.dist;
         let a = if g.rj.is_finite() {
             let (ri, rj) = (g.ri, g.rj);
-            -std::f64::consts::FRAC_PI_4 * ((d - ri - rj) * (d + ri - rj) * (d - ri + rj) * (d + ri + rj)) / (d * d)
+            -std::f64::consts::FRAC_PI_4
+                * ((d - ri - rj) * (d + ri - rj) * (d - ri + rj) * (d + ri + rj))
+                / (d * d)
         } else {
             std::f64::consts::PI * (g.ri * g.ri - d * d)
         };
@@ -43,7 +45,11 @@ pub struct Sjkr2;
 impl Cohesion for Sjkr2 {
     #[inline(always)]
     fn force(g: &Geom, c: &PairCoeff) -> f64 {
-        let two_r = if g.rj.is_finite() { 2.0 * g.r_star } else { g.ri };
+        let two_r = if g.rj.is_finite() {
+            2.0 * g.r_star
+        } else {
+            g.ri
+        };
         c.cohesion * 2.0 * std::f64::consts::PI * g.delta * two_r
     }
 }

@@ -37,7 +37,13 @@ pub struct Materials {
 impl Materials {
     /// Materials for `ntypes` types with every type pair given the same e and μ: the common
     /// one-material case.
-    pub fn uniform(ntypes: usize, youngs: f64, poisson: f64, restitution: f64, friction: f64) -> Self {
+    pub fn uniform(
+        ntypes: usize,
+        youngs: f64,
+        poisson: f64,
+        restitution: f64,
+        friction: f64,
+    ) -> Self {
         let nn = ntypes * ntypes;
         Self {
             ntypes,
@@ -159,7 +165,10 @@ impl CoeffTable {
                 reason: "at least one atom type is needed".into(),
             });
         }
-        for (name, v) in [("youngsModulus", &m.youngs_modulus), ("poissonsRatio", &m.poissons_ratio)] {
+        for (name, v) in [
+            ("youngsModulus", &m.youngs_modulus),
+            ("poissonsRatio", &m.poissons_ratio),
+        ] {
             if v.len() != n {
                 return Err(Error::Invalid {
                     what: name,
@@ -171,20 +180,82 @@ impl CoeffTable {
             check("youngsModulus", e, e > 0.0, "must be > 0")?;
         }
         for &nu in &m.poissons_ratio {
-            check("poissonsRatio", nu, nu > -1.0 && nu < 0.5, "must be in (-1, 0.5)")?;
+            check(
+                "poissonsRatio",
+                nu,
+                nu > -1.0 && nu < 0.5,
+                "must be in (-1, 0.5)",
+            )?;
         }
-        let rest = pair_table("coefficientRestitution", &m.restitution, n, true, |e| e > 0.0 && e <= 1.0, "must be in (0, 1]")?;
-        let fric = pair_table("coefficientFriction", &m.friction, n, true, |v| v >= 0.0, "must be >= 0")?;
-        let rf = pair_table("coefficientRollingFriction", &m.rolling_friction, n, needs.rolling_friction, |v| v >= 0.0, "must be >= 0")?;
-        let rd = pair_table("coefficientRollingViscousDamping", &m.rolling_viscous_damping, n, needs.rolling_damping, |v| v >= 0.0, "must be >= 0")?;
-        let coh = pair_table("cohesionEnergyDensity", &m.cohesion_energy_density, n, needs.cohesion, |v| v >= 0.0, "must be >= 0")?;
-        let kc = pair_table("coefficientAdhesionStiffness", &m.adhesion_stiffness, n, needs.hysteresis, |v| v >= 0.0, "must be >= 0")?;
-        let phi = pair_table("coefficientPlasticityDepth", &m.plasticity_depth, n, needs.hysteresis, |v| v > 0.0, "must be > 0")?;
-        let k2 = pair_table("coefficientMaxElasticStiffness", &m.max_elastic_stiffness, n, needs.hysteresis, |v| v > 1.0, "must be > 1")?;
+        let rest = pair_table(
+            "coefficientRestitution",
+            &m.restitution,
+            n,
+            true,
+            |e| e > 0.0 && e <= 1.0,
+            "must be in (0, 1]",
+        )?;
+        let fric = pair_table(
+            "coefficientFriction",
+            &m.friction,
+            n,
+            true,
+            |v| v >= 0.0,
+            "must be >= 0",
+        )?;
+        let rf = pair_table(
+            "coefficientRollingFriction",
+            &m.rolling_friction,
+            n,
+            needs.rolling_friction,
+            |v| v >= 0.0,
+            "must be >= 0",
+        )?;
+        let rd = pair_table(
+            "coefficientRollingViscousDamping",
+            &m.rolling_viscous_damping,
+            n,
+            needs.rolling_damping,
+            |v| v >= 0.0,
+            "must be >= 0",
+        )?;
+        let coh = pair_table(
+            "cohesionEnergyDensity",
+            &m.cohesion_energy_density,
+            n,
+            needs.cohesion,
+            |v| v >= 0.0,
+            "must be >= 0",
+        )?;
+        let kc = pair_table(
+            "coefficientAdhesionStiffness",
+            &m.adhesion_stiffness,
+            n,
+            needs.hysteresis,
+            |v| v >= 0.0,
+            "must be >= 0",
+        )?;
+        let phi = pair_table(
+            "coefficientPlasticityDepth",
+            &m.plasticity_depth,
+            n,
+            needs.hysteresis,
+            |v| v > 0.0,
+            "must be > 0",
+        )?;
+        let k2 = pair_table(
+            "coefficientMaxElasticStiffness",
+            &m.max_elastic_stiffness,
+            n,
+            needs.hysteresis,
+            |v| v > 1.0,
+            "must be > 1",
+        )?;
         let vc = if needs.characteristic_velocity {
             let v = m.characteristic_velocity.ok_or_else(|| Error::Invalid {
                 what: "characteristicVelocity",
-                reason: "the hooke models need fix property/global characteristicVelocity scalar".into(),
+                reason: "the hooke models need fix property/global characteristicVelocity scalar"
+                    .into(),
             })?;
             check("characteristicVelocity", v, v > 0.0, "must be > 0")?
         } else {
@@ -269,9 +340,15 @@ mod tests {
         let mut m = ok.clone();
         m.friction = vec![0.5, 0.5];
         assert!(CoeffTable::new(&m, Needs::default()).is_err());
-        let needs = Needs { rolling_friction: true, ..Default::default() };
+        let needs = Needs {
+            rolling_friction: true,
+            ..Default::default()
+        };
         assert!(CoeffTable::new(&ok, needs).is_err());
-        let needs = Needs { characteristic_velocity: true, ..Default::default() };
+        let needs = Needs {
+            characteristic_velocity: true,
+            ..Default::default()
+        };
         assert!(CoeffTable::new(&ok, needs).is_err());
         let mut m = Materials::uniform(2, 5e6, 0.3, 0.5, 0.5);
         m.friction = vec![0.1, 0.2, 0.3, 0.4];

@@ -122,7 +122,10 @@ impl ContactModel {
             rolling_friction: self.rolling != RollingKind::Off,
             rolling_damping: self.rolling == RollingKind::Epsd,
             cohesion: self.cohesion != CohesionKind::Off,
-            characteristic_velocity: matches!(self.normal, NormalKind::Hooke | NormalKind::HookeHysteresis),
+            characteristic_velocity: matches!(
+                self.normal,
+                NormalKind::Hooke | NormalKind::HookeHysteresis
+            ),
             hysteresis: self.normal == NormalKind::HookeHysteresis,
         }
     }
@@ -292,7 +295,12 @@ impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohes
 /// One contact: normal force, cohesion, tangential force with Coulomb cap, torques from the
 /// tangential force on the lever arms c_i, c_j, and the rolling torque.
 #[inline(always)]
-pub fn contact<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohesion::Cohesion>(
+pub fn contact<
+    N: normal::Normal,
+    T: tangential::Tangential,
+    R: rolling::Rolling,
+    C: cohesion::Cohesion,
+>(
     g: &Geom,
     c: &PairCoeff,
     flags: Flags,
@@ -309,7 +317,11 @@ pub fn contact<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling
     // The normal load that sets the Coulomb and rolling limits: the normal model's force
     // (damping included); with `tangential_reduce on` the cohesive pull is added to it and
     // the magnitude taken, as LIGGGHTS 3.8 does (its manual words it the other way round).
-    let load = if flags.tangential_reduce { (no.fn_contact - f_coh).abs() } else { no.fn_contact.abs() };
+    let load = if flags.tangential_reduce {
+        (no.fn_contact - f_coh).abs()
+    } else {
+        no.fn_contact.abs()
+    };
     let ft = T::force(g, c, &no, load, vt_rel, flags, h_tan);
     let fn_total = no.fn_contact - f_coh;
     let f_i = fn_total * g.n + ft;
@@ -319,7 +331,12 @@ pub fn contact<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling
     let tr = R::torque(g, c, &no, load, flags, h_roll);
     t_i += tr;
     t_j -= tr;
-    ContactForce { f_i, t_i, t_j, fn_total }
+    ContactForce {
+        f_i,
+        t_i,
+        t_j,
+        fn_total,
+    }
 }
 
 #[cfg(test)]

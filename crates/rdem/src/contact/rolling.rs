@@ -12,7 +12,14 @@ pub trait Rolling {
     const HIST: usize;
     /// Rolling torque on i.
     /// `load` is the normal load of the contact (≥ 0), as for the Coulomb limit.
-    fn torque(g: &Geom, c: &PairCoeff, no: &NormalOut, load: f64, flags: Flags, hist: &mut [f64]) -> DVec3;
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        load: f64,
+        flags: Flags,
+        hist: &mut [f64],
+    ) -> DVec3;
 }
 
 #[inline(always)]
@@ -42,7 +49,14 @@ pub struct Cdt;
 impl Rolling for Cdt {
     const HIST: usize = 0;
     #[inline(always)]
-    fn torque(g: &Geom, c: &PairCoeff, no: &NormalOut, _load: f64, flags: Flags, _: &mut [f64]) -> DVec3 {
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        _load: f64,
+        flags: Flags,
+        _: &mut [f64],
+    ) -> DVec3 {
         let wr = g.roll_scale * g.wi - g.wj;
         let mag = wr.length();
         if mag > 0.0 {
@@ -57,7 +71,14 @@ impl Rolling for Cdt {
 /// μ_r R* · load. As in LIGGGHTS the stored torque is not turned with the contact.
 /// Returns the spring torque and whether it is below the cap.
 #[inline(always)]
-fn spring_torque(g: &Geom, c: &PairCoeff, kr: f64, wr: DVec3, load: f64, hist: &mut [f64]) -> (DVec3, bool) {
+fn spring_torque(
+    g: &Geom,
+    c: &PairCoeff,
+    kr: f64,
+    wr: DVec3,
+    load: f64,
+    hist: &mut [f64],
+) -> (DVec3, bool) {
     let mut m = DVec3::new(hist[0], hist[1], hist[2]);
     m -= kr * g.dt * wr;
     let m_max = c.mu_r * g.r_star * load;
@@ -80,7 +101,14 @@ pub struct Epsd;
 impl Rolling for Epsd {
     const HIST: usize = 3;
     #[inline(always)]
-    fn torque(g: &Geom, c: &PairCoeff, no: &NormalOut, load: f64, flags: Flags, hist: &mut [f64]) -> DVec3 {
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        load: f64,
+        flags: Flags,
+        hist: &mut [f64],
+    ) -> DVec3 {
         let wr = without_torsion(g.roll_scale * g.wi - g.wj, g, flags);
         let kr = 2.25 * no.kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
         let (m, elastic) = spring_torque(g, c, kr, wr, load, hist);
@@ -101,7 +129,14 @@ pub struct Epsd2;
 impl Rolling for Epsd2 {
     const HIST: usize = 3;
     #[inline(always)]
-    fn torque(g: &Geom, c: &PairCoeff, no: &NormalOut, load: f64, flags: Flags, hist: &mut [f64]) -> DVec3 {
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        load: f64,
+        flags: Flags,
+        hist: &mut [f64],
+    ) -> DVec3 {
         let wr = without_torsion(g.roll_scale * g.wi - g.wj, g, flags);
         let kr = no.kt * g.r_star * g.r_star;
         spring_torque(g, c, kr, wr, load, hist).0

@@ -46,7 +46,11 @@ impl Tangential for History {
         let mag2 = spring.length_squared();
         let ft = if mag2 > ft_max * ft_max {
             let ft = spring * (ft_max / mag2.sqrt());
-            s = if no.kt > 0.0 { -ft / no.kt } else { DVec3::ZERO };
+            s = if no.kt > 0.0 {
+                -ft / no.kt
+            } else {
+                DVec3::ZERO
+            };
             ft
         } else if flags.tangential_damping {
             spring - no.gamma_t * vt

@@ -57,7 +57,10 @@ impl Fix {
         match &kind {
             FixKind::Gravity { accel } => {
                 if !accel.is_finite() {
-                    return Err(Error::Invalid { what: "gravity", reason: format!("{accel} is not finite") });
+                    return Err(Error::Invalid {
+                        what: "gravity",
+                        reason: format!("{accel} is not finite"),
+                    });
                 }
             }
             FixKind::Viscous { gamma } => {
@@ -65,27 +68,46 @@ impl Fix {
             }
             FixKind::AddForce { force } => {
                 if !force.is_finite() {
-                    return Err(Error::Invalid { what: "addforce", reason: format!("{force} is not finite") });
+                    return Err(Error::Invalid {
+                        what: "addforce",
+                        reason: format!("{force} is not finite"),
+                    });
                 }
             }
             FixKind::SetForce { force } => {
                 if force.iter().flatten().any(|v| !v.is_finite()) {
-                    return Err(Error::Invalid { what: "setforce", reason: "components must be finite or NULL".into() });
+                    return Err(Error::Invalid {
+                        what: "setforce",
+                        reason: "components must be finite or NULL".into(),
+                    });
                 }
             }
             FixKind::NveSphere | FixKind::Freeze | FixKind::WallGran(_) => {}
         }
-        Ok(Self { id: id.to_string(), groupbit, kind })
+        Ok(Self {
+            id: id.to_string(),
+            groupbit,
+            kind,
+        })
     }
 
     /// `fix ID group gravity magnitude vector x y z`.
     pub fn gravity(id: &str, groupbit: u32, magnitude: f64, dir: DVec3) -> Result<Self> {
         let len = dir.length();
         if !(len > 0.0) || !dir.is_finite() {
-            return Err(Error::Invalid { what: "gravity direction", reason: format!("{dir} has no direction") });
+            return Err(Error::Invalid {
+                what: "gravity direction",
+                reason: format!("{dir} has no direction"),
+            });
         }
         check("gravity magnitude", magnitude, true, "must be finite")?;
-        Self::new(id, groupbit, FixKind::Gravity { accel: magnitude * dir / len })
+        Self::new(
+            id,
+            groupbit,
+            FixKind::Gravity {
+                accel: magnitude * dir / len,
+            },
+        )
     }
 
     /// True if this fix integrates (acts in initial and final integrate).
@@ -97,7 +119,11 @@ impl Fix {
     pub fn post_force(&self) -> bool {
         matches!(
             self.kind,
-            FixKind::Gravity { .. } | FixKind::Freeze | FixKind::Viscous { .. } | FixKind::AddForce { .. } | FixKind::SetForce { .. }
+            FixKind::Gravity { .. }
+                | FixKind::Freeze
+                | FixKind::Viscous { .. }
+                | FixKind::AddForce { .. }
+                | FixKind::SetForce { .. }
         )
     }
 

@@ -45,7 +45,12 @@ impl WallShape {
                 n[axis] = if d >= 0.0 { 1.0 } else { -1.0 };
                 (d.abs(), n)
             }
-            WallShape::Cylinder { axis, radius, c1, c2 } => {
+            WallShape::Cylinder {
+                axis,
+                radius,
+                c1,
+                c2,
+            } => {
                 let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
                 // c1, c2 follow the cyclic order (x: y z, y: z x, z: x y), as in LIGGGHTS.
                 let (o1, o2) = (c1, c2);
@@ -72,11 +77,23 @@ impl WallShape {
         match *self {
             WallShape::Plane { axis, pos } => {
                 if axis > 2 || !pos.is_finite() {
-                    return Err(Error::Invalid { what: "wall plane", reason: format!("axis {axis}, position {pos}") });
+                    return Err(Error::Invalid {
+                        what: "wall plane",
+                        reason: format!("axis {axis}, position {pos}"),
+                    });
                 }
             }
-            WallShape::Cylinder { axis, radius, c1, c2 } => {
-                if axis > 2 || !(radius > 0.0 && radius.is_finite()) || !c1.is_finite() || !c2.is_finite() {
+            WallShape::Cylinder {
+                axis,
+                radius,
+                c1,
+                c2,
+            } => {
+                if axis > 2
+                    || !(radius > 0.0 && radius.is_finite())
+                    || !c1.is_finite()
+                    || !c2.is_finite()
+                {
                     return Err(Error::Invalid {
                         what: "wall cylinder",
                         reason: format!("needs a finite radius > 0 and a finite axis position (axis {axis}, radius {radius}, centre {c1} {c2})"),
@@ -110,7 +127,10 @@ impl PrimitiveWall {
     pub fn new(id: &str, model: ContactModel, wall_type: u32, shape: WallShape) -> Result<Self> {
         shape.validate()?;
         if wall_type == 0 {
-            return Err(Error::Invalid { what: "wall type", reason: "types start at 1".into() });
+            return Err(Error::Invalid {
+                what: "wall type",
+                reason: "types start at 1".into(),
+            });
         }
         Ok(Self {
             model,
@@ -127,17 +147,29 @@ impl PrimitiveWall {
     pub fn setup(&mut self, materials: &Materials, p: &mut Particles) -> Result<()> {
         self.table = CoeffTable::new(materials, self.model.needs())?;
         if self.wall_type as usize > materials.ntypes {
-            return Err(Error::TypeOutOfRange { ty: self.wall_type, ntypes: materials.ntypes as u32 });
+            return Err(Error::TypeOutOfRange {
+                ty: self.wall_type,
+                ntypes: materials.ntypes as u32,
+            });
         }
         let w = self.model.history_width();
-        self.hist = if w > 0 { Some(p.add_property(&self.history_name, w, &vec![0.0; w])?) } else { None };
+        self.hist = if w > 0 {
+            Some(p.add_property(&self.history_name, w, &vec![0.0; w])?)
+        } else {
+            None
+        };
         Ok(())
     }
 
     /// Adds the wall forces and torques on the owned particles of group `groupbit`.
     pub fn apply(&mut self, p: &mut Particles, groupbit: u32, dt: f64) {
         let model = self.model;
-        model.dispatch(WallPass { wall: self, p, groupbit, dt });
+        model.dispatch(WallPass {
+            wall: self,
+            p,
+            groupbit,
+            dt,
+        });
     }
 }
 
@@ -151,7 +183,12 @@ struct WallPass<'a> {
 impl Visitor for WallPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
-        let WallPass { wall, p, groupbit, dt } = self;
+        let WallPass {
+            wall,
+            p,
+            groupbit,
+            dt,
+        } = self;
         let flags = wall.model.flags;
         let mut empty: [f64; 0] = [];
         let nlocal = p.nlocal();
@@ -167,7 +204,11 @@ impl Visitor for WallPass<'_> {
             }
             let r = p.radius[i];
             let (d, n) = wall.shape.distance(p.x[i]);
-            let hist: &mut [f64] = if w > 0 { &mut hist_data[i * w..(i + 1) * w] } else { &mut empty };
+            let hist: &mut [f64] = if w > 0 {
+                &mut hist_data[i * w..(i + 1) * w]
+            } else {
+                &mut empty
+            };
             if d >= r {
                 hist.iter_mut().for_each(|h| *h = 0.0);
                 continue;
