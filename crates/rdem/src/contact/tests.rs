@@ -1,1 +1,277 @@
+//! Unit checks of the contact kernel against hand computations of SPEC §3 and the
+//! LIGGGHTS 3.8 sub-model definitions.
 
+use super::cohesion::Cohesion;
+use super::*;
+use glam::DVec3;
+
+const PI: f64 = std::f64::consts::PI;
+
+fn coeff(e: f64, mu: f64) -> PairCoeff {
+    let m = Materials::uniform(1, 1e7, 0.3, e, mu);
+    let mut c = *CoeffTable::new(&m, Needs::default()).unwrap().get(1, 1);
+    c.mu_r = 0.1;
+    c.eta_r = 0.3;
+    c.cohesion = 1e4;
+    c.vc = 1.0;
+    c.kc_ratio = 0.5;
+    c.phi_f = 0.05;
+    c.k2max_ratio = 3.0;
+    c
+}
+
+/// Two spheres of radius 1 cm touching with overlap `delta` along x (i on the right).
+fn geom(delta: f64) -> Geom {
+    let (ri, rj) = (0.01, 0.01);
+    let m = 2500.0 * 4.0 / 3.0 * PI * ri * ri * ri;
+    Geom {
+        n: DVec3::X,
+        delta,
+        dist: ri + rj - delta,
+        ri,
+        rj,
+        r_star: ri * rj / (ri + rj),
+        m_star: 0.5 * m,
+        ci: ri - 0.5 * delta,
+        cj: rj - 0.5 * delta,
+        vr: DVec3::ZERO,
+        wi: DVec3::ZERO,
+        wj: DVec3::ZERO,
+        roll_scale: 1.0,
+        inertia_i: 1.4 * m * ri * ri,
+        inertia_j: 1.4 * m * rj * rj,
+        dt: 1e-6,
+    }
+}
+
+type HertzHist = Kernel<normal::Hertz, tangential::History, rolling::Off, cohesion::Off>;
+
+#[test]
+fn hertz_normal_force_and_damping() {
+    let c = coeff(0.5, 0.5);
+    let mut g = geom(1e-4);
+    g.vr = DVec3::new(-0.3, 0.0, 0.0); // approaching
+    let out = HertzHist::contact(&g, &c, Flags::default(), &mut [0.0; 3]);
+    let sq = (g.r_star * g.delta).sqrt();
+    let kn = 4.0 / 3.0 * c.e_star * sq;
+    let beta = 0.5f64.ln() / (0.5f64.ln().powi(2) + PI * PI).sqrt();
+    let gn = -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * c.e_star * sq * g.m_star).sqrt();
+    let expected = kn * g.delta + gn * 0.3;
+    assert!((out.f_i.x - expected).abs() < 1e-12 * expected);
+    assert_eq!(out.f_i.y, 0.0);
+    // limitForce: a receding fast pair would pull; clamped to zero.
+    g.vr = DVec3::new(30.0, 0.0, 0.0);
+    let mut flags = Flags::default();
+    let pulled = HertzHist::contact(&g, &c, flags, &mut [0.0; 3]);
+    assert!(pulled.f_i.x < 0.0);
+    flags.limit_force = true;
+    let clamped = HertzHist::contact(&g, &c, flags, &mut [0.0; 3]);
+    assert_eq!(clamped.f_i.x, 0.0);
+}
+
+#[test]
+fn tangential_spring_sticks_then_slides_and_resets() {
+    let c = coeff(1.0, 0.5); // e = 1: no damping, so the spring alone acts
+    let mut g = geom(1e-4);
+    g.vr = DVec3::new(0.0, 0.01, 0.0);
+    let mut h = [0.0; 3];
+    let out = HertzHist::contact(&g, &c, Flags::default(), &mut h);
+    let kt = 8.0 * c.g_star * (g.r_star * g.delta).sqrt();
+    // Stick: ξ = v dt, F_t = −k_t ξ.
+    assert!((h[1] - 0.01 * g.dt).abs() < 1e-20);
+    assert!((out.f_i.y + kt * 0.01 * g.dt).abs() < 1e-12 * kt * 0.01 * g.dt);
+    // A large displacement slides: |F_t| = μ F_n and ξ = −F_t/k_t.
+    let mut h = [0.0, 1.0, 0.0];
+    let out = HertzHist::contact(&g, &c, Flags::default(), &mut h);
+    let fn_ = out.f_i.x;
+    assert!((out.f_i.y.abs() - 0.5 * fn_).abs() < 1e-12 * fn_);
+    assert!((h[1] + out.f_i.y / kt).abs() < 1e-12 * h[1].abs());
+    // Torques: τ_i = −c_i n × F_t, τ_j = −c_j n × F_t.
+    let nxft = DVec3::X.cross(DVec3::new(0.0, out.f_i.y, 0.0));
+    assert!((out.t_i - (-g.ci * nxft)).length() < 1e-15);
+    assert!((out.t_j - (-g.cj * nxft)).length() < 1e-15);
+}
+
+#[test]
+fn spring_is_projected_onto_the_current_tangent_plane() {
+    let c = coeff(1.0, 10.0);
+    let g = geom(1e-4);
+    // A spring with a normal component (the contact turned): only the tangential part stays.
+    let mut h = [1e-7, 2e-7, 0.0];
+    HertzHist::contact(&g, &c, Flags::default(), &mut h);
+    assert_eq!(h[0], 0.0);
+    assert_eq!(h[1], 2e-7);
+}
+
+#[test]
+fn relative_velocity_includes_spin_on_contact_radii() {
+    let c = coeff(1.0, 10.0);
+    let mut g = geom(1e-4);
+    // Equal spins about z on both spheres: contact points move oppositely along y, so the
+    // relative tangential velocity is −(c_i + c_j) ω (along −y for n = +x).
+    g.wi = DVec3::new(0.0, 0.0, 2.0);
+    g.wj = DVec3::new(0.0, 0.0, 2.0);
+    let mut h = [0.0; 3];
+    HertzHist::contact(&g, &c, Flags::default(), &mut h);
+    let expected = -(g.ci + g.cj) * 2.0 * g.dt;
+    assert!((h[1] - expected).abs() < 1e-15 * expected.abs() + 1e-25);
+}
+
+#[test]
+fn no_history_is_damping_capped_by_coulomb() {
+    type K = Kernel<normal::Hertz, tangential::NoHistory, rolling::Off, cohesion::Off>;
+    assert_eq!(K::HIST, 0);
+    let c = coeff(0.5, 0.5);
+    let mut g = geom(1e-4);
+    g.vr = DVec3::new(0.0, 1e-4, 0.0);
+    let out = K::contact(&g, &c, Flags::default(), &mut []);
+    let sq = (g.r_star * g.delta).sqrt();
+    let beta = 0.5f64.ln() / (0.5f64.ln().powi(2) + PI * PI).sqrt();
+    let gt = -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * c.g_star * sq * g.m_star).sqrt();
+    assert!((out.f_i.y + gt * 1e-4).abs() < 1e-12 * gt * 1e-4);
+    g.vr = DVec3::new(0.0, 100.0, 0.0);
+    let out = K::contact(&g, &c, Flags::default(), &mut []);
+    assert!((out.f_i.y.abs() - 0.5 * out.f_i.x).abs() < 1e-12 * out.f_i.x);
+    let mut flags = Flags::default();
+    flags.tangential_damping = false;
+    assert_eq!(K::contact(&g, &c, flags, &mut []).f_i.y, 0.0);
+}
+
+#[test]
+fn cdt_torque_opposes_rolling_and_drops_torsion() {
+    type K = Kernel<normal::Hertz, tangential::History, rolling::Cdt, cohesion::Off>;
+    let c = coeff(1.0, 0.5);
+    let mut g = geom(1e-4);
+    g.wi = DVec3::new(3.0, 0.0, 4.0); // torsion 3 (along n = x), rolling 4 about z
+    let out = K::contact(&g, &c, Flags::default(), &mut [0.0; 3]);
+    let kn_delta = 4.0 / 3.0 * c.e_star * (g.r_star * g.delta).sqrt() * g.delta;
+    let m = c.mu_r * kn_delta * g.r_star;
+    // Direction of the full w_r is (0.6, 0, 0.8); the torsion part is removed from the torque.
+    let tq_roll = out.t_i - (-g.ci * DVec3::X.cross(out.f_i - out.fn_total * DVec3::X));
+    assert!((tq_roll - DVec3::new(0.0, 0.0, -0.8 * m)).length() < 1e-12 * m);
+    let tq_roll_j = out.t_j - (-g.cj * DVec3::X.cross(out.f_i - out.fn_total * DVec3::X));
+    assert!((tq_roll_j + tq_roll).length() < 1e-12 * m);
+}
+
+#[test]
+fn epsd_spring_damper_and_cap() {
+    type K = Kernel<normal::Hertz, tangential::NoHistory, rolling::Epsd, cohesion::Off>;
+    let c = coeff(1.0, 0.5);
+    let mut g = geom(1e-4);
+    g.wi = DVec3::new(0.0, 0.0, 1.0);
+    let mut h = [0.0; 3];
+    let out = K::contact(&g, &c, Flags::default(), &mut h);
+    let kn = 4.0 / 3.0 * c.e_star * (g.r_star * g.delta).sqrt();
+    let kr = 2.25 * kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
+    assert!((h[2] + kr * g.dt).abs() < 1e-12 * kr * g.dt);
+    let ir = 1.0 / (1.0 / g.inertia_i + 1.0 / g.inertia_j);
+    let cr = c.eta_r * 2.0 * (ir * kr).sqrt();
+    assert!((out.t_i.z - (-kr * g.dt - cr)).abs() < 1e-12 * cr);
+    // Past the cap μ_r R* F_n: the torque sits on the cap and the dashpot is off.
+    let mut h = [0.0, 0.0, -1.0];
+    let out = K::contact(&g, &c, Flags::default(), &mut h);
+    let cap = c.mu_r * g.r_star * kn * g.delta;
+    assert!((out.t_i.z + cap).abs() < 1e-12 * cap);
+}
+
+#[test]
+fn sjkr_area_is_the_intersection_circle() {
+    let c = coeff(1.0, 0.5);
+    let (ri, rj, delta) = (0.01, 0.006, 2e-4);
+    let mut g = geom(delta);
+    g.ri = ri;
+    g.rj = rj;
+    g.dist = ri + rj - delta;
+    g.r_star = ri * rj / (ri + rj);
+    // Radius of the intersection circle from the two sphere equations.
+    let d = g.dist;
+    let xa = (d * d + ri * ri - rj * rj) / (2.0 * d);
+    let a2 = ri * ri - xa * xa;
+    let f = cohesion::Sjkr::force(&g, &c);
+    assert!((f - c.cohesion * PI * a2).abs() < 1e-9 * f);
+    let f2 = cohesion::Sjkr2::force(&g, &c);
+    assert!((f2 - c.cohesion * 2.0 * PI * delta * 2.0 * g.r_star).abs() < 1e-12 * f2);
+    // Wall: circle of the sphere cut by the plane, and 2π δ r_i for sjkr2.
+    g.rj = f64::INFINITY;
+    g.r_star = ri;
+    g.dist = ri - delta;
+    let fw = cohesion::Sjkr::force(&g, &c);
+    assert!((fw - c.cohesion * PI * (2.0 * ri * delta - delta * delta)).abs() < 1e-9 * fw);
+    let fw2 = cohesion::Sjkr2::force(&g, &c);
+    assert!((fw2 - c.cohesion * 2.0 * PI * delta * ri).abs() < 1e-12 * fw2);
+}
+
+#[test]
+fn cohesion_pulls_and_tangential_reduce_changes_the_cap() {
+    type K = Kernel<normal::Hertz, tangential::History, rolling::Off, cohesion::Sjkr2>;
+    let c = coeff(1.0, 0.5);
+    let g = geom(1e-4);
+    let fe = 4.0 / 3.0 * c.e_star * (g.r_star * g.delta).sqrt() * g.delta;
+    let fc = cohesion::Sjkr2::force(&g, &c);
+    let mut h = [0.0, 1.0, 0.0];
+    let out = K::contact(&g, &c, Flags::default(), &mut h);
+    assert!((out.f_i.x - (fe - fc)).abs() < 1e-12 * fe);
+    // Cap from the normal model's force alone (tangential_reduce off, LIGGGHTS default).
+    assert!((out.f_i.y.abs() - 0.5 * fe).abs() < 1e-12 * fe);
+    let mut flags = Flags::default();
+    flags.tangential_reduce = true;
+    let mut h = [0.0, 1.0, 0.0];
+    let out = K::contact(&g, &c, flags, &mut h);
+    assert!((out.f_i.y.abs() - 0.5 * (fe - fc).abs()).abs() < 1e-12 * fe);
+}
+
+#[test]
+fn hooke_stiffness_and_hysteresis_branches() {
+    let c = coeff(1.0, 0.5);
+    let g = geom(1e-4);
+    let k1 = normal::hooke_kn(&c, g.r_star, g.m_star);
+    let sr = g.r_star.sqrt();
+    let expected = 16.0 / 15.0 * sr * c.e_star * (15.0 * g.m_star * 1.0 / (16.0 * sr * c.e_star)).powf(0.2);
+    assert!((k1 - expected).abs() < 1e-12 * k1);
+    type K = Kernel<normal::HookeHysteresis, tangential::NoHistory, rolling::Off, cohesion::Off>;
+    assert_eq!(K::HIST, 1);
+    let dlim = 3.0 / 2.0 * c.phi_f * 2.0 * g.r_star;
+    let mut h = [0.0];
+    // Loading: F = k1 δ, δ_max follows.
+    let mut g1 = geom(1e-4);
+    let f = K::contact(&g1, &c, Flags::default(), &mut h).f_i.x;
+    assert!((f - k1 * 1e-4).abs() < 1e-12 * f);
+    assert_eq!(h[0], 1e-4);
+    // Unloading to half the overlap: F = k2 (δ − δ_max) + k1 δ_max.
+    g1.delta = 0.5e-4;
+    let k2 = k1 + 2.0 * k1 * 1e-4 / dlim;
+    let f = K::contact(&g1, &c, Flags::default(), &mut h).f_i.x;
+    let expected = k2 * (0.5e-4 - 1e-4) + k1 * 1e-4;
+    assert!((f - expected).abs() < 1e-9 * k1 * 1e-4, "{f} vs {expected}");
+    // Far below: the adhesive branch −kc δ.
+    g1.delta = 1e-7;
+    let f = K::contact(&g1, &c, Flags::default(), &mut h).f_i.x;
+    // (The unloading line would give k2 (δ − δ_max) + k1 δ_max ≈ −0.27e-4 k1, far below −kc δ.)
+    assert!(k2 * (1e-7 - 1e-4) + k1 * 1e-4 < -0.5 * k1 * 1e-7);
+    assert!((f + 0.5 * k1 * 1e-7).abs() < 1e-9 * k1 * 1e-7, "{f}");
+}
+
+#[test]
+fn swapping_the_pair_mirrors_the_contact() {
+    type K = Kernel<normal::Hertz, tangential::History, rolling::Epsd2, cohesion::Sjkr>;
+    let c = coeff(0.6, 0.4);
+    let mut g = geom(2e-4);
+    g.vr = DVec3::new(-0.1, 0.02, -0.03);
+    g.wi = DVec3::new(1.0, -2.0, 0.5);
+    g.wj = DVec3::new(-0.3, 0.7, 2.0);
+    let mut hi = [1e-7, 2e-7, -1e-7, 1e-9, -2e-9, 3e-9];
+    let mut hj: Vec<f64> = hi.iter().map(|v| -v).collect();
+    let a = K::contact(&g, &c, Flags::default(), &mut hi);
+    let mut s = g;
+    s.n = -g.n;
+    s.vr = -g.vr;
+    s.wi = g.wj;
+    s.wj = g.wi;
+    let b = K::contact(&s, &c, Flags::default(), &mut hj);
+    assert!((a.f_i + b.f_i).length() < 1e-12 * a.f_i.length());
+    assert!((a.t_i - b.t_j).length() < 1e-12 * a.t_i.length());
+    assert!((a.t_j - b.t_i).length() < 1e-12 * a.t_j.length());
+    for k in 0..6 {
+        assert!((hi[k] + hj[k]).abs() < 1e-20);
+    }
+}
