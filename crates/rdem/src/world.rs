@@ -252,12 +252,31 @@ impl World {
             let rmax = self
                 .comm
                 .max(self.particles.radius.iter().copied().fold(0.0, f64::max));
-            let h = if self.sort.binsize > 0.0 {
+            let mut h = if self.sort.binsize > 0.0 {
                 self.sort.binsize
             } else {
                 0.5 * self.neighbor.cutoff_for(rmax)
             };
-            sort_particles(&mut self.particles, self.domain.sublo, self.domain.subhi, h);
+            // Bins over the particles' bounding box within the subdomain; a sparse system in
+            // a large box would otherwise ask for more bins than particles by orders of
+            // magnitude, so the bin size doubles until there are at most 8 N + 64 bins.
+            let (mut lo, mut hi) = (self.domain.subhi, self.domain.sublo);
+            for &x in &self.particles.x[..self.particles.nlocal()] {
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+            let lo = lo.max(self.domain.sublo);
+            let hi = hi.min(self.domain.subhi).max(lo);
+            let limit = 8.0 * self.particles.nlocal() as f64 + 64.0;
+            let nbins = |h: f64| -> f64 {
+                (0..3)
+                    .map(|a| ((hi[a] - lo[a]) / h).floor().max(1.0))
+                    .product()
+            };
+            while nbins(h) > limit {
+                h *= 2.0;
+            }
+            sort_particles(&mut self.particles, lo, hi, h);
             self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
         }
         let rmax = self.comm.max(
