@@ -132,8 +132,7 @@ fn no_history_is_damping_capped_by_coulomb() {
     g.vr = DVec3::new(0.0, 100.0, 0.0);
     let out = K::contact(&g, &c, Flags::default(), &mut []);
     assert!((out.f_i.y.abs() - 0.5 * out.f_i.x).abs() < 1e-12 * out.f_i.x);
-    let mut flags = Flags::default();
-    flags.tangential_damping = false;
+    let flags = Flags { tangential_damping: false, ..Flags::default() };
     assert_eq!(K::contact(&g, &c, flags, &mut []).f_i.y, 0.0);
 }
 
@@ -213,8 +212,7 @@ fn cohesion_pulls_and_tangential_reduce_changes_the_cap() {
     assert!((out.f_i.x - (fe - fc)).abs() < 1e-12 * fe);
     // Cap from the normal model's force alone (tangential_reduce off, LIGGGHTS default).
     assert!((out.f_i.y.abs() - 0.5 * fe).abs() < 1e-12 * fe);
-    let mut flags = Flags::default();
-    flags.tangential_reduce = true;
+    let flags = Flags { tangential_reduce: true, ..Flags::default() };
     let mut h = [0.0, 1.0, 0.0];
     let out = K::contact(&g, &c, flags, &mut h);
     assert!((out.f_i.y.abs() - 0.5 * (fe - fc).abs()).abs() < 1e-12 * fe);

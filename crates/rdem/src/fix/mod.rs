@@ -94,7 +94,7 @@ impl Fix {
     /// `fix ID group gravity magnitude vector x y z`.
     pub fn gravity(id: &str, groupbit: u32, magnitude: f64, dir: DVec3) -> Result<Self> {
         let len = dir.length();
-        if !(len > 0.0) || !dir.is_finite() {
+        if len.is_nan() || len <= 0.0 || !dir.is_finite() {
             return Err(Error::Invalid {
                 what: "gravity direction",
                 reason: format!("{dir} has no direction"),
@@ -164,9 +164,9 @@ impl Fix {
             FixKind::SetForce { force } => {
                 for i in 0..n {
                     if p.mask[i] & bit != 0 {
-                        for a in 0..3 {
-                            if let Some(v) = force[a] {
-                                p.f[i][a] = v;
+                        for (a, value) in force.iter().enumerate() {
+                            if let Some(v) = value {
+                                p.f[i][a] = *v;
                             }
                         }
                     }

@@ -90,7 +90,9 @@ impl WallShape {
                 c2,
             } => {
                 if axis > 2
-                    || !(radius > 0.0 && radius.is_finite())
+                    || radius.is_nan()
+                    || radius <= 0.0
+                    || !radius.is_finite()
                     || !c1.is_finite()
                     || !c2.is_finite()
                 {
