@@ -38,12 +38,13 @@ impl PairGran {
     /// Adds contact forces and torques for every listed pair in contact (to ghosts too;
     /// reverse communication moves those to their owners). History of pairs out of
     /// contact is zeroed.
-    pub fn compute(&self, p: &mut Particles, list: &mut NeighborList, dt: f64) {
+    pub fn compute(&self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
         self.model.dispatch(PairPass {
             pair: self,
             p,
             list,
             dt,
+            update,
         });
     }
 }
@@ -53,12 +54,19 @@ struct PairPass<'a> {
     p: &'a mut Particles,
     list: &'a mut NeighborList,
     dt: f64,
+    update: bool,
 }
 
 impl Visitor for PairPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
-        let PairPass { pair, p, list, dt } = self;
+        let PairPass {
+            pair,
+            p,
+            list,
+            dt,
+            update,
+        } = self;
         let flags = pair.model.flags;
         let table = &pair.table;
         let w = K::HIST;
@@ -113,6 +121,7 @@ impl Visitor for PairPass<'_> {
                     inertia_i: (INERTIA_SPHERE + 1.0) * mi * ri * ri,
                     inertia_j: (INERTIA_SPHERE + 1.0) * mj * rj * rj,
                     dt,
+                    update,
                 };
                 let out = K::contact(&g, table.get(ti, ty[j]), flags, hist);
                 fi += out.f_i;

@@ -59,7 +59,7 @@ impl World {
             self.comm.forward(&mut self.particles);
             self.timers.lap(Stage::Comm, t1);
         }
-        self.compute_forces()?;
+        self.compute_forces(true)?;
         let t2 = Instant::now();
         for fix in &self.fixes {
             if fix.integrates() {
@@ -73,15 +73,16 @@ impl World {
         Ok(())
     }
 
-    /// Steps 4–7: force clear, pair, reverse communication, post-force fixes.
-    pub(crate) fn compute_forces(&mut self) -> Result<()> {
+    /// Steps 4–7: force clear, pair, reverse communication, post-force fixes. `update`
+    /// false evaluates the forces without advancing contact history (run set-up).
+    pub(crate) fn compute_forces(&mut self, update: bool) -> Result<()> {
         let t0 = Instant::now();
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = DVec3::ZERO);
         p.torque.iter_mut().for_each(|t| *t = DVec3::ZERO);
         let t1 = self.timers.lap(Stage::Other, t0);
         if let Some(pair) = &self.pair {
-            pair.compute(&mut self.particles, &mut self.neighbor.list, self.dt);
+            pair.compute(&mut self.particles, &mut self.neighbor.list, self.dt, update);
         }
         let t2 = self.timers.lap(Stage::Pair, t1);
         self.comm.reverse(&mut self.particles);
@@ -89,7 +90,7 @@ impl World {
         let dt = self.dt;
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
-                wall.apply(&mut self.particles, fix.groupbit, dt);
+                wall.apply(&mut self.particles, fix.groupbit, dt, update);
             } else if fix.post_force() {
                 fix.apply_post_force(&mut self.particles);
             }

@@ -191,23 +191,8 @@ impl World {
             }
         }
         self.reneighbor()?;
-        // As in LIGGGHTS, the set-up force evaluation does not advance contact history:
-        // keep a copy and put it back.
-        let list_hist = self.neighbor.list.hist.clone();
-        let wall_hist: Vec<(usize, Vec<f64>)> = self
-            .fixes
-            .iter()
-            .filter_map(|f| match &f.kind {
-                FixKind::WallGran(w) => self.particles.property(&w.history_name),
-                _ => None,
-            })
-            .map(|id| (id.0, self.particles.props[id.0].data.clone()))
-            .collect();
-        self.compute_forces()?;
-        self.neighbor.list.hist = list_hist;
-        for (id, data) in wall_hist {
-            self.particles.props[id].data = data;
-        }
+        // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
+        self.compute_forces(false)?;
         self.needs_reneighbor = false;
         Ok(())
     }

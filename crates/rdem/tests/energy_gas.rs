@@ -50,7 +50,14 @@ fn total_energy(w: &World) -> f64 {
 #[test]
 fn periodic_elastic_gas_conserves_energy() {
     let l = 0.06;
-    let mut w = world(DVec3::ZERO, DVec3::splat(l), [Boundary::Periodic; 3], ContactModel::hertz_history(), 1.0, 0.0);
+    let mut w = world(
+        DVec3::ZERO,
+        DVec3::splat(l),
+        [Boundary::Periodic; 3],
+        ContactModel::hertz_history(),
+        1.0,
+        0.0,
+    );
     let mut rng = Rng(7);
     let n = 5;
     let h = l / n as f64;
@@ -60,8 +67,10 @@ fn periodic_elastic_gas_conserves_energy() {
             for c in 0..n {
                 let x = DVec3::new(a as f64 + 0.5, b as f64 + 0.5, c as f64 + 0.5) * h;
                 let r = 0.002 + 0.002 * rng.next();
-                let vel = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * v;
-                w.add_particle(&NewParticle::at(x, r, RHO).with_v(vel)).unwrap();
+                let vel =
+                    DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * v;
+                w.add_particle(&NewParticle::at(x, r, RHO).with_v(vel))
+                    .unwrap();
             }
         }
     }
@@ -79,11 +88,18 @@ fn periodic_elastic_gas_conserves_energy() {
         }
         let e = total_energy(&w);
         worst = worst.max(rel(e, e0));
-        collisions_seen |= w.particles.v.iter().any(|v| v.length() > 1.5 * 0.5 * 3f64.sqrt());
+        collisions_seen |= w
+            .particles
+            .v
+            .iter()
+            .any(|v| v.length() > 1.5 * 0.5 * 3f64.sqrt());
     }
     assert!(worst < 1e-4, "energy drifted by {worst:e}");
     // The gas really collided: velocities were redistributed.
     assert!(collisions_seen || w.neighbor.nbuilds > 10);
     assert_eq!(w.particles.nlocal(), 125);
-    eprintln!("energy drift over 1e5 steps: {worst:e}, {} neighbor builds", w.neighbor.nbuilds);
+    eprintln!(
+        "energy drift over 1e5 steps: {worst:e}, {} neighbor builds",
+        w.neighbor.nbuilds
+    );
 }

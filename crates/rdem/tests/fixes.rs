@@ -16,7 +16,14 @@ use rdem::{Boundary, ContactModel, DVec3, Fix, FixKind, NewParticle, World};
 const R: f64 = 0.002;
 
 fn empty_world() -> World {
-    let mut w = World::new(rdem::Domain::new(DVec3::splat(-10.0), DVec3::splat(10.0), [Boundary::Fixed; 3]).unwrap());
+    let mut w = World::new(
+        rdem::Domain::new(
+            DVec3::splat(-10.0),
+            DVec3::splat(10.0),
+            [Boundary::Fixed; 3],
+        )
+        .unwrap(),
+    );
     w.materials = rdem::Materials::uniform(2, E, NU, 0.5, 0.5);
     w.pair = Some(rdem::PairGran::new(ContactModel::hertz_history()));
     w.set_timestep(1e-4).unwrap();
@@ -27,12 +34,18 @@ fn empty_world() -> World {
 fn free_fall_is_exact_and_only_for_the_group() {
     let mut w = empty_world();
     // Group bit 2 ("falling") holds particle 1 only.
-    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).unwrap();
-    w.add_fix(Fix::gravity("g", 2, 9.81, DVec3::new(0.0, 0.0, -2.0)).unwrap()).unwrap();
-    let mut a = NewParticle::at(DVec3::new(0.0, 0.0, 5.0), R, RHO).with_v(DVec3::new(0.1, 0.0, 1.0));
+    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .unwrap();
+    w.add_fix(Fix::gravity("g", 2, 9.81, DVec3::new(0.0, 0.0, -2.0)).unwrap())
+        .unwrap();
+    let mut a =
+        NewParticle::at(DVec3::new(0.0, 0.0, 5.0), R, RHO).with_v(DVec3::new(0.1, 0.0, 1.0));
     a.mask = 1 | 2;
     w.add_particle(&a).unwrap();
-    w.add_particle(&NewParticle::at(DVec3::new(1.0, 0.0, 5.0), R, RHO).with_v(DVec3::new(0.0, 0.0, 1.0))).unwrap();
+    w.add_particle(
+        &NewParticle::at(DVec3::new(1.0, 0.0, 5.0), R, RHO).with_v(DVec3::new(0.0, 0.0, 1.0)),
+    )
+    .unwrap();
     w.run(1000).unwrap();
     let t = 0.1;
     let p = &w.particles;
@@ -48,8 +61,10 @@ fn free_fall_is_exact_and_only_for_the_group() {
 #[test]
 fn constant_torque_spins_up_a_sphere() {
     let mut w = empty_world();
-    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).unwrap();
-    w.add_particle(&NewParticle::at(DVec3::ZERO, R, RHO)).unwrap();
+    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .unwrap();
+    w.add_particle(&NewParticle::at(DVec3::ZERO, R, RHO))
+        .unwrap();
     w.setup().unwrap();
     // No fix sets a torque directly; check the integrator's rotational half-kicks instead.
     let m = mass(R);
@@ -66,13 +81,20 @@ fn viscous_damping_decays_exponentially() {
     let mut w = empty_world();
     let m = mass(R);
     let gamma = 1e-3 * m / 1e-4; // γ dt / m = 1e-3
-    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).unwrap();
-    w.add_fix(Fix::new("visc", 1, FixKind::Viscous { gamma }).unwrap()).unwrap();
-    w.add_particle(&NewParticle::at(DVec3::ZERO, R, RHO).with_v(DVec3::new(1.0, 0.0, 0.0))).unwrap();
+    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .unwrap();
+    w.add_fix(Fix::new("visc", 1, FixKind::Viscous { gamma }).unwrap())
+        .unwrap();
+    w.add_particle(&NewParticle::at(DVec3::ZERO, R, RHO).with_v(DVec3::new(1.0, 0.0, 0.0)))
+        .unwrap();
     w.run(2000).unwrap();
     let a: f64 = 1e-3;
     let discrete = (1.0 - 0.5 * a).powi(2) * (1.0 - a).powi(1999);
-    assert!(rel(w.particles.v[0].x, discrete) < 1e-12, "{} vs {discrete}", w.particles.v[0].x);
+    assert!(
+        rel(w.particles.v[0].x, discrete) < 1e-12,
+        "{} vs {discrete}",
+        w.particles.v[0].x
+    );
     let continuous = (-gamma * 0.2 / m).exp();
     assert!(rel(w.particles.v[0].x, continuous) < 1.1e-3);
 }
@@ -80,12 +102,35 @@ fn viscous_damping_decays_exponentially() {
 #[test]
 fn addforce_setforce_freeze_act_on_their_groups() {
     let mut w = empty_world();
-    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).unwrap();
-    w.add_fix(Fix::new("push", 2, FixKind::AddForce { force: DVec3::new(1e-3, 0.0, 0.0) }).unwrap()).unwrap();
-    w.add_fix(Fix::new("hold", 4, FixKind::SetForce { force: [None, Some(2e-3), None] }).unwrap()).unwrap();
-    w.add_fix(Fix::new("stop", 8, FixKind::Freeze).unwrap()).unwrap();
+    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .unwrap();
+    w.add_fix(
+        Fix::new(
+            "push",
+            2,
+            FixKind::AddForce {
+                force: DVec3::new(1e-3, 0.0, 0.0),
+            },
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    w.add_fix(
+        Fix::new(
+            "hold",
+            4,
+            FixKind::SetForce {
+                force: [None, Some(2e-3), None],
+            },
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    w.add_fix(Fix::new("stop", 8, FixKind::Freeze).unwrap())
+        .unwrap();
     for (k, mask) in [(0, 1 | 2), (1, 1 | 2 | 4), (2, 1 | 2 | 8), (3, 1)] {
-        let mut p = NewParticle::at(DVec3::new(k as f64, 0.0, 0.0), R, RHO).with_omega(DVec3::new(0.0, 0.0, 1.0));
+        let mut p = NewParticle::at(DVec3::new(k as f64, 0.0, 0.0), R, RHO)
+            .with_omega(DVec3::new(0.0, 0.0, 1.0));
         p.mask = mask;
         w.add_particle(&p).unwrap();
     }
@@ -110,11 +155,28 @@ fn fixes_refuse_bad_numbers() {
     assert!(Fix::new("v", 1, FixKind::Viscous { gamma: -1.0 }).is_err());
     assert!(Fix::new("v", 1, FixKind::Viscous { gamma: f64::NAN }).is_err());
     assert!(Fix::gravity("g", 1, 9.81, DVec3::ZERO).is_err());
-    assert!(Fix::new("a", 1, FixKind::AddForce { force: DVec3::new(f64::INFINITY, 0.0, 0.0) }).is_err());
-    assert!(Fix::new("s", 1, FixKind::SetForce { force: [Some(f64::NAN), None, None] }).is_err());
+    assert!(Fix::new(
+        "a",
+        1,
+        FixKind::AddForce {
+            force: DVec3::new(f64::INFINITY, 0.0, 0.0)
+        }
+    )
+    .is_err());
+    assert!(Fix::new(
+        "s",
+        1,
+        FixKind::SetForce {
+            force: [Some(f64::NAN), None, None]
+        }
+    )
+    .is_err());
     let mut w = empty_world();
-    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).unwrap();
-    assert!(w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap()).is_err());
+    w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .unwrap();
+    assert!(w
+        .add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+        .is_err());
     assert!(w.remove_fix("nve"));
     assert!(!w.remove_fix("nve"));
 }

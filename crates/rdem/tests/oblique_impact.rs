@@ -37,14 +37,24 @@ fn impact(e: f64, mu: f64, tan_theta: f64) -> (f64, f64, f64) {
     let hi = DVec3::new(1.0, 0.1, 0.1);
     let mut w = world(lo, hi, [Boundary::Fixed; 3], model, e, mu);
     w.materials = Materials::uniform(1, STIFF, NU, e, mu);
-    add_wall(&mut w, "floor", model, WallShape::Plane { axis: 2, pos: 0.0 });
+    add_wall(
+        &mut w,
+        "floor",
+        model,
+        WallShape::Plane { axis: 2, pos: 0.0 },
+    );
     let theta = tan_theta.atan();
     let v0 = DVec3::new(V * theta.sin(), 0.0, -V * theta.cos());
-    w.add_particle(&NewParticle::at(DVec3::new(0.0, 0.0, R + 1e-4), R, RHO).with_v(v0)).unwrap();
+    w.add_particle(&NewParticle::at(DVec3::new(0.0, 0.0, R + 1e-4), R, RHO).with_v(v0))
+        .unwrap();
     let e_star = 1.0 / (2.0 * (1.0 - NU * NU) / STIFF);
     let tc = hertz_tc(mass(R), R, e_star, V * theta.cos());
     let dm = hertz_delta_max(mass(R), R, e_star, V * theta.cos());
-    assert!(dm / R < 2e-3, "overlap too large for the rigid-body comparison: {}", dm / R);
+    assert!(
+        dm / R < 2e-3,
+        "overlap too large for the rigid-body comparison: {}",
+        dm / R
+    );
     w.set_timestep(tc / 100.0).unwrap();
     w.setup().unwrap();
     let mut touched = false;
@@ -65,11 +75,20 @@ fn impact(e: f64, mu: f64, tan_theta: f64) -> (f64, f64, f64) {
 fn check(e: f64, mu: f64, tan_theta: f64) {
     let (en, et, wy) = impact(e, mu, tan_theta);
     let theta = tan_theta.atan();
-    assert!(tan_theta >= 3.5 * mu * (1.0 + en), "not in the gross-sliding regime");
+    assert!(
+        tan_theta >= 3.5 * mu * (1.0 + en),
+        "not in the gross-sliding regime"
+    );
     let et_expected = 1.0 - mu * (1.0 + en) / tan_theta;
     let w_expected = 2.5 * mu * (1.0 + en) * V * theta.cos() / R;
-    assert!(rel(et, et_expected) < 0.005, "e {e} mu {mu} tan {tan_theta}: e_t {et} vs {et_expected}");
-    assert!(rel(wy, w_expected) < 0.005, "e {e} mu {mu} tan {tan_theta}: omega {wy} vs {w_expected}");
+    assert!(
+        rel(et, et_expected) < 0.005,
+        "e {e} mu {mu} tan {tan_theta}: e_t {et} vs {et_expected}"
+    );
+    assert!(
+        rel(wy, w_expected) < 0.005,
+        "e {e} mu {mu} tan {tan_theta}: omega {wy} vs {w_expected}"
+    );
 }
 
 #[test]

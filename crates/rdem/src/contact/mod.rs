@@ -236,6 +236,11 @@ pub struct Geom {
     pub inertia_j: f64,
     /// Timestep.
     pub dt: f64,
+    /// Whether this evaluation advances the contact history. False for the force
+    /// evaluation of a run's set-up, as in LIGGGHTS: the tangential spring is used as
+    /// stored, rolling springs add their increment without storing it, and hysteresis
+    /// records the largest overlap but does not move onto its adhesive branch.
+    pub update: bool,
 }
 
 /// Result of one contact: the force on i (j gets the opposite) and the torques on both.

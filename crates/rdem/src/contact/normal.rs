@@ -118,8 +118,10 @@ impl Normal for HookeHysteresis {
             branch
         } else {
             // Adhesive branch: the unloading line is moved to meet it.
-            hist[0] = 0.5
+            if g.update {
+                hist[0] = 0.5
                 * (delta + (delta * delta + 4.0 * (k1 + kc) * delta * dlim / (k2max - k1)).sqrt());
+            }
             -kc * delta
         };
         NormalOut {

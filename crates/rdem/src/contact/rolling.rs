@@ -87,9 +87,11 @@ fn spring_torque(
     if !elastic {
         m *= m_max / mag2.sqrt();
     }
-    hist[0] = m.x;
-    hist[1] = m.y;
-    hist[2] = m.z;
+    if g.update {
+        hist[0] = m.x;
+        hist[1] = m.y;
+        hist[2] = m.z;
+    }
     (m, elastic)
 }
 

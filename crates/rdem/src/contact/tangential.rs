@@ -24,7 +24,8 @@ pub trait Tangential {
 /// `tangential history`: the spring ξ gains v_t dt, is projected onto the current tangent
 /// plane, and F_t = −k_t ξ (the current k_t on the whole spring). If |F_t| > μ·load the force
 /// is scaled to μ·load, ξ is reset to −F_t/k_t and no damping acts; otherwise
-/// F_t −= γ_t v_t (with `tangential_damping on`).
+/// F_t −= γ_t v_t (with `tangential_damping on`). Without [`Geom::update`] the stored spring
+/// is used as it is and not written back.
 pub struct History;
 
 impl Tangential for History {
@@ -39,8 +40,11 @@ impl Tangential for History {
         flags: Flags,
         hist: &mut [f64],
     ) -> DVec3 {
-        let mut s = DVec3::new(hist[0], hist[1], hist[2]) + vt * g.dt;
-        s -= s.dot(g.n) * g.n;
+        let mut s = DVec3::new(hist[0], hist[1], hist[2]);
+        if g.update {
+            s += vt * g.dt;
+            s -= s.dot(g.n) * g.n;
+        }
         let spring = -no.kt * s;
         let ft_max = c.mu * load;
         let mag2 = spring.length_squared();
@@ -57,9 +61,11 @@ impl Tangential for History {
         } else {
             spring
         };
-        hist[0] = s.x;
-        hist[1] = s.y;
-        hist[2] = s.z;
+        if g.update {
+            hist[0] = s.x;
+            hist[1] = s.y;
+            hist[2] = s.z;
+        }
         ft
     }
 }

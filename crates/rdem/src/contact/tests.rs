@@ -41,6 +41,7 @@ fn geom(delta: f64) -> Geom {
         inertia_i: 1.4 * m * ri * ri,
         inertia_j: 1.4 * m * rj * rj,
         dt: 1e-6,
+        update: true,
     }
 }
 
@@ -132,7 +133,10 @@ fn no_history_is_damping_capped_by_coulomb() {
     g.vr = DVec3::new(0.0, 100.0, 0.0);
     let out = K::contact(&g, &c, Flags::default(), &mut []);
     assert!((out.f_i.y.abs() - 0.5 * out.f_i.x).abs() < 1e-12 * out.f_i.x);
-    let flags = Flags { tangential_damping: false, ..Flags::default() };
+    let flags = Flags {
+        tangential_damping: false,
+        ..Flags::default()
+    };
     assert_eq!(K::contact(&g, &c, flags, &mut []).f_i.y, 0.0);
 }
 
@@ -212,7 +216,10 @@ fn cohesion_pulls_and_tangential_reduce_changes_the_cap() {
     assert!((out.f_i.x - (fe - fc)).abs() < 1e-12 * fe);
     // Cap from the normal model's force alone (tangential_reduce off, LIGGGHTS default).
     assert!((out.f_i.y.abs() - 0.5 * fe).abs() < 1e-12 * fe);
-    let flags = Flags { tangential_reduce: true, ..Flags::default() };
+    let flags = Flags {
+        tangential_reduce: true,
+        ..Flags::default()
+    };
     let mut h = [0.0, 1.0, 0.0];
     let out = K::contact(&g, &c, flags, &mut h);
     assert!((out.f_i.y.abs() - 0.5 * (fe - fc).abs()).abs() < 1e-12 * fe);
@@ -224,7 +231,8 @@ fn hooke_stiffness_and_hysteresis_branches() {
     let g = geom(1e-4);
     let k1 = normal::hooke_kn(&c, g.r_star, g.m_star);
     let sr = g.r_star.sqrt();
-    let expected = 16.0 / 15.0 * sr * c.e_star * (15.0 * g.m_star * 1.0 / (16.0 * sr * c.e_star)).powf(0.2);
+    let expected =
+        16.0 / 15.0 * sr * c.e_star * (15.0 * g.m_star * 1.0 / (16.0 * sr * c.e_star)).powf(0.2);
     assert!((k1 - expected).abs() < 1e-12 * k1);
     type K = Kernel<normal::HookeHysteresis, tangential::NoHistory, rolling::Off, cohesion::Off>;
     assert_eq!(K::HIST, 1);

@@ -164,13 +164,14 @@ impl PrimitiveWall {
     }
 
     /// Adds the wall forces and torques on the owned particles of group `groupbit`.
-    pub fn apply(&mut self, p: &mut Particles, groupbit: u32, dt: f64) {
+    pub fn apply(&mut self, p: &mut Particles, groupbit: u32, dt: f64, update: bool) {
         let model = self.model;
         model.dispatch(WallPass {
             wall: self,
             p,
             groupbit,
             dt,
+            update,
         });
     }
 }
@@ -180,6 +181,7 @@ struct WallPass<'a> {
     p: &'a mut Particles,
     groupbit: u32,
     dt: f64,
+    update: bool,
 }
 
 impl Visitor for WallPass<'_> {
@@ -190,6 +192,7 @@ impl Visitor for WallPass<'_> {
             p,
             groupbit,
             dt,
+            update,
         } = self;
         let flags = wall.model.flags;
         let mut empty: [f64; 0] = [];
@@ -234,6 +237,7 @@ impl Visitor for WallPass<'_> {
                 inertia_i: (INERTIA_SPHERE + 1.0) * m * r * r,
                 inertia_j: f64::INFINITY,
                 dt,
+                update,
             };
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
