@@ -19,7 +19,8 @@ pub trait Comm: std::fmt::Debug + Send {
     /// Creates ghosts of every particle within `cutoff` of a subdomain face (including
     /// periodic images), after the locals.
     fn borders(&mut self, p: &mut Particles, domain: &Domain, cutoff: f64);
-    /// Refreshes ghost positions and velocities from their owners.
+    /// Refreshes ghost positions, velocities, angular velocities, radii and masses from
+    /// their owners (radii and masses change between re-neighborings under `fix adapt`).
     fn forward(&mut self, p: &mut Particles);
     /// Adds ghost forces and torques onto their owners.
     fn reverse(&mut self, p: &mut Particles);
@@ -31,6 +32,8 @@ pub trait Comm: std::fmt::Debug + Send {
     fn min(&self, x: f64) -> f64;
     /// Global maximum.
     fn max(&self, x: f64) -> f64;
+    /// Global maximum of a count or tag.
+    fn max_count(&self, x: u64) -> u64;
     /// Sum of `x` over the ranks below this one (exclusive prefix sum), for tag extension.
     fn exclusive_prefix_count(&self, x: u64) -> u64;
 }
@@ -98,6 +101,8 @@ impl Comm for Serial {
             p.x[g] = p.x[o] + s;
             p.v[g] = p.v[o];
             p.omega[g] = p.omega[o];
+            p.radius[g] = p.radius[o];
+            p.rmass[g] = p.rmass[o];
         }
     }
 
@@ -121,6 +126,9 @@ impl Comm for Serial {
         x
     }
     fn max(&self, x: f64) -> f64 {
+        x
+    }
+    fn max_count(&self, x: u64) -> u64 {
         x
     }
     fn exclusive_prefix_count(&self, _x: u64) -> u64 {

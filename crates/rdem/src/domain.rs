@@ -215,7 +215,9 @@ impl Domain {
     }
 
     /// Wraps `x` into the box along periodic axes, updating the image counts. Non-periodic
-    /// axes are left alone.
+    /// axes are left alone. Image counts saturate at the `i32` range (a particle that far
+    /// away means the run has blown up; it must not overflow), and a NaN coordinate is
+    /// left as it is.
     pub fn remap(&self, x: &mut DVec3, image: &mut [i32; 3]) {
         let prd = self.prd();
         for a in 0..3 {
@@ -225,11 +227,12 @@ impl Domain {
             if x[a] < self.boxlo[a] || x[a] >= self.boxhi[a] {
                 let n = ((x[a] - self.boxlo[a]) / prd[a]).floor();
                 x[a] -= n * prd[a];
-                image[a] += n as i32;
+                // `as` saturates, and so does the addition.
+                image[a] = image[a].saturating_add(n as i32);
                 // Round-off can leave x exactly on the upper face.
                 if x[a] >= self.boxhi[a] {
                     x[a] = self.boxlo[a];
-                    image[a] += 1;
+                    image[a] = image[a].saturating_add(1);
                 }
                 if x[a] < self.boxlo[a] {
                     x[a] = self.boxlo[a];
@@ -272,10 +275,12 @@ impl Domain {
     }
 
     /// Shrink-wraps `s` and `m` faces around the particle extent `[lo, hi]` (global, over
-    /// all ranks), with a margin of [`SHRINK_MARGIN`] × box length; `m` faces never move
+    /// all ranks), with a margin of [`SHRINK_MARGIN`] × the *initial* box length (LAMMPS'
+    /// `small`, fixed when the box is created, so the wrapped box depends only on the
+    /// current particles, not on how often it was wrapped before); `m` faces never move
     /// inside the initial box. Serially the subdomain follows the box.
     pub fn shrink_wrap(&mut self, lo: DVec3, hi: DVec3) {
-        let prd = self.prd();
+        let prd = self.initial_hi - self.initial_lo;
         for a in 0..3 {
             let small = SHRINK_MARGIN * prd[a];
             match self.boundary[a][0] {

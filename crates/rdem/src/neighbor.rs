@@ -9,6 +9,7 @@
 
 use glam::DVec3;
 
+use crate::error::{check, Error, Result};
 use crate::particles::{Particles, Tag};
 
 /// `neighbor` and `neigh_modify` settings.
@@ -34,6 +35,33 @@ impl Default for NeighborSettings {
             every: 1,
             check: true,
         }
+    }
+}
+
+impl NeighborSettings {
+    /// Checks the settings as LIGGGHTS does for `neighbor` and `neigh_modify`: the skin
+    /// must be finite and >= 0 (a NaN skin would silently list no pair at all, a negative
+    /// one would miss contacts), `every` at least 1, and `delay` 0 or a multiple of
+    /// `every`.
+    pub fn validate(&self) -> Result<()> {
+        check("neighbor skin", self.skin, self.skin >= 0.0, "must be >= 0")?;
+        if self.every == 0 {
+            return Err(Error::InvalidParameter {
+                what: "neigh_modify every",
+                value: 0.0,
+                reason: "must be >= 1",
+            });
+        }
+        if self.delay > 0 && self.delay % self.every != 0 {
+            return Err(Error::Invalid {
+                what: "neigh_modify delay",
+                reason: format!(
+                    "{} must be 0 or a multiple of every ({})",
+                    self.delay, self.every
+                ),
+            });
+        }
+        Ok(())
     }
 }
 
@@ -83,19 +111,29 @@ impl HistoryStore {
         self.vals.clear();
     }
 
+    /// Saves the history of `list`, whose rows are the first `list.first.len() - 1` local
+    /// particles: owned particles appended since the build (which keep the indices of the
+    /// others) have no row yet. Partners that no longer exist are skipped: dropped ghosts
+    /// (beyond `tags`), and, once particles were appended (which drops the ghosts), every
+    /// index past the original locals.
     fn save(&mut self, list: &NeighborList, tags: &[Tag], nlocal: usize) {
         self.clear();
         let w = list.width;
-        if w == 0 || list.first.len() != nlocal + 1 {
+        let rows = list.first.len().saturating_sub(1);
+        if w == 0 || rows > nlocal || list.hist.len() != list.partner.len() * w {
             return;
         }
-        for i in 0..nlocal {
+        let valid = if rows < nlocal { rows } else { tags.len() };
+        for i in 0..rows {
             for k in list.first[i] as usize..list.first[i + 1] as usize {
                 let h = &list.hist[k * w..(k + 1) * w];
                 if h.iter().all(|&v| v == 0.0) {
                     continue;
                 }
                 let j = list.partner[k] as usize;
+                if j >= valid {
+                    continue;
+                }
                 let n = (self.vals.len() / w) as u32;
                 self.keys.push((tags[i], tags[j], n));
                 self.vals.extend_from_slice(h);
@@ -128,10 +166,14 @@ pub struct Neighbor {
     pub cutoff: f64,
     /// Number of builds so far.
     pub nbuilds: u64,
-    /// Builds that came too late: some particle had moved more than skin/2 (only counted
-    /// when `check` is on and delay/every postponed the check).
+    /// "Dangerous" builds, counted as LAMMPS does: the distance check found a particle
+    /// beyond skin/2 at the first step it was allowed to run (`ago == max(every, delay)`),
+    /// so the list may already have been stale before (only with `check yes`).
     pub ndangerous: u64,
     last_build: u64,
+    /// True from a build until the history is saved: the list's indices still refer to
+    /// the particles (ghosts included) it was built for.
+    live: bool,
     xhold: Vec<DVec3>,
     store: HistoryStore,
     bin_of: Vec<u32>,
@@ -188,7 +230,7 @@ impl Neighbor {
             return true;
         }
         let moved = self.moved_too_far(x);
-        if moved && s.delay > 0 && ago == s.delay {
+        if moved && ago == s.every.max(1).max(s.delay) {
             self.ndangerous += 1;
         }
         moved
@@ -207,9 +249,15 @@ impl Neighbor {
     }
 
     /// Saves the contact history of the current list by tag pair. Call before particles
-    /// are reordered, removed, migrated or re-imaged.
+    /// are reordered, removed, migrated or re-imaged, or ghosts dropped. Only the first
+    /// call after a build saves: later calls (ghosts may be gone by then, and the list's
+    /// indices stale) keep what was saved, until the next [`Neighbor::build`] restores it.
     pub fn save_history(&mut self, p: &Particles) {
+        if !self.live {
+            return;
+        }
         self.store.save(&self.list, &p.tag, p.nlocal());
+        self.live = false;
     }
 
     /// Builds the list for the current particles (locals and ghosts) at step `step` and
@@ -223,6 +271,7 @@ impl Neighbor {
         self.cutoff = cut;
         self.last_build = step;
         self.nbuilds += 1;
+        self.live = true;
         self.xhold.clear();
         self.xhold.extend_from_slice(&p.x[..nlocal]);
         self.list.first.clear();

@@ -94,7 +94,10 @@ impl Visitor for PairPass<'_> {
                 } else {
                     &mut empty
                 };
-                if rsq >= radsum * radsum {
+                // Written as "not closer" so that a NaN distance counts as no contact and
+                // a broken particle does not poison its neighbours (it is reported by tag).
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(rsq < radsum * radsum) {
                     if w > 0 {
                         hist.iter_mut().for_each(|h| *h = 0.0);
                     }

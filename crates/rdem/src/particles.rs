@@ -381,8 +381,8 @@ impl Particles {
         let n = self.nlocal;
         assert_eq!(remove.len(), n);
         let mut dst = 0;
-        for src in 0..n {
-            if remove[src] {
+        for (src, &gone) in remove.iter().enumerate() {
+            if gone {
                 continue;
             }
             if dst != src {
@@ -492,22 +492,17 @@ impl Particles {
 
     /// Seed 002 eq. (10): every particle of one type has the same radius.
     pub fn check_radius_per_type(&self) -> Result<()> {
-        let mut first: Vec<Option<f64>> = Vec::new();
+        // Keyed by type in a map, not indexed: a type number can be as large as u32::MAX.
+        let mut first: std::collections::HashMap<u32, f64> = std::collections::HashMap::new();
         for i in 0..self.nlocal {
-            let t = self.ty[i] as usize;
-            if first.len() <= t {
-                first.resize(t + 1, None);
-            }
-            match first[t] {
-                None => first[t] = Some(self.radius[i]),
-                Some(r) if r != self.radius[i] => {
-                    return Err(Error::InconsistentRadius {
-                        ty: t as u32,
-                        r1: r,
-                        r2: self.radius[i],
-                    })
-                }
-                Some(_) => {}
+            let t = self.ty[i];
+            let r = *first.entry(t).or_insert(self.radius[i]);
+            if r != self.radius[i] {
+                return Err(Error::InconsistentRadius {
+                    ty: t,
+                    r1: r,
+                    r2: self.radius[i],
+                });
             }
         }
         Ok(())
@@ -660,7 +655,7 @@ mod tests {
     #[test]
     fn radius_consistency() {
         let mut p = three();
-        assert!(p.check_radius_per_type().is_ok() == false);
+        assert!(p.check_radius_per_type().is_err());
         p.radius = vec![0.1; 3];
         assert!(p.check_radius_per_type().is_ok());
     }

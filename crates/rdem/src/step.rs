@@ -12,8 +12,8 @@
 //! 7. post-force fixes in definition order: walls (`wall/gran`), gravity, addforce,
 //!    setforce, viscous, freeze
 //! 8. final integrate (half kick)
-//! 9. finiteness check (a NaN or infinite force, velocity or position stops the run with
-//!    the tag and the step)
+//! 9. finiteness checks, after 2 (positions), 7 (forces, torques) and 8 (velocities): a
+//!    NaN or infinite value stops the run with the particle's tag and the step
 //!
 //! Set-up before a run ([`World::setup`]) does 3 (a full re-neighboring), 4–7.
 
@@ -50,6 +50,7 @@ impl World {
                 integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
             }
         }
+        self.check_finite("position", |p, i| p.x[i])?;
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
         if self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
@@ -68,7 +69,6 @@ impl World {
         }
         let t3 = self.timers.lap(Stage::Modify, t2);
         self.check_finite("velocity", |p, i| p.v[i])?;
-        self.check_finite("position", |p, i| p.x[i])?;
         self.timers.lap(Stage::Other, t3);
         Ok(())
     }

@@ -146,7 +146,7 @@ impl World {
     /// starting after the untagged particles of the ranks below it (seed 002 eq. 2).
     pub fn extend_tags(&mut self) {
         let (_, max) = self.particles.tag_extent();
-        let gmax = self.comm.max(max as f64) as u64;
+        let gmax = self.comm.max_count(max);
         let mine = self.particles.untagged() as u64;
         let before = self.comm.exclusive_prefix_count(mine);
         self.particles.assign_tags_from(gmax + 1 + before);
@@ -161,6 +161,7 @@ impl World {
     /// computes the forces of the current state (LAMMPS `setup`).
     pub fn setup(&mut self) -> Result<()> {
         crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
+        self.neighbor.settings.validate()?;
         self.extend_tags();
         let ntypes = self.materials.ntypes as u32;
         let uses_materials = self.pair.is_some()
@@ -242,16 +243,10 @@ impl World {
             } else {
                 0.5 * self.neighbor.cutoff_for(rmax)
             };
-            // Bins over the particles' bounding box within the subdomain; a sparse system in
-            // a large box would otherwise ask for more bins than particles by orders of
-            // magnitude, so the bin size doubles until there are at most 8 N + 64 bins.
-            let (mut lo, mut hi) = (self.domain.subhi, self.domain.sublo);
-            for &x in &self.particles.x[..self.particles.nlocal()] {
-                lo = lo.min(x);
-                hi = hi.max(x);
-            }
-            let lo = lo.max(self.domain.sublo);
-            let hi = hi.min(self.domain.subhi).max(lo);
+            // Bins over the subdomain (seed 002). A sparse system in a large box would ask
+            // for far more bins than particles (LAMMPS stops with "too many atom sorting
+            // bins"); instead the bin size doubles until there are at most 8 N + 64 bins.
+            let (lo, hi) = (self.domain.sublo, self.domain.subhi);
             let limit = 8.0 * self.particles.nlocal() as f64 + 64.0;
             let nbins = |h: f64| -> f64 {
                 (0..3)
