@@ -82,7 +82,12 @@ impl World {
         p.torque.iter_mut().for_each(|t| *t = DVec3::ZERO);
         let t1 = self.timers.lap(Stage::Other, t0);
         if let Some(pair) = &self.pair {
-            pair.compute(&mut self.particles, &mut self.neighbor.list, self.dt, update);
+            pair.compute(
+                &mut self.particles,
+                &mut self.neighbor.list,
+                self.dt,
+                update,
+            );
         }
         let t2 = self.timers.lap(Stage::Pair, t1);
         self.comm.reverse(&mut self.particles);

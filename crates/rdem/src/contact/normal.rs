@@ -120,7 +120,8 @@ impl Normal for HookeHysteresis {
             // Adhesive branch: the unloading line is moved to meet it.
             if g.update {
                 hist[0] = 0.5
-                * (delta + (delta * delta + 4.0 * (k1 + kc) * delta * dlim / (k2max - k1)).sqrt());
+                    * (delta
+                        + (delta * delta + 4.0 * (k1 + kc) * delta * dlim / (k2max - k1)).sqrt());
             }
             -kc * delta
         };
