@@ -12,8 +12,10 @@
 //! 7. post-force fixes in definition order: walls (`wall/gran`), gravity, addforce,
 //!    setforce, viscous, freeze
 //! 8. final integrate (half kick)
-//! 9. finiteness checks, after 2 (positions), 7 (forces, torques) and 8 (velocities): a
-//!    NaN or infinite value stops the run with the particle's tag and the step
+//! 9. finiteness checks, after 7 (forces, torques) and 8 (positions, velocities): a NaN or
+//!    infinite value stops the run with the particle's tag and the step (the pair pass
+//!    treats a NaN distance as no contact, so a broken particle does not spread NaN to
+//!    its neighbours first)
 //!
 //! Set-up before a run ([`World::setup`]) does 3 (a full re-neighboring), 4–7.
 
@@ -50,7 +52,6 @@ impl World {
                 integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
             }
         }
-        self.check_finite("position", |p, i| p.x[i])?;
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
         if self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
@@ -68,7 +69,8 @@ impl World {
             }
         }
         let t3 = self.timers.lap(Stage::Modify, t2);
-        self.check_finite("velocity", |p, i| p.v[i])?;
+        let p = &self.particles;
+        self.check_finite(["position", "velocity"], &p.x, &p.v)?;
         self.timers.lap(Stage::Other, t3);
         Ok(())
     }
@@ -81,7 +83,12 @@ impl World {
         p.f.iter_mut().for_each(|f| *f = DVec3::ZERO);
         p.torque.iter_mut().for_each(|t| *t = DVec3::ZERO);
         let t1 = self.timers.lap(Stage::Other, t0);
-        if let Some(pair) = &self.pair {
+        if let Some(pair) = &mut self.pair {
+            let nlocal = self.particles.nlocal();
+            let stale = pair.near_list_stale(&self.particles.x[..nlocal], &self.neighbor);
+            if self.comm.max(if stale { 1.0 } else { 0.0 }) > 0.0 {
+                pair.build_near_list(&self.particles, &self.neighbor);
+            }
             pair.compute(
                 &mut self.particles,
                 &mut self.neighbor.list,
@@ -95,43 +102,46 @@ impl World {
         let dt = self.dt;
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
-                wall.apply(&mut self.particles, fix.groupbit, dt, update);
+                wall.apply(&mut self.particles, dt, update);
             } else if fix.post_force() {
                 fix.apply_post_force(&mut self.particles);
             }
         }
         let t4 = self.timers.lap(Stage::Modify, t3);
-        self.check_finite("force", |p, i| p.f[i])?;
-        self.check_finite("torque", |p, i| p.torque[i])?;
+        let p = &self.particles;
+        self.check_finite(["force", "torque"], &p.f, &p.torque)?;
         self.timers.lap(Stage::Other, t4);
         Ok(())
     }
 
-    /// Stops with the first particle whose `quantity` is not finite. A single sum over all
-    /// particles is checked first (NaN and infinity propagate), so the common case costs
-    /// one pass.
-    fn check_finite(
-        &self,
-        quantity: &'static str,
-        get: impl Fn(&crate::particles::Particles, usize) -> DVec3,
-    ) -> Result<()> {
-        let p = &self.particles;
-        let n = p.nlocal();
-        let mut sum = 0.0;
-        for i in 0..n {
-            let v = get(p, i);
-            sum += v.x + v.y + v.z;
+    /// Stops with the first particle whose `a` or `b` (named `names`) is not finite. One
+    /// pass over both arrays first: x·0 is 0 for a finite x and NaN otherwise, so the sum
+    /// of those products is NaN exactly when something is not finite (no overflow false
+    /// alarms, independent lanes that vectorize).
+    fn check_finite(&self, names: [&'static str; 2], a: &[DVec3], b: &[DVec3]) -> Result<()> {
+        let n = self.particles.nlocal();
+        let mut acc = DVec3::ZERO;
+        for (u, v) in a[..n].iter().zip(&b[..n]) {
+            acc += *u * 0.0 + *v * 0.0;
         }
-        if sum.is_finite() {
+        if acc.is_finite() {
             return Ok(());
         }
-        match (0..n).find(|&i| !get(p, i).is_finite()) {
-            Some(i) => Err(Error::NonFinite {
+        let bad = (0..n).find_map(|i| {
+            if !a[i].is_finite() {
+                Some((i, names[0]))
+            } else if !b[i].is_finite() {
+                Some((i, names[1]))
+            } else {
+                None
+            }
+        });
+        match bad {
+            Some((i, quantity)) => Err(Error::NonFinite {
                 quantity,
-                tag: p.tag[i],
+                tag: self.particles.tag[i],
                 step: self.step,
             }),
-            // The sum overflowed although every value is finite: not an error.
             None => Ok(()),
         }
     }

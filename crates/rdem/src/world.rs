@@ -271,6 +271,12 @@ impl World {
         self.comm.borders(&mut self.particles, &self.domain, cutoff);
         let t4 = self.timers.lap(crate::timers::Stage::Comm, t3);
         self.neighbor.build(&self.particles, self.step);
+        let skin = self.neighbor.settings.skin;
+        for fix in &mut self.fixes {
+            if let FixKind::WallGran(wall) = &mut fix.kind {
+                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
+            }
+        }
         self.timers.lap(crate::timers::Stage::Neigh, t4);
         Ok(())
     }

@@ -88,6 +88,10 @@ pub struct PairCoeff {
     pub phi_f: f64,
     /// Maximum unloading stiffness ratio k2max/k1 (hooke/hysteresis).
     pub k2max_ratio: f64,
+    /// −2√(5/6) β √(2E*): Hertz γ_n = this × √(√(R*δ) m*).
+    pub hertz_damp_n: f64,
+    /// −2√(5/6) β √(8G*): Hertz γ_t = this × √(√(R*δ) m*).
+    pub hertz_damp_t: f64,
 }
 
 /// Which optional properties a contact model needs.
@@ -271,11 +275,13 @@ impl CoeffTable {
                     1.0 / (2.0 * (2.0 - na) * (1.0 + na) / ea + 2.0 * (2.0 - nb) * (1.0 + nb) / eb);
                 let k = a * n + b;
                 let ln_e = rest[k].ln();
+                let beta =
+                    ln_e / (ln_e * ln_e + std::f64::consts::PI * std::f64::consts::PI).sqrt();
                 let pi2 = std::f64::consts::PI * std::f64::consts::PI;
                 coeffs.push(PairCoeff {
                     e_star,
                     g_star,
-                    beta: ln_e / (ln_e * ln_e + pi2).sqrt(),
+                    beta,
                     ln_e_ratio: ln_e * ln_e / (ln_e * ln_e + pi2),
                     mu: fric[k],
                     mu_r: rf[k],
@@ -285,6 +291,8 @@ impl CoeffTable {
                     kc_ratio: kc[k],
                     phi_f: phi[k],
                     k2max_ratio: k2[k],
+                    hertz_damp_n: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * e_star).sqrt(),
+                    hertz_damp_t: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * g_star).sqrt(),
                 });
             }
         }
@@ -294,6 +302,13 @@ impl CoeffTable {
     /// Number of types.
     pub fn ntypes(&self) -> usize {
         self.ntypes
+    }
+
+    /// Coefficients of type `ti` (1-based) with every type: entry `tj − 1` is `(ti, tj)`.
+    #[inline(always)]
+    pub fn row(&self, ti: u32) -> &[PairCoeff] {
+        let n = self.ntypes;
+        &self.coeffs[(ti as usize - 1) * n..ti as usize * n]
     }
 
     /// Coefficients of the 1-based type pair `(ti, tj)`.

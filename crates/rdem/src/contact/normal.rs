@@ -31,13 +31,13 @@ impl Normal for Hertz {
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
         let sq = (g.r_star * g.delta).sqrt();
-        let sn = 2.0 * c.e_star * sq;
         let kt = 8.0 * c.g_star * sq;
         let kn = 4.0 / 3.0 * c.e_star * sq;
-        // -2 sqrt(5/6) = -1.8257418583505538
-        let pre = -1.825_741_858_350_553_8 * c.beta;
-        let gamma_n = pre * (sn * g.m_star).sqrt();
-        let gamma_t = pre * (kt * g.m_star).sqrt();
+        // γ = −2√(5/6) β √(S m*) with S ∝ √(R*δ): one square root of √(R*δ) m* serves
+        // both, times the precomputed −2√(5/6) β √(2E*) and −2√(5/6) β √(8G*).
+        let s = (sq * g.m_star).sqrt();
+        let gamma_n = c.hertz_damp_n * s;
+        let gamma_t = c.hertz_damp_t * s;
         let fn_elastic = kn * g.delta;
         NormalOut {
             fn_contact: finish(fn_elastic, -gamma_n * vn, flags),

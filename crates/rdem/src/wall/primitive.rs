@@ -122,6 +122,10 @@ pub struct PrimitiveWall {
     pub history_name: String,
     table: CoeffTable,
     hist: Option<PropId>,
+    /// Owned particles of the group within r + skin of the wall at the last
+    /// re-neighboring: the only ones that can touch it before the next (the wall is
+    /// fixed and no particle moves more than skin/2 in between).
+    candidates: Vec<u32>,
 }
 
 impl PrimitiveWall {
@@ -142,6 +146,7 @@ impl PrimitiveWall {
             history_name: format!("wallhist_{id}"),
             table: CoeffTable::default(),
             hist: None,
+            candidates: Vec::new(),
         })
     }
 
@@ -163,13 +168,34 @@ impl PrimitiveWall {
         Ok(())
     }
 
-    /// Adds the wall forces and torques on the owned particles of group `groupbit`.
-    pub fn apply(&mut self, p: &mut Particles, groupbit: u32, dt: f64, update: bool) {
+    /// Lists the owned particles of group `groupbit` within r + `skin` of the wall (call
+    /// at every re-neighboring) and zeroes the history of all others.
+    pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
+        self.candidates.clear();
+        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
+        for i in 0..p.nlocal() {
+            let near =
+                p.mask[i] & groupbit != 0 && self.shape.distance(p.x[i]).0 < p.radius[i] + skin;
+            if near {
+                self.candidates.push(i as u32);
+            } else if let Some(id) = self.hist {
+                p.props[id.0].data[i * w..(i + 1) * w].fill(0.0);
+            }
+        }
+    }
+
+    /// The particles listed by the last [`PrimitiveWall::build_candidates`].
+    pub fn candidates(&self) -> &[u32] {
+        &self.candidates
+    }
+
+    /// Adds the wall forces and torques on the owned particles listed by the last
+    /// [`PrimitiveWall::build_candidates`].
+    pub fn apply(&mut self, p: &mut Particles, dt: f64, update: bool) {
         let model = self.model;
         model.dispatch(WallPass {
             wall: self,
             p,
-            groupbit,
             dt,
             update,
         });
@@ -179,7 +205,6 @@ impl PrimitiveWall {
 struct WallPass<'a> {
     wall: &'a mut PrimitiveWall,
     p: &'a mut Particles,
-    groupbit: u32,
     dt: f64,
     update: bool,
 }
@@ -190,23 +215,19 @@ impl Visitor for WallPass<'_> {
         let WallPass {
             wall,
             p,
-            groupbit,
             dt,
             update,
         } = self;
         let flags = wall.model.flags;
         let mut empty: [f64; 0] = [];
-        let nlocal = p.nlocal();
         let w = K::HIST;
         // Split the borrow: the history property separately from the particle arrays.
         let mut hist_data = match wall.hist {
             Some(id) => std::mem::take(&mut p.props[id.0].data),
             None => Vec::new(),
         };
-        for i in 0..nlocal {
-            if p.mask[i] & groupbit == 0 {
-                continue;
-            }
+        for &i in &wall.candidates {
+            let i = i as usize;
             let r = p.radius[i];
             let (d, n) = wall.shape.distance(p.x[i]);
             let hist: &mut [f64] = if w > 0 {
