@@ -171,7 +171,11 @@ impl Visitor for PairPass<'_> {
                 #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(rsq < radsum * radsum) {
                     if w > 0 {
-                        hist.iter_mut().for_each(|h| *h = 0.0);
+                        // Zero only what is set (the step after a separation): a
+                        // plain fill becomes a memset call on every pair out of contact.
+                        if hist.iter().any(|&h| h != 0.0) {
+                            hist.iter_mut().for_each(|h| *h = 0.0);
+                        }
                     }
                     continue;
                 }

@@ -236,7 +236,11 @@ impl Visitor for WallPass<'_> {
                 &mut empty
             };
             if d >= r {
-                hist.iter_mut().for_each(|h| *h = 0.0);
+                // Zero only what is set (the step after a separation): a
+                // plain fill becomes a memset call on every pair out of contact.
+                if hist.iter().any(|&h| h != 0.0) {
+                    hist.iter_mut().for_each(|h| *h = 0.0);
+                }
                 continue;
             }
             let delta = r - d;
