@@ -1,0 +1,14 @@
+//! LIGGGHTS-compatible input scripts for rdem: the parsing rules of LIGGGHTS' manual
+//! section 3.2 with every word's place in the file kept, and diagnostics that show the
+//! script line with a caret under the offending word.
+//!
+//! This is the start of the front end (issue "LIGGGHTS-compatible input scripts"): the
+//! lexer and the diagnostics. Variables, expressions and the command table come next.
+
+#![warn(missing_docs)]
+
+pub mod diagnostic;
+pub mod lexer;
+
+pub use diagnostic::{ScriptError, ScriptReport};
+pub use lexer::{commands, substitute, words, Command, Reference, Word};
