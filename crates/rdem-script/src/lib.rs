@@ -3,11 +3,13 @@
 //! script line with a caret under the offending word.
 //!
 //! This is the start of the front end (issue "LIGGGHTS-compatible input scripts"): the
-//! lexer and the diagnostics. Variables, expressions and the command table come next.
+//! lexer, the diagnostics and equal-style formulas. Variable styles and the command table
+//! come next.
 
 #![warn(missing_docs)]
 
 pub mod diagnostic;
+pub mod expr;
 pub mod lexer;
 
 pub use diagnostic::{ScriptError, ScriptReport};
