@@ -361,6 +361,7 @@ fn truth(b: bool) -> f64 {
 pub fn eval(e: &Expr, ctx: &mut dyn Context) -> Result<f64, ExprError> {
     Ok(match e {
         Expr::Num(v) => *v,
+        Expr::Name(Name::Keyword(k), _) if k == "PI" => std::f64::consts::PI,
         Expr::Name(n, span) => ctx.name(n).or_else(|m| err(m, span.clone()))?,
         Expr::Neg(x) => -eval(x, ctx)?,
         Expr::Not(x) => truth(eval(x, ctx)? == 0.0),
@@ -511,6 +512,7 @@ mod tests {
         assert_eq!(ev("!0 + !3"), 1.0);
         assert_eq!(ev("2 != 3"), 1.0);
         assert_eq!(ev("1.5e-3*2e3"), 3.0);
+        assert_eq!(ev("PI"), std::f64::consts::PI);
     }
 
     #[test]

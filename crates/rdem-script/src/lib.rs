@@ -3,14 +3,15 @@
 //! script line with a caret under the offending word.
 //!
 //! This is the start of the front end (issue "LIGGGHTS-compatible input scripts"): the
-//! lexer, the diagnostics and equal-style formulas. Variable styles and the command table
-//! come next.
+//! lexer, the diagnostics, equal-style formulas and the variable table. The command table
+//! and the binary come next.
 
 #![warn(missing_docs)]
 
 pub mod diagnostic;
 pub mod expr;
 pub mod lexer;
+pub mod variables;
 
 pub use diagnostic::{ScriptError, ScriptReport};
 pub use lexer::{commands, substitute, words, Command, Reference, Word};
