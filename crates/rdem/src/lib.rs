@@ -15,6 +15,7 @@ pub mod fix;
 pub mod neighbor;
 pub mod pair;
 pub mod particles;
+pub mod region;
 pub mod sort;
 pub mod step;
 pub mod timers;

@@ -1,0 +1,464 @@
+//! Regions (LIGGGHTS `region`): block, sphere, cylinder, cone, plane, union and intersect,
+//! with `side in|out`. A region answers whether a point is inside (boundary included, as
+//! LAMMPS), gives a bounding box when it is finite, and samples uniform random points
+//! (rejection in the bounding box) for insertion.
+
+use glam::DVec3;
+
+use crate::error::{Error, Result};
+
+/// Shape of a region.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// Axis-aligned box (bounds may be infinite).
+    Block {
+        /// Lower corner.
+        lo: DVec3,
+        /// Upper corner.
+        hi: DVec3,
+    },
+    /// Sphere.
+    Sphere {
+        /// Centre.
+        centre: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// Cylinder along `axis` (0 = x): the axis passes through (c1, c2) in the other two
+    /// coordinates in increasing order (x: y z, y: x z, z: x y, as LAMMPS), from `lo` to
+    /// `hi` along the axis.
+    Cylinder {
+        /// Axis direction.
+        axis: usize,
+        /// First other coordinate of the axis.
+        c1: f64,
+        /// Second other coordinate.
+        c2: f64,
+        /// Radius.
+        radius: f64,
+        /// Lower end along the axis.
+        lo: f64,
+        /// Upper end along the axis.
+        hi: f64,
+    },
+    /// Truncated cone along `axis`: radius `rlo` at `lo`, `rhi` at `hi`.
+    Cone {
+        /// Axis direction.
+        axis: usize,
+        /// First other coordinate of the axis.
+        c1: f64,
+        /// Second other coordinate.
+        c2: f64,
+        /// Radius at `lo`.
+        rlo: f64,
+        /// Radius at `hi`.
+        rhi: f64,
+        /// Lower end.
+        lo: f64,
+        /// Upper end.
+        hi: f64,
+    },
+    /// Half space on the side the normal points to: (x − point)·normal ≥ 0.
+    Plane {
+        /// A point on the plane.
+        point: DVec3,
+        /// Normal (need not be unit).
+        normal: DVec3,
+    },
+    /// Inside any of the parts.
+    Union(Vec<Region>),
+    /// Inside all of the parts.
+    Intersect(Vec<Region>),
+}
+
+/// A region: a shape and its side.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// The shape.
+    pub shape: Shape,
+    /// `side out`: the region is everything outside the shape.
+    pub outside: bool,
+}
+
+/// The two axes other than `axis`, in increasing order.
+fn others(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+/// The box around a cylinder of radius `r` along `axis` from `lo` to `hi`.
+fn axial_box(axis: usize, c1: f64, c2: f64, r: f64, lo: f64, hi: f64) -> Option<(DVec3, DVec3)> {
+    let (a, b) = others(axis);
+    let (mut l, mut h) = (DVec3::ZERO, DVec3::ZERO);
+    l[axis] = lo;
+    h[axis] = hi;
+    l[a] = c1 - r;
+    h[a] = c1 + r;
+    l[b] = c2 - r;
+    h[b] = c2 + r;
+    Some((l, h))
+}
+
+/// Finite and > 0 (false for NaN).
+fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+fn bad(what: &'static str, reason: String) -> Error {
+    Error::Invalid { what, reason }
+}
+
+impl Region {
+    /// A region with `side in`, after checking the shape's numbers.
+    pub fn new(shape: Shape) -> Result<Self> {
+        match &shape {
+            Shape::Block { lo, hi } => {
+                if lo.is_nan() || hi.is_nan() || (0..3).any(|a| lo[a] > hi[a]) {
+                    return Err(bad(
+                        "region block",
+                        format!("bounds {lo} .. {hi}: each lower bound must be <= its upper bound"),
+                    ));
+                }
+            }
+            Shape::Sphere { centre, radius } => {
+                let ok = centre.is_finite() && positive(*radius);
+                if !ok {
+                    return Err(bad("region sphere", format!("centre {centre}, radius {radius}: need a finite centre and a radius > 0")));
+                }
+            }
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let ok =
+                    *axis <= 2 && c1.is_finite() && c2.is_finite() && positive(*radius) && lo <= hi;
+                if !ok {
+                    return Err(bad(
+                        "region cylinder",
+                        format!("radius {radius}, ends {lo} {hi}: need a radius > 0 and lo <= hi"),
+                    ));
+                }
+            }
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                rlo,
+                rhi,
+                lo,
+                hi,
+            } => {
+                let ok = *axis <= 2
+                    && c1.is_finite()
+                    && c2.is_finite()
+                    && *rlo >= 0.0
+                    && *rhi >= 0.0
+                    && positive(rlo.max(*rhi))
+                    && lo.is_finite()
+                    && hi.is_finite()
+                    && lo < hi;
+                if !ok {
+                    return Err(bad("region cone", format!("radii {rlo} {rhi}, ends {lo} {hi}: need radii >= 0 (not both 0) and finite lo < hi")));
+                }
+            }
+            Shape::Plane { point, normal } => {
+                if !point.is_finite() || !normal.is_finite() || normal.length_squared() == 0.0 {
+                    return Err(bad("region plane", format!("point {point}, normal {normal}: need a finite point and a non-zero normal")));
+                }
+            }
+            Shape::Union(parts) | Shape::Intersect(parts) => {
+                if parts.is_empty() {
+                    return Err(bad(
+                        "region union/intersect",
+                        "needs at least one region".into(),
+                    ));
+                }
+            }
+        }
+        Ok(Self {
+            shape,
+            outside: false,
+        })
+    }
+
+    /// The same region with `side out`.
+    pub fn side_out(mut self) -> Self {
+        self.outside = !self.outside;
+        self
+    }
+
+    /// True if `x` is in the region (boundary included for `side in`).
+    pub fn contains(&self, x: DVec3) -> bool {
+        self.in_shape(x) != self.outside
+    }
+
+    fn in_shape(&self, x: DVec3) -> bool {
+        match &self.shape {
+            Shape::Block { lo, hi } => (0..3).all(|a| lo[a] <= x[a] && x[a] <= hi[a]),
+            Shape::Sphere { centre, radius } => (x - *centre).length_squared() <= radius * radius,
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let (a, b) = others(*axis);
+                let d2 = (x[a] - c1).powi(2) + (x[b] - c2).powi(2);
+                *lo <= x[*axis] && x[*axis] <= *hi && d2 <= radius * radius
+            }
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                rlo,
+                rhi,
+                lo,
+                hi,
+            } => {
+                let (a, b) = others(*axis);
+                let t = x[*axis];
+                if t < *lo || t > *hi {
+                    return false;
+                }
+                let r = rlo + (rhi - rlo) * (t - lo) / (hi - lo);
+                (x[a] - c1).powi(2) + (x[b] - c2).powi(2) <= r * r
+            }
+            Shape::Plane { point, normal } => (x - *point).dot(*normal) >= 0.0,
+            Shape::Union(parts) => parts.iter().any(|p| p.contains(x)),
+            Shape::Intersect(parts) => parts.iter().all(|p| p.contains(x)),
+        }
+    }
+
+    /// A box containing the region, or `None` if it is unbounded.
+    pub fn bounding_box(&self) -> Option<(DVec3, DVec3)> {
+        if self.outside {
+            return None;
+        }
+        let finite = |lo: DVec3, hi: DVec3| (lo.is_finite() && hi.is_finite()).then_some((lo, hi));
+        match &self.shape {
+            Shape::Block { lo, hi } => finite(*lo, *hi),
+            Shape::Sphere { centre, radius } => finite(*centre - *radius, *centre + *radius),
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => axial_box(*axis, *c1, *c2, *radius, *lo, *hi).and_then(|(l, h)| finite(l, h)),
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                rlo,
+                rhi,
+                lo,
+                hi,
+            } => {
+                axial_box(*axis, *c1, *c2, rlo.max(*rhi), *lo, *hi).and_then(|(l, h)| finite(l, h))
+            }
+            Shape::Plane { .. } => None,
+            Shape::Union(parts) => {
+                let mut acc: Option<(DVec3, DVec3)> = None;
+                for p in parts {
+                    let (l, h) = p.bounding_box()?;
+                    acc = Some(match acc {
+                        None => (l, h),
+                        Some((al, ah)) => (al.min(l), ah.max(h)),
+                    });
+                }
+                acc
+            }
+            Shape::Intersect(parts) => {
+                let mut acc: Option<(DVec3, DVec3)> = None;
+                for (l, h) in parts.iter().filter_map(|p| p.bounding_box()) {
+                    acc = Some(match acc {
+                        None => (l, h),
+                        Some((al, ah)) => (al.max(l), ah.min(h)),
+                    });
+                }
+                acc
+            }
+        }
+    }
+
+    /// A uniformly distributed point of the region within `clip` (lower, upper corner; e.g.
+    /// the simulation box), drawn by rejection from the bounding box with `uniform`
+    /// giving numbers in [0, 1). `None` after `max_tries` rejections.
+    pub fn sample(
+        &self,
+        clip: (DVec3, DVec3),
+        mut uniform: impl FnMut() -> f64,
+        max_tries: usize,
+    ) -> Option<DVec3> {
+        let (lo, hi) = match self.bounding_box() {
+            Some((l, h)) => (l.max(clip.0), h.min(clip.1)),
+            None => clip,
+        };
+        if (0..3).any(|a| lo[a] > hi[a]) {
+            return None;
+        }
+        for _ in 0..max_tries {
+            let x = DVec3::new(uniform(), uniform(), uniform()) * (hi - lo) + lo;
+            if self.contains(x) {
+                return Some(x);
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    #[test]
+    fn inside_tests_include_the_boundary() {
+        let b = Region::new(Shape::Block {
+            lo: v(0., 0., 0.),
+            hi: v(1., 2., 3.),
+        })
+        .unwrap();
+        assert!(b.contains(v(1., 2., 3.)) && b.contains(v(0., 0., 0.)));
+        assert!(!b.contains(v(1.0 + 1e-12, 1., 1.)));
+        assert!(b.clone().side_out().contains(v(-1., 0., 0.)));
+        assert!(!b.clone().side_out().contains(v(0.5, 0.5, 0.5)));
+        let s = Region::new(Shape::Sphere {
+            centre: v(1., 1., 1.),
+            radius: 0.5,
+        })
+        .unwrap();
+        assert!(s.contains(v(1.5, 1., 1.)) && !s.contains(v(1.5, 1.01, 1.)));
+        // ycylinder through x = 1, z = 2 (increasing axis order, as LAMMPS).
+        let c = Region::new(Shape::Cylinder {
+            axis: 1,
+            c1: 1.0,
+            c2: 2.0,
+            radius: 0.5,
+            lo: 0.0,
+            hi: 4.0,
+        })
+        .unwrap();
+        assert!(c.contains(v(1.5, 4.0, 2.0)));
+        assert!(!c.contains(v(1.0, 4.1, 2.0)));
+        assert!(!c.contains(v(2.0, 1.0, 1.0)));
+        let k = Region::new(Shape::Cone {
+            axis: 2,
+            c1: 0.,
+            c2: 0.,
+            rlo: 1.0,
+            rhi: 0.0,
+            lo: 0.0,
+            hi: 2.0,
+        })
+        .unwrap();
+        assert!(k.contains(v(0.5, 0., 1.0)) && !k.contains(v(0.51, 0., 1.0)));
+        let p = Region::new(Shape::Plane {
+            point: v(0., 0., 1.),
+            normal: v(0., 0., -2.),
+        })
+        .unwrap();
+        assert!(
+            p.contains(v(5., 5., 1.)) && p.contains(v(0., 0., -3.)) && !p.contains(v(0., 0., 1.1))
+        );
+        let u = Region::new(Shape::Union(vec![b.clone(), s.clone()])).unwrap();
+        let i = Region::new(Shape::Intersect(vec![b.clone(), p.clone()])).unwrap();
+        assert!(u.contains(v(1.4, 1., 1.)) && u.contains(v(0.1, 0.1, 0.1)));
+        assert!(i.contains(v(0.5, 0.5, 0.5)) && !i.contains(v(0.5, 0.5, 2.0)));
+        assert_eq!(i.bounding_box(), Some((v(0., 0., 0.), v(1., 2., 3.))));
+        assert_eq!(u.bounding_box(), Some((v(0., 0., 0.), v(1.5, 2., 3.))));
+        assert_eq!(p.bounding_box(), None);
+    }
+
+    #[test]
+    fn bad_regions_are_refused() {
+        assert!(Region::new(Shape::Block {
+            lo: v(1., 0., 0.),
+            hi: v(0., 1., 1.)
+        })
+        .is_err());
+        assert!(Region::new(Shape::Sphere {
+            centre: v(0., 0., 0.),
+            radius: 0.0
+        })
+        .is_err());
+        assert!(Region::new(Shape::Cylinder {
+            axis: 3,
+            c1: 0.,
+            c2: 0.,
+            radius: 1.,
+            lo: 0.,
+            hi: 1.
+        })
+        .is_err());
+        assert!(Region::new(Shape::Cone {
+            axis: 2,
+            c1: 0.,
+            c2: 0.,
+            rlo: 0.,
+            rhi: 0.,
+            lo: 0.,
+            hi: 1.
+        })
+        .is_err());
+        assert!(Region::new(Shape::Plane {
+            point: v(0., 0., 0.),
+            normal: DVec3::ZERO
+        })
+        .is_err());
+        assert!(Region::new(Shape::Union(vec![])).is_err());
+    }
+
+    /// Sampling is uniform: the fraction of cylinder samples in the inner half radius is
+    /// 1/4 (area ratio) within 3 standard deviations, and every sample is inside.
+    #[test]
+    fn samples_are_inside_and_uniform() {
+        let c = Region::new(Shape::Cylinder {
+            axis: 2,
+            c1: 0.0,
+            c2: 0.0,
+            radius: 1.0,
+            lo: 0.0,
+            hi: 1.0,
+        })
+        .unwrap();
+        let mut s = 1u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = 20_000;
+        let mut inner = 0;
+        for _ in 0..n {
+            let x = c
+                .sample((DVec3::splat(-10.0), DVec3::splat(10.0)), &mut rnd, 1000)
+                .unwrap();
+            assert!(c.contains(x));
+            if x.x * x.x + x.y * x.y < 0.25 {
+                inner += 1;
+            }
+        }
+        let f = inner as f64 / n as f64;
+        let sigma = (0.25f64 * 0.75 / n as f64).sqrt();
+        assert!((f - 0.25).abs() < 3.0 * sigma, "{f}");
+        // Clipped to an empty box: nothing.
+        assert!(c
+            .sample((v(5., 5., 5.), v(6., 6., 6.)), &mut rnd, 100)
+            .is_none());
+    }
+}
