@@ -12,6 +12,7 @@ pub mod contact;
 pub mod domain;
 pub mod error;
 pub mod fix;
+pub mod insert;
 pub mod neighbor;
 pub mod pair;
 pub mod particles;

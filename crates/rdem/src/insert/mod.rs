@@ -1,0 +1,21 @@
+//! Particle insertion: templates (`fix particletemplate/sphere`), discrete distributions
+//! (`fix particledistribution/discrete`), and the seeded generator they draw from. Each
+//! template and distribution has its own generator seeded from its script seed, so a run
+//! is reproducible; positions and sizes differ from LIGGGHTS' (another generator), their
+//! statistics do not.
+
+pub mod distribution;
+pub mod template;
+
+pub use distribution::{Distribution, Weighting};
+pub use template::{ParticleTemplate, RadiusDist};
+
+/// The generator used for insertion: PCG64, reproducible across platforms and crate
+/// versions (unlike `StdRng`).
+pub type InsertRng = rand_pcg::Pcg64;
+
+/// A generator seeded from a script seed.
+pub fn rng(seed: u64) -> InsertRng {
+    use rand::SeedableRng;
+    InsertRng::seed_from_u64(seed)
+}

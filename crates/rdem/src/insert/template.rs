@@ -1,0 +1,204 @@
+//! `fix particletemplate/sphere`: the type, density and radius law of inserted spheres.
+
+use rand::Rng;
+use rand_distr::{Distribution as _, Normal};
+
+use super::InsertRng;
+use crate::error::{check, Error, Result};
+
+/// How a template draws radii.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RadiusDist {
+    /// `radius constant r`.
+    Constant(f64),
+    /// `radius uniform lo hi`.
+    Uniform(f64, f64),
+    /// `radius gaussian mu sigma`, redrawn until positive.
+    Gaussian(f64, f64),
+}
+
+/// A sphere template.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParticleTemplate {
+    /// Fix ID of the template.
+    pub id: String,
+    /// Atom type of inserted particles.
+    pub ty: u32,
+    /// Density (`density constant ρ`).
+    pub density: f64,
+    /// Radius law.
+    pub radius: RadiusDist,
+    rng: InsertRng,
+}
+
+impl ParticleTemplate {
+    /// A template after checking its numbers; `seed` seeds its own generator.
+    pub fn new(id: &str, seed: u64, ty: u32, density: f64, radius: RadiusDist) -> Result<Self> {
+        if ty == 0 {
+            return Err(Error::Invalid {
+                what: "atom_type",
+                reason: "types start at 1".into(),
+            });
+        }
+        check("density", density, density > 0.0, "must be > 0")?;
+        match radius {
+            RadiusDist::Constant(r) => {
+                check("radius", r, r > 0.0, "must be > 0")?;
+            }
+            RadiusDist::Uniform(lo, hi) => {
+                check("radius lower bound", lo, lo > 0.0, "must be > 0")?;
+                check(
+                    "radius upper bound",
+                    hi,
+                    hi >= lo,
+                    "must be >= the lower bound",
+                )?;
+            }
+            RadiusDist::Gaussian(mu, sigma) => {
+                check("radius mean", mu, mu > 0.0, "must be > 0")?;
+                check(
+                    "radius standard deviation",
+                    sigma,
+                    sigma >= 0.0 && sigma < mu,
+                    "must be >= 0 and below the mean",
+                )?;
+            }
+        }
+        Ok(Self {
+            id: id.to_string(),
+            ty,
+            density,
+            radius,
+            rng: super::rng(seed),
+        })
+    }
+
+    /// Draws one radius.
+    pub fn draw_radius(&mut self) -> f64 {
+        match self.radius {
+            RadiusDist::Constant(r) => r,
+            RadiusDist::Uniform(lo, hi) => {
+                if hi > lo {
+                    self.rng.gen_range(lo..hi)
+                } else {
+                    lo
+                }
+            }
+            RadiusDist::Gaussian(mu, sigma) => {
+                if sigma == 0.0 {
+                    return mu;
+                }
+                let n = Normal::new(mu, sigma).expect("validated in new");
+                loop {
+                    let r = n.sample(&mut self.rng);
+                    if r > 0.0 {
+                        return r;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Mean mass of one particle (to convert mass fractions to number fractions): exact
+    /// for constant and uniform radii; for gaussian from E[r³] = μ³ + 3μσ² (ignoring the
+    /// redraw of non-positive radii, negligible for σ < μ/3).
+    pub fn mean_mass(&self) -> f64 {
+        let r3 = match self.radius {
+            RadiusDist::Constant(r) => r * r * r,
+            RadiusDist::Uniform(lo, hi) => {
+                if hi > lo {
+                    (hi.powi(4) - lo.powi(4)) / (4.0 * (hi - lo))
+                } else {
+                    lo.powi(3)
+                }
+            }
+            RadiusDist::Gaussian(mu, s) => mu * mu * mu + 3.0 * mu * s * s,
+        };
+        self.density * 4.0 / 3.0 * std::f64::consts::PI * r3
+    }
+
+    /// Largest radius it can produce (for bounding checks); gaussian: mean + 5σ.
+    pub fn max_radius(&self) -> f64 {
+        match self.radius {
+            RadiusDist::Constant(r) => r,
+            RadiusDist::Uniform(_, hi) => hi,
+            RadiusDist::Gaussian(mu, s) => mu + 5.0 * s,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radii_follow_their_law() {
+        let mut c =
+            ParticleTemplate::new("t", 15485863, 1, 2500.0, RadiusDist::Constant(0.002)).unwrap();
+        assert_eq!(c.draw_radius(), 0.002);
+        let mut u =
+            ParticleTemplate::new("u", 15485867, 1, 2500.0, RadiusDist::Uniform(0.001, 0.003))
+                .unwrap();
+        let n = 20_000;
+        let rs: Vec<f64> = (0..n).map(|_| u.draw_radius()).collect();
+        assert!(rs.iter().all(|&r| (0.001..0.003).contains(&r)));
+        let mean = rs.iter().sum::<f64>() / n as f64;
+        // Uniform on [1, 3] mm: mean 2 mm, σ of the mean 0.577 mm/√n.
+        assert!(
+            (mean - 0.002).abs() < 3.0 * 0.000577 / (n as f64).sqrt(),
+            "{mean}"
+        );
+        let mut g = ParticleTemplate::new(
+            "g",
+            32452843,
+            2,
+            2500.0,
+            RadiusDist::Gaussian(0.002, 0.0002),
+        )
+        .unwrap();
+        let gs: Vec<f64> = (0..n).map(|_| g.draw_radius()).collect();
+        let gm = gs.iter().sum::<f64>() / n as f64;
+        let gv = gs.iter().map(|r| (r - gm).powi(2)).sum::<f64>() / n as f64;
+        assert!(
+            (gm - 0.002).abs() < 3.0 * 0.0002 / (n as f64).sqrt(),
+            "{gm}"
+        );
+        assert!((gv.sqrt() - 0.0002).abs() < 0.05 * 0.0002, "{}", gv.sqrt());
+        // Same seed, same sequence.
+        let mut a = ParticleTemplate::new("a", 7, 1, 1.0, RadiusDist::Uniform(1.0, 2.0)).unwrap();
+        let mut b = ParticleTemplate::new("b", 7, 1, 1.0, RadiusDist::Uniform(1.0, 2.0)).unwrap();
+        assert_eq!(a.draw_radius(), b.draw_radius());
+    }
+
+    #[test]
+    fn mean_mass_matches_sampling() {
+        let mut u =
+            ParticleTemplate::new("u", 3, 1, 1000.0, RadiusDist::Uniform(0.001, 0.003)).unwrap();
+        let n = 50_000;
+        let m: f64 = (0..n)
+            .map(|_| 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * u.draw_radius().powi(3))
+            .sum::<f64>()
+            / n as f64;
+        assert!(
+            (m / u.mean_mass() - 1.0).abs() < 0.01,
+            "{m} vs {}",
+            u.mean_mass()
+        );
+    }
+
+    #[test]
+    fn bad_templates_are_refused() {
+        assert!(ParticleTemplate::new("t", 1, 0, 2500.0, RadiusDist::Constant(0.002)).is_err());
+        assert!(ParticleTemplate::new("t", 1, 1, 0.0, RadiusDist::Constant(0.002)).is_err());
+        assert!(ParticleTemplate::new("t", 1, 1, 2500.0, RadiusDist::Constant(-1.0)).is_err());
+        assert!(
+            ParticleTemplate::new("t", 1, 1, 2500.0, RadiusDist::Uniform(0.003, 0.001)).is_err()
+        );
+        assert!(
+            ParticleTemplate::new("t", 1, 1, 2500.0, RadiusDist::Gaussian(0.001, 0.002)).is_err()
+        );
+        assert!(
+            ParticleTemplate::new("t", 1, 1, 2500.0, RadiusDist::Gaussian(f64::NAN, 0.0)).is_err()
+        );
+    }
+}
