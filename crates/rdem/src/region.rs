@@ -238,6 +238,122 @@ impl Region {
         }
     }
 
+    /// True if the whole sphere of radius `r` at `x` lies in the region (insertion with
+    /// `all_in yes`). Exact for blocks, spheres, cylinders, planes and their `side out`;
+    /// for cones, unions and side-out combinations it is conservative (it may refuse a
+    /// sphere that would fit, never accept one that does not).
+    pub fn contains_sphere(&self, x: DVec3, r: f64) -> bool {
+        self.sphere_test(x, r, self.outside)
+    }
+
+    fn sphere_test(&self, x: DVec3, r: f64, out: bool) -> bool {
+        match &self.shape {
+            Shape::Block { lo, hi } => {
+                if out {
+                    let d = (*lo - x).max(x - *hi).max(DVec3::ZERO);
+                    d.length_squared() >= r * r
+                } else {
+                    (0..3).all(|a| lo[a] + r <= x[a] && x[a] <= hi[a] - r)
+                }
+            }
+            Shape::Sphere { centre, radius } => {
+                let d = (x - *centre).length();
+                if out {
+                    d >= radius + r
+                } else {
+                    d <= radius - r
+                }
+            }
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let (a, b) = others(*axis);
+                let rad = ((x[a] - c1).powi(2) + (x[b] - c2).powi(2)).sqrt();
+                let t = x[*axis];
+                if out {
+                    let dr = (rad - radius).max(0.0);
+                    let dt = (lo - t).max(t - hi).max(0.0);
+                    dr * dr + dt * dt >= r * r
+                } else {
+                    rad <= radius - r && lo + r <= t && t <= hi - r
+                }
+            }
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                rlo,
+                rhi,
+                lo,
+                hi,
+            } => {
+                let (a, b) = others(*axis);
+                let rad = ((x[a] - c1).powi(2) + (x[b] - c2).powi(2)).sqrt();
+                let t = x[*axis];
+                let slope = (rhi - rlo) / (hi - lo);
+                if out {
+                    rad >= rlo.max(*rhi) + r || t <= lo - r || t >= hi + r
+                } else {
+                    let rt = rlo + slope * (t - lo);
+                    lo + r <= t && t <= hi - r && rad <= rt - r * (1.0 + slope * slope).sqrt()
+                }
+            }
+            Shape::Plane { point, normal } => {
+                let d = (x - *point).dot(*normal) / normal.length();
+                if out {
+                    d <= -r
+                } else {
+                    d >= r
+                }
+            }
+            Shape::Union(parts) => {
+                if out {
+                    parts.iter().all(|p| p.sphere_test(x, r, !p.outside))
+                } else {
+                    parts.iter().any(|p| p.contains_sphere(x, r))
+                }
+            }
+            Shape::Intersect(parts) => {
+                if out {
+                    parts.iter().any(|p| p.sphere_test(x, r, !p.outside))
+                } else {
+                    parts.iter().all(|p| p.contains_sphere(x, r))
+                }
+            }
+        }
+    }
+
+    /// Volume of the region within `clip`: exact for a block, otherwise Monte Carlo with
+    /// `samples` points of `uniform` in the bounding box.
+    pub fn volume(
+        &self,
+        clip: (DVec3, DVec3),
+        samples: usize,
+        mut uniform: impl FnMut() -> f64,
+    ) -> f64 {
+        let (lo, hi) = match self.bounding_box() {
+            Some((l, h)) => (l.max(clip.0), h.min(clip.1)),
+            None => clip,
+        };
+        let ext = (hi - lo).max(DVec3::ZERO);
+        let boxvol = ext.x * ext.y * ext.z;
+        if let (Shape::Block { .. }, false) = (&self.shape, self.outside) {
+            return boxvol;
+        }
+        if boxvol == 0.0 || samples == 0 {
+            return 0.0;
+        }
+        let inside = (0..samples)
+            .filter(|_| self.contains(DVec3::new(uniform(), uniform(), uniform()) * ext + lo))
+            .count();
+        boxvol * inside as f64 / samples as f64
+    }
+
     /// A box containing the region, or `None` if it is unbounded.
     pub fn bounding_box(&self) -> Option<(DVec3, DVec3)> {
         if self.outside {
@@ -384,6 +500,74 @@ mod tests {
     }
 
     #[test]
+    fn whole_spheres_inside_and_outside() {
+        let b = Region::new(Shape::Block {
+            lo: v(0., 0., 0.),
+            hi: v(1., 1., 1.),
+        })
+        .unwrap();
+        assert!(b.contains_sphere(v(0.5, 0.5, 0.5), 0.5));
+        assert!(!b.contains_sphere(v(0.5, 0.5, 0.4), 0.5));
+        let bo = b.clone().side_out();
+        assert!(
+            bo.contains_sphere(v(1.5, 0.5, 0.5), 0.5) && !bo.contains_sphere(v(1.4, 0.5, 0.5), 0.5)
+        );
+        // Corner: distance √2·0.3 ≈ 0.424 from the edge.
+        assert!(
+            bo.contains_sphere(v(1.3, 1.3, 0.5), 0.42)
+                && !bo.contains_sphere(v(1.3, 1.3, 0.5), 0.43)
+        );
+        let c = Region::new(Shape::Cylinder {
+            axis: 2,
+            c1: 0.,
+            c2: 0.,
+            radius: 1.,
+            lo: 0.,
+            hi: 2.,
+        })
+        .unwrap();
+        assert!(c.contains_sphere(v(0.5, 0., 1.), 0.5) && !c.contains_sphere(v(0.51, 0., 1.), 0.5));
+        assert!(!c.contains_sphere(v(0., 0., 0.4), 0.5));
+        let s = Region::new(Shape::Sphere {
+            centre: v(0., 0., 0.),
+            radius: 1.0,
+        })
+        .unwrap();
+        assert!(s.contains_sphere(v(0.7, 0., 0.), 0.3) && !s.contains_sphere(v(0.71, 0., 0.), 0.3));
+        // Every point of an accepted sphere is inside (cone, conservative).
+        let k = Region::new(Shape::Cone {
+            axis: 2,
+            c1: 0.,
+            c2: 0.,
+            rlo: 1.0,
+            rhi: 0.2,
+            lo: 0.0,
+            hi: 2.0,
+        })
+        .unwrap();
+        for (x, r) in [
+            (v(0.3, 0.1, 0.6), 0.2),
+            (v(0.0, 0.0, 1.5), 0.1),
+            (v(0.5, 0.0, 0.3), 0.25),
+        ] {
+            if k.contains_sphere(x, r) {
+                for d in [
+                    DVec3::X,
+                    DVec3::NEG_X,
+                    DVec3::Y,
+                    DVec3::Z,
+                    DVec3::NEG_Z,
+                    v(0.6, 0.0, 0.8),
+                    v(0.6, 0.0, -0.8),
+                ] {
+                    assert!(k.contains(x + r * d.normalize()), "{x} {r} {d}");
+                }
+            }
+        }
+        assert!(k.contains_sphere(v(0.0, 0.0, 1.0), 0.1));
+    }
+
+    #[test]
     fn bad_regions_are_refused() {
         assert!(Region::new(Shape::Block {
             lo: v(1., 0., 0.),
@@ -456,6 +640,9 @@ mod tests {
         let f = inner as f64 / n as f64;
         let sigma = (0.25f64 * 0.75 / n as f64).sqrt();
         assert!((f - 0.25).abs() < 3.0 * sigma, "{f}");
+        // Volume by Monte Carlo: π r² h = π within 1 %.
+        let vol = c.volume((DVec3::splat(-10.0), DVec3::splat(10.0)), 200_000, &mut rnd);
+        assert!((vol / std::f64::consts::PI - 1.0).abs() < 0.01, "{vol}");
         // Clipped to an empty box: nothing.
         assert!(c
             .sample((v(5., 5., 5.), v(6., 6., 6.)), &mut rnd, 100)
