@@ -5,9 +5,11 @@
 //! statistics do not.
 
 pub mod distribution;
+pub mod pack;
 pub mod template;
 
 pub use distribution::{Distribution, Weighting};
+pub use pack::{InsertPack, InsertReport, PackTarget, VelocityLaw};
 pub use template::{ParticleTemplate, RadiusDist};
 
 /// The generator used for insertion: PCG64, reproducible across platforms and crate
