@@ -10,7 +10,9 @@
 
 use glam::DVec3;
 
-use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
+use crate::contact::{
+    clear_history, CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor,
+};
 use crate::error::Result;
 use crate::neighbor::{Neighbor, NeighborList};
 use crate::particles::{Particles, INERTIA_SPHERE};
@@ -171,11 +173,7 @@ impl Visitor for PairPass<'_> {
                 #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(rsq < radsum * radsum) {
                     if w > 0 {
-                        // Zero only what is set (the step after a separation): a
-                        // plain fill becomes a memset call on every pair out of contact.
-                        if hist.iter().any(|&h| h != 0.0) {
-                            hist.iter_mut().for_each(|h| *h = 0.0);
-                        }
+                        clear_history(hist);
                     }
                     continue;
                 }

@@ -89,6 +89,12 @@ fn others(axis: usize) -> (usize, usize) {
     }
 }
 
+/// Squared distance of `x` from the line along `axis` through (c1, c2).
+fn radial2(x: DVec3, axis: usize, c1: f64, c2: f64) -> f64 {
+    let (a, b) = others(axis);
+    (x[a] - c1).powi(2) + (x[b] - c2).powi(2)
+}
+
 /// The box around a cylinder of radius `r` along `axis` from `lo` to `hi`.
 fn axial_box(axis: usize, c1: f64, c2: f64, r: f64, lo: f64, hi: f64) -> Option<(DVec3, DVec3)> {
     let (a, b) = others(axis);
@@ -211,8 +217,7 @@ impl Region {
                 lo,
                 hi,
             } => {
-                let (a, b) = others(*axis);
-                let d2 = (x[a] - c1).powi(2) + (x[b] - c2).powi(2);
+                let d2 = radial2(x, *axis, *c1, *c2);
                 *lo <= x[*axis] && x[*axis] <= *hi && d2 <= radius * radius
             }
             Shape::Cone {
@@ -224,13 +229,12 @@ impl Region {
                 lo,
                 hi,
             } => {
-                let (a, b) = others(*axis);
                 let t = x[*axis];
                 if t < *lo || t > *hi {
                     return false;
                 }
                 let r = rlo + (rhi - rlo) * (t - lo) / (hi - lo);
-                (x[a] - c1).powi(2) + (x[b] - c2).powi(2) <= r * r
+                radial2(x, *axis, *c1, *c2) <= r * r
             }
             Shape::Plane { point, normal } => (x - *point).dot(*normal) >= 0.0,
             Shape::Union(parts) => parts.iter().any(|p| p.contains(x)),
@@ -272,8 +276,7 @@ impl Region {
                 lo,
                 hi,
             } => {
-                let (a, b) = others(*axis);
-                let rad = ((x[a] - c1).powi(2) + (x[b] - c2).powi(2)).sqrt();
+                let rad = radial2(x, *axis, *c1, *c2).sqrt();
                 let t = x[*axis];
                 if out {
                     let dr = (rad - radius).max(0.0);
@@ -292,8 +295,7 @@ impl Region {
                 lo,
                 hi,
             } => {
-                let (a, b) = others(*axis);
-                let rad = ((x[a] - c1).powi(2) + (x[b] - c2).powi(2)).sqrt();
+                let rad = radial2(x, *axis, *c1, *c2).sqrt();
                 let t = x[*axis];
                 let slope = (rhi - rlo) / (hi - lo);
                 if out {

@@ -297,6 +297,16 @@ impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohes
     }
 }
 
+/// Forgets the history of a contact that has ended. Only what is set is written (the
+/// step after a separation): a plain fill would be a memset call for every listed pair
+/// out of contact, every step.
+#[inline(always)]
+pub fn clear_history(hist: &mut [f64]) {
+    if hist.iter().any(|&h| h != 0.0) {
+        hist.iter_mut().for_each(|h| *h = 0.0);
+    }
+}
+
 /// One contact: normal force, cohesion, tangential force with Coulomb cap, torques from the
 /// tangential force on the lever arms c_i, c_j, and the rolling torque.
 #[inline(always)]

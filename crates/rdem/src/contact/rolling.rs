@@ -22,6 +22,12 @@ pub trait Rolling {
     ) -> DVec3;
 }
 
+/// w_r = ω_i − ω_j (ω_i scaled by [`Geom::roll_scale`] against a wall).
+#[inline(always)]
+fn relative_rotation(g: &Geom) -> DVec3 {
+    g.roll_scale * g.wi - g.wj
+}
+
 #[inline(always)]
 fn without_torsion(v: DVec3, g: &Geom, flags: Flags) -> DVec3 {
     if flags.torsion_torque {
@@ -57,7 +63,7 @@ impl Rolling for Cdt {
         flags: Flags,
         _: &mut [f64],
     ) -> DVec3 {
-        let wr = g.roll_scale * g.wi - g.wj;
+        let wr = relative_rotation(g);
         let mag = wr.length();
         if mag > 0.0 {
             without_torsion(-(c.mu_r * no.fn_elastic * g.r_star / mag) * wr, g, flags)
@@ -111,7 +117,7 @@ impl Rolling for Epsd {
         flags: Flags,
         hist: &mut [f64],
     ) -> DVec3 {
-        let wr = without_torsion(g.roll_scale * g.wi - g.wj, g, flags);
+        let wr = without_torsion(relative_rotation(g), g, flags);
         let kr = 2.25 * no.kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
         let (m, elastic) = spring_torque(g, c, kr, wr, load, hist);
         if elastic {
@@ -139,7 +145,7 @@ impl Rolling for Epsd2 {
         flags: Flags,
         hist: &mut [f64],
     ) -> DVec3 {
-        let wr = without_torsion(g.roll_scale * g.wi - g.wj, g, flags);
+        let wr = without_torsion(relative_rotation(g), g, flags);
         let kr = no.kt * g.r_star * g.r_star;
         spring_torque(g, c, kr, wr, load, hist).0
     }

@@ -5,7 +5,9 @@
 
 use glam::DVec3;
 
-use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
+use crate::contact::{
+    clear_history, CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor,
+};
 use crate::error::{Error, Result};
 use crate::particles::{Particles, PropId, INERTIA_SPHERE};
 
@@ -236,11 +238,7 @@ impl Visitor for WallPass<'_> {
                 &mut empty
             };
             if d >= r {
-                // Zero only what is set (the step after a separation): a
-                // plain fill becomes a memset call on every pair out of contact.
-                if hist.iter().any(|&h| h != 0.0) {
-                    hist.iter_mut().for_each(|h| *h = 0.0);
-                }
+                clear_history(hist);
                 continue;
             }
             let delta = r - d;
