@@ -639,6 +639,9 @@ pub struct Neighbor {
     /// beyond skin/2 at the first step it was allowed to run (`ago == max(every, delay)`),
     /// so the list may already have been stale before (only with `check yes`).
     pub ndangerous: u64,
+    /// Largest radius growth of any particle since the last build (`fix adapt`): it eats
+    /// into the skin, so the distance check allows skin/2 − growth of motion.
+    pub growth: f64,
     last_build: u64,
     /// True from a build until the history is saved: the list's indices still refer to
     /// the particles (ghosts included) it was built for.
@@ -703,13 +706,18 @@ impl Neighbor {
         moved
     }
 
-    /// True if any particle moved more than skin/2 since the last build (or the particle
-    /// count changed).
+    /// True if any particle moved more than skin/2 − [`Neighbor::growth`] since the last
+    /// build (or the particle count changed). With r_i + r_j grown by at most 2·growth and
+    /// each centre moved at most skin/2 − growth, no pair can close more than the skin.
     pub fn moved_too_far(&self, x: &[DVec3]) -> bool {
         if x.len() != self.xhold.len() {
             return true;
         }
-        let lim = 0.25 * self.settings.skin * self.settings.skin;
+        let half = 0.5 * self.settings.skin - self.growth;
+        if half <= 0.0 {
+            return true;
+        }
+        let lim = half * half;
         x.iter()
             .zip(&self.xhold)
             .any(|(a, b)| (*a - *b).length_squared() > lim)
@@ -740,6 +748,7 @@ impl Neighbor {
         self.cutoff = cut;
         self.last_build = step;
         self.nbuilds += 1;
+        self.growth = 0.0;
         self.live = true;
         self.xhold.clear();
         self.xhold.extend_from_slice(&p.x[..nlocal]);

@@ -31,6 +31,8 @@ struct NearList {
     /// `Neighbor::nbuilds` of the list it was made from (0: none yet).
     built_for: u64,
     margin: f64,
+    /// `Neighbor::growth` when the near list was built.
+    growth_ref: f64,
 }
 
 /// The granular pair style: a contact model, its mixed coefficients and the near list.
@@ -71,7 +73,12 @@ impl PairGran {
         if near.built_for != neighbor.nbuilds || near.xref.len() != x.len() {
             return true;
         }
-        let lim = 0.25 * near.margin * near.margin;
+        // Radius growth since the build eats into the margin as in `Neighbor::moved_too_far`.
+        let half = 0.5 * near.margin - (neighbor.growth - near.growth_ref);
+        if half <= 0.0 {
+            return true;
+        }
+        let lim = half * half;
         x.iter()
             .zip(&near.xref)
             .any(|(a, b)| (*a - *b).length_squared() > lim)
@@ -83,6 +90,7 @@ impl PairGran {
         let list = &neighbor.list;
         near.margin = NEAR_MARGIN * neighbor.settings.skin;
         near.built_for = neighbor.nbuilds;
+        near.growth_ref = neighbor.growth;
         let nlocal = p.nlocal();
         near.xref.clear();
         near.xref.extend_from_slice(&p.x[..nlocal]);

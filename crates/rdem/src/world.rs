@@ -152,6 +152,21 @@ impl World {
         self.particles.assign_tags_from(gmax + 1 + before);
     }
 
+    /// Sets the radius of every owned particle to `radius[i]` keeping its density (the
+    /// mass follows), as `fix adapt ... atom diameter` does. The largest growth counts
+    /// against the neighbor skin until the next build, so no contact is missed.
+    pub fn set_radii(&mut self, radius: &[f64]) -> Result<()> {
+        let nlocal = self.particles.nlocal();
+        let mut grow: f64 = 0.0;
+        for (i, &r) in radius.iter().enumerate().take(nlocal) {
+            grow = grow.max(r - self.particles.radius[i]);
+            self.particles.set_radius(i, r)?;
+        }
+        let grow = self.comm.max(grow);
+        self.neighbor.growth += grow.max(0.0);
+        Ok(())
+    }
+
     /// Total number of owned particles over all ranks.
     pub fn natoms(&self) -> u64 {
         self.comm.sum_count(self.particles.nlocal() as u64)

@@ -180,3 +180,56 @@ fn fixes_refuse_bad_numbers() {
     assert!(w.remove_fix("nve"));
     assert!(!w.remove_fix("nve"));
 }
+
+/// `fix adapt`-style growth between rebuilds: two resting spheres 3 skins apart grow
+/// until they overlap. No particle moves, so only the growth counted against the skin
+/// can trigger the rebuild that brings the pair into the list; the contact force must
+/// appear at the first step the spheres overlap, with the Hertz magnitude.
+#[test]
+fn radius_growth_between_rebuilds_is_never_missed() {
+    let lo = DVec3::splat(-0.1);
+    let hi = DVec3::splat(0.1);
+    let mut w = common::world(
+        lo,
+        hi,
+        [Boundary::Fixed; 3],
+        ContactModel::hertz_history(),
+        0.9,
+        0.0,
+    );
+    w.fixes.clear(); // no integration: the spheres stay put
+    w.set_timestep(1e-6).unwrap();
+    let r0 = 0.01;
+    let skin = w.neighbor.settings.skin;
+    let gap = 3.0 * skin;
+    w.add_particle(&NewParticle::at(DVec3::ZERO, r0, common::RHO))
+        .unwrap();
+    w.add_particle(&NewParticle::at(
+        DVec3::new(2.0 * r0 + gap, 0.0, 0.0),
+        r0,
+        common::RHO,
+    ))
+    .unwrap();
+    w.setup().unwrap();
+    let builds0 = w.neighbor.nbuilds;
+    let dr = gap / 2.0 / 40.0; // the gap closes after 40 growth events
+    let mut r = r0;
+    for k in 1..=50 {
+        r += dr;
+        w.set_radii(&[r, r]).unwrap();
+        w.advance().unwrap();
+        let overlap = 2.0 * r - (2.0 * r0 + gap);
+        let f = w.particles.f[0].x;
+        if overlap > 1e-12 {
+            let r_star = r / 2.0;
+            let expect = 4.0 / 3.0 * common::e_star() * r_star.sqrt() * overlap.powf(1.5);
+            assert!(
+                (-f - expect).abs() < 1e-9 * expect + 1e-12,
+                "step {k}: force {f}, Hertz {expect}"
+            );
+        } else {
+            assert_eq!(f, 0.0, "step {k}: force before contact");
+        }
+    }
+    assert!(w.neighbor.nbuilds > builds0, "growth must trigger a rebuild");
+}

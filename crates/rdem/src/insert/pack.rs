@@ -195,6 +195,31 @@ impl InsertPack {
                     .max(0.0) as u64
             }
         };
+        let (inserted, mass) = self.place(world, wanted)?;
+        Ok(InsertReport {
+            wanted,
+            inserted,
+            mass,
+        })
+    }
+
+    /// Inserts `n` particles into the region regardless of what it holds
+    /// (`fix insert/rate/region`); the same placement rules as [`InsertPack::insert`].
+    pub fn insert_n(&mut self, world: &mut World, n: u64) -> Result<InsertReport> {
+        self.last = Some(world.step);
+        let (inserted, mass) = self.place(world, n)?;
+        Ok(InsertReport {
+            wanted: n,
+            inserted,
+            mass,
+        })
+    }
+
+    /// Places up to `wanted` particles; returns how many and their mass.
+    fn place(&mut self, world: &mut World, wanted: u64) -> Result<(u64, f64)> {
+        let domain = (world.domain.boxlo, world.domain.boxhi);
+        let p = &world.particles;
+        let n = p.nlocal();
         let counts = self.dist.counts_for(wanted as usize);
         // Existing particles on a grid for the overlap check.
         let rmax = p.radius[..n]
@@ -267,11 +292,7 @@ impl InsertPack {
             }
         }
         world.extend_tags();
-        Ok(InsertReport {
-            wanted,
-            inserted,
-            mass,
-        })
+        Ok((inserted, mass))
     }
 }
 
