@@ -1,17 +1,33 @@
 //! LIGGGHTS-compatible input scripts for rdem: the parsing rules of LIGGGHTS' manual
-//! section 3.2 with every word's place in the file kept, and diagnostics that show the
-//! script line with a caret under the offending word.
+//! section 3.2 with every word's place in the file kept, the command table that maps
+//! LIGGGHTS commands onto the engine, and diagnostics that show the script line with a
+//! caret under the offending word.
 //!
-//! This is the start of the front end (issue "LIGGGHTS-compatible input scripts"): the
-//! lexer, the diagnostics, equal-style formulas and the variable table. The command table
-//! and the binary come next.
+//! [`Interpreter`] runs a script; [`Sim`] is the state it builds.
 
 #![warn(missing_docs)]
 
+pub mod args;
+pub mod atom_fields;
+pub mod commands;
+pub mod computes;
+pub mod context;
 pub mod diagnostic;
+pub mod dump;
 pub mod expr;
+pub mod fixes;
+pub mod input;
+pub mod lattice;
 pub mod lexer;
+pub mod models;
+pub mod output;
+pub mod run;
+pub mod sim;
+pub mod thermo;
 pub mod variables;
 
 pub use diagnostic::{ScriptError, ScriptReport};
-pub use lexer::{commands, substitute, words, Command, Reference, Word};
+pub use input::Interpreter;
+pub use lexer::{commands as split_commands, substitute, words, Command, Reference, Word};
+pub use output::Output;
+pub use sim::Sim;

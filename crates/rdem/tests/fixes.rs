@@ -231,5 +231,8 @@ fn radius_growth_between_rebuilds_is_never_missed() {
             assert_eq!(f, 0.0, "step {k}: force before contact");
         }
     }
-    assert!(w.neighbor.nbuilds > builds0, "growth must trigger a rebuild");
+    assert!(
+        w.neighbor.nbuilds > builds0,
+        "growth must trigger a rebuild"
+    );
 }

@@ -1,7 +1,8 @@
 //! `fix insert/pack`: at each insertion step, insert as many particles as needed to bring
 //! the region to a target volume fraction, particle count or mass, at random positions
 //! (whole spheres inside the region with `all_in yes`), without overlaps (with
-//! `overlapcheck yes`, up to `maxattempt` tries per particle), largest templates first.
+//! `overlapcheck yes`; `maxattempt` tries per particle, pooled over one insertion as
+//! LIGGGHTS does), largest templates first.
 
 use glam::DVec3;
 use rand::Rng;
@@ -184,14 +185,20 @@ impl InsertPack {
         let have_v = world.comm.sum(have_v);
         let wanted = match self.target {
             PackTarget::Count(c) => c.saturating_sub(have_n),
-            PackTarget::Mass(m) => ((m - have_m) / self.dist.mean_particle_mass())
-                .round()
-                .max(0.0) as u64,
+            // Fractional counts round up with probability equal to the fraction, as in
+            // LIGGGHTS: the expected mass or volume is then exactly the target.
+            PackTarget::Mass(m) => {
+                let u: f64 = self.rng.gen();
+                ((m - have_m) / self.dist.mean_particle_mass() + u)
+                    .floor()
+                    .max(0.0) as u64
+            }
             PackTarget::VolumeFraction(f) => {
                 let rng = &mut self.rng;
                 let vol = self.region.volume(domain, 1_000_000, || rng.gen());
-                ((f * vol - have_v) / self.dist.mean_particle_volume())
-                    .round()
+                let u: f64 = rng.gen();
+                ((f * vol - have_v) / self.dist.mean_particle_volume() + u)
+                    .floor()
                     .max(0.0) as u64
             }
         };
@@ -244,11 +251,15 @@ impl InsertPack {
             }
         }
         let (mut inserted, mut mass) = (0u64, 0.0);
+        // `maxattempt` tries per particle, pooled over the insertion as LIGGGHTS does: a
+        // particle that is hard to place may use the tries the easy ones did not need.
+        let mut budget = wanted.saturating_mul(self.max_attempt.max(1) as u64);
         for (k, &count) in counts.iter().enumerate() {
             for _ in 0..count {
                 let r = self.dist.templates[k].draw_radius();
                 let mut placed = None;
-                for _ in 0..self.max_attempt.max(1) {
+                while budget > 0 {
+                    budget -= 1;
                     let rng = &mut self.rng;
                     let Some(x) = self.region.sample(domain, || rng.gen(), 1000) else {
                         break;

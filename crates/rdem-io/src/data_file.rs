@@ -1,0 +1,1018 @@
+//! LAMMPS data files for `atom_style granular` (LIGGGHTS' name for `sphere`):
+//! [`read_data`]/[`parse_data`] and [`write_data`]/[`format_data`].
+//!
+//! Layout (LIGGGHTS `read_data` page): the first line is a title and is skipped; then
+//! header lines `N atoms`, `N atom types`, `lo hi xlo xhi` (and `ylo yhi`, `zlo zhi`;
+//! default -0.5 0.5); then sections, each a keyword line, one skipped (empty) line and
+//! one line per atom:
+//!
+//! * `Atoms`: `atom-ID atom-type diameter density x y z [ix iy iz]` (image flags on all
+//!   lines or on none);
+//! * `Velocities` (after `Atoms`): `atom-ID vx vy vz omegax omegay omegaz`.
+//!
+//! `#` starts a comment anywhere; blank lines are skipped outside sections. Anything a
+//! granular simulation cannot use (bonds, a triclinic tilt, `Masses`, zero diameters)
+//! is refused with a [`DataError`] that gives the 1-based line and the byte range of the
+//! offending word, so the front end can underline it. The reader never panics.
+//!
+//! The writer puts every number in the shortest form that reads back to the same `f64`
+//! (Rust's `{}`, or `{:e}` for very large and very small magnitudes), so
+//! `parse_data(format_data(f)) == f` exactly, and LIGGGHTS 3.8 reads the file.
+
+use std::fmt::Write as _;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use rdem::{DVec3, Domain, NewParticle, Particles, Tag};
+
+use crate::atomic::{write_atomic, IoError};
+
+/// One line of the `Atoms` section.
+#[derive(Debug, Clone)]
+pub struct DataAtom {
+    /// Atom-ID (≥ 1).
+    pub id: Tag,
+    /// Atom type (1..=`ntypes`).
+    pub ty: u32,
+    /// Diameter (> 0).
+    pub diameter: f64,
+    /// Density (> 0).
+    pub density: f64,
+    /// Position.
+    pub x: DVec3,
+    /// Image flags (0 when the file has none).
+    pub image: [i32; 3],
+    /// 1-based line in the file (0 for atoms not read from a file); not compared by `==`.
+    pub line: usize,
+}
+
+impl PartialEq for DataAtom {
+    fn eq(&self, o: &Self) -> bool {
+        // Bitwise float comparison, so that -0.0 and 0.0 differ and a round trip is exact.
+        self.id == o.id
+            && self.ty == o.ty
+            && self.diameter.to_bits() == o.diameter.to_bits()
+            && self.density.to_bits() == o.density.to_bits()
+            && self.x.to_array().map(f64::to_bits) == o.x.to_array().map(f64::to_bits)
+            && self.image == o.image
+    }
+}
+
+/// One line of the `Velocities` section.
+#[derive(Debug, Clone)]
+pub struct DataVelocity {
+    /// Atom-ID of an atom of the `Atoms` section.
+    pub id: Tag,
+    /// Velocity.
+    pub v: DVec3,
+    /// Angular velocity.
+    pub omega: DVec3,
+    /// 1-based line in the file (0 when not read from a file); not compared by `==`.
+    pub line: usize,
+}
+
+impl PartialEq for DataVelocity {
+    fn eq(&self, o: &Self) -> bool {
+        self.id == o.id
+            && self.v.to_array().map(f64::to_bits) == o.v.to_array().map(f64::to_bits)
+            && self.omega.to_array().map(f64::to_bits) == o.omega.to_array().map(f64::to_bits)
+    }
+}
+
+/// The contents of a data file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataFile {
+    /// The first line.
+    pub title: String,
+    /// `N atoms`.
+    pub natoms: u64,
+    /// `N atom types`.
+    pub ntypes: u32,
+    /// Lower box corner (`xlo`, `ylo`, `zlo`).
+    pub lo: DVec3,
+    /// Upper box corner.
+    pub hi: DVec3,
+    /// The `Atoms` section, in file order.
+    pub atoms: Vec<DataAtom>,
+    /// The `Velocities` section, in file order (empty without one).
+    pub velocities: Vec<DataVelocity>,
+}
+
+/// A data file that cannot be used, with the place to point at.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("line {line}, column {}: {message}", col_range.start + 1)]
+pub struct DataError {
+    /// 1-based line number (one past the last line for a file that ends too early).
+    pub line: usize,
+    /// Byte range of the offending word within the line (empty at the end of a line).
+    pub col_range: Range<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// Failure of [`read_data`].
+#[derive(Debug, thiserror::Error)]
+pub enum ReadDataError {
+    /// The file could not be read.
+    #[error(transparent)]
+    Io(#[from] IoError),
+    /// The file was read but is not a usable data file.
+    #[error("{}: {error}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Where and why.
+        error: DataError,
+    },
+}
+
+/// A word of a line and its byte range.
+#[derive(Debug, Clone, Copy)]
+struct Word<'a> {
+    text: &'a str,
+    start: usize,
+}
+
+impl Word<'_> {
+    fn range(&self) -> Range<usize> {
+        self.start..self.start + self.text.len()
+    }
+}
+
+/// The words of `line` before any `#`.
+fn words(line: &str) -> Vec<Word<'_>> {
+    let content = line.split('#').next().unwrap_or("");
+    let mut out = Vec::new();
+    let mut start = None;
+    for (k, c) in content.char_indices() {
+        match (c.is_whitespace(), start) {
+            (true, Some(s)) => {
+                out.push(Word {
+                    text: &content[s..k],
+                    start: s,
+                });
+                start = None;
+            }
+            (false, None) => start = Some(k),
+            _ => {}
+        }
+    }
+    if let Some(s) = start {
+        out.push(Word {
+            text: &content[s..],
+            start: s,
+        });
+    }
+    out
+}
+
+struct Parser<'a> {
+    lines: Vec<&'a str>,
+    /// Index of the next line to read.
+    next: usize,
+}
+
+fn err(line: usize, col_range: Range<usize>, message: impl Into<String>) -> DataError {
+    DataError {
+        line,
+        col_range,
+        message: message.into(),
+    }
+}
+
+fn word_err(line: usize, w: &Word, message: impl Into<String>) -> DataError {
+    err(line, w.range(), message)
+}
+
+fn parse_float(line: usize, w: &Word, what: &str) -> Result<f64, DataError> {
+    let v: f64 = w.text.parse().map_err(|_| {
+        word_err(
+            line,
+            w,
+            format!("expected a number for {what}, found '{}'", w.text),
+        )
+    })?;
+    if !v.is_finite() {
+        return Err(word_err(line, w, format!("{what} must be finite")));
+    }
+    Ok(v)
+}
+
+fn parse_int<T: std::str::FromStr>(line: usize, w: &Word, what: &str) -> Result<T, DataError> {
+    w.text.parse().map_err(|_| {
+        word_err(
+            line,
+            w,
+            format!("expected an integer for {what}, found '{}'", w.text),
+        )
+    })
+}
+
+/// Header keywords of LAMMPS data files that a granular simulation has no use for; a
+/// zero count is accepted.
+const UNUSED_COUNTS: [&str; 14] = [
+    "bonds",
+    "angles",
+    "dihedrals",
+    "impropers",
+    "bond types",
+    "angle types",
+    "dihedral types",
+    "improper types",
+    "extra bond per atom",
+    "extra angle per atom",
+    "ellipsoids",
+    "lines",
+    "triangles",
+    "bodies",
+];
+
+/// Section keywords of LAMMPS data files other than `Atoms` and `Velocities`.
+const OTHER_SECTIONS: [&str; 24] = [
+    "Masses",
+    "Ellipsoids",
+    "Lines",
+    "Triangles",
+    "Bodies",
+    "Bonds",
+    "Angles",
+    "Dihedrals",
+    "Impropers",
+    "Pair Coeffs",
+    "PairIJ Coeffs",
+    "Bond Coeffs",
+    "Angle Coeffs",
+    "Dihedral Coeffs",
+    "Improper Coeffs",
+    "BondBond Coeffs",
+    "BondAngle Coeffs",
+    "MiddleBondTorsion Coeffs",
+    "EndBondTorsion Coeffs",
+    "AngleTorsion Coeffs",
+    "AngleAngleTorsion Coeffs",
+    "BondBond13 Coeffs",
+    "AngleAngle Coeffs",
+    "Molecules",
+];
+
+impl<'a> Parser<'a> {
+    /// Line number (1-based) of the line at index `k`.
+    fn lineno(k: usize) -> usize {
+        k + 1
+    }
+
+    fn header(&mut self, f: &mut DataFile) -> Result<(), DataError> {
+        let mut seen: Vec<&str> = Vec::new();
+        while self.next < self.lines.len() {
+            let ln = Self::lineno(self.next);
+            let ws = words(self.lines[self.next]);
+            let Some(first) = ws.first() else {
+                self.next += 1;
+                continue;
+            };
+            if first.text.parse::<f64>().is_err() {
+                return Ok(()); // the body starts here
+            }
+            let nnum = ws
+                .iter()
+                .take_while(|w| w.text.parse::<f64>().is_ok())
+                .count();
+            if nnum == ws.len() {
+                let end = ws[nnum - 1].range().end;
+                return Err(err(ln, end..end, "header line without a keyword"));
+            }
+            let kw_words = &ws[nnum..];
+            let keyword = kw_words
+                .iter()
+                .map(|w| w.text)
+                .collect::<Vec<_>>()
+                .join(" ");
+            let kw_range = kw_words[0].start..kw_words[kw_words.len() - 1].range().end;
+            let want = match keyword.as_str() {
+                "xlo xhi" | "ylo yhi" | "zlo zhi" => 2,
+                "xy xz yz" => {
+                    return Err(err(
+                        ln,
+                        kw_range,
+                        "triclinic boxes (xy xz yz) are not supported",
+                    ))
+                }
+                "atoms" | "atom types" => 1,
+                k if UNUSED_COUNTS.contains(&k) => 1,
+                _ => {
+                    return Err(err(
+                        ln,
+                        kw_range,
+                        format!("unknown header keyword '{keyword}'"),
+                    ))
+                }
+            };
+            if nnum != want {
+                let w = if nnum > want { &ws[want] } else { &kw_words[0] };
+                return Err(word_err(
+                    ln,
+                    w,
+                    format!("'{keyword}' takes {want} value(s), found {nnum}"),
+                ));
+            }
+            if let Some(&prev) = seen.iter().find(|&&k| k == keyword) {
+                return Err(err(ln, kw_range, format!("'{prev}' given twice")));
+            }
+            seen.push(match keyword.as_str() {
+                "xlo xhi" => "xlo xhi",
+                "ylo yhi" => "ylo yhi",
+                "zlo zhi" => "zlo zhi",
+                "atoms" => "atoms",
+                "atom types" => "atom types",
+                k => UNUSED_COUNTS
+                    .iter()
+                    .find(|&&u| u == k)
+                    .copied()
+                    .unwrap_or("?"),
+            });
+            match keyword.as_str() {
+                "atoms" => f.natoms = parse_int(ln, &ws[0], "the number of atoms")?,
+                "atom types" => {
+                    f.ntypes = parse_int(ln, &ws[0], "the number of atom types")?;
+                }
+                "xlo xhi" | "ylo yhi" | "zlo zhi" => {
+                    let a = match &keyword[..1] {
+                        "x" => 0,
+                        "y" => 1,
+                        _ => 2,
+                    };
+                    let lo = parse_float(ln, &ws[0], "the lower box bound")?;
+                    let hi = parse_float(ln, &ws[1], "the upper box bound")?;
+                    if lo >= hi {
+                        return Err(err(
+                            ln,
+                            ws[0].start..ws[1].range().end,
+                            format!("the lower bound {lo} must be below the upper bound {hi}"),
+                        ));
+                    }
+                    f.lo[a] = lo;
+                    f.hi[a] = hi;
+                }
+                _ => {
+                    let n: u64 = parse_int(ln, &ws[0], &format!("'{keyword}'"))?;
+                    if n != 0 {
+                        return Err(err(
+                            ln,
+                            kw_range,
+                            format!("'{keyword}' is not supported by atom_style granular"),
+                        ));
+                    }
+                }
+            }
+            self.next += 1;
+        }
+        Ok(())
+    }
+
+    /// After a section keyword at index `k`: skips the following line, which must be
+    /// empty (LAMMPS skips it unread; a data line there would silently be lost).
+    fn skip_after_keyword(&mut self, name: &str) -> Result<(), DataError> {
+        let k = self.next;
+        if let Some(line) = self.lines.get(k) {
+            if let Some(w) = words(line).first() {
+                return Err(word_err(
+                    Self::lineno(k),
+                    w,
+                    format!("expected an empty line after '{name}'"),
+                ));
+            }
+        }
+        self.next += 1;
+        Ok(())
+    }
+
+    /// Line `done` (0-based) of the `n` lines of section `name`, with its line number.
+    fn section_line(
+        &mut self,
+        name: &str,
+        done: u64,
+        n: u64,
+    ) -> Result<(usize, Vec<Word<'a>>), DataError> {
+        let Some(&line) = self.lines.get(self.next) else {
+            return Err(err(
+                Self::lineno(self.lines.len()),
+                0..0,
+                format!("the file ends after {done} of the {n} lines of '{name}'"),
+            ));
+        };
+        let ln = Self::lineno(self.next);
+        let ws = words(line);
+        if ws.is_empty() {
+            return Err(err(
+                ln,
+                0..line.len(),
+                format!("'{name}' has {done} lines here, but the header announces {n} atoms"),
+            ));
+        }
+        self.next += 1;
+        Ok((ln, ws))
+    }
+
+    fn atoms(&mut self, f: &mut DataFile) -> Result<(), DataError> {
+        let mut ncols = None;
+        let mut ids = std::collections::HashMap::new();
+        for done in 0..f.natoms {
+            let (ln, ws) = self.section_line("Atoms", done, f.natoms)?;
+            if ws.len() != 7 && ws.len() != 10 {
+                let w = ws.get(7).unwrap_or(&ws[ws.len() - 1]);
+                return Err(word_err(
+                    ln,
+                    w,
+                    format!(
+                        "an atom line has 7 values (atom-ID atom-type diameter density x y z) \
+                         or 10 (with ix iy iz), found {}",
+                        ws.len()
+                    ),
+                ));
+            }
+            match ncols {
+                None => ncols = Some(ws.len()),
+                Some(n) if n != ws.len() => {
+                    let end = ws[ws.len() - 1].range().end;
+                    return Err(err(
+                        ln,
+                        ws[0].start..end,
+                        format!(
+                            "{} values here but {n} on the first atom line: image flags must be \
+                             given on all atom lines or on none",
+                            ws.len()
+                        ),
+                    ));
+                }
+                _ => {}
+            }
+            let id: Tag = parse_int(ln, &ws[0], "the atom-ID")?;
+            if id == 0 {
+                return Err(word_err(ln, &ws[0], "atom-IDs must be >= 1"));
+            }
+            if let Some(prev) = ids.insert(id, ln) {
+                return Err(word_err(
+                    ln,
+                    &ws[0],
+                    format!("atom-ID {id} is used twice (first on line {prev})"),
+                ));
+            }
+            let ty: u32 = parse_int(ln, &ws[1], "the atom type")?;
+            if ty == 0 || ty > f.ntypes {
+                return Err(word_err(
+                    ln,
+                    &ws[1],
+                    format!(
+                        "atom type {ty} is outside 1..{} (the header's 'atom types')",
+                        f.ntypes
+                    ),
+                ));
+            }
+            let diameter = parse_float(ln, &ws[2], "the diameter")?;
+            if diameter <= 0.0 {
+                return Err(word_err(
+                    ln,
+                    &ws[2],
+                    "the diameter must be > 0 (point particles are not supported)",
+                ));
+            }
+            let density = parse_float(ln, &ws[3], "the density")?;
+            if density <= 0.0 {
+                return Err(word_err(ln, &ws[3], "the density must be > 0"));
+            }
+            let mut x = DVec3::ZERO;
+            for a in 0..3 {
+                x[a] = parse_float(ln, &ws[4 + a], ["x", "y", "z"][a])?;
+            }
+            let mut image = [0; 3];
+            if ws.len() == 10 {
+                for a in 0..3 {
+                    image[a] = parse_int(ln, &ws[7 + a], ["ix", "iy", "iz"][a])?;
+                }
+            }
+            f.atoms.push(DataAtom {
+                id,
+                ty,
+                diameter,
+                density,
+                x,
+                image,
+                line: ln,
+            });
+        }
+        Ok(())
+    }
+
+    fn velocities(&mut self, f: &mut DataFile) -> Result<(), DataError> {
+        let ids: std::collections::HashSet<Tag> = f.atoms.iter().map(|a| a.id).collect();
+        let mut seen = std::collections::HashMap::new();
+        for done in 0..f.natoms {
+            let (ln, ws) = self.section_line("Velocities", done, f.natoms)?;
+            if ws.len() != 7 {
+                let w = ws.get(7).unwrap_or(&ws[ws.len() - 1]);
+                return Err(word_err(
+                    ln,
+                    w,
+                    format!(
+                        "a velocity line has 7 values (atom-ID vx vy vz omegax omegay omegaz), \
+                         found {}",
+                        ws.len()
+                    ),
+                ));
+            }
+            let id: Tag = parse_int(ln, &ws[0], "the atom-ID")?;
+            if !ids.contains(&id) {
+                return Err(word_err(
+                    ln,
+                    &ws[0],
+                    format!("atom-ID {id} is not in the Atoms section"),
+                ));
+            }
+            if let Some(prev) = seen.insert(id, ln) {
+                return Err(word_err(
+                    ln,
+                    &ws[0],
+                    format!("atom-ID {id} has a second velocity (first on line {prev})"),
+                ));
+            }
+            let mut vals = [0.0; 6];
+            for k in 0..6 {
+                vals[k] = parse_float(
+                    ln,
+                    &ws[1 + k],
+                    ["vx", "vy", "vz", "omegax", "omegay", "omegaz"][k],
+                )?;
+            }
+            f.velocities.push(DataVelocity {
+                id,
+                v: DVec3::new(vals[0], vals[1], vals[2]),
+                omega: DVec3::new(vals[3], vals[4], vals[5]),
+                line: ln,
+            });
+        }
+        Ok(())
+    }
+
+    fn body(&mut self, f: &mut DataFile) -> Result<(), DataError> {
+        let mut have_atoms = false;
+        let mut have_vel = false;
+        while self.next < self.lines.len() {
+            let ln = Self::lineno(self.next);
+            let ws = words(self.lines[self.next]);
+            if ws.is_empty() {
+                self.next += 1;
+                continue;
+            }
+            let keyword = ws.iter().map(|w| w.text).collect::<Vec<_>>().join(" ");
+            let range = ws[0].start..ws[ws.len() - 1].range().end;
+            self.next += 1;
+            match keyword.as_str() {
+                "Atoms" => {
+                    if have_atoms {
+                        return Err(err(ln, range, "a second 'Atoms' section"));
+                    }
+                    self.skip_after_keyword("Atoms")?;
+                    self.atoms(f)?;
+                    have_atoms = true;
+                }
+                "Velocities" => {
+                    if !have_atoms {
+                        return Err(err(
+                            ln,
+                            range,
+                            "'Velocities' must come after the 'Atoms' section",
+                        ));
+                    }
+                    if have_vel {
+                        return Err(err(ln, range, "a second 'Velocities' section"));
+                    }
+                    self.skip_after_keyword("Velocities")?;
+                    self.velocities(f)?;
+                    have_vel = true;
+                }
+                "Masses" => {
+                    return Err(err(
+                        ln,
+                        range,
+                        "'Masses' cannot be used with atom_style granular: masses follow from \
+                         diameter and density",
+                    ))
+                }
+                k if OTHER_SECTIONS.contains(&k) => {
+                    return Err(err(
+                        ln,
+                        range,
+                        format!("section '{k}' is not supported by atom_style granular"),
+                    ))
+                }
+                _ if ws[0].text.parse::<f64>().is_ok() => {
+                    return Err(err(
+                        ln,
+                        range,
+                        "header line after the first section (or a data line without a \
+                         section keyword)",
+                    ))
+                }
+                _ => {
+                    return Err(err(
+                        ln,
+                        range,
+                        format!(
+                            "unknown section keyword '{keyword}' (expected 'Atoms' or \
+                             'Velocities')"
+                        ),
+                    ))
+                }
+            }
+        }
+        if f.natoms > 0 && !have_atoms {
+            return Err(err(
+                Self::lineno(self.lines.len()),
+                0..0,
+                format!(
+                    "the header announces {} atoms but there is no 'Atoms' section",
+                    f.natoms
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Parses the text of a data file.
+pub fn parse_data(text: &str) -> Result<DataFile, DataError> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut f = DataFile {
+        title: lines
+            .first()
+            .map(|s| s.trim_end().to_string())
+            .unwrap_or_default(),
+        natoms: 0,
+        ntypes: 0,
+        lo: DVec3::splat(-0.5),
+        hi: DVec3::splat(0.5),
+        atoms: Vec::new(),
+        velocities: Vec::new(),
+    };
+    if lines.is_empty() {
+        return Err(err(1, 0..0, "the data file is empty"));
+    }
+    let mut p = Parser { lines, next: 1 };
+    p.header(&mut f)?;
+    if f.natoms > 0 && f.ntypes == 0 {
+        let ln = Parser::lineno(p.next);
+        return Err(err(
+            ln,
+            0..0,
+            "the header has atoms but no 'atom types' line",
+        ));
+    }
+    p.body(&mut f)?;
+    Ok(f)
+}
+
+/// Reads and parses a data file (`read_data`). Gzipped files are not supported.
+pub fn read_data(path: &Path) -> Result<DataFile, ReadDataError> {
+    if path.extension().is_some_and(|e| e == "gz") {
+        return Err(IoError::new(
+            path,
+            "read",
+            std::io::Error::new(
+                std::io::ErrorKind::Unsupported,
+                "gzip-compressed data files are not supported; gunzip it first",
+            ),
+        )
+        .into());
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| IoError::new(path, "read", e))?;
+    parse_data(&text).map_err(|error| ReadDataError::Parse {
+        path: path.to_path_buf(),
+        error,
+    })
+}
+
+/// Shortest text that reads back as exactly `v`, in plain notation for ordinary
+/// magnitudes and exponent notation otherwise (C's `atof` reads both).
+fn num(out: &mut String, v: f64) {
+    let a = v.abs();
+    if a == 0.0 || (1e-5..1e16).contains(&a) || !v.is_finite() {
+        let _ = write!(out, "{v}");
+    } else {
+        let _ = write!(out, "{v:e}");
+    }
+}
+
+impl DataFile {
+    /// The owned particles of `p` (sorted by tag), the box of `d` and `ntypes` atom types.
+    pub fn from_particles(p: &Particles, d: &Domain, ntypes: u32, title: &str) -> DataFile {
+        let mut order: Vec<usize> = (0..p.nlocal()).collect();
+        order.sort_by_key(|&i| p.tag[i]);
+        DataFile {
+            title: title.to_string(),
+            natoms: order.len() as u64,
+            ntypes,
+            lo: d.boxlo,
+            hi: d.boxhi,
+            atoms: order
+                .iter()
+                .map(|&i| DataAtom {
+                    id: p.tag[i],
+                    ty: p.ty[i],
+                    diameter: 2.0 * p.radius[i],
+                    density: p.density[i],
+                    x: p.x[i],
+                    image: p.image[i],
+                    line: 0,
+                })
+                .collect(),
+            velocities: order
+                .iter()
+                .map(|&i| DataVelocity {
+                    id: p.tag[i],
+                    v: p.v[i],
+                    omega: p.omega[i],
+                    line: 0,
+                })
+                .collect(),
+        }
+    }
+
+    /// The atoms as particles to add (in group `all` only), with velocities from the
+    /// `Velocities` section (zero for atoms it does not list) and their image flags.
+    pub fn new_particles(&self) -> Vec<(NewParticle, [i32; 3])> {
+        let vel: std::collections::HashMap<Tag, &DataVelocity> =
+            self.velocities.iter().map(|v| (v.id, v)).collect();
+        self.atoms
+            .iter()
+            .map(|a| {
+                let mut p = NewParticle::at(a.x, 0.5 * a.diameter, a.density)
+                    .with_tag(a.id)
+                    .with_type(a.ty);
+                if let Some(v) = vel.get(&a.id) {
+                    p = p.with_v(v.v).with_omega(v.omega);
+                }
+                (p, a.image)
+            })
+            .collect()
+    }
+}
+
+/// The text of a data file that LIGGGHTS' `read_data` and [`parse_data`] read back.
+/// The `Velocities` section is written only when the file has one.
+pub fn format_data(f: &DataFile) -> String {
+    let mut s = String::new();
+    s.push_str(f.title.lines().next().unwrap_or(""));
+    let _ = write!(s, "\n\n{} atoms\n{} atom types\n\n", f.natoms, f.ntypes);
+    for (a, kw) in ["xlo xhi", "ylo yhi", "zlo zhi"].iter().enumerate() {
+        num(&mut s, f.lo[a]);
+        s.push(' ');
+        num(&mut s, f.hi[a]);
+        let _ = writeln!(s, " {kw}");
+    }
+    if !f.atoms.is_empty() {
+        s.push_str("\nAtoms\n\n");
+        for a in &f.atoms {
+            let _ = write!(s, "{} {} ", a.id, a.ty);
+            for v in [a.diameter, a.density, a.x.x, a.x.y, a.x.z] {
+                num(&mut s, v);
+                s.push(' ');
+            }
+            let _ = writeln!(s, "{} {} {}", a.image[0], a.image[1], a.image[2]);
+        }
+    }
+    if !f.velocities.is_empty() {
+        s.push_str("\nVelocities\n\n");
+        for v in &f.velocities {
+            let _ = write!(s, "{}", v.id);
+            for x in v.v.to_array().into_iter().chain(v.omega.to_array()) {
+                s.push(' ');
+                num(&mut s, x);
+            }
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// `write_data`: writes the owned particles of `p` and the box of `d` to `path`
+/// (atomically, creating parent directories).
+pub fn write_data(
+    path: &Path,
+    p: &Particles,
+    d: &Domain,
+    ntypes: u32,
+    step: u64,
+) -> Result<(), IoError> {
+    let title = format!("LAMMPS data file via rdem write_data, timestep = {step}");
+    let f = DataFile::from_particles(p, d, ntypes, &title);
+    write_atomic(path, format_data(&f).as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "title line 3 atoms\n\n3 atoms # count\n2 atom types\n\n\
+        0 1 xlo xhi\n-1 1.5 ylo yhi\n\
+        0 2 zlo zhi\n\nAtoms # granular\n\n1 1 0.1 2500 0.2 0.3 0.5 0 0 0\n\
+        3 2 0.12 2600 0.7 0.3 0.5 -1 0 2  # comment\n2 1 0.1 2500 0.5 0.7 1.2 0 0 0\n\n\n\
+        Velocities\n\n3 -0.1 0.2 0 0 0 0\n1 0.1 0 0 0 0 1.5\n2 0 0 -0.3 0.25 0 0\n";
+
+    #[test]
+    fn parses_a_granular_file() {
+        let f = parse_data(GOOD).unwrap();
+        assert_eq!(f.title, "title line 3 atoms");
+        assert_eq!(f.natoms, 3);
+        assert_eq!(f.ntypes, 2);
+        assert_eq!(f.lo, DVec3::new(0.0, -1.0, 0.0));
+        assert_eq!(f.hi, DVec3::new(1.0, 1.5, 2.0));
+        assert_eq!(f.atoms.len(), 3);
+        let a = &f.atoms[1];
+        assert_eq!((a.id, a.ty, a.diameter, a.density), (3, 2, 0.12, 2600.0));
+        assert_eq!(a.x, DVec3::new(0.7, 0.3, 0.5));
+        assert_eq!(a.image, [-1, 0, 2]);
+        assert_eq!(a.line, 13);
+        assert_eq!(f.velocities.len(), 3);
+        assert_eq!(f.velocities[1].id, 1);
+        assert_eq!(f.velocities[1].omega, DVec3::new(0.0, 0.0, 1.5));
+        assert_eq!(f.velocities[0].line, 19);
+        let ps = f.new_particles();
+        assert_eq!(ps[1].0.v, DVec3::new(-0.1, 0.2, 0.0));
+        assert_eq!(ps[1].0.radius, 0.06);
+        assert_eq!(ps[1].1, [-1, 0, 2]);
+        assert_eq!(ps[2].0.v, DVec3::new(0.0, 0.0, -0.3));
+        assert_eq!(ps[2].0.omega, DVec3::new(0.25, 0.0, 0.0));
+        assert_eq!(ps[2].0.tag, 2);
+        // Without a Velocities section the particles are at rest.
+        let cut = GOOD.find("Velocities").unwrap();
+        let f = parse_data(&GOOD[..cut]).unwrap();
+        assert!(f.velocities.is_empty());
+        let ps = f.new_particles();
+        assert_eq!(ps[0].0.omega, DVec3::ZERO);
+        assert_eq!(ps[1].0.v, DVec3::ZERO);
+    }
+
+    #[test]
+    fn defaults_without_box_or_atoms() {
+        let f = parse_data("empty\n\n0 atoms\n").unwrap();
+        assert_eq!(f.lo, DVec3::splat(-0.5));
+        assert_eq!(f.hi, DVec3::splat(0.5));
+        assert!(f.atoms.is_empty());
+        let f = parse_data("only a title").unwrap();
+        assert_eq!(f.natoms, 0);
+    }
+
+    /// (file, line, offending word, message fragment)
+    fn check_err(text: &str, line: usize, word: &str, msg: &str) {
+        let e = parse_data(text).unwrap_err();
+        let l = text.lines().nth(line - 1).unwrap_or("");
+        assert_eq!(e.line, line, "{e}");
+        assert_eq!(&l[e.col_range.clone()], word, "{e}");
+        assert!(e.message.contains(msg), "'{}' lacks '{msg}'", e.message);
+    }
+
+    #[test]
+    fn errors_point_at_the_word() {
+        let head = "t\n2 atoms\n1 atom types\n0 1 xlo xhi\n\nAtoms\n\n";
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n2 1 0.1 abc 0.5 0.5 0.5\n"),
+            9,
+            "abc",
+            "density",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n2 2 0.1 1 0.5 0.5 0.5\n"),
+            9,
+            "2",
+            "outside 1..1",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n1 1 0.1 1 0.5 0.5 0.5\n"),
+            9,
+            "1",
+            "used twice (first on line 8)",
+        );
+        check_err(
+            &format!("{head}1 1 0 2500 0.5 0.5 0.5\n"),
+            8,
+            "0",
+            "diameter must be > 0",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5 0 0 0\n2 1 0.1 1 0.5 0.5 0.5\n"),
+            9,
+            "2 1 0.1 1 0.5 0.5 0.5",
+            "on all atom lines or on none",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5 7\n"),
+            8,
+            "7",
+            "found 8",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5 0 1.5 0\n"),
+            8,
+            "1.5",
+            "iy",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 nan\n"),
+            8,
+            "nan",
+            "finite",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n"),
+            9,
+            "",
+            "ends after 1 of the 2",
+        );
+        check_err(
+            &format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n\n2 1 0.1 1 0.5 0.5 0.5\n"),
+            9,
+            "",
+            "announces 2 atoms",
+        );
+        check_err(
+            "t\n1 atoms\n1 atom types\nAtoms\n1 1 0.1 2500 0.5 0.5 0.5\n",
+            5,
+            "1",
+            "expected an empty line after 'Atoms'",
+        );
+        check_err("t\n1 atoms\n1 atom types\n", 4, "", "no 'Atoms' section");
+        check_err("t\n1 atoms\n", 3, "", "no 'atom types'");
+        check_err("t\n3 atomz\n", 2, "atomz", "unknown header keyword 'atomz'");
+        check_err("t\n1 2 atoms\n", 2, "2", "takes 1 value(s), found 2");
+        check_err("t\n1 xlo xhi\n", 2, "xlo", "takes 2 value(s), found 1");
+        check_err("t\n1 0 xlo xhi\n", 2, "1 0", "must be below");
+        check_err("t\n1.5 atoms\n", 2, "1.5", "integer");
+        check_err("t\n0 0 0 xy xz yz\n", 2, "xy xz yz", "triclinic");
+        check_err("t\n4 bonds\n", 2, "bonds", "not supported");
+        check_err("t\n1 atoms\n2 atoms\n", 3, "atoms", "given twice");
+        check_err(
+            "t\n0 atoms\n\nMasses\n\n1 1.0\n",
+            4,
+            "Masses",
+            "diameter and density",
+        );
+        check_err("t\n0 atoms\n\nBonds\n", 4, "Bonds", "not supported");
+        check_err(
+            "t\n0 atoms\n\nAtomz\n",
+            4,
+            "Atomz",
+            "unknown section keyword",
+        );
+        check_err(
+            "t\n0 atoms\nAtoms\n\n4 bonds\n",
+            5,
+            "4 bonds",
+            "header line after",
+        );
+        check_err(
+            "t\n0 atoms\n\nVelocities\n\n",
+            4,
+            "Velocities",
+            "after the 'Atoms'",
+        );
+        let vhead =
+            format!("{head}1 1 0.1 2500 0.5 0.5 0.5\n2 1 0.1 1 0.5 0.5 0.5\n\nVelocities\n\n");
+        check_err(
+            &format!("{vhead}1 0 0 0 0 0 0\n5 0 0 0 0 0 0\n"),
+            14,
+            "5",
+            "not in the Atoms",
+        );
+        check_err(
+            &format!("{vhead}1 0 0 0 0 0 0\n1 0 0 0 0 0 0\n"),
+            14,
+            "1",
+            "second velocity",
+        );
+        check_err(&format!("{vhead}1 0 0 0 0 0\n"), 13, "0", "found 6");
+        check_err(&format!("{vhead}1 0 0 0 0 0 x\n"), 13, "x", "omegaz");
+        check_err("", 1, "", "empty");
+        let e = parse_data("t\n3 atomz\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 2, column 3: unknown header keyword 'atomz'"
+        );
+    }
+
+    #[test]
+    fn round_trip_is_exact() {
+        let mut f = parse_data(GOOD).unwrap();
+        f.atoms[0].x = DVec3::new(0.1 + 0.2, 1.0 / 3.0, -0.0);
+        f.atoms[1].density = 1e-300;
+        f.atoms[2].diameter = 5e-324;
+        f.velocities[0].v = DVec3::new(1e22, -123_456_789.123_456_79, f64::MIN_POSITIVE);
+        f.lo.x = -1e-7;
+        let text = format_data(&f);
+        let g = parse_data(&text).unwrap();
+        assert_eq!(f, g);
+        assert!(g.atoms[0].x.z.is_sign_negative());
+        // Written numbers stay short.
+        assert!(text.contains("\n1 1 0.1 2500 0.30000000000000004 0.3333333333333333 -0 0 0 0\n"));
+        assert!(text.contains("-1e-7 1 xlo xhi"));
+    }
+}

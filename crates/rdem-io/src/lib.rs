@@ -1,0 +1,38 @@
+//! rdem file formats: the writers and readers the LIGGGHTS script front end needs, written
+//! so that LIGGGHTS 3.8 input scripts run unmodified and leave the same files behind.
+//!
+//! * [`fields`]: the per-particle quantities `dump custom` knows (`id`, `x`, `vx`, ...) and
+//!   columns computed by the front end (`c_ID`, `f_ID[N]`, `v_name`).
+//! * [`printf`]: the C `printf` subset that `dump_modify format` strings use.
+//! * [`dump_text`]: `dump custom` text snapshots (`ITEM: TIMESTEP` ...).
+//! * [`vtk_legacy`]: `dump custom/vtk` legacy VTK files, laid out as LIGGGHTS 3.8 writes
+//!   them, plus the `_boundingBox` companion file.
+//! * [`data_file`]: LAMMPS data files for `atom_style granular` (`read_data`, `write_data`).
+//! * [`filename`]: the `*` (timestep) and `%` (rank) wildcards of dump file names.
+//! * [`atomic`]: every file is written under a temporary name and renamed into place.
+//!
+//! Nothing here decides *when* to write; the front end calls the writers on the right
+//! timesteps with the selection of particles (group, region) it has worked out.
+
+#![warn(missing_docs)]
+
+pub mod atomic;
+pub mod data_file;
+pub mod dump_text;
+pub mod fields;
+pub mod filename;
+pub mod printf;
+pub mod vtk_legacy;
+
+pub use atomic::{write_atomic, AppendFile, IoError};
+pub use data_file::{
+    format_data, parse_data, read_data, write_data, DataAtom, DataError, DataFile, DataVelocity,
+    ReadDataError,
+};
+pub use dump_text::{format_text_snapshot, parse_line_format, Sort, TextDump, TextOptions};
+pub use fields::{Column, Field};
+pub use filename::DumpFileName;
+pub use printf::{FormatError, Printf, Value};
+pub use vtk_legacy::{
+    bounding_box_path, format_bounding_box, format_vtk, vtk_layout, VtkArray, VtkDump, VtkSource,
+};

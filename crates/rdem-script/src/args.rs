@@ -1,0 +1,269 @@
+//! A cursor over a command's words with typed readers. Every reader's error points at the
+//! word it is about (or just past the last word when one is missing) and, for keywords,
+//! lists the valid ones and suggests the nearest.
+
+use crate::diagnostic::{one_of, ScriptError};
+use crate::lexer::{Command, Word};
+
+/// Result of a command handler.
+pub type CmdResult<T = ()> = Result<T, ScriptError>;
+
+/// The words of one command and a read position (word 0 is the command name).
+pub struct Args<'a> {
+    cmd: &'a Command,
+    words: &'a [Word],
+    pos: usize,
+}
+
+/// Levenshtein distance, for "did you mean" suggestions.
+fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != cb);
+            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+/// The valid word nearest to `word`, if it is close enough to be a likely typo.
+pub fn nearest<'v>(word: &str, valid: &[&'v str]) -> Option<&'v str> {
+    let lw = word.to_ascii_lowercase();
+    valid
+        .iter()
+        .map(|v| (distance(&lw, &v.to_ascii_lowercase()), *v))
+        .filter(|(d, v)| *d <= (v.len() / 3).max(2) && *d < v.len().max(word.len()))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, v)| v)
+}
+
+/// Help text for a word that is not one of `valid`: the nearest and the full list.
+pub fn suggest(word: &str, valid: &[&str]) -> String {
+    match nearest(word, valid) {
+        Some(n) => format!("did you mean '{n}'? Valid: {}", one_of(valid)),
+        None => format!("valid: {}", one_of(valid)),
+    }
+}
+
+/// Parses a number as C's `atof` would accept it in a script, but strictly: the whole word,
+/// finite.
+pub fn parse_f64(s: &str) -> Option<f64> {
+    let v: f64 = s.parse().ok()?;
+    (v.is_finite() && !s.to_ascii_lowercase().contains("inf")).then_some(v)
+}
+
+impl<'a> Args<'a> {
+    /// A cursor after the command name.
+    pub fn new(cmd: &'a Command, words: &'a [Word]) -> Self {
+        Self { cmd, words, pos: 1 }
+    }
+
+    /// The command (for spans).
+    pub fn command(&self) -> &'a Command {
+        self.cmd
+    }
+
+    /// All words.
+    pub fn words(&self) -> &'a [Word] {
+        self.words
+    }
+
+    /// The command name.
+    pub fn name(&self) -> &'a str {
+        &self.words[0].text
+    }
+
+    /// Index of the next word.
+    pub fn pos(&self) -> usize {
+        self.pos
+    }
+
+    /// Moves the cursor to word `pos`.
+    pub fn seek(&mut self, pos: usize) {
+        self.pos = pos.min(self.words.len());
+    }
+
+    /// Words left.
+    pub fn remaining(&self) -> usize {
+        self.words.len() - self.pos
+    }
+
+    /// True if no words are left.
+    pub fn is_done(&self) -> bool {
+        self.pos >= self.words.len()
+    }
+
+    /// The next word without consuming it.
+    pub fn peek(&self) -> Option<&'a str> {
+        self.words.get(self.pos).map(|w| w.text.as_str())
+    }
+
+    /// An error at word `k`.
+    pub fn error_at(
+        &self,
+        k: usize,
+        message: impl Into<String>,
+        help: Option<String>,
+    ) -> ScriptError {
+        let span = match self.words.get(k) {
+            Some(w) => w.span.clone(),
+            None => {
+                let end = self.words.last().map(|w| w.span.end).unwrap_or(0);
+                end..end + 1
+            }
+        };
+        ScriptError {
+            message: message.into(),
+            span,
+            help,
+        }
+    }
+
+    /// An error at the word just read.
+    pub fn error_prev(&self, message: impl Into<String>, help: Option<String>) -> ScriptError {
+        self.error_at(self.pos.saturating_sub(1), message, help)
+    }
+
+    /// An error at the whole command name.
+    pub fn error_cmd(&self, message: impl Into<String>, help: Option<String>) -> ScriptError {
+        self.error_at(0, message, help)
+    }
+
+    /// The next word, or an error "missing `what`".
+    pub fn word(&mut self, what: &str) -> CmdResult<&'a str> {
+        match self.words.get(self.pos) {
+            Some(w) => {
+                self.pos += 1;
+                Ok(&w.text)
+            }
+            None => Err(self.error_at(self.pos, format!("{}: missing {what}", self.name()), None)),
+        }
+    }
+
+    /// The next word as a finite number.
+    pub fn f64(&mut self, what: &str) -> CmdResult<f64> {
+        let w = self.word(what)?;
+        parse_f64(w)
+            .ok_or_else(|| self.error_prev(format!("{what} must be a number, not '{w}'"), None))
+    }
+
+    /// The next word as a number > 0.
+    pub fn positive(&mut self, what: &str) -> CmdResult<f64> {
+        let v = self.f64(what)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error_prev(format!("{what} must be > 0, got {v}"), None))
+        }
+    }
+
+    /// The next word as a number >= 0.
+    pub fn non_negative(&mut self, what: &str) -> CmdResult<f64> {
+        let v = self.f64(what)?;
+        if v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error_prev(format!("{what} must be >= 0, got {v}"), None))
+        }
+    }
+
+    /// The next word as a non-negative integer.
+    pub fn u64(&mut self, what: &str) -> CmdResult<u64> {
+        let w = self.word(what)?;
+        w.parse::<u64>().map_err(|_| {
+            self.error_prev(
+                format!("{what} must be a non-negative integer, not '{w}'"),
+                None,
+            )
+        })
+    }
+
+    /// The next word as an integer >= 1.
+    pub fn count(&mut self, what: &str) -> CmdResult<u64> {
+        let v = self.u64(what)?;
+        if v == 0 {
+            return Err(self.error_prev(format!("{what} must be >= 1"), None));
+        }
+        Ok(v)
+    }
+
+    /// The next word, which must be one of `valid`.
+    pub fn keyword(&mut self, what: &str, valid: &[&'static str]) -> CmdResult<&'static str> {
+        let w = match self.words.get(self.pos) {
+            Some(w) => &w.text,
+            None => {
+                return Err(self.error_at(
+                    self.pos,
+                    format!("{}: missing {what}", self.name()),
+                    Some(format!("expected {}", one_of(valid))),
+                ))
+            }
+        };
+        self.pos += 1;
+        valid.iter().copied().find(|v| v == w).ok_or_else(|| {
+            self.error_prev(format!("unknown {what} '{w}'"), Some(suggest(w, valid)))
+        })
+    }
+
+    /// `yes`/`no` (also `on`/`off`).
+    pub fn yes_no(&mut self, what: &str) -> CmdResult<bool> {
+        Ok(matches!(
+            self.keyword(what, &["yes", "no", "on", "off"])?,
+            "yes" | "on"
+        ))
+    }
+
+    /// Three numbers.
+    pub fn vec3(&mut self, what: &str) -> CmdResult<glam::DVec3> {
+        Ok(glam::DVec3::new(
+            self.f64(&format!("{what} x"))?,
+            self.f64(&format!("{what} y"))?,
+            self.f64(&format!("{what} z"))?,
+        ))
+    }
+
+    /// Errors if words are left.
+    pub fn done(&self) -> CmdResult {
+        if self.pos < self.words.len() {
+            return Err(self.error_at(
+                self.pos,
+                format!(
+                    "{}: unexpected extra argument '{}'",
+                    self.name(),
+                    self.words[self.pos].text
+                ),
+                None,
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suggestions_pick_the_nearest() {
+        assert_eq!(
+            nearest("tangental", &["tangential", "model"]),
+            Some("tangential")
+        );
+        assert_eq!(nearest("xyz", &["tangential", "model"]), None);
+        assert_eq!(nearest("Hertz", &["hertz", "hooke"]), Some("hertz"));
+    }
+
+    #[test]
+    fn numbers_like_atof_but_strict() {
+        assert_eq!(parse_f64("5.e6"), Some(5e6));
+        assert_eq!(parse_f64("+0.05"), Some(0.05));
+        assert_eq!(parse_f64(".5"), Some(0.5));
+        assert_eq!(parse_f64("inf"), None);
+        assert_eq!(parse_f64("nan"), None);
+        assert_eq!(parse_f64("1.0x"), None);
+    }
+}

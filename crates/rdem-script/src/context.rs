@@ -1,0 +1,345 @@
+//! Formulas evaluated against the simulation: thermo keywords, `v_`, `c_`, `f_`
+//! references, atom values by ID (`x[12]`), group functions, and atom-style formulas
+//! evaluated for every owned particle.
+
+use std::collections::HashMap;
+
+use rdem::World;
+
+use crate::atom_fields;
+use crate::computes::{self, ComputeKind, ReduceInput};
+use crate::expr::{self, Context, Name};
+use crate::sim::Sim;
+use crate::variables::Variable;
+
+/// Deepest chain of variables referring to variables (a loop is an error).
+const MAX_DEPTH: usize = 64;
+
+/// Evaluation context over a [`Sim`]; with `atom` set, names are per particle.
+pub struct Ctx<'a> {
+    sim: &'a Sim,
+    depth: usize,
+    /// Particle index and per-atom cache, for atom-style evaluation.
+    atom: Option<(usize, &'a mut HashMap<String, Vec<f64>>)>,
+}
+
+fn world(sim: &Sim) -> Result<&World, String> {
+    sim.world
+        .as_ref()
+        .ok_or_else(|| "the simulation box is not defined yet".to_string())
+}
+
+/// Evaluates an equal-style formula.
+pub fn eval_equal(sim: &Sim, formula: &str) -> Result<f64, expr::ExprError> {
+    let e = expr::parse(formula)?;
+    expr::eval(
+        &e,
+        &mut Ctx {
+            sim,
+            depth: 0,
+            atom: None,
+        },
+    )
+}
+
+/// Text of `${name}` / `$x`.
+pub fn variable_text(sim: &Sim, name: &str) -> Result<String, String> {
+    sim.vars.text(
+        name,
+        &mut Ctx {
+            sim,
+            depth: 0,
+            atom: None,
+        },
+    )
+}
+
+/// Evaluates an atom-style formula for every owned particle.
+pub fn eval_atom(sim: &Sim, formula: &str) -> Result<Vec<f64>, String> {
+    let mut cache = HashMap::new();
+    eval_atom_depth(sim, formula, 0, &mut cache)
+}
+
+fn eval_atom_depth(
+    sim: &Sim,
+    formula: &str,
+    depth: usize,
+    cache: &mut HashMap<String, Vec<f64>>,
+) -> Result<Vec<f64>, String> {
+    let w = world(sim)?;
+    let e = expr::parse(formula).map_err(|e| e.message)?;
+    let n = w.particles.nlocal();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut ctx = Ctx {
+            sim,
+            depth,
+            atom: Some((i, &mut *cache)),
+        };
+        out.push(expr::eval(&e, &mut ctx).map_err(|e| e.message)?);
+    }
+    Ok(out)
+}
+
+/// Per-atom values of a compute (column `col`, 1-based, for array computes).
+pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
+    let w = world(sim)?;
+    let c = sim
+        .computes
+        .iter()
+        .find(|c| c.id == id)
+        .ok_or_else(|| format!("no compute '{id}'"))?;
+    match &c.kind {
+        ComputeKind::PropertyAtom(fields) => {
+            let k = match (col, fields.len()) {
+                (None, 1) => 0,
+                (Some(k), n) if k >= 1 && k <= n => k - 1,
+                (None, n) => return Err(format!("compute {id} has {n} columns: use c_{id}[i]")),
+                (Some(k), n) => return Err(format!("c_{id}[{k}]: compute {id} has {n} column(s)")),
+            };
+            computes::field_values(w, &fields[k]).ok_or_else(|| format!("bad field {}", fields[k]))
+        }
+        ComputeKind::ContactAtom => {
+            if col.is_some() {
+                return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
+            }
+            Ok(computes::contact_counts(w))
+        }
+        _ => Err(format!("compute {id} does not compute per-atom values")),
+    }
+}
+
+/// Global value of a compute: its scalar, or element `idx` (1-based) of its vector.
+pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
+    let w = world(sim)?;
+    let c = sim
+        .computes
+        .iter()
+        .find(|c| c.id == id)
+        .ok_or_else(|| format!("no compute '{id}'"))?;
+    match (&c.kind, idx) {
+        (ComputeKind::ERotateSphere, None) => Ok(computes::erotate(w, c.groupbit)),
+        (ComputeKind::Ke, None) => Ok(computes::kinetic(w, c.groupbit)),
+        (ComputeKind::Reduce { mode, inputs }, _) => {
+            let k = match (idx, inputs.len()) {
+                (None, 1) => 0,
+                (Some(k), n) if k >= 1 && k <= n => k - 1,
+                (None, n) => {
+                    return Err(format!("compute {id} gives a vector of {n}: use c_{id}[i]"))
+                }
+                (Some(k), n) => {
+                    return Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)"))
+                }
+            };
+            let values = match &inputs[k] {
+                ReduceInput::Field(f) => {
+                    computes::field_values(w, f).ok_or_else(|| format!("bad field {f}"))?
+                }
+                ReduceInput::Compute(cid, col) => compute_peratom(sim, cid, *col)?,
+                ReduceInput::Variable(v) => match sim.vars.get(v) {
+                    Some(Variable::Atom(f)) => eval_atom(sim, f)?,
+                    _ => return Err(format!("variable '{v}' is not atom-style")),
+                },
+            };
+            Ok(computes::reduce(w, mode, c.groupbit, &values))
+        }
+        (_, Some(k)) => Err(format!("c_{id}[{k}]: compute {id} has no global vector")),
+        (_, None) => Err(format!(
+            "compute {id} has no global scalar (it is per-atom)"
+        )),
+    }
+}
+
+impl Ctx<'_> {
+    fn group(&self, g: &str) -> Result<u32, String> {
+        self.sim
+            .groups
+            .find(g)
+            .map(|k| 1u32 << k)
+            .ok_or_else(|| format!("no group '{g}'"))
+    }
+
+    fn atom_vector(
+        &mut self,
+        key: &str,
+        make: impl FnOnce(&Sim, usize) -> Result<Vec<f64>, String>,
+    ) -> Result<f64, String> {
+        let sim = self.sim;
+        let depth = self.depth;
+        let (i, cache) = self.atom.as_mut().expect("atom context");
+        if !cache.contains_key(key) {
+            let v = make(sim, depth)?;
+            cache.insert(key.to_string(), v);
+        }
+        Ok(cache[key][*i])
+    }
+}
+
+impl Context for Ctx<'_> {
+    fn name(&mut self, name: &Name) -> Result<f64, String> {
+        if self.depth > MAX_DEPTH {
+            return Err("variables refer to each other in a loop".into());
+        }
+        let sim = self.sim;
+        match name {
+            Name::Keyword(k) => {
+                if self.atom.is_some() && atom_fields::is_field(k) {
+                    let w = world(sim)?;
+                    let i = self.atom.as_ref().map(|a| a.0).unwrap_or(0);
+                    return atom_fields::value(w, k, i).ok_or_else(|| format!("bad field {k}"));
+                }
+                crate::thermo::keyword(sim, k)
+            }
+            Name::Variable(v) => match sim.vars.get(v) {
+                None => Err(format!("no variable '{v}'")),
+                Some(Variable::Equal(f)) => {
+                    let e =
+                        expr::parse(f).map_err(|e| format!("in variable '{v}': {}", e.message))?;
+                    let depth = self.depth + 1;
+                    match self.atom.as_mut() {
+                        Some((i, cache)) => {
+                            let mut c = Ctx {
+                                sim,
+                                depth,
+                                atom: Some((*i, &mut **cache)),
+                            };
+                            expr::eval(&e, &mut c)
+                        }
+                        None => expr::eval(
+                            &e,
+                            &mut Ctx {
+                                sim,
+                                depth,
+                                atom: None,
+                            },
+                        ),
+                    }
+                    .map_err(|e| format!("in variable '{v}': {}", e.message))
+                }
+                Some(Variable::Atom(f)) => {
+                    if self.atom.is_none() {
+                        return Err(format!(
+                            "atom-style variable '{v}' used where one number is needed"
+                        ));
+                    }
+                    let f = f.clone();
+                    self.atom_vector(&format!("v_{v}"), |s, d| {
+                        let mut cache = HashMap::new();
+                        eval_atom_depth(s, &f, d + 1, &mut cache)
+                    })
+                }
+                Some(_) => {
+                    let t = variable_text(sim, v)?;
+                    crate::args::parse_f64(t.trim())
+                        .ok_or_else(|| format!("variable '{v}' is '{t}', not a number"))
+                }
+            },
+            Name::Compute(id, idx) => {
+                let c = sim
+                    .computes
+                    .iter()
+                    .find(|c| &c.id == id)
+                    .ok_or_else(|| format!("no compute '{id}'"))?;
+                if c.is_peratom() {
+                    if self.atom.is_none() {
+                        return Err(format!(
+                            "compute {id} is per-atom: use it in an atom-style variable or reduce it"
+                        ));
+                    }
+                    let (id, idx) = (id.clone(), *idx);
+                    let key = format!("c_{id}[{idx:?}]");
+                    self.atom_vector(&key, |s, _| compute_peratom(s, &id, idx))
+                } else {
+                    compute_global(sim, id, *idx)
+                }
+            }
+            Name::Fix(id, idx) => crate::fixes::fix_value(sim, id, *idx),
+            Name::Atom(field, tag) => {
+                let w = world(sim)?;
+                let i = w
+                    .particles
+                    .find_tag(*tag)
+                    .ok_or_else(|| format!("{field}[{tag}]: no atom with ID {tag}"))?;
+                atom_fields::value(w, field, i).ok_or_else(|| {
+                    format!(
+                        "unknown atom value '{field}' (valid: {})",
+                        atom_fields::NAMES.join(" ")
+                    )
+                })
+            }
+        }
+    }
+
+    fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, String> {
+        const GROUP_FNS: [&str; 6] = ["count", "mass", "xcm", "vcm", "bound", "ke"];
+        if !GROUP_FNS.contains(&name) {
+            return Ok(None);
+        }
+        let w = world(self.sim)?;
+        let p = &w.particles;
+        let g = self.group(raw.first().map(|s| s.trim()).unwrap_or(""))?;
+        let sel: Vec<usize> = (0..p.nlocal()).filter(|&i| p.mask[i] & g != 0).collect();
+        let dim = |s: Option<&String>| -> Result<usize, String> {
+            match s.map(|s| s.trim()) {
+                Some("x") => Ok(0),
+                Some("y") => Ok(1),
+                Some("z") => Ok(2),
+                other => Err(format!(
+                    "{name}(): dimension must be x, y or z, not {other:?}"
+                )),
+            }
+        };
+        let mass: f64 = w.comm.sum(sel.iter().map(|&i| p.rmass[i]).sum());
+        let weighted = |f: &dyn Fn(usize) -> f64| -> f64 {
+            let s = w.comm.sum(sel.iter().map(|&i| p.rmass[i] * f(i)).sum());
+            if mass > 0.0 {
+                s / mass
+            } else {
+                0.0
+            }
+        };
+        Ok(Some(match (name, raw.len()) {
+            ("count", 1) => w.comm.sum_count(sel.len() as u64) as f64,
+            ("mass", 1) => mass,
+            ("ke", 1) => computes::kinetic(w, g),
+            ("xcm", 2) => {
+                let a = dim(raw.get(1))?;
+                let size = w.domain.boxhi - w.domain.boxlo;
+                weighted(&|i| p.x[i][a] + p.image[i][a] as f64 * size[a])
+            }
+            ("vcm", 2) => {
+                let a = dim(raw.get(1))?;
+                weighted(&|i| p.v[i][a])
+            }
+            ("bound", 2) => {
+                let which = raw[1].trim();
+                let (a, lo) = match which {
+                    "xmin" => (0, true),
+                    "xmax" => (0, false),
+                    "ymin" => (1, true),
+                    "ymax" => (1, false),
+                    "zmin" => (2, true),
+                    "zmax" => (2, false),
+                    _ => return Err(format!("bound(): '{which}' is not xmin, xmax, ..., zmax")),
+                };
+                if lo {
+                    w.comm
+                        .min(sel.iter().map(|&i| p.x[i][a]).fold(f64::MAX, f64::min))
+                } else {
+                    w.comm
+                        .max(sel.iter().map(|&i| p.x[i][a]).fold(-f64::MAX, f64::max))
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "{name}() takes {} argument(s)",
+                    if matches!(name, "count" | "mass" | "ke") {
+                        "1 (a group)"
+                    } else {
+                        "2 (group, dimension)"
+                    }
+                ))
+            }
+        }))
+    }
+}

@@ -1,0 +1,1020 @@
+//! The `fix` command: every style of SPEC §2 that is not a mesh or a bond. Engine fixes
+//! (integration, forces, walls) go to `World::fixes`; the others live here with the hooks
+//! the run loop calls: insertion and `adapt` before a step, `check/timestep/gran` and
+//! `ave/time` after it.
+
+use glam::DVec3;
+use rdem::insert::{
+    Distribution, InsertPack, PackTarget, ParticleTemplate, RadiusDist, VelocityLaw, Weighting,
+};
+use rdem::{Fix, FixKind, PrimitiveWall, WallShape};
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::diagnostic::one_of;
+use crate::models;
+use crate::sim::{FixEntry, Property, Sim};
+use crate::variables::format_g;
+
+/// Fix styles rdem runs.
+pub const STYLES: [&str; 18] = [
+    "property/global",
+    "particletemplate/sphere",
+    "particledistribution/discrete",
+    "particledistribution/discrete/massbased",
+    "particledistribution/discrete/numberbased",
+    "insert/pack",
+    "insert/rate/region",
+    "nve/sphere",
+    "gravity",
+    "freeze",
+    "viscous",
+    "addforce",
+    "setforce",
+    "wall/gran",
+    "adapt",
+    "check/timestep/gran",
+    "ave/time",
+    "property/atom",
+];
+
+/// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
+const LATER: [(&str, &str); 9] = [
+    ("mesh/surface", "meshes"),
+    ("mesh/surface/stress", "meshes"),
+    ("mesh/surface/planar", "meshes"),
+    ("move/mesh", "meshes"),
+    ("insert/stream", "stream insertion"),
+    ("ave/euler", "Euler-grid averaging"),
+    ("bond/gran", "bonds"),
+    ("wall/gran/hooke/history", "old-style wall models"),
+    ("particletemplate/multisphere", "multisphere particles"),
+];
+
+/// Insertion bookkeeping shared by insert/pack and insert/rate/region.
+pub struct Inserter {
+    /// Engine insertion (placement rules, generator, state).
+    pub pack: InsertPack,
+    /// Particles inserted so far.
+    pub total: u64,
+    /// Their mass.
+    pub total_mass: f64,
+    /// `insert/rate/region`: particles per insertion (fractional, accumulated).
+    pub rate: Option<RateState>,
+    /// `verbose yes`.
+    pub verbose: bool,
+}
+
+/// State of `insert/rate/region`.
+pub struct RateState {
+    /// Particles to insert in all (`None`: no limit).
+    pub limit: Option<u64>,
+    /// Particles per insertion (may be fractional).
+    pub per_insertion: f64,
+    /// Fractional carry.
+    pub carry: f64,
+}
+
+/// `fix adapt N atom diameter v_name`.
+pub struct Adapt {
+    /// Every this many steps.
+    pub every: u64,
+    /// Atom-style variable giving the new diameter.
+    pub var: String,
+    /// `reset yes`: radii restored when the run ends.
+    pub reset: bool,
+    /// Radii at the start of the run (for reset).
+    pub saved: Option<Vec<(u64, f64)>>,
+}
+
+/// `fix check/timestep/gran`.
+pub struct CheckTimestep {
+    /// Every this many steps.
+    pub every: u64,
+    /// Warn above this fraction of the Rayleigh time.
+    pub fraction_r: f64,
+    /// Warn above this fraction of the Hertz time.
+    pub fraction_h: f64,
+    /// `warn yes`.
+    pub warn: bool,
+    /// `error yes`.
+    pub error: bool,
+    /// `vmax`: least velocity for the Hertz estimate.
+    pub vmax: f64,
+    /// Last values: dt / Rayleigh time, dt / Hertz time.
+    pub values: [f64; 2],
+}
+
+/// `fix ave/time` (scalar mode).
+pub struct AveTime {
+    /// Sample every.
+    pub nevery: u64,
+    /// Samples per average.
+    pub nrepeat: u64,
+    /// Output every.
+    pub nfreq: u64,
+    /// Inputs (`c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`).
+    pub inputs: Vec<String>,
+    /// `ave running`.
+    pub running: bool,
+    /// Output file.
+    pub file: Option<std::io::BufWriter<std::fs::File>>,
+    /// Sums of the current window.
+    pub sum: Vec<f64>,
+    /// Samples in the window.
+    pub count: u64,
+    /// Last finished averages.
+    pub values: Vec<f64>,
+    /// Running totals (for `ave running`).
+    pub running_sum: Vec<f64>,
+    /// Number of finished windows.
+    pub windows: u64,
+}
+
+/// Front-end part of a fix.
+pub enum FrontFix {
+    /// The fix lives in `World::fixes` under the same ID.
+    Engine,
+    /// `property/global` (the values are in `Sim::properties`).
+    Property(String),
+    /// `particletemplate/sphere` (in `Sim::templates`).
+    Template,
+    /// `particledistribution/discrete` (in `Sim::distributions`).
+    Distribution,
+    /// `insert/pack`, `insert/rate/region`.
+    Insert(Box<Inserter>),
+    /// `adapt`.
+    Adapt(Adapt),
+    /// `check/timestep/gran`.
+    CheckTimestep(CheckTimestep),
+    /// `ave/time`.
+    AveTime(Box<AveTime>),
+}
+
+/// Value `f_ID` / `f_ID[i]` (1-based).
+pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
+    let f = sim
+        .fixes
+        .iter()
+        .find(|f| f.id == id)
+        .ok_or_else(|| format!("no fix '{id}'"))?;
+    let pick = |v: &[f64]| -> Result<f64, String> {
+        match idx {
+            Some(k) if k >= 1 && k <= v.len() => Ok(v[k - 1]),
+            None if v.len() == 1 => Ok(v[0]),
+            _ => Err(format!(
+                "fix {id} gives {} value(s): use f_{id}[1..{}]",
+                v.len(),
+                v.len()
+            )),
+        }
+    };
+    match &f.kind {
+        FrontFix::CheckTimestep(c) => pick(&c.values),
+        FrontFix::AveTime(a) => pick(&a.values),
+        FrontFix::Insert(ins) => pick(&[ins.total as f64, ins.total_mass]),
+        FrontFix::Property(name) => {
+            let p = &sim.properties[name];
+            pick(&p.values)
+        }
+        _ => Err(format!("fix {id} ({}) computes no global values", f.style)),
+    }
+}
+
+/// `fix ID group style args...`.
+pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("fix ID")?.to_string();
+    if let Some(k) = sim.fix_index(&id) {
+        // LIGGGHTS replaces a fix of the same ID and style; a different style is an error.
+        let style = a.words().get(3).map(|w| w.text.as_str()).unwrap_or("");
+        if sim.fixes[k].style != style {
+            return Err(a.error_prev(
+                format!(
+                    "fix ID '{id}' is already used by a {} fix",
+                    sim.fixes[k].style
+                ),
+                Some("unfix it first or pick another ID".into()),
+            ));
+        }
+        unfix_id(sim, &id);
+    }
+    let groupbit = sim.group_bit(a, "group ID")?;
+    let style_word = a.word("fix style")?;
+    let Some(style) = STYLES.iter().copied().find(|s| *s == style_word) else {
+        if let Some((_, what)) = LATER.iter().find(|(s, _)| *s == style_word) {
+            return Err(a.error_prev(
+                format!("fix {style_word} ({what}) is not supported by this rdem release yet"),
+                Some(format!("supported fix styles: {}", STYLES.join(", "))),
+            ));
+        }
+        return Err(a.error_prev(
+            format!("unknown fix style '{style_word}'"),
+            Some(suggest(style_word, &STYLES)),
+        ));
+    };
+    let kind = match style {
+        "property/global" => property_global(sim, a, &id)?,
+        "property/atom" => {
+            return Err(a.error_prev(
+                "fix property/atom is not supported by this rdem release yet",
+                None,
+            ))
+        }
+        "particletemplate/sphere" => template(sim, a, &id)?,
+        s if s.starts_with("particledistribution/discrete") => distribution(sim, a, &id, s)?,
+        "insert/pack" | "insert/rate/region" => insert(sim, a, &id, groupbit, style)?,
+        "wall/gran" => {
+            let wall = wall_gran(a, &id)?;
+            engine_fix(sim, a, &id, groupbit, FixKind::WallGran(Box::new(wall)))?
+        }
+        "nve/sphere" => {
+            if !a.is_done() {
+                let w = a.word("")?;
+                return Err(a.error_prev(
+                    format!("nve/sphere: unexpected argument '{w}'"),
+                    Some("rdem's nve/sphere takes no options".into()),
+                ));
+            }
+            engine_fix(sim, a, &id, groupbit, FixKind::NveSphere)?
+        }
+        "gravity" => {
+            let g = a.f64("gravity magnitude")?;
+            let how = a.keyword("gravity direction style", &["vector"])?;
+            debug_assert_eq!(how, "vector");
+            let d = a.vec3("gravity vector")?;
+            a.done()?;
+            let fix =
+                Fix::gravity(&id, groupbit, g, d).map_err(|e| a.error_cmd(e.to_string(), None))?;
+            add_engine(sim, a, fix)?
+        }
+        "freeze" => {
+            a.done()?;
+            engine_fix(sim, a, &id, groupbit, FixKind::Freeze)?
+        }
+        "viscous" => {
+            let gamma = a.non_negative("damping coefficient gamma")?;
+            a.done()?;
+            engine_fix(sim, a, &id, groupbit, FixKind::Viscous { gamma })?
+        }
+        "addforce" => {
+            let mut v = [0.0; 3];
+            for (k, c) in v.iter_mut().enumerate() {
+                let w = a.word(["fx", "fy", "fz"][k])?;
+                if w.starts_with("v_") {
+                    return Err(a.error_prev(
+                        "addforce with variables is not supported yet; give numbers",
+                        None,
+                    ));
+                }
+                a.seek(a.pos() - 1);
+                *c = a.f64(["fx", "fy", "fz"][k])?;
+            }
+            a.done()?;
+            let force = DVec3::from_array(v);
+            engine_fix(sim, a, &id, groupbit, FixKind::AddForce { force })?
+        }
+        "setforce" => {
+            let mut v = [None; 3];
+            for (k, c) in v.iter_mut().enumerate() {
+                let what = ["fx", "fy", "fz"][k];
+                if a.peek() == Some("NULL") {
+                    a.seek(a.pos() + 1);
+                } else {
+                    *c = Some(a.f64(&format!("{what} (a number or NULL)"))?);
+                }
+            }
+            a.done()?;
+            engine_fix(sim, a, &id, groupbit, FixKind::SetForce { force: v })?
+        }
+        "adapt" => adapt(a)?,
+        "check/timestep/gran" => check_timestep(a)?,
+        "ave/time" => ave_time(sim, a)?,
+        _ => unreachable!("every style in STYLES is handled"),
+    };
+    sim.fixes.push(FixEntry {
+        id,
+        style: style.to_string(),
+        groupbit,
+        kind,
+    });
+    Ok(())
+}
+
+/// Removes fix `id` (front end and engine); false if there was none.
+pub fn unfix_id(sim: &mut Sim, id: &str) -> bool {
+    let Some(k) = sim.fix_index(id) else {
+        return false;
+    };
+    let f = sim.fixes.remove(k);
+    match f.kind {
+        FrontFix::Engine => {
+            if let Some(w) = &mut sim.world {
+                w.remove_fix(id);
+            }
+        }
+        FrontFix::Property(name) => {
+            sim.properties.remove(&name);
+        }
+        FrontFix::Template => {
+            sim.templates.remove(id);
+        }
+        FrontFix::Distribution => {
+            sim.distributions.remove(id);
+        }
+        _ => {}
+    }
+    true
+}
+
+fn engine_fix(
+    sim: &mut Sim,
+    a: &Args,
+    id: &str,
+    groupbit: u32,
+    kind: FixKind,
+) -> CmdResult<FrontFix> {
+    let fix = Fix::new(id, groupbit, kind).map_err(|e| a.error_cmd(e.to_string(), None))?;
+    add_engine(sim, a, fix)
+}
+
+fn add_engine(sim: &mut Sim, a: &Args, fix: Fix) -> CmdResult<FrontFix> {
+    let w = sim.world_mut(a)?;
+    w.add_fix(fix)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(FrontFix::Engine)
+}
+
+fn property_global(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
+    let name = a.word("property name")?.to_string();
+    let style = a.keyword(
+        "property style",
+        &[
+            "scalar",
+            "vector",
+            "peratomtype",
+            "peratomtypepair",
+            "matrix",
+            "atomtype",
+            "atomtypepair",
+        ],
+    )?;
+    let style = match style {
+        "atomtype" => "peratomtype",
+        "atomtypepair" => "peratomtypepair",
+        s => s,
+    };
+    let mut values = Vec::new();
+    if style == "peratomtypepair" || style == "matrix" {
+        let n = a.count("number of atom types")? as usize;
+        if style == "peratomtypepair" && sim.ntypes > 0 && n != sim.ntypes {
+            return Err(a.error_prev(
+                format!("{name}: {n} types given but the box has {}", sim.ntypes),
+                None,
+            ));
+        }
+        let start = a.pos();
+        while !a.is_done() {
+            values.push(a.f64(&format!("{name} value"))?);
+        }
+        if style == "peratomtypepair" && values.len() != n * n {
+            return Err(a.error_at(
+                start,
+                format!(
+                    "{name} peratomtypepair {n} needs {} values, got {}",
+                    n * n,
+                    values.len()
+                ),
+                None,
+            ));
+        }
+    } else {
+        while !a.is_done() {
+            values.push(a.f64(&format!("{name} value"))?);
+        }
+        if values.is_empty() {
+            return Err(a.error_at(a.pos(), format!("{name}: no values given"), None));
+        }
+        if style == "scalar" && values.len() != 1 {
+            return Err(a.error_at(4, format!("{name} scalar takes one value"), None));
+        }
+        if style == "peratomtype" && sim.ntypes > 0 && values.len() != sim.ntypes {
+            return Err(a.error_at(
+                5,
+                format!(
+                    "{name}: {} value(s) given but the box has {} atom type(s)",
+                    values.len(),
+                    sim.ntypes
+                ),
+                None,
+            ));
+        }
+    }
+    sim.properties.insert(
+        name.clone(),
+        Property {
+            style: style.to_string(),
+            values,
+            fix_id: id.to_string(),
+        },
+    );
+    Ok(FrontFix::Property(name))
+}
+
+fn template(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
+    let seed = a.u64("seed")?;
+    let (mut ty, mut density, mut radius) = (1u32, None, None);
+    while !a.is_done() {
+        match a.keyword(
+            "particletemplate/sphere keyword",
+            &["atom_type", "density", "radius", "volume_limit", "relative"],
+        )? {
+            "atom_type" => {
+                let t = a.count("atom type")?;
+                if sim.ntypes > 0 && t as usize > sim.ntypes {
+                    return Err(a.error_prev(
+                        format!(
+                            "atom type {t} is larger than the box's {} type(s)",
+                            sim.ntypes
+                        ),
+                        None,
+                    ));
+                }
+                ty = t as u32;
+            }
+            "density" => {
+                a.keyword("density distribution", &["constant"])?;
+                density = Some(a.positive("density")?);
+            }
+            "radius" => {
+                radius = Some(
+                    match a.keyword("radius distribution", &["constant", "uniform", "gaussian"])? {
+                        "constant" => RadiusDist::Constant(a.positive("radius")?),
+                        "uniform" => RadiusDist::Uniform(
+                            a.positive("smallest radius")?,
+                            a.positive("largest radius")?,
+                        ),
+                        _ => RadiusDist::Gaussian(
+                            a.positive("mean radius")?,
+                            a.non_negative("radius standard deviation")?,
+                        ),
+                    },
+                );
+            }
+            "volume_limit" => {
+                a.positive("volume limit")?;
+            }
+            _ => {
+                if a.yes_no("relative")? {
+                    return Err(a.error_prev("relative radii are not supported", None));
+                }
+            }
+        }
+    }
+    let density = density.ok_or_else(|| {
+        a.error_cmd(
+            "particletemplate/sphere needs 'density constant value'",
+            None,
+        )
+    })?;
+    let radius = radius.ok_or_else(|| {
+        a.error_cmd(
+            "particletemplate/sphere needs 'radius constant value'",
+            None,
+        )
+    })?;
+    let t = ParticleTemplate::new(id, seed, ty, density, radius)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    sim.templates.insert(id.to_string(), t);
+    Ok(FrontFix::Template)
+}
+
+fn distribution(sim: &mut Sim, a: &mut Args, id: &str, style: &str) -> CmdResult<FrontFix> {
+    let seed = a.u64("seed")?;
+    let n = a.count("number of templates")?;
+    let mut parts = Vec::new();
+    for _ in 0..n {
+        let tid = a.word("template ID")?;
+        let t = sim.templates.get(tid).cloned().ok_or_else(|| {
+            let names: Vec<&str> = sim.templates.keys().map(|s| s.as_str()).collect();
+            a.error_prev(
+                format!("no particle template '{tid}'"),
+                Some(suggest(tid, &names)),
+            )
+        })?;
+        let w = a.positive("template weight")?;
+        parts.push((t, w));
+    }
+    a.done()?;
+    let weighting = if style.ends_with("numberbased") {
+        Weighting::Number
+    } else {
+        Weighting::Mass
+    };
+    let d = Distribution::new(id, seed, weighting, parts)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    if let Some(wm) = &d.warning {
+        sim.out.warning(wm);
+    }
+    sim.distributions.insert(id.to_string(), d);
+    Ok(FrontFix::Distribution)
+}
+
+fn insert(
+    sim: &mut Sim,
+    a: &mut Args,
+    id: &str,
+    groupbit: u32,
+    style: &str,
+) -> CmdResult<FrontFix> {
+    let rate = style == "insert/rate/region";
+    const PACK: [&str; 16] = [
+        "seed",
+        "distributiontemplate",
+        "verbose",
+        "maxattempt",
+        "insert_every",
+        "overlapcheck",
+        "all_in",
+        "random_distribute",
+        "vel",
+        "omega",
+        "region",
+        "volumefraction_region",
+        "particles_in_region",
+        "mass_in_region",
+        "ntry_mc",
+        "start",
+    ];
+    const RATE: [&str; 18] = [
+        "seed",
+        "distributiontemplate",
+        "verbose",
+        "maxattempt",
+        "insert_every",
+        "overlapcheck",
+        "all_in",
+        "random_distribute",
+        "vel",
+        "omega",
+        "region",
+        "nparticles",
+        "mass",
+        "particlerate",
+        "massrate",
+        "ntry_mc",
+        "start",
+        "compress_tags",
+    ];
+    let valid: &[&'static str] = if rate { &RATE } else { &PACK };
+    a.keyword("first keyword (LIGGGHTS requires 'seed' first)", &["seed"])?;
+    let seed = a.u64("seed")?;
+    let mut dist = None;
+    let (mut region, mut target, mut every, mut start) = (None, None, None, None);
+    let (mut overlap, mut all_in, mut maxattempt, mut verbose) = (true, false, 50usize, true);
+    let mut vel = VelocityLaw::Constant(DVec3::ZERO);
+    let mut omega = DVec3::ZERO;
+    let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
+    let mut every_once = false;
+    while !a.is_done() {
+        let k = a.keyword(&format!("{style} keyword"), valid)?;
+        match k {
+            "distributiontemplate" => {
+                let d = a.word("distribution template ID")?;
+                dist = Some(sim.distributions.get(d).cloned().ok_or_else(|| {
+                    let names: Vec<&str> = sim.distributions.keys().map(|s| s.as_str()).collect();
+                    a.error_prev(
+                        format!("no particle distribution '{d}'"),
+                        Some(suggest(d, &names)),
+                    )
+                })?);
+            }
+            "verbose" => verbose = a.yes_no("verbose")?,
+            "maxattempt" => maxattempt = a.count("maxattempt")? as usize,
+            "insert_every" => {
+                if a.peek() == Some("once") && !rate {
+                    a.seek(a.pos() + 1);
+                    every = None;
+                    every_once = true;
+                } else {
+                    every = Some(a.count("insert_every (steps, or 'once')")?);
+                }
+            }
+            "overlapcheck" => overlap = a.yes_no("overlapcheck")?,
+            "all_in" => all_in = a.yes_no("all_in")?,
+            "random_distribute" => {
+                a.keyword("random_distribute", &["exact", "uncorrelated"])?;
+            }
+            "compress_tags" => {
+                a.yes_no("compress_tags")?;
+            }
+            "vel" => {
+                vel = match a.keyword(
+                    "velocity distribution",
+                    &["constant", "uniform", "gaussian"],
+                )? {
+                    "constant" => VelocityLaw::Constant(a.vec3("velocity")?),
+                    "uniform" => {
+                        VelocityLaw::Uniform(a.vec3("mean velocity")?, a.vec3("velocity spread")?)
+                    }
+                    _ => VelocityLaw::Gaussian(a.vec3("mean velocity")?, a.vec3("velocity sigma")?),
+                }
+            }
+            "omega" => {
+                a.keyword("omega distribution", &["constant"])?;
+                omega = a.vec3("omega")?;
+            }
+            "region" => region = Some(sim.region(a)?),
+            "volumefraction_region" => {
+                let f = a.f64("volume fraction")?;
+                if !(f > 0.0 && f < 1.0) {
+                    return Err(
+                        a.error_prev(format!("volume fraction must be in (0, 1), got {f}"), None)
+                    );
+                }
+                target = Some(PackTarget::VolumeFraction(f));
+            }
+            "particles_in_region" => target = Some(PackTarget::Count(a.u64("particle count")?)),
+            "mass_in_region" => target = Some(PackTarget::Mass(a.positive("mass")?)),
+            "ntry_mc" => {
+                a.count("ntry_mc")?;
+            }
+            "start" => start = Some(a.u64("start step")?),
+            "nparticles" => {
+                if a.peek() == Some("INF") {
+                    a.seek(a.pos() + 1);
+                    nparticles = Some(None);
+                } else {
+                    nparticles = Some(Some(a.count("nparticles")?));
+                }
+            }
+            "mass" => massmax = Some(a.positive("mass to insert")?),
+            "particlerate" => prate = Some(a.positive("particle rate")?),
+            "massrate" => mrate = Some(a.positive("mass rate")?),
+            _ => unreachable!(),
+        }
+    }
+    let dist =
+        dist.ok_or_else(|| a.error_cmd(format!("{style} needs 'distributiontemplate ID'"), None))?;
+    let region = region.ok_or_else(|| a.error_cmd(format!("{style} needs 'region ID'"), None))?;
+    sim.world_ref(a)?;
+    let dt = sim.pending.dt;
+    let (target, rate_state) = if rate {
+        let every =
+            every.ok_or_else(|| a.error_cmd("insert/rate/region needs 'insert_every N'", None))?;
+        let limit = match (nparticles, massmax) {
+            (Some(n), None) => n,
+            (None, Some(m)) => Some((m / dist.mean_particle_mass()).round() as u64),
+            (None, None) => {
+                return Err(a.error_cmd(
+                    "insert/rate/region needs 'nparticles N' (or INF) or 'mass M'",
+                    None,
+                ))
+            }
+            (Some(_), Some(_)) => {
+                return Err(a.error_cmd("give either nparticles or mass, not both", None))
+            }
+        };
+        let per_step = match (prate, mrate) {
+            (Some(r), None) => r * dt,
+            (None, Some(m)) => m * dt / dist.mean_particle_mass(),
+            _ => {
+                return Err(a.error_cmd(
+                    "insert/rate/region needs exactly one of 'particlerate' or 'massrate'",
+                    None,
+                ))
+            }
+        };
+        (
+            PackTarget::Count(0),
+            Some(RateState {
+                limit,
+                per_insertion: per_step * every as f64,
+                carry: 0.0,
+            }),
+        )
+    } else {
+        let t = target.ok_or_else(|| {
+            a.error_cmd(
+                "insert/pack needs a target",
+                Some(format!(
+                    "add {}",
+                    one_of(&[
+                        "volumefraction_region f",
+                        "particles_in_region N",
+                        "mass_in_region m"
+                    ])
+                )),
+            )
+        })?;
+        if every.is_none() && !every_once {
+            return Err(a.error_cmd(
+                "insert/pack needs 'insert_every once' or 'insert_every N'",
+                None,
+            ));
+        }
+        (t, None)
+    };
+    let mut pack = InsertPack::new(id, seed, groupbit, region, dist, target, every)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    pack.overlap_check = overlap;
+    pack.all_in = all_in;
+    pack.max_attempt = maxattempt;
+    pack.velocity = vel;
+    pack.omega = omega;
+    pack.start = start;
+    Ok(FrontFix::Insert(Box::new(Inserter {
+        pack,
+        total: 0,
+        total_mass: 0.0,
+        rate: rate_state,
+        verbose,
+    })))
+}
+
+fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
+    let mut model = models::parse_types(a)?;
+    let style_at = a.pos();
+    match a.peek() {
+        Some("primitive") => a.seek(a.pos() + 1),
+        Some("mesh") => {
+            a.seek(a.pos() + 1);
+            return Err(a.error_prev(
+                "mesh walls are not supported by this rdem release yet",
+                Some(
+                    "use 'primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ...'"
+                        .into(),
+                ),
+            ));
+        }
+        Some(_) => return Err(models::unknown(a, style_at, &["primitive", "mesh"])),
+        None => {
+            return Err(a.error_at(
+                a.pos(),
+                "wall/gran: missing wall style",
+                Some("add 'primitive type T zplane POS' (or another primitive)".into()),
+            ))
+        }
+    }
+    a.keyword("primitive keyword", &["type"])?;
+    let wall_type = a.count("wall atom type")? as u32;
+    let shape = match a.keyword(
+        "primitive wall",
+        &[
+            "xplane",
+            "yplane",
+            "zplane",
+            "xcylinder",
+            "ycylinder",
+            "zcylinder",
+        ],
+    )? {
+        p @ ("xplane" | "yplane" | "zplane") => WallShape::Plane {
+            axis: (p.as_bytes()[0] - b'x') as usize,
+            pos: a.f64("plane position")?,
+        },
+        c => WallShape::Cylinder {
+            axis: (c.as_bytes()[0] - b'x') as usize,
+            radius: a.positive("cylinder radius")?,
+            c1: a.f64("axis coordinate c1")?,
+            c2: a.f64("axis coordinate c2")?,
+        },
+    };
+    let mut velocity = DVec3::ZERO;
+    while let Some(w) = a.peek() {
+        if models::at_switch(a) {
+            models::parse_switches(a, &mut model)?;
+            break;
+        }
+        match w {
+            "shear" => {
+                a.seek(a.pos() + 1);
+                let d = a.keyword("shear direction", &["x", "y", "z"])?;
+                let v = a.f64("shear velocity")?;
+                velocity[(d.as_bytes()[0] - b'x') as usize] = v;
+            }
+            "store_force" | "store_force_contact" => {
+                a.seek(a.pos() + 1);
+                if a.yes_no(w)? {
+                    return Err(a.error_prev(format!("{w} yes is not supported yet"), None));
+                }
+            }
+            _ => return Err(models::unknown(a, a.pos(), &["shear", "store_force"])),
+        }
+    }
+    let mut wall = PrimitiveWall::new(id, model, wall_type, shape)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    wall.velocity = velocity;
+    Ok(wall)
+}
+
+fn adapt(a: &mut Args) -> CmdResult<FrontFix> {
+    let every = a.count("N (adapt every N steps)")?;
+    match a.keyword("adapt attribute", &["atom", "pair"])? {
+        "atom" => {}
+        _ => return Err(a.error_prev(
+            "fix adapt pair is not supported (granular pair styles have no per-pair parameters)",
+            Some("use 'atom diameter v_name'".into()),
+        )),
+    }
+    a.keyword("atom attribute", &["diameter"])?;
+    let v = a.word("variable (v_name)")?;
+    let Some(var) = v.strip_prefix("v_") else {
+        return Err(a.error_prev(format!("expected v_name, got '{v}'"), None));
+    };
+    let var = var.to_string();
+    let mut reset = false;
+    while !a.is_done() {
+        match a.keyword("adapt keyword", &["reset", "scale"])? {
+            "reset" => reset = a.yes_no("reset")?,
+            _ => {
+                if a.yes_no("scale")? {
+                    return Err(a.error_prev("scale yes applies to pair parameters only", None));
+                }
+            }
+        }
+    }
+    Ok(FrontFix::Adapt(Adapt {
+        every,
+        var,
+        reset,
+        saved: None,
+    }))
+}
+
+fn check_timestep(a: &mut Args) -> CmdResult<FrontFix> {
+    let every = a.count("nevery")?;
+    let fraction_r = a.positive("fraction of the Rayleigh time")?;
+    let fraction_h = a.positive("fraction of the Hertz time")?;
+    let (mut warn, mut error, mut vmax) = (true, false, 0.0);
+    while !a.is_done() {
+        match a.keyword("check/timestep/gran keyword", &["warn", "error", "vmax"])? {
+            "warn" => warn = a.yes_no("warn")?,
+            "error" => error = a.yes_no("error")?,
+            _ => vmax = a.non_negative("vmax")?,
+        }
+    }
+    Ok(FrontFix::CheckTimestep(CheckTimestep {
+        every,
+        fraction_r,
+        fraction_h,
+        warn,
+        error,
+        vmax,
+        values: [0.0; 2],
+    }))
+}
+
+fn ave_time(sim: &mut Sim, a: &mut Args) -> CmdResult<FrontFix> {
+    let nevery = a.count("Nevery")?;
+    let nrepeat = a.count("Nrepeat")?;
+    let nfreq = a.count("Nfreq")?;
+    if nfreq % nevery != 0 || (nrepeat - 1) * nevery >= nfreq + nevery {
+        return Err(a.error_at(
+            a.pos() - 1,
+            format!("Nfreq must be a multiple of Nevery and Nrepeat*Nevery <= Nfreq (got {nevery} {nrepeat} {nfreq})"),
+            None,
+        ));
+    }
+    let mut inputs = Vec::new();
+    while let Some(w) = a.peek() {
+        if !(w.starts_with("c_") || w.starts_with("f_") || w.starts_with("v_")) {
+            break;
+        }
+        let Some((kind, id, _)) = crate::thermo::split_reference(w) else {
+            return Err(a.error_at(a.pos(), format!("bad value '{w}'"), None));
+        };
+        let known = match kind {
+            'c' => sim.compute_index(id).is_some(),
+            'f' => sim.fix_index(id).is_some(),
+            _ => sim.vars.get(id).is_some(),
+        };
+        if !known {
+            return Err(a.error_at(
+                a.pos(),
+                format!(
+                    "'{w}': no such {}",
+                    match kind {
+                        'c' => "compute",
+                        'f' => "fix",
+                        _ => "variable",
+                    }
+                ),
+                None,
+            ));
+        }
+        inputs.push(w.to_string());
+        a.seek(a.pos() + 1);
+    }
+    if inputs.is_empty() {
+        return Err(a.error_at(
+            a.pos(),
+            "ave/time needs at least one value (c_ID, c_ID[i], f_ID[i], v_name)",
+            None,
+        ));
+    }
+    let (mut running, mut file) = (false, None);
+    while !a.is_done() {
+        match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
+            "file" => {
+                let f = a.word("file name")?;
+                file = Some(std::io::BufWriter::new(std::fs::File::create(f).map_err(
+                    |e| a.error_prev(format!("cannot create '{f}': {e}"), None),
+                )?));
+            }
+            "ave" => running = a.keyword("ave", &["one", "running"])? == "running",
+            _ => {
+                a.keyword("mode", &["scalar"])?;
+            }
+        }
+    }
+    let n = inputs.len();
+    let mut ave = AveTime {
+        nevery,
+        nrepeat,
+        nfreq,
+        inputs,
+        running,
+        file,
+        sum: vec![0.0; n],
+        count: 0,
+        values: vec![0.0; n],
+        running_sum: vec![0.0; n],
+        windows: 0,
+    };
+    if let Some(f) = &mut ave.file {
+        use std::io::Write;
+        let id = a.words()[1].text.clone();
+        let _ = writeln!(f, "# Time-averaged data for fix {id}");
+        let _ = writeln!(f, "# TimeStep {}", ave.inputs.join(" "));
+    }
+    Ok(FrontFix::AveTime(Box::new(ave)))
+}
+
+/// Rayleigh and Hertz times of the current state (LIGGGHTS' check/timestep/gran
+/// estimates): the smallest Rayleigh time π r √(ρ/G)/(0.1631 ν + 0.8766) over particles,
+/// and the Hertz contact time 2.87 (m*²/(R* E*² v))^(1/5) of the smallest particle pair
+/// hitting at twice the largest speed (at least `vmax`).
+pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
+    let w = sim.world.as_ref()?;
+    let p = &w.particles;
+    let e = sim.properties.get("youngsModulus")?;
+    let nu = sim.properties.get("poissonsRatio")?;
+    let (mut t_r, mut t_h) = (f64::MAX, f64::MAX);
+    let mut v: f64 = 0.0;
+    for i in 0..p.nlocal() {
+        v = v.max(p.v[i].length());
+    }
+    let v = w.comm.max(v).max(vmax);
+    for i in 0..p.nlocal() {
+        let t = p.ty[i] as usize - 1;
+        let (ei, ni) = (*e.values.get(t)?, *nu.values.get(t)?);
+        let g = ei / (2.0 * (1.0 + ni));
+        let r = p.radius[i];
+        t_r =
+            t_r.min(std::f64::consts::PI * r * (p.density[i] / g).sqrt() / (0.1631 * ni + 0.8766));
+        if v > 0.0 {
+            let e_star = ei / (2.0 * (1.0 - ni * ni));
+            let m_star = p.rmass[i] / 2.0;
+            let r_star = r / 2.0;
+            t_h =
+                t_h.min(2.87 * (m_star * m_star / (r_star * e_star * e_star * 2.0 * v)).powf(0.2));
+        }
+    }
+    Some((w.comm.min(t_r), w.comm.min(t_h)))
+}
+
+/// The LIGGGHTS report line of an insertion.
+pub fn insertion_report(
+    id: &str,
+    n: u64,
+    mass: f64,
+    step: u64,
+    total: u64,
+    total_mass: f64,
+) -> String {
+    format!(
+        "INFO: Particle insertion {id}: inserted {n} particle templates (mass {}) at step {step}\n - a total of {total} particle templates (mass {}) inserted so far.",
+        format_e(mass),
+        format_e(total_mass)
+    )
+}
+
+/// C's `%e`.
+pub fn format_e(v: f64) -> String {
+    let s = format!("{v:.6e}");
+    // Rust writes 1.5e-1; C writes 1.500000e-01.
+    match s.split_once('e') {
+        Some((m, e)) => {
+            let (sign, digits) = match e.strip_prefix('-') {
+                Some(d) => ('-', d),
+                None => ('+', e),
+            };
+            format!("{m}e{sign}{digits:0>2}")
+        }
+        None => s,
+    }
+}
+
+/// Helper for numbers in messages.
+pub fn g(v: f64) -> String {
+    format_g(v, 6)
+}

@@ -1,0 +1,383 @@
+//! The script driver: reads files (and `include`d ones) command by command, substitutes
+//! variables, echoes, handles flow control (`label`, `jump`, `next`, `if`, `include`),
+//! `variable`, `print`, `log`, `echo`, and hands every other command to the command table.
+//! An error stops the script and is reported with its file, line and a caret.
+
+use std::sync::Arc;
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::commands;
+use crate::context;
+use crate::diagnostic::{ScriptError, ScriptReport};
+use crate::lexer::{self, Command, Reference};
+use crate::output::Echo;
+use crate::sim::Sim;
+
+/// Commands handled by the driver.
+pub const FLOW_COMMANDS: [&str; 12] = [
+    "include", "label", "jump", "next", "if", "variable", "print", "log", "echo", "clear", "quit",
+    "shell",
+];
+
+struct Frame {
+    name: String,
+    src: Arc<str>,
+    cmds: Vec<Command>,
+    pos: usize,
+}
+
+/// A script run: the simulation state and the stack of open script files.
+pub struct Interpreter {
+    /// The simulation.
+    pub sim: Sim,
+    frames: Vec<Frame>,
+    /// Label being searched by `jump` (commands are skipped until it).
+    skip_to: Option<String>,
+    /// Set by `next` when a variable is exhausted: the next `jump` is skipped.
+    skip_jump: bool,
+    quit: bool,
+    /// An error already reported in an included file, passed up through `include`.
+    inner_report: Option<Box<ScriptReport>>,
+}
+
+/// Every command name rdem knows (for suggestions).
+pub fn all_commands() -> Vec<&'static str> {
+    let mut v: Vec<&str> = commands::SIM_COMMANDS.to_vec();
+    v.extend_from_slice(&FLOW_COMMANDS);
+    v
+}
+
+impl Interpreter {
+    /// An interpreter over `sim`.
+    pub fn new(sim: Sim) -> Self {
+        Self {
+            sim,
+            frames: Vec::new(),
+            skip_to: None,
+            skip_jump: false,
+            quit: false,
+            inner_report: None,
+        }
+    }
+
+    /// Runs the script `src` named `name` (a file name for messages).
+    pub fn run_source(&mut self, name: &str, src: &str) -> Result<(), Box<ScriptReport>> {
+        let src: Arc<str> = src.into();
+        self.frames.push(Frame {
+            name: name.to_string(),
+            cmds: lexer::commands(&src),
+            src,
+            pos: 0,
+        });
+        let depth = self.frames.len();
+        let r = self.drive(depth);
+        self.sim.out.flush();
+        r
+    }
+
+    /// Runs the script file `path`.
+    pub fn run_file(&mut self, path: &str) -> Result<(), Box<ScriptReport>> {
+        match std::fs::read_to_string(path) {
+            Ok(s) => self.run_source(path, &s),
+            Err(e) => {
+                let src: Arc<str> = "".into();
+                Err(Box::new(
+                    ScriptError {
+                        message: format!("cannot open input script '{path}': {e}"),
+                        span: 0..0,
+                        help: None,
+                    }
+                    .in_file(path, src),
+                ))
+            }
+        }
+    }
+
+    /// Executes frames until the stack is back below `depth`.
+    fn drive(&mut self, depth: usize) -> Result<(), Box<ScriptReport>> {
+        while self.frames.len() >= depth && !self.quit {
+            let top = self.frames.len() - 1;
+            let f = &mut self.frames[top];
+            if f.pos >= f.cmds.len() {
+                self.frames.pop();
+                continue;
+            }
+            let cmd = f.cmds[f.pos].clone();
+            f.pos += 1;
+            if let Err(e) = self.execute(&cmd) {
+                if let Some(inner) = self.inner_report.take() {
+                    self.frames.truncate(depth - 1);
+                    return Err(inner);
+                }
+                // The error belongs to the file the command came from (the top frame
+                // when it ran; an `include` may have pushed more frames meanwhile).
+                let f = &self.frames[top.min(self.frames.len() - 1)];
+                let report = e.in_file(&f.name, f.src.clone());
+                self.frames.truncate(depth - 1);
+                return Err(Box::new(report));
+            }
+        }
+        Ok(())
+    }
+
+    /// Executes one command (substitution, echo, dispatch).
+    fn execute(&mut self, raw: &Command) -> CmdResult {
+        if let Some(label) = &self.skip_to {
+            let w = lexer::words(raw)?;
+            if w.len() >= 2 && w[0].text == "label" && &w[1].text == label {
+                self.skip_to = None;
+            }
+            return Ok(());
+        }
+        let sim = &self.sim;
+        let cmd = lexer::substitute(raw, |r| match r {
+            Reference::Variable(name) => context::variable_text(sim, name),
+            Reference::Immediate(e) => context::eval_equal(sim, e)
+                .map(|v| crate::variables::format_g(v, 15))
+                .map_err(|e| e.message),
+        })?;
+        let words = lexer::words(&cmd)?;
+        if words.is_empty() {
+            return Ok(());
+        }
+        self.sim.out.echo_command(&cmd.text);
+        let mut a = Args::new(&cmd, &words);
+        match a.name() {
+            "include" => {
+                let file = a.word("file name")?.to_string();
+                a.done()?;
+                let src = std::fs::read_to_string(&file)
+                    .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
+                let src: Arc<str> = src.into();
+                self.frames.push(Frame {
+                    name: file,
+                    cmds: lexer::commands(&src),
+                    src,
+                    pos: 0,
+                });
+                let depth = self.frames.len();
+                // Run the included file to its end; its errors are reported in it.
+                if let Err(report) = self.drive(depth) {
+                    self.inner_report = Some(report);
+                    return Err(a.error_at(1, "error in included file", None));
+                }
+            }
+            "label" => {
+                a.word("label ID")?;
+                a.done()?;
+            }
+            "jump" => {
+                let file = a.word("file name or SELF")?.to_string();
+                let label = a.peek().map(String::from);
+                if label.is_some() {
+                    a.seek(a.pos() + 1);
+                }
+                a.done()?;
+                if self.skip_jump {
+                    self.skip_jump = false;
+                    return Ok(());
+                }
+                let top = self.frames.len() - 1;
+                if file == "SELF" || file == self.frames[top].name {
+                    self.frames[top].pos = 0;
+                } else {
+                    let src = std::fs::read_to_string(&file)
+                        .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
+                    let src: Arc<str> = src.into();
+                    self.frames[top] = Frame {
+                        name: file,
+                        cmds: lexer::commands(&src),
+                        src,
+                        pos: 0,
+                    };
+                }
+                self.skip_to = label;
+            }
+            "next" => {
+                let mut names = Vec::new();
+                while !a.is_done() {
+                    names.push(a.word("variable name")?.to_string());
+                }
+                if names.is_empty() {
+                    return Err(a.error_at(1, "next: missing variable name", None));
+                }
+                let exhausted = self
+                    .sim
+                    .vars
+                    .next(&names)
+                    .map_err(|m| a.error_at(1, m, None))?;
+                if exhausted {
+                    self.skip_jump = true;
+                }
+            }
+            "variable" => {
+                let name = a.word("variable name")?.to_string();
+                let style = a.word("variable style")?.to_string();
+                let rest: Vec<String> = words[3..].iter().map(|w| w.text.clone()).collect();
+                self.sim.vars.define(&name, &style, &rest).map_err(|e| {
+                    let k = if e.arg == usize::MAX { 1 } else { e.arg + 2 };
+                    let help = e.help.clone().or_else(|| {
+                        (e.arg == 0).then(|| suggest(&style, &crate::variables::STYLES))
+                    });
+                    a.error_at(k.min(words.len()), e.message, help)
+                })?;
+            }
+            "print" => self.print(&mut a, &cmd)?,
+            "log" => {
+                let file = a.word("log file name or none")?.to_string();
+                let mut append = false;
+                while !a.is_done() {
+                    a.keyword("log keyword", &["append"])?;
+                    append = true;
+                }
+                let path = (file != "none").then_some(file.as_str());
+                self.sim.out.set_log(path, append).map_err(|e| {
+                    a.error_at(1, format!("cannot open log file '{file}': {e}"), None)
+                })?;
+            }
+            "echo" => {
+                self.sim.out.echo =
+                    match a.keyword("echo setting", &["none", "screen", "log", "both"])? {
+                        "none" => Echo::None,
+                        "screen" => Echo::Screen,
+                        "log" => Echo::Log,
+                        _ => Echo::Both,
+                    };
+                a.done()?;
+            }
+            "if" => self.if_command(&mut a, &cmd)?,
+            "quit" => self.quit = true,
+            "clear" | "shell" => {
+                return Err(a.error_cmd(format!("{} is not supported by rdem", a.name()), None))
+            }
+            name => {
+                let name = name.to_string();
+                if !commands::execute(&mut self.sim, &mut a)? {
+                    return Err(a.error_cmd(
+                        format!("unknown command '{name}'"),
+                        Some(commands::unknown_command_help(&name, &all_commands())),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn print(&mut self, a: &mut Args, cmd: &Command) -> CmdResult {
+        let k = a.pos();
+        a.word("text")?;
+        let w = &a.words()[k];
+        let text = self.resubstitute(cmd, w)?;
+        let (mut file, mut screen) = (None, true);
+        while !a.is_done() {
+            match a.keyword("print keyword", &["file", "append", "screen"])? {
+                "file" | "append" => {
+                    let append = a.words()[a.pos() - 1].text == "append";
+                    let f = a.word("file name")?.to_string();
+                    file = Some((f, append));
+                }
+                _ => screen = a.yes_no("screen")?,
+            }
+        }
+        if screen {
+            self.sim.out.line(&text);
+        } else {
+            self.sim.out.log_line(&text);
+        }
+        if let Some((f, append)) = file {
+            use std::io::Write;
+            let mut h = std::fs::OpenOptions::new()
+                .create(true)
+                .write(true)
+                .append(append)
+                .truncate(!append)
+                .open(&f)
+                .map_err(|e| a.error_prev(format!("cannot open '{f}': {e}"), None))?;
+            writeln!(h, "{text}")
+                .map_err(|e| a.error_prev(format!("cannot write '{f}': {e}"), None))?;
+        }
+        Ok(())
+    }
+
+    /// Substitutes variables in a quoted word (quotes stop substitution when the command
+    /// is read; `print` and `if` substitute their text when they run, as LIGGGHTS).
+    fn resubstitute(&self, cmd: &Command, w: &lexer::Word) -> CmdResult<String> {
+        let start = cmd
+            .origin
+            .iter()
+            .position(|&o| o >= w.span.start)
+            .unwrap_or(0);
+        let origin: Vec<usize> = (0..w.text.len())
+            .map(|k| cmd.origin[(start + k).min(cmd.origin.len() - 1)])
+            .collect();
+        let inner = Command {
+            text: w.text.clone(),
+            origin,
+            line: cmd.line,
+        };
+        let sim = &self.sim;
+        let out = lexer::substitute(&inner, |r| match r {
+            Reference::Variable(name) => context::variable_text(sim, name),
+            Reference::Immediate(e) => context::eval_equal(sim, e)
+                .map(|v| crate::variables::format_g(v, 15))
+                .map_err(|e| e.message),
+        })?;
+        Ok(out.text)
+    }
+
+    fn if_command(&mut self, a: &mut Args, cmd: &Command) -> CmdResult {
+        // if "cond" then "c1" "c2" ... [elif "cond" "c" ...] [else "c" ...]
+        let words = a.words().to_vec();
+        let mut k = 1;
+        loop {
+            let cond_word = words
+                .get(k)
+                .ok_or_else(|| a.error_at(k, "if: missing condition", None))?;
+            let cond = self.resubstitute(cmd, cond_word)?;
+            let value = context::eval_equal(&self.sim, &cond).map_err(|e| {
+                a.error_at(k, format!("if condition '{cond}': {}", e.message), None)
+            })?;
+            k += 1;
+            if k == 2 {
+                match words.get(k).map(|w| w.text.as_str()) {
+                    Some("then") => k += 1,
+                    _ => {
+                        return Err(a.error_at(k, "if: expected 'then' after the condition", None))
+                    }
+                }
+            }
+            let start = k;
+            while k < words.len() && words[k].text != "elif" && words[k].text != "else" {
+                k += 1;
+            }
+            if value != 0.0 {
+                return self.run_inline(cmd, &words[start..k]);
+            }
+            match words.get(k).map(|w| w.text.as_str()) {
+                Some("elif") => k += 1,
+                Some("else") => return self.run_inline(cmd, &words[k + 1..]),
+                _ => return Ok(()),
+            }
+        }
+    }
+
+    fn run_inline(&mut self, cmd: &Command, ws: &[lexer::Word]) -> CmdResult {
+        for w in ws {
+            let start = cmd
+                .origin
+                .iter()
+                .position(|&o| o >= w.span.start)
+                .unwrap_or(0);
+            let origin: Vec<usize> = (0..w.text.len())
+                .map(|k| cmd.origin[(start + k + 1).min(cmd.origin.len() - 1)])
+                .collect();
+            let inner = Command {
+                text: w.text.clone(),
+                origin,
+                line: cmd.line,
+            };
+            self.execute(&inner)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,104 @@
+//! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`
+//! whose `scale` is the lattice constant in metres, with an `origin` shift. `units
+//! lattice` in `region` and `create_atoms` multiplies by the lattice spacings, which for
+//! these unrotated cubic lattices all equal the constant.
+
+use glam::DVec3;
+
+/// A cubic lattice.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lattice {
+    /// Style word.
+    pub style: String,
+    /// Lattice constant (m).
+    pub a: f64,
+    /// Basis atoms in unit-cell fractions.
+    pub basis: Vec<DVec3>,
+    /// Origin shift in unit-cell fractions.
+    pub origin: DVec3,
+}
+
+/// Valid lattice styles.
+pub const STYLES: [&str; 5] = ["none", "sc", "bcc", "fcc", "diamond"];
+
+impl Lattice {
+    /// A lattice of `style` with constant `a` (`None` for style `none`).
+    pub fn new(style: &str, a: f64) -> Option<Self> {
+        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        let basis = match style {
+            "sc" => vec![v(0.0, 0.0, 0.0)],
+            "bcc" => vec![v(0.0, 0.0, 0.0), v(0.5, 0.5, 0.5)],
+            "fcc" => vec![
+                v(0.0, 0.0, 0.0),
+                v(0.5, 0.5, 0.0),
+                v(0.5, 0.0, 0.5),
+                v(0.0, 0.5, 0.5),
+            ],
+            "diamond" => vec![
+                v(0.0, 0.0, 0.0),
+                v(0.0, 0.5, 0.5),
+                v(0.5, 0.0, 0.5),
+                v(0.5, 0.5, 0.0),
+                v(0.25, 0.25, 0.25),
+                v(0.25, 0.75, 0.75),
+                v(0.75, 0.25, 0.75),
+                v(0.75, 0.75, 0.25),
+            ],
+            _ => return None,
+        };
+        Some(Self {
+            style: style.to_string(),
+            a,
+            basis,
+            origin: DVec3::ZERO,
+        })
+    }
+
+    /// Lattice spacing per axis (the `units lattice` scale).
+    pub fn spacing(&self) -> DVec3 {
+        DVec3::splat(self.a)
+    }
+
+    /// Every lattice point inside the box `lo..hi` (points on the upper faces excluded,
+    /// as LAMMPS does for periodic boxes), in a fixed order (z, y, x cells, then basis).
+    pub fn points(&self, lo: DVec3, hi: DVec3) -> Vec<DVec3> {
+        let a = self.a;
+        let cell_lo = ((lo / a) - self.origin).floor() - DVec3::ONE;
+        let cell_hi = ((hi / a) - self.origin).ceil() + DVec3::ONE;
+        let mut out = Vec::new();
+        let mut k = cell_lo.z;
+        while k <= cell_hi.z {
+            let mut j = cell_lo.y;
+            while j <= cell_hi.y {
+                let mut i = cell_lo.x;
+                while i <= cell_hi.x {
+                    for b in &self.basis {
+                        let x = (DVec3::new(i, j, k) + *b + self.origin) * a;
+                        if (0..3).all(|d| x[d] >= lo[d] && x[d] < hi[d]) {
+                            out.push(x);
+                        }
+                    }
+                    i += 1.0;
+                }
+                j += 1.0;
+            }
+            k += 1.0;
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn points_per_cell() {
+        let lo = DVec3::ZERO;
+        let hi = DVec3::splat(0.03);
+        assert_eq!(Lattice::new("sc", 0.01).unwrap().points(lo, hi).len(), 27);
+        assert_eq!(Lattice::new("fcc", 0.01).unwrap().points(lo, hi).len(), 108);
+        assert_eq!(Lattice::new("bcc", 0.01).unwrap().points(lo, hi).len(), 54);
+        assert!(Lattice::new("hex", 1.0).is_none());
+    }
+}

@@ -1,0 +1,135 @@
+//! Where messages go: the screen (standard output, a file, or nowhere) and the log file,
+//! as LIGGGHTS' `-screen`, `-log` and `log` options choose, plus the `echo` setting.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+
+/// Which sinks echo each input command (`echo none|screen|log|both`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Echo {
+    /// No echo.
+    None,
+    /// Screen only.
+    Screen,
+    /// Log only (LIGGGHTS' default).
+    #[default]
+    Log,
+    /// Both.
+    Both,
+}
+
+/// Screen and log sinks.
+pub struct Output {
+    screen: Option<Box<dyn Write + Send>>,
+    log: Option<BufWriter<File>>,
+    /// Command echo setting.
+    pub echo: Echo,
+    /// Everything written to the screen sink is also kept here when set (tests).
+    pub captured: Option<String>,
+}
+
+impl Default for Output {
+    fn default() -> Self {
+        Self::stdout()
+    }
+}
+
+impl Output {
+    /// Screen on standard output, no log.
+    pub fn stdout() -> Self {
+        Self {
+            screen: Some(Box::new(std::io::stdout())),
+            log: None,
+            echo: Echo::Log,
+            captured: None,
+        }
+    }
+
+    /// No screen, no log; the screen text is captured in [`Output::captured`].
+    pub fn captured() -> Self {
+        Self {
+            screen: None,
+            log: None,
+            echo: Echo::Log,
+            captured: Some(String::new()),
+        }
+    }
+
+    /// Replaces the screen sink (`None`: no screen output).
+    pub fn set_screen(&mut self, screen: Option<Box<dyn Write + Send>>) {
+        self.screen = screen;
+    }
+
+    /// Opens (or appends to) the log file; `None` closes it.
+    pub fn set_log(&mut self, path: Option<&str>, append: bool) -> std::io::Result<()> {
+        if let Some(l) = &mut self.log {
+            l.flush()?;
+        }
+        self.log = match path {
+            None => None,
+            Some(p) => Some(BufWriter::new(
+                std::fs::OpenOptions::new()
+                    .create(true)
+                    .write(true)
+                    .append(append)
+                    .truncate(!append)
+                    .open(p)?,
+            )),
+        };
+        Ok(())
+    }
+
+    /// Writes a line (a newline is added) to the screen and the log.
+    pub fn line(&mut self, text: &str) {
+        self.screen_line(text);
+        self.log_line(text);
+    }
+
+    /// Writes a line to the screen only.
+    pub fn screen_line(&mut self, text: &str) {
+        if let Some(s) = &mut self.screen {
+            let _ = writeln!(s, "{text}");
+        }
+        if let Some(c) = &mut self.captured {
+            c.push_str(text);
+            c.push('\n');
+        }
+    }
+
+    /// Writes a line to the log only.
+    pub fn log_line(&mut self, text: &str) {
+        if let Some(l) = &mut self.log {
+            let _ = writeln!(l, "{text}");
+        }
+    }
+
+    /// A warning, LIGGGHTS style (`WARNING: ...`), on screen and in the log.
+    pub fn warning(&mut self, text: &str) {
+        self.line(&format!("WARNING: {text}"));
+    }
+
+    /// Echoes an input command as the echo setting says.
+    pub fn echo_command(&mut self, text: &str) {
+        match self.echo {
+            Echo::None => {}
+            Echo::Screen => self.screen_line(text),
+            Echo::Log => self.log_line(text),
+            Echo::Both => self.line(text),
+        }
+    }
+
+    /// True when the screen is the terminal's standard output (for progress lines).
+    pub fn has_screen(&self) -> bool {
+        self.screen.is_some()
+    }
+
+    /// Flushes both sinks.
+    pub fn flush(&mut self) {
+        if let Some(s) = &mut self.screen {
+            let _ = s.flush();
+        }
+        if let Some(l) = &mut self.log {
+            let _ = l.flush();
+        }
+    }
+}

@@ -1,0 +1,451 @@
+//! `run N [upto]`: set-up, the steps with the front-end hooks around the engine's
+//! [`World::advance`], thermo and dump output, and LIGGGHTS' end-of-run report
+//! (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
+
+use std::time::Instant;
+
+use rdem::timers::Stage;
+use rdem::Materials;
+
+use crate::args::{Args, CmdResult};
+use crate::context;
+use crate::fixes::{self, FrontFix};
+use crate::sim::Sim;
+use crate::thermo;
+
+/// `run N [upto]`.
+pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let n = a.u64("number of steps")?;
+    let mut upto = false;
+    while !a.is_done() {
+        match a.keyword(
+            "run keyword",
+            &["upto", "start", "stop", "pre", "post", "every"],
+        )? {
+            "upto" => upto = true,
+            k => {
+                return Err(a.error_prev(
+                    format!("run {k} is not supported yet"),
+                    Some("supported: 'run N' and 'run N upto'".into()),
+                ))
+            }
+        }
+    }
+    let step = sim.world_ref(a)?.step;
+    let nsteps = if upto {
+        if n < step {
+            return Err(a.error_at(
+                1,
+                format!("run {n} upto: the current step {step} is already beyond it"),
+                None,
+            ));
+        }
+        n - step
+    } else {
+        n
+    };
+    steps(sim, nsteps).map_err(|m| a.error_cmd(m, None))
+}
+
+/// Builds the engine's material table from the `fix property/global` values.
+pub fn materials(sim: &Sim) -> Result<Materials, String> {
+    let n = sim.ntypes;
+    let mut m = Materials {
+        ntypes: n,
+        ..Default::default()
+    };
+    for (name, p) in &sim.properties {
+        let slot = match name.as_str() {
+            "youngsModulus" => &mut m.youngs_modulus,
+            "poissonsRatio" => &mut m.poissons_ratio,
+            "coefficientRestitution" => &mut m.restitution,
+            "coefficientFriction" => &mut m.friction,
+            "coefficientRollingFriction" => &mut m.rolling_friction,
+            "coefficientRollingViscousDamping" => &mut m.rolling_viscous_damping,
+            "cohesionEnergyDensity" => &mut m.cohesion_energy_density,
+            "coefficientAdhesionStiffness" => &mut m.adhesion_stiffness,
+            "coefficientPlasticityDepth" => &mut m.plasticity_depth,
+            "coefficientMaxElasticStiffness" => &mut m.max_elastic_stiffness,
+            "characteristicVelocity" => {
+                m.characteristic_velocity = p.values.first().copied();
+                continue;
+            }
+            _ => continue,
+        };
+        let want = match p.style.as_str() {
+            "peratomtype" => n,
+            "peratomtypepair" => n * n,
+            _ => {
+                return Err(format!(
+                    "property {name} (fix {}) must be peratomtype or peratomtypepair, not {}",
+                    p.fix_id, p.style
+                ))
+            }
+        };
+        if p.values.len() != want {
+            return Err(format!(
+                "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {want} are needed",
+                p.fix_id,
+                p.values.len()
+            ));
+        }
+        *slot = p.values.clone();
+    }
+    Ok(m)
+}
+
+/// Runs `nsteps` steps with set-up, output and the end-of-run report.
+pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
+    let m = materials(sim)?;
+    {
+        let w = sim
+            .world
+            .as_mut()
+            .ok_or("run before the simulation box is defined")?;
+        if w.pair.is_some() && !sim.pair_coeff_set {
+            return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
+        }
+        w.materials = m;
+        w.neighbor.settings = sim.pending.neighbor;
+        w.sort = sim.pending.sort;
+        w.lost_policy = sim.pending.lost;
+        w.set_timestep(sim.pending.dt).map_err(|e| e.to_string())?;
+        w.timers.reset();
+    }
+    let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
+    sim.run_first = start_step;
+    sim.run_last = start_step + nsteps;
+    sim.run_started = Instant::now();
+    sim.thermo.last_printed = None;
+    let builds0 = sim
+        .world
+        .as_ref()
+        .map(|w| (w.neighbor.nbuilds, w.neighbor.ndangerous))
+        .unwrap_or((0, 0));
+    // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
+    adapt_all(sim, start_step, true)?;
+    sim.out.line("Setting up run ...");
+    let w = sim.world.as_mut().expect("checked");
+    w.setup().map_err(|e| e.to_string())?;
+    flush_world_warnings(sim);
+    let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
+    sim.out.line(&format!(
+        "Memory usage per processor = {} Mbytes",
+        crate::variables::format_g(mem, 4)
+    ));
+    sim.out.line(&thermo::header(sim));
+    thermo_row(sim)?;
+    crate::dump::write_due(sim, start_step, true)?;
+    let t0 = Instant::now();
+    let mut last_progress = Instant::now();
+    for k in 0..nsteps {
+        let step = start_step + k + 1;
+        insert_all(sim, step)?;
+        adapt_all(sim, step, false)?;
+        sim.world
+            .as_mut()
+            .expect("checked")
+            .advance()
+            .map_err(|e| e.to_string())?;
+        flush_world_warnings(sim);
+        end_of_step(sim, step)?;
+        let t_out = Instant::now();
+        let every = sim.thermo.every;
+        if (every > 0 && step % every == 0) || step == sim.run_last {
+            thermo_row(sim)?;
+        }
+        crate::dump::write_due(sim, step, false)?;
+        if let Some(w) = &mut sim.world {
+            w.timers.lap(Stage::Output, t_out);
+        }
+        if last_progress.elapsed().as_secs_f64() > 0.5 {
+            last_progress = Instant::now();
+            if let Some(p) = &mut sim.progress {
+                p(k + 1, nsteps);
+            }
+        }
+    }
+    if let Some(p) = &mut sim.progress {
+        p(nsteps, nsteps);
+    }
+    let loop_time = t0.elapsed().as_secs_f64();
+    report(sim, loop_time, nsteps, builds0);
+    reset_adapt(sim)?;
+    Ok(())
+}
+
+fn flush_world_warnings(sim: &mut Sim) {
+    if let Some(w) = &mut sim.world {
+        let ws = std::mem::take(&mut w.warnings);
+        for m in ws {
+            sim.out.warning(&m);
+        }
+    }
+}
+
+fn thermo_row(sim: &mut Sim) -> Result<(), String> {
+    let step = sim.world.as_ref().map(|w| w.step);
+    if step.is_some() && sim.thermo.last_printed == step {
+        return Ok(());
+    }
+    let r = thermo::row(sim)?;
+    sim.out.line(&r);
+    sim.thermo.last_printed = step;
+    Ok(())
+}
+
+/// Insertion fixes due at `step` insert before the step (LIGGGHTS inserts during the
+/// step's re-neighboring; the new particles are then integrated from the next step —
+/// here they are integrated from this one: same statistics, one drift earlier).
+fn insert_all(sim: &mut Sim, step: u64) -> Result<(), String> {
+    for k in 0..sim.fixes.len() {
+        let id = sim.fixes[k].id.clone();
+        let FrontFix::Insert(ins) = &mut sim.fixes[k].kind else {
+            continue;
+        };
+        if !ins.pack.due(step) {
+            continue;
+        }
+        let w = sim.world.as_mut().expect("a run has a world");
+        let saved = w.step;
+        w.step = step;
+        let rep = match &mut ins.rate {
+            None => ins.pack.insert(w),
+            Some(r) => {
+                let want = r.per_insertion + r.carry;
+                let mut n = want.floor() as u64;
+                r.carry = want - n as f64;
+                if let Some(lim) = r.limit {
+                    n = n.min(lim.saturating_sub(ins.total));
+                }
+                ins.pack.insert_n(w, n)
+            }
+        };
+        w.step = saved;
+        let rep = rep.map_err(|e| format!("fix {id}: {e}"))?;
+        ins.total += rep.inserted;
+        ins.total_mass += rep.mass;
+        let line =
+            fixes::insertion_report(&id, rep.inserted, rep.mass, step, ins.total, ins.total_mass);
+        let short = rep.inserted < rep.wanted;
+        let verbose = ins.verbose;
+        if verbose {
+            sim.out.line(&line);
+        }
+        if short {
+            sim.out.warning(&format!(
+                "Particle insertion {id}: less insertions than requested ({} of {}): the region is too full or maxattempt too small",
+                rep.inserted, rep.wanted
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn adapt_all(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+    for k in 0..sim.fixes.len() {
+        let (every, var) = match &sim.fixes[k].kind {
+            FrontFix::Adapt(ad) => (ad.every, ad.var.clone()),
+            _ => continue,
+        };
+        if !setup && step % every != 0 {
+            continue;
+        }
+        let groupbit = sim.fixes[k].groupbit;
+        let formula = match sim.vars.get(&var) {
+            Some(crate::variables::Variable::Atom(f)) => f.clone(),
+            Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style")),
+            None => return Err(format!("fix adapt: no variable '{var}'")),
+        };
+        let d = context::eval_atom(sim, &formula)?;
+        let w = sim.world.as_mut().expect("run has a world");
+        if let FrontFix::Adapt(ad) = &mut sim.fixes[k].kind {
+            if ad.reset && ad.saved.is_none() {
+                let p = &w.particles;
+                ad.saved = Some((0..p.nlocal()).map(|i| (p.tag[i], p.radius[i])).collect());
+            }
+        }
+        let p = &w.particles;
+        let radii: Vec<f64> = (0..p.nlocal())
+            .map(|i| {
+                if p.mask[i] & groupbit != 0 {
+                    0.5 * d[i]
+                } else {
+                    p.radius[i]
+                }
+            })
+            .collect();
+        w.set_radii(&radii)
+            .map_err(|e| format!("fix {}: {e}", sim.fixes[k].id))?;
+    }
+    Ok(())
+}
+
+fn reset_adapt(sim: &mut Sim) -> Result<(), String> {
+    for f in &mut sim.fixes {
+        if let FrontFix::Adapt(ad) = &mut f.kind {
+            if let (Some(saved), Some(w)) = (ad.saved.take(), &mut sim.world) {
+                let p = &w.particles;
+                let mut r: Vec<f64> = p.radius[..p.nlocal()].to_vec();
+                for (i, ri) in r.iter_mut().enumerate() {
+                    if let Some(&(_, r0)) = saved.iter().find(|(t, _)| *t == p.tag[i]) {
+                        *ri = r0;
+                    }
+                }
+                w.set_radii(&r).map_err(|e| e.to_string())?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn end_of_step(sim: &mut Sim, step: u64) -> Result<(), String> {
+    for k in 0..sim.fixes.len() {
+        match &sim.fixes[k].kind {
+            FrontFix::CheckTimestep(c) if step % c.every == 0 => {
+                let (fr, fh, vmax, warn, error) =
+                    (c.fraction_r, c.fraction_h, c.vmax, c.warn, c.error);
+                let Some((tr, th)) = fixes::timestep_limits(sim, vmax) else {
+                    continue;
+                };
+                let dt = sim.world.as_ref().map(|w| w.dt).unwrap_or(0.0);
+                let vals = [dt / tr, if th < f64::MAX { dt / th } else { 0.0 }];
+                let id = sim.fixes[k].id.clone();
+                if let FrontFix::CheckTimestep(c) = &mut sim.fixes[k].kind {
+                    c.values = vals;
+                }
+                for (v, f, what) in [(vals[0], fr, "Rayleigh"), (vals[1], fh, "Hertz")] {
+                    if v > f {
+                        let msg = format!(
+                            "time-step is {:.2} % of {what} time (fix {id}: limit {:.2} %)",
+                            100.0 * v,
+                            100.0 * f
+                        );
+                        if error {
+                            return Err(msg);
+                        }
+                        if warn {
+                            sim.warn_once(&msg);
+                        }
+                    }
+                }
+            }
+            FrontFix::AveTime(ave) => {
+                let in_window = {
+                    let next = step.div_ceil(ave.nfreq) * ave.nfreq;
+                    let first = next.saturating_sub((ave.nrepeat - 1) * ave.nevery);
+                    step >= first && (next - step) % ave.nevery == 0
+                };
+                if !in_window {
+                    continue;
+                }
+                let inputs = ave.inputs.clone();
+                let mut vals = Vec::with_capacity(inputs.len());
+                for i in &inputs {
+                    vals.push(thermo::column_value(sim, i)?.0);
+                }
+                let FrontFix::AveTime(ave) = &mut sim.fixes[k].kind else {
+                    unreachable!()
+                };
+                for (s, v) in ave.sum.iter_mut().zip(&vals) {
+                    *s += v;
+                }
+                ave.count += 1;
+                if step % ave.nfreq == 0 {
+                    ave.windows += 1;
+                    for j in 0..ave.values.len() {
+                        let mean = ave.sum[j] / ave.count as f64;
+                        ave.running_sum[j] += mean;
+                        ave.values[j] = if ave.running {
+                            ave.running_sum[j] / ave.windows as f64
+                        } else {
+                            mean
+                        };
+                    }
+                    ave.sum.iter_mut().for_each(|s| *s = 0.0);
+                    ave.count = 0;
+                    if let Some(f) = &mut ave.file {
+                        use std::io::Write;
+                        let row: Vec<String> = ave
+                            .values
+                            .iter()
+                            .map(|v| crate::variables::format_g(*v, 6))
+                            .collect();
+                        writeln!(f, "{step} {}", row.join(" ")).map_err(|e| e.to_string())?;
+                        f.flush().map_err(|e| e.to_string())?;
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The end-of-run report in LIGGGHTS' words.
+fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
+    let Some(w) = &sim.world else { return };
+    let natoms = w.natoms();
+    let nprocs = 1;
+    let timers = w.timers;
+    // Builds during the steps (the set-up build is not counted, as in LIGGGHTS).
+    let nbuilds = w.neighbor.nbuilds.saturating_sub(builds0.0 + 1);
+    let ndanger = w.neighbor.ndangerous - builds0.1;
+    let nlocal = w.particles.nlocal();
+    let nghost = w.particles.nghost();
+    let pairs = w.neighbor.list.partner.len();
+    let g = |v: f64| crate::variables::format_g(v, 6);
+    let mut lines = vec![format!(
+        "Loop time of {} on {nprocs} procs for {nsteps} steps with {natoms} atoms",
+        g(loop_time)
+    )];
+    lines.push(String::new());
+    let pct = |t: f64| {
+        if loop_time > 0.0 {
+            100.0 * t / loop_time
+        } else {
+            0.0
+        }
+    };
+    let stages = [
+        ("Pair  ", Stage::Pair),
+        ("Neigh ", Stage::Neigh),
+        ("Comm  ", Stage::Comm),
+        ("Outpt ", Stage::Output),
+        ("Modify", Stage::Modify),
+    ];
+    let mut accounted = 0.0;
+    for (name, st) in stages {
+        let t = timers.get(st).as_secs_f64();
+        accounted += t;
+        lines.push(format!("{name} time (%) = {} ({})", g(t), g(pct(t))));
+    }
+    let other = (loop_time - accounted).max(0.0);
+    lines.push(format!(
+        "Other  time (%) = {} ({})",
+        g(other),
+        g(pct(other))
+    ));
+    lines.push(String::new());
+    let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0";
+    lines.push(format!("Nlocal:    {nlocal} ave {nlocal} max {nlocal} min"));
+    lines.push(hist.into());
+    lines.push(format!("Nghost:    {nghost} ave {nghost} max {nghost} min"));
+    lines.push(hist.into());
+    lines.push(format!("Neighs:    {pairs} ave {pairs} max {pairs} min"));
+    lines.push(hist.into());
+    lines.push(String::new());
+    lines.push(format!("Total # of neighbors = {pairs}"));
+    if natoms > 0 {
+        lines.push(format!(
+            "Ave neighs/atom = {}",
+            g(pairs as f64 / natoms as f64)
+        ));
+    }
+    lines.push(format!("Neighbor list builds = {nbuilds}"));
+    lines.push(format!("Dangerous builds = {ndanger}"));
+    lines.push(String::new());
+    for l in lines {
+        sim.out.line(&l);
+    }
+}

@@ -1,0 +1,272 @@
+//! The state a script builds up: the engine's [`World`] once a box exists, and everything
+//! only the front end knows — groups, regions, the lattice, material properties,
+//! insertion templates, computes, variables, thermo and dump settings, and every fix in
+//! definition order (engine fixes live in `World::fixes` under the same ID).
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use rdem::insert::{Distribution, ParticleTemplate};
+use rdem::region::Region;
+use rdem::{Boundary, NeighborSettings, World};
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::computes::Compute;
+use crate::dump::Dump;
+use crate::fixes::FrontFix;
+use crate::lattice::Lattice;
+use crate::output::Output;
+use crate::thermo::Thermo;
+use crate::variables::Variables;
+
+/// Group names by bit (bit 0 is `all`); at most 32 groups as in LIGGGHTS.
+#[derive(Debug, Clone)]
+pub struct Groups {
+    names: Vec<Option<String>>,
+}
+
+impl Default for Groups {
+    fn default() -> Self {
+        let mut names = vec![None; 32];
+        names[0] = Some("all".to_string());
+        Self { names }
+    }
+}
+
+impl Groups {
+    /// Bit index of group `name`.
+    pub fn find(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n.as_deref() == Some(name))
+    }
+
+    /// Bit index of `name`, creating the group if needed.
+    pub fn find_or_create(&mut self, name: &str) -> Result<usize, String> {
+        if let Some(k) = self.find(name) {
+            return Ok(k);
+        }
+        match self.names.iter().position(|n| n.is_none()) {
+            Some(k) => {
+                self.names[k] = Some(name.to_string());
+                Ok(k)
+            }
+            None => Err("too many groups (32 at most, as in LIGGGHTS)".into()),
+        }
+    }
+
+    /// Forgets group `k` (not `all`).
+    pub fn delete(&mut self, k: usize) {
+        if k > 0 {
+            self.names[k] = None;
+        }
+    }
+
+    /// Names of all groups.
+    pub fn names(&self) -> Vec<&str> {
+        self.names.iter().flatten().map(|s| s.as_str()).collect()
+    }
+}
+
+/// A `fix property/global` value table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Property {
+    /// `scalar`, `vector`, `peratomtype`, `peratomtypepair`, `matrix`.
+    pub style: String,
+    /// The numbers (for `peratomtypepair` the leading type count is not included).
+    pub values: Vec<f64>,
+    /// Fix ID that defined it.
+    pub fix_id: String,
+}
+
+/// One fix as the script defined it.
+pub struct FixEntry {
+    /// Fix ID.
+    pub id: String,
+    /// Style word as written (`wall/gran`, `insert/pack`, ...).
+    pub style: String,
+    /// Group bit mask.
+    pub groupbit: u32,
+    /// Front-end part (engine fixes: [`FrontFix::Engine`]).
+    pub kind: FrontFix,
+}
+
+/// Settings given before the box exists, applied when it is created.
+#[derive(Debug, Clone)]
+pub struct Pending {
+    /// `boundary`, per axis and face.
+    pub boundary: [[Boundary; 2]; 3],
+    /// `neighbor` / `neigh_modify`.
+    pub neighbor: NeighborSettings,
+    /// `timestep`.
+    pub dt: f64,
+    /// `atom_modify sort`.
+    pub sort: rdem::SortSettings,
+    /// `thermo_modify lost`.
+    pub lost: rdem::LostPolicy,
+}
+
+impl Default for Pending {
+    fn default() -> Self {
+        Self {
+            boundary: [[Boundary::Periodic; 2]; 3],
+            neighbor: NeighborSettings::default(),
+            dt: 1e-5,
+            sort: rdem::SortSettings::default(),
+            lost: rdem::LostPolicy::Error,
+        }
+    }
+}
+
+/// Everything a script defines.
+pub struct Sim {
+    /// The engine state, once `create_box` or `read_data` made a box.
+    pub world: Option<World>,
+    /// Settings that wait for the box.
+    pub pending: Pending,
+    /// Number of atom types of the box.
+    pub ntypes: usize,
+    /// Groups.
+    pub groups: Groups,
+    /// Regions by ID.
+    pub regions: BTreeMap<String, Region>,
+    /// The lattice (`lattice` command).
+    pub lattice: Option<Lattice>,
+    /// `fix property/global` tables by property name.
+    pub properties: BTreeMap<String, Property>,
+    /// Particle templates by fix ID.
+    pub templates: BTreeMap<String, ParticleTemplate>,
+    /// Particle distributions by fix ID.
+    pub distributions: BTreeMap<String, Distribution>,
+    /// Fixes in definition order.
+    pub fixes: Vec<FixEntry>,
+    /// Computes in definition order.
+    pub computes: Vec<Compute>,
+    /// Dumps in definition order.
+    pub dumps: Vec<Dump>,
+    /// Variables.
+    pub vars: Variables,
+    /// Thermo output settings.
+    pub thermo: Thermo,
+    /// Screen and log.
+    pub out: Output,
+    /// Time the script started (for `elapsed`, `cpu`).
+    pub started: Instant,
+    /// First step of the current run (for `elapsed`).
+    pub run_first: u64,
+    /// Last step of the current run.
+    pub run_last: u64,
+    /// Wall-clock start of the current run.
+    pub run_started: Instant,
+    /// Whether a pair style was defined with `pair_coeff` given.
+    pub pair_coeff_set: bool,
+    /// Number of threads asked for (`--threads`); the engine runs serial for now.
+    pub threads: usize,
+    /// Called during long runs with (steps done, steps total) for a progress display.
+    pub progress: Option<Box<dyn FnMut(u64, u64)>>,
+    /// Pending warnings of insertion fixes and others, printed once.
+    pub warned: std::collections::BTreeSet<String>,
+    /// `-var` values and so on may add to this: path of the current script's directory.
+    pub units_set: bool,
+}
+
+impl Sim {
+    /// A fresh script state writing to `out`.
+    pub fn new(out: Output) -> Self {
+        Self {
+            world: None,
+            pending: Pending::default(),
+            ntypes: 0,
+            groups: Groups::default(),
+            regions: BTreeMap::new(),
+            lattice: None,
+            properties: BTreeMap::new(),
+            templates: BTreeMap::new(),
+            distributions: BTreeMap::new(),
+            fixes: Vec::new(),
+            computes: Vec::new(),
+            dumps: Vec::new(),
+            vars: Variables::new(),
+            thermo: Thermo::default(),
+            out,
+            started: Instant::now(),
+            run_first: 0,
+            run_last: 0,
+            run_started: Instant::now(),
+            pair_coeff_set: false,
+            threads: 1,
+            progress: None,
+            warned: Default::default(),
+            units_set: false,
+        }
+    }
+
+    /// The world, or an error at the command saying a box is needed first.
+    pub fn world_mut(&mut self, a: &Args) -> CmdResult<&mut World> {
+        let name = a.name().to_string();
+        self.world.as_mut().ok_or_else(|| {
+            a.error_cmd(
+                format!("{name} before the simulation box is defined"),
+                Some("use create_box or read_data first".into()),
+            )
+        })
+    }
+
+    /// The world (read-only), or the same error.
+    pub fn world_ref(&self, a: &Args) -> CmdResult<&World> {
+        self.world.as_ref().ok_or_else(|| {
+            a.error_cmd(
+                format!("{} before the simulation box is defined", a.name()),
+                Some("use create_box or read_data first".into()),
+            )
+        })
+    }
+
+    /// Reads a group ID word and returns its bit mask.
+    pub fn group_bit(&self, a: &mut Args, what: &str) -> CmdResult<u32> {
+        let g = a.word(what)?;
+        match self.groups.find(g) {
+            Some(k) => Ok(1u32 << k),
+            None => Err(a.error_prev(
+                format!("no group '{g}'"),
+                Some(suggest(g, &self.groups.names())),
+            )),
+        }
+    }
+
+    /// Reads a region ID word and returns the region.
+    pub fn region(&self, a: &mut Args) -> CmdResult<Region> {
+        let r = a.word("region ID")?;
+        self.regions.get(r).cloned().ok_or_else(|| {
+            let names: Vec<&str> = self.regions.keys().map(|s| s.as_str()).collect();
+            a.error_prev(
+                format!("no region '{r}'"),
+                Some(if names.is_empty() {
+                    "no region is defined yet".into()
+                } else {
+                    suggest(r, &names)
+                }),
+            )
+        })
+    }
+
+    /// Index of fix `id`.
+    pub fn fix_index(&self, id: &str) -> Option<usize> {
+        self.fixes.iter().position(|f| f.id == id)
+    }
+
+    /// Index of compute `id`.
+    pub fn compute_index(&self, id: &str) -> Option<usize> {
+        self.computes.iter().position(|c| c.id == id)
+    }
+
+    /// Number of owned particles (0 without a box).
+    pub fn natoms(&self) -> u64 {
+        self.world.as_ref().map(|w| w.natoms()).unwrap_or(0)
+    }
+
+    /// Prints a warning once per distinct text.
+    pub fn warn_once(&mut self, text: &str) {
+        if self.warned.insert(text.to_string()) {
+            self.out.warning(text);
+        }
+    }
+}

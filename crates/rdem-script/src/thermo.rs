@@ -1,0 +1,292 @@
+//! Thermo output: the keywords of `thermo_style custom`, their values, and the table in
+//! LIGGGHTS' layout (a header line of the keywords, then one row per output step; integers
+//! as `%8d`, floats as `%12.8g`, each followed by a space, unless `thermo_modify format`
+//! says otherwise).
+
+use crate::computes;
+use crate::context;
+use crate::sim::Sim;
+use crate::variables::format_g;
+
+/// Boltzmann constant in SI units as LIGGGHTS has it.
+const BOLTZ_SI: f64 = 1.3806504e-23;
+
+/// Keywords with a value of their own (besides `c_`, `f_`, `v_` references).
+pub const KEYWORDS: [&str; 23] = [
+    "step",
+    "elapsed",
+    "elaplong",
+    "dt",
+    "time",
+    "cpu",
+    "atoms",
+    "ke",
+    "temp",
+    "pe",
+    "etotal",
+    "vol",
+    "lx",
+    "ly",
+    "lz",
+    "xlo",
+    "xhi",
+    "ylo",
+    "yhi",
+    "zlo",
+    "zhi",
+    "cpuremain",
+    "spcpu",
+];
+
+/// Integer-valued keywords.
+const INT_KEYWORDS: [&str; 4] = ["step", "elapsed", "elaplong", "atoms"];
+
+/// Extensive keywords (divided by the atom count with `thermo_modify norm yes`).
+const EXTENSIVE: [&str; 3] = ["ke", "pe", "etotal"];
+
+/// Thermo settings.
+#[derive(Debug, Clone)]
+pub struct Thermo {
+    /// Output every this many steps (0: first and last step of a run only).
+    pub every: u64,
+    /// Columns.
+    pub columns: Vec<String>,
+    /// `thermo_modify norm`.
+    pub norm: bool,
+    /// Per-column C formats (`thermo_modify format N "fmt"`), by 1-based column.
+    pub col_format: Vec<(usize, String)>,
+    /// `thermo_modify format int "fmt"`.
+    pub int_format: Option<String>,
+    /// `thermo_modify format float "fmt"`.
+    pub float_format: Option<String>,
+    /// `thermo_modify format line "fmt fmt ..."`.
+    pub line_format: Option<Vec<String>>,
+    /// Last step printed (no duplicate rows).
+    pub last_printed: Option<u64>,
+}
+
+impl Default for Thermo {
+    fn default() -> Self {
+        Self {
+            every: 0,
+            columns: ["step", "atoms", "ke"].map(String::from).to_vec(),
+            norm: false,
+            col_format: Vec::new(),
+            int_format: None,
+            float_format: None,
+            line_format: None,
+            last_printed: None,
+        }
+    }
+}
+
+/// True if `kw` is a valid column.
+pub fn valid_column(kw: &str) -> bool {
+    KEYWORDS.contains(&kw) || kw.starts_with("c_") || kw.starts_with("f_") || kw.starts_with("v_")
+}
+
+/// The value of thermo keyword `kw` (also used by formulas).
+pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
+    let w = sim.world.as_ref();
+    let natoms = sim.natoms();
+    let size = w.map(|w| w.domain.boxhi - w.domain.boxlo);
+    let need_box = || format!("thermo keyword '{kw}' needs the simulation box");
+    Ok(match kw {
+        "step" => w.map(|w| w.step).unwrap_or(0) as f64,
+        "elapsed" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
+        "elaplong" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
+        "dt" => w.map(|w| w.dt).unwrap_or(sim.pending.dt),
+        "time" => w.map(|w| w.step as f64 * w.dt).unwrap_or(0.0),
+        "cpu" => sim.run_started.elapsed().as_secs_f64(),
+        "cpuremain" | "spcpu" => 0.0,
+        "atoms" => natoms as f64,
+        "ke" => {
+            // LIGGGHTS: temperature × ½ dof k_B with dof = 3N − 3: 0 for one atom or
+            // none, Σ ½ m v² otherwise.
+            let w = w.ok_or_else(need_box)?;
+            if natoms > 1 {
+                computes::kinetic(w, 1)
+            } else {
+                0.0
+            }
+        }
+        "temp" => {
+            let w = w.ok_or_else(need_box)?;
+            let dof = 3.0 * natoms as f64 - 3.0;
+            if dof > 0.0 {
+                2.0 * computes::kinetic(w, 1) / (dof * BOLTZ_SI)
+            } else {
+                0.0
+            }
+        }
+        "pe" => 0.0,
+        "etotal" => {
+            let w = w.ok_or_else(need_box)?;
+            if natoms > 1 {
+                computes::kinetic(w, 1)
+            } else {
+                0.0
+            }
+        }
+        "vol" => {
+            let s = size.ok_or_else(need_box)?;
+            s.x * s.y * s.z
+        }
+        "lx" | "ly" | "lz" => size.ok_or_else(need_box)?[(kw.as_bytes()[1] - b'x') as usize],
+        "xlo" | "ylo" | "zlo" => {
+            w.ok_or_else(need_box)?.domain.boxlo[(kw.as_bytes()[0] - b'x') as usize]
+        }
+        "xhi" | "yhi" | "zhi" => {
+            w.ok_or_else(need_box)?.domain.boxhi[(kw.as_bytes()[0] - b'x') as usize]
+        }
+        _ => {
+            return Err(format!(
+                "unknown thermo keyword '{kw}' (valid: {} or c_ID, f_ID, v_name)",
+                KEYWORDS.join(" ")
+            ))
+        }
+    })
+}
+
+/// Parses `c_ID`, `c_ID[2]`, `f_ID[1]`, `v_name`: (prefix, id, index).
+pub fn split_reference(col: &str) -> Option<(char, &str, Option<usize>)> {
+    let kind = col.chars().next()?;
+    if !matches!(kind, 'c' | 'f' | 'v') || col.as_bytes().get(1) != Some(&b'_') {
+        return None;
+    }
+    let rest = &col[2..];
+    match rest.find('[') {
+        Some(b) if rest.ends_with(']') => {
+            let idx = rest[b + 1..rest.len() - 1].parse().ok()?;
+            Some((kind, &rest[..b], Some(idx)))
+        }
+        Some(_) => None,
+        None => Some((kind, rest, None)),
+    }
+}
+
+/// Value of one column and whether it prints as an integer.
+pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
+    if let Some((kind, id, idx)) = split_reference(col) {
+        let v = match kind {
+            'c' => context::compute_global(sim, id, idx)?,
+            'f' => crate::fixes::fix_value(sim, id, idx)?,
+            _ => {
+                if idx.is_some() {
+                    return Err(format!("{col}: variables have no index here"));
+                }
+                match sim.vars.get(id) {
+                    Some(crate::variables::Variable::Equal(f)) => {
+                        context::eval_equal(sim, f).map_err(|e| e.message)?
+                    }
+                    Some(_) => {
+                        let t = context::variable_text(sim, id)?;
+                        crate::args::parse_f64(t.trim())
+                            .ok_or_else(|| format!("variable {id} = '{t}' is not a number"))?
+                    }
+                    None => return Err(format!("no variable '{id}'")),
+                }
+            }
+        };
+        return Ok((v, false));
+    }
+    let v = keyword(sim, col)?;
+    let v = if sim.thermo.norm && EXTENSIVE.contains(&col) && sim.natoms() > 0 {
+        v / sim.natoms() as f64
+    } else {
+        v
+    };
+    Ok((v, INT_KEYWORDS.contains(&col)))
+}
+
+/// The header line.
+pub fn header(sim: &Sim) -> String {
+    let mut s = String::new();
+    for c in &sim.thermo.columns {
+        let int = INT_KEYWORDS.contains(&c.as_str());
+        let label = header_label(c);
+        if int {
+            s.push_str(&format!("{label:>8} "));
+        } else {
+            s.push_str(&format!("{label:>14} "));
+        }
+    }
+    s
+}
+
+/// LIGGGHTS' header label of a column (a few keywords print capitalised).
+fn header_label(c: &str) -> String {
+    match c {
+        "step" => "Step".into(),
+        "atoms" => "Atoms".into(),
+        "ke" => "KinEng".into(),
+        "vol" => "Volume".into(),
+        "temp" => "Temp".into(),
+        "pe" => "PotEng".into(),
+        "etotal" => "TotEng".into(),
+        "elapsed" => "Elapsed".into(),
+        "elaplong" => "Elaplong".into(),
+        "dt" => "Dt".into(),
+        "time" => "Time".into(),
+        "cpu" => "CPU".into(),
+        "lx" => "Lx".into(),
+        "ly" => "Ly".into(),
+        "lz" => "Lz".into(),
+        "xlo" => "Xlo".into(),
+        "xhi" => "Xhi".into(),
+        "ylo" => "Ylo".into(),
+        "yhi" => "Yhi".into(),
+        "zlo" => "Zlo".into(),
+        "zhi" => "Zhi".into(),
+        "cpuremain" => "CPULeft".into(),
+        "spcpu" => "S/CPU".into(),
+        // LIGGGHTS shows c_ID, f_ID, v_name without the prefix, cut to 8 characters.
+        _ => match split_reference(c) {
+            Some((_, id, None)) => id.chars().take(8).collect(),
+            Some((_, id, Some(k))) => format!("{id}[{k}]").chars().take(8).collect(),
+            None => c.to_string(),
+        },
+    }
+}
+
+/// One row.
+pub fn row(sim: &Sim) -> Result<String, String> {
+    let mut s = String::new();
+    for (k, c) in sim.thermo.columns.iter().enumerate() {
+        let (v, int) = column_value(sim, c)?;
+        let fmt = sim
+            .thermo
+            .col_format
+            .iter()
+            .rev()
+            .find(|(n, _)| *n == k + 1)
+            .map(|(_, f)| f.clone())
+            .or_else(|| {
+                sim.thermo
+                    .line_format
+                    .as_ref()
+                    .and_then(|l| l.get(k).cloned())
+            })
+            .or_else(|| {
+                if int {
+                    sim.thermo.int_format.clone()
+                } else {
+                    sim.thermo.float_format.clone()
+                }
+            });
+        match fmt {
+            Some(f) => match rdem_io::Printf::parse(&f) {
+                Ok(p) => s.push_str(&p.format(if int {
+                    rdem_io::Value::Int(v as i64)
+                } else {
+                    rdem_io::Value::Float(v)
+                })),
+                Err(e) => return Err(format!("thermo_modify format '{f}': {e}")),
+            },
+            None if int => s.push_str(&format!("{:>8}", v as i64)),
+            None => s.push_str(&format!("{:>14}", format_g(v, 8))),
+        }
+        s.push(' ');
+    }
+    Ok(s)
+}
