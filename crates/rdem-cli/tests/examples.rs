@@ -1,0 +1,112 @@
+//! The scripts in `examples/` run to completion with the `rdem` binary and leave the files
+//! they promise: a VTK series whose last snapshot holds every particle, and what each
+//! script prints at its end (checked against what the physics allows).
+
+use std::path::Path;
+use std::process::Command;
+
+/// Runs `examples/<dir>/<file>` in a temporary copy; returns (stdout, the copy's path).
+fn run(dir: &str, file: &str) -> (String, std::path::PathBuf) {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(dir);
+    let tmp = std::env::temp_dir().join(format!("rdem-example-{dir}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::copy(src.join(file), tmp.join(file)).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
+        .args(["-in", file, "-log", "none"])
+        .current_dir(&tmp)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success(),
+        "{dir}/{file}: {}\n{stdout}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (stdout, tmp)
+}
+
+/// Number of points in the VTK file of the latest step of `post/<prefix>*.vtk`.
+fn last_vtk_points(dir: &Path, prefix: &str) -> (u64, usize) {
+    let mut files: Vec<(u64, std::path::PathBuf)> = std::fs::read_dir(dir.join("post"))
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            let n = p.file_name()?.to_str()?.to_string();
+            let step = n.strip_prefix(prefix)?.strip_suffix(".vtk")?.parse().ok()?;
+            Some((step, p))
+        })
+        .collect();
+    files.sort();
+    let (step, path) = files.last().expect("a VTK snapshot").clone();
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(
+        text.starts_with("# vtk DataFile Version"),
+        "not a legacy VTK file"
+    );
+    let n = text
+        .lines()
+        .find_map(|l| l.strip_prefix("POINTS "))
+        .and_then(|l| l.split_whitespace().next()?.parse().ok())
+        .expect("POINTS line");
+    (step, n)
+}
+
+fn printed(stdout: &str, prefix: &str) -> Vec<f64> {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no line starting '{prefix}'"));
+    line.split(|c: char| c.is_whitespace() || c == ',' || c == ';')
+        .filter_map(|w| w.parse().ok())
+        .collect()
+}
+
+/// The pour: all 2500 beads arrive, the pile's top is below the inlet and above a single
+/// layer of the largest beads.
+#[test]
+fn pour() {
+    let (out, dir) = run("pour", "in.pour");
+    let v = printed(&out, "poured");
+    assert_eq!(v[0], 2500.0, "{out}");
+    assert!(v[1] > 0.0044 && v[1] < 0.09, "pile top {}", v[1]);
+    assert_eq!(last_vtk_points(&dir, "pour_"), (30000, 2500));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The settling column: the particles come to rest (kinetic energy tiny), at a mean height
+/// no lower than a radius and with a few contacts per particle.
+#[test]
+fn settling_cylinder() {
+    let (out, dir) = run("settling_cylinder", "in.settle");
+    let v = printed(&out, "settled");
+    assert!(v[0] > 0.0012 && v[0] < 0.05, "mean height {}", v[0]);
+    assert!(v[1] > 2.0 && v[1] < 12.0, "contacts per particle {}", v[1]);
+    let (step, n) = last_vtk_points(&dir, "settle_");
+    assert_eq!(step, 30000);
+    assert!(n > 1000, "{n} particles in the last snapshot");
+    let text = std::fs::read_to_string(dir.join("height.txt")).unwrap();
+    assert_eq!(text.lines().filter(|l| !l.starts_with('#')).count(), 30);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Growth packing: the packing fraction rises stage by stage to a dense random packing
+/// (frictionless spheres jam near 0.64; the flat walls keep it below that).
+#[test]
+fn growth_packing() {
+    let (out, dir) = run("growth_packing", "in.grow");
+    let stages: Vec<f64> = out
+        .lines()
+        .filter(|l| l.starts_with("stage "))
+        .map(|l| *printed(l, "stage").last().unwrap())
+        .collect();
+    assert_eq!(stages.len(), 3, "{out}");
+    assert!(stages.windows(2).all(|w| w[1] > w[0]), "{stages:?}");
+    let fin = printed(&out, "final packing fraction")[0];
+    assert!(fin > 0.55 && fin < 0.66, "final packing fraction {fin}");
+    let (_, n) = last_vtk_points(&dir, "grow_");
+    assert!(n > 1000);
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs every check on a fresh machine with a Rust toolchain: installs what the tests need
+# (cargo-nextest; the LIGGGHTS tutorial cases from Debian's liggghts-doc package, which the
+# tutorial tests run), then formatting, clippy with warnings as errors, the doc tests and
+# the whole test suite (cargo-nextest, release). `.ci/run` calls this script.
+# Usage: bash scripts/test.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! cargo nextest --version >/dev/null 2>&1; then
+  echo "cargo-nextest not found: installing it" >&2
+  cargo install cargo-nextest --locked
+fi
+for component in rustfmt clippy; do
+  if command -v rustup >/dev/null 2>&1 && ! rustup component list --installed 2>/dev/null | grep -q "^$component"; then
+    rustup component add "$component"
+  fi
+done
+tutorials=/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public
+if [ ! -d "$tutorials" ]; then
+  echo "LIGGGHTS tutorial cases not found: installing Debian's liggghts-doc" >&2
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -q --no-install-recommends liggghts-doc >/dev/null
+fi
+
+set -x
+cargo fmt --all -- --check
+cargo clippy --workspace --all-targets -- -D warnings
+# Doc tests first, so that the last summary printed is the test suite's.
+cargo test --workspace --doc --release
+cargo nextest run --workspace --release
