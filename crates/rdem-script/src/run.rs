@@ -229,7 +229,8 @@ fn insert_all(sim: &mut Sim, step: u64) -> Result<(), String> {
             fixes::insertion_report(&id, rep.inserted, rep.mass, step, ins.total, ins.total_mass);
         let short = rep.inserted < rep.wanted;
         let verbose = ins.verbose;
-        if verbose {
+        // An event that had nothing to insert prints nothing (as LIGGGHTS).
+        if verbose && rep.wanted > 0 {
             sim.out.line(&line);
         }
         if short {
