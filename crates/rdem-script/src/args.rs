@@ -133,6 +133,21 @@ impl<'a> Args<'a> {
         self.error_at(0, message, help)
     }
 
+    /// The command name with its style once the style has been read (`fix wall/gran`,
+    /// `region block`, `compute reduce`), for "missing ..." messages.
+    pub fn context(&self) -> String {
+        let style_at = match self.name() {
+            "fix" | "compute" | "dump" => 3,
+            "region" => 2,
+            "pair_style" => 1,
+            _ => 0,
+        };
+        match self.words.get(style_at) {
+            Some(w) if style_at > 0 && self.pos > style_at => format!("{} {}", self.name(), w.text),
+            _ => self.name().to_string(),
+        }
+    }
+
     /// The next word, or an error "missing `what`".
     pub fn word(&mut self, what: &str) -> CmdResult<&'a str> {
         match self.words.get(self.pos) {
@@ -140,7 +155,11 @@ impl<'a> Args<'a> {
                 self.pos += 1;
                 Ok(&w.text)
             }
-            None => Err(self.error_at(self.pos, format!("{}: missing {what}", self.name()), None)),
+            None => Err(self.error_at(
+                self.pos,
+                format!("{}: missing {what}", self.context()),
+                None,
+            )),
         }
     }
 
@@ -198,7 +217,7 @@ impl<'a> Args<'a> {
             None => {
                 return Err(self.error_at(
                     self.pos,
-                    format!("{}: missing {what}", self.name()),
+                    format!("{}: missing {what}", self.context()),
                     Some(format!("expected {}", one_of(valid))),
                 ))
             }
@@ -233,7 +252,7 @@ impl<'a> Args<'a> {
                 self.pos,
                 format!(
                     "{}: unexpected extra argument '{}'",
-                    self.name(),
+                    self.context(),
                     self.words[self.pos].text
                 ),
                 None,

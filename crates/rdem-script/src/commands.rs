@@ -261,6 +261,15 @@ pub fn unknown_command_help(name: &str, all: &[&str]) -> String {
     }
 }
 
+/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
+pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
+    if ids.is_empty() {
+        format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
+    } else {
+        suggest(id, ids)
+    }
+}
+
 fn atom_style(a: &mut Args) -> CmdResult {
     let s = a.word("atom style")?;
     if s != "granular" && s != "sphere" {
@@ -333,15 +342,22 @@ fn boundary(sim: &mut Sim, a: &mut Args) -> CmdResult {
         for (k, c) in faces.iter().enumerate() {
             slot[k] = Boundary::from_letter(*c).ok_or_else(|| {
                 a.error_prev(
-                    format!("unknown boundary '{c}' in '{w}'"),
-                    Some("use one of 'p', 'f', 's' or 'm'".into()),
+                    if letters.len() == 1 {
+                        format!("unknown boundary '{c}'")
+                    } else {
+                        format!("unknown boundary '{c}' in '{w}'")
+                    },
+                    Some(
+                        "use p (periodic), f (fixed), s (shrink-wrapped) or m (shrink-wrapped with a minimum)"
+                            .into(),
+                    ),
                 )
             })?;
         }
         if (slot[0] == Boundary::Periodic) != (slot[1] == Boundary::Periodic) {
             return Err(a.error_prev(
                 format!("'{w}': both faces must be periodic, or neither"),
-                None,
+                Some("write 'p' for a periodic axis, or two of f s m such as 'fm'".into()),
             ));
         }
     }
@@ -362,6 +378,14 @@ fn scale_of(sim: &Sim, a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
     })
 }
 
+/// "region block takes xlo xhi ylo yhi zlo zhi ..." for help texts.
+fn region_usage(style: &str, names: &[&str]) -> String {
+    format!(
+        "region ID {style} {} [side in|out] [units box|lattice]",
+        names.join(" ")
+    )
+}
+
 fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("region ID")?.to_string();
     if sim.regions.contains_key(&id) {
@@ -378,6 +402,14 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ];
     let style = a.keyword("region style", &STYLES)?;
     let args_start = a.pos();
+    let arg_names: &[&str] = match style {
+        "block" => &["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"],
+        "sphere" => &["x", "y", "z", "radius"],
+        "cylinder" => &["dim", "c1", "c2", "radius", "lo", "hi"],
+        "cone" => &["dim", "c1", "c2", "radlo", "radhi", "lo", "hi"],
+        "plane" => &["px", "py", "pz", "nx", "ny", "nz"],
+        _ => &[],
+    };
     // Geometry words first (numbers may be INF/EDGE); keywords after.
     let mut geo: Vec<String> = Vec::new();
     let mut parts: Vec<Region> = Vec::new();
@@ -389,15 +421,12 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
         _ => {
-            let n = match style {
-                "block" => 6,
-                "sphere" => 4,
-                "cylinder" => 6,
-                "cone" => 7,
-                _ => 6,
-            };
-            for k in 0..n {
-                geo.push(a.word(&format!("{style} argument {}", k + 1))?.to_string());
+            for name in arg_names {
+                let w = a.word(name).map_err(|mut e| {
+                    e.help = Some(region_usage(style, arg_names));
+                    e
+                })?;
+                geo.push(w.to_string());
             }
         }
     }
@@ -453,9 +482,16 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 _ => Ok(if lo { -1e300 } else { 1e300 }),
             };
         }
-        crate::args::parse_f64(w)
-            .map(|v| v * scale)
-            .ok_or_else(|| a.error_at(word, format!("expected a number, got '{w}'"), None))
+        crate::args::parse_f64(w).map(|v| v * scale).ok_or_else(|| {
+            a.error_at(
+                word,
+                format!(
+                    "region {style}: {} must be a number, not '{w}'",
+                    arg_names[k]
+                ),
+                Some(region_usage(style, arg_names)),
+            )
+        })
     };
     let axis_of = |k: usize| -> CmdResult<usize> {
         match geo[k].as_str() {
@@ -464,8 +500,8 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "z" => Ok(2),
             w => Err(a.error_at(
                 args_start + k,
-                format!("axis must be x, y or z, not '{w}'"),
-                None,
+                format!("region {style}: axis must be x, y or z, not '{w}'"),
+                Some(region_usage(style, arg_names)),
             )),
         }
     };
@@ -1311,11 +1347,13 @@ fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
                                 ))
                             }
                             None => {
+                                let ids: Vec<&str> =
+                                    sim.computes.iter().map(|c| c.id.as_str()).collect();
                                 return Err(a.error_at(
                                     a.pos(),
                                     format!("no compute '{cid}'"),
-                                    None,
-                                ))
+                                    Some(id_help("compute", cid, &ids)),
+                                ));
                             }
                         },
                         Some(('v', v, None)) => ReduceInput::Variable(v.to_string()),
@@ -1370,13 +1408,16 @@ fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
                         _ => true,
                     };
                     if !ok {
+                        let what = if kind == 'c' { "compute" } else { "fix" };
+                        let ids: Vec<&str> = if kind == 'c' {
+                            sim.computes.iter().map(|c| c.id.as_str()).collect()
+                        } else {
+                            sim.fixes.iter().map(|f| f.id.as_str()).collect()
+                        };
                         return Err(a.error_at(
                             a.pos(),
-                            format!(
-                                "'{w}': no {} '{id}'",
-                                if kind == 'c' { "compute" } else { "fix" }
-                            ),
-                            None,
+                            format!("'{w}': no {what} '{id}'"),
+                            Some(id_help(what, id, &ids)),
                         ));
                     }
                 }

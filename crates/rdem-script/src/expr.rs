@@ -460,7 +460,17 @@ pub fn eval(e: &Expr, ctx: &mut dyn Context) -> Result<f64, ExprError> {
                 }
                 None => match ctx.function(name, raw).or_else(|m| err(m, span.clone()))? {
                     Some(v) => v,
-                    None => return err(format!("unknown function '{name}' in formula"), span),
+                    None => {
+                        const KNOWN: [&str; 21] = [
+                            "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos",
+                            "atan", "atan2", "ceil", "floor", "round", "count", "mass", "xcm",
+                            "vcm", "bound", "ke",
+                        ];
+                        let hint = crate::args::nearest(name, &KNOWN)
+                            .map(|n| format!(" (did you mean '{n}'?)"))
+                            .unwrap_or_default();
+                        return err(format!("unknown function '{name}' in formula{hint}"), span);
+                    }
                 },
             }
         }

@@ -50,6 +50,10 @@ const LATER: [(&str, &str); 9] = [
     ("particletemplate/multisphere", "multisphere particles"),
 ];
 
+/// Index of the style word in `fix ID group style ...` (errors about the whole fix point
+/// at it).
+const STYLE_WORD: usize = 3;
+
 /// Insertion bookkeeping shared by insert/pack and insert/rate/region.
 pub struct Inserter {
     /// Engine insertion (placement rules, generator, state).
@@ -285,7 +289,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
             a.done()?;
             engine_fix(sim, a, &id, groupbit, FixKind::SetForce { force: v })?
         }
-        "adapt" => adapt(a)?,
+        "adapt" => adapt(sim, a)?,
         "check/timestep/gran" => check_timestep(a)?,
         "ave/time" => ave_time(sim, a)?,
         _ => unreachable!("every style in STYLES is handled"),
@@ -376,17 +380,26 @@ fn property_global(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix>
             values.push(a.f64(&format!("{name} value"))?);
         }
         if style == "peratomtypepair" && values.len() != n * n {
-            return Err(a.error_at(
+            return Err(count_error(
+                a,
                 start,
+                n * n,
+                values.len(),
                 format!(
-                    "{name} peratomtypepair {n} needs {} values, got {}",
-                    n * n,
+                    "{name} peratomtypepair {n} needs {}, got {}",
+                    plural(n * n, "value"),
                     values.len()
                 ),
-                None,
+                format!(
+                    "peratomtypepair N takes N*N values, one per pair of atom types ({}*{} = {})",
+                    n,
+                    n,
+                    n * n
+                ),
             ));
         }
     } else {
+        let start = a.pos();
         while !a.is_done() {
             values.push(a.f64(&format!("{name} value"))?);
         }
@@ -394,17 +407,27 @@ fn property_global(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix>
             return Err(a.error_at(a.pos(), format!("{name}: no values given"), None));
         }
         if style == "scalar" && values.len() != 1 {
-            return Err(a.error_at(4, format!("{name} scalar takes one value"), None));
+            return Err(count_error(
+                a,
+                start,
+                1,
+                values.len(),
+                format!("{name} scalar takes one value, got {}", values.len()),
+                "use 'vector' for several values".into(),
+            ));
         }
         if style == "peratomtype" && sim.ntypes > 0 && values.len() != sim.ntypes {
-            return Err(a.error_at(
-                5,
+            return Err(count_error(
+                a,
+                start,
+                sim.ntypes,
+                values.len(),
                 format!(
-                    "{name}: {} value(s) given but the box has {} atom type(s)",
-                    values.len(),
-                    sim.ntypes
+                    "{name}: {} given but the box has {}",
+                    plural(values.len(), "value"),
+                    plural(sim.ntypes, "atom type")
                 ),
-                None,
+                "peratomtype takes one value per atom type".into(),
             ));
         }
     }
@@ -417,6 +440,33 @@ fn property_global(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix>
         },
     );
     Ok(FrontFix::Property(name))
+}
+
+/// "1 value", "2 values".
+fn plural(n: usize, what: &str) -> String {
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
+    }
+}
+
+/// A wrong number of values starting at word `start`: the error points at the first
+/// value too many, or just past the last word when values are missing.
+fn count_error(
+    a: &Args,
+    start: usize,
+    want: usize,
+    got: usize,
+    message: String,
+    help: String,
+) -> crate::diagnostic::ScriptError {
+    let at = if got > want {
+        start + want
+    } else {
+        a.words().len()
+    };
+    a.error_at(at, message, Some(help))
 }
 
 fn template(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
@@ -470,15 +520,17 @@ fn template(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
         }
     }
     let density = density.ok_or_else(|| {
-        a.error_cmd(
-            "particletemplate/sphere needs 'density constant value'",
-            None,
+        a.error_at(
+            STYLE_WORD,
+            "particletemplate/sphere needs a density",
+            Some("add 'density constant RHO' (kg/m^3)".into()),
         )
     })?;
     let radius = radius.ok_or_else(|| {
-        a.error_cmd(
-            "particletemplate/sphere needs 'radius constant value'",
-            None,
+        a.error_at(
+            STYLE_WORD,
+            "particletemplate/sphere needs a radius",
+            Some("add 'radius constant R' (m), or 'radius uniform RMIN RMAX'".into()),
         )
     })?;
     let t = ParticleTemplate::new(id, seed, ty, density, radius)
@@ -565,7 +617,27 @@ fn insert(
         "compress_tags",
     ];
     let valid: &[&'static str] = if rate { &RATE } else { &PACK };
-    a.keyword("first keyword (LIGGGHTS requires 'seed' first)", &["seed"])?;
+    match a.peek() {
+        Some("seed") => a.seek(a.pos() + 1),
+        Some(w) => {
+            return Err(a.error_at(
+                a.pos(),
+                format!("{style}: the first keyword must be 'seed', not '{w}'"),
+                Some(format!(
+                    "LIGGGHTS requires the seed first: 'fix ID group {style} seed 32452867 {w} ...'"
+                )),
+            ))
+        }
+        None => {
+            return Err(a.error_at(
+                a.pos(),
+                format!("{style}: missing 'seed N'"),
+                Some(format!(
+                    "e.g. 'fix ID group {style} seed 32452867 distributiontemplate ID ...'"
+                )),
+            ))
+        }
+    }
     let seed = a.u64("seed")?;
     let mut dist = None;
     let (mut region, mut target, mut every, mut start) = (None, None, None, None);
@@ -652,32 +724,49 @@ fn insert(
             _ => unreachable!(),
         }
     }
-    let dist =
-        dist.ok_or_else(|| a.error_cmd(format!("{style} needs 'distributiontemplate ID'"), None))?;
-    let region = region.ok_or_else(|| a.error_cmd(format!("{style} needs 'region ID'"), None))?;
+    let dist = dist.ok_or_else(|| {
+        a.error_at(
+            STYLE_WORD,
+            format!("{style} needs 'distributiontemplate ID'"),
+            None,
+        )
+    })?;
+    let region =
+        region.ok_or_else(|| a.error_at(STYLE_WORD, format!("{style} needs 'region ID'"), None))?;
     sim.world_ref(a)?;
     let dt = sim.pending.dt;
     let (target, rate_state) = if rate {
-        let every =
-            every.ok_or_else(|| a.error_cmd("insert/rate/region needs 'insert_every N'", None))?;
+        let every = every.ok_or_else(|| {
+            a.error_at(
+                STYLE_WORD,
+                "insert/rate/region needs 'insert_every N'",
+                None,
+            )
+        })?;
         let limit = match (nparticles, massmax) {
             (Some(n), None) => n,
             (None, Some(m)) => Some((m / dist.mean_particle_mass()).round() as u64),
             (None, None) => {
-                return Err(a.error_cmd(
+                return Err(a.error_at(
+                    STYLE_WORD,
                     "insert/rate/region needs 'nparticles N' (or INF) or 'mass M'",
                     None,
                 ))
             }
             (Some(_), Some(_)) => {
-                return Err(a.error_cmd("give either nparticles or mass, not both", None))
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    "give either nparticles or mass, not both",
+                    None,
+                ))
             }
         };
         let per_step = match (prate, mrate) {
             (Some(r), None) => r * dt,
             (None, Some(m)) => m * dt / dist.mean_particle_mass(),
             _ => {
-                return Err(a.error_cmd(
+                return Err(a.error_at(
+                    STYLE_WORD,
                     "insert/rate/region needs exactly one of 'particlerate' or 'massrate'",
                     None,
                 ))
@@ -693,7 +782,8 @@ fn insert(
         )
     } else {
         let t = target.ok_or_else(|| {
-            a.error_cmd(
+            a.error_at(
+                STYLE_WORD,
                 "insert/pack needs a target",
                 Some(format!(
                     "add {}",
@@ -706,7 +796,8 @@ fn insert(
             )
         })?;
         if every.is_none() && !every_once {
-            return Err(a.error_cmd(
+            return Err(a.error_at(
+                STYLE_WORD,
                 "insert/pack needs 'insert_every once' or 'insert_every N'",
                 None,
             ));
@@ -744,6 +835,15 @@ fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
                         .into(),
                 ),
             ));
+        }
+        Some(
+            w @ ("type" | "xplane" | "yplane" | "zplane" | "xcylinder" | "ycylinder" | "zcylinder"),
+        ) => {
+            return Err(a.error_at(
+                style_at,
+                format!("wall/gran: missing 'primitive' before '{w}'"),
+                Some("write 'primitive type T zplane POS' (or another primitive)".into()),
+            ))
         }
         Some(_) => return Err(models::unknown(a, style_at, &["primitive", "mesh"])),
         None => {
@@ -806,7 +906,7 @@ fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
     Ok(wall)
 }
 
-fn adapt(a: &mut Args) -> CmdResult<FrontFix> {
+fn adapt(sim: &Sim, a: &mut Args) -> CmdResult<FrontFix> {
     let every = a.count("N (adapt every N steps)")?;
     match a.keyword("adapt attribute", &["atom", "pair"])? {
         "atom" => {}
@@ -818,8 +918,23 @@ fn adapt(a: &mut Args) -> CmdResult<FrontFix> {
     a.keyword("atom attribute", &["diameter"])?;
     let v = a.word("variable (v_name)")?;
     let Some(var) = v.strip_prefix("v_") else {
-        return Err(a.error_prev(format!("expected v_name, got '{v}'"), None));
+        return Err(a.error_prev(
+            format!("expected v_name, got '{v}'"),
+            Some("give an atom-style variable: 'variable d atom ...' then 'v_d'".into()),
+        ));
     };
+    // A variable defined later is checked when the run starts, as LIGGGHTS does.
+    match sim.vars.get(var) {
+        Some(crate::variables::Variable::Atom(_)) | None => {}
+        Some(_) => {
+            return Err(a.error_prev(
+                format!("fix adapt: variable '{var}' is not atom-style"),
+                Some(format!(
+                    "the new diameters come per particle: define 'variable {var} atom FORMULA'"
+                )),
+            ))
+        }
+    }
     let var = var.to_string();
     let mut reset = false;
     while !a.is_done() {
@@ -888,17 +1003,18 @@ fn ave_time(sim: &mut Sim, a: &mut Args) -> CmdResult<FrontFix> {
             _ => sim.vars.get(id).is_some(),
         };
         if !known {
+            let (what, ids): (&str, Vec<&str>) = match kind {
+                'c' => (
+                    "compute",
+                    sim.computes.iter().map(|c| c.id.as_str()).collect(),
+                ),
+                'f' => ("fix", sim.fixes.iter().map(|f| f.id.as_str()).collect()),
+                _ => ("variable", sim.vars.names()),
+            };
             return Err(a.error_at(
                 a.pos(),
-                format!(
-                    "'{w}': no such {}",
-                    match kind {
-                        'c' => "compute",
-                        'f' => "fix",
-                        _ => "variable",
-                    }
-                ),
-                None,
+                format!("'{w}': no {what} '{id}'"),
+                Some(crate::commands::id_help(what, id, &ids)),
             ));
         }
         inputs.push(w.to_string());

@@ -19,6 +19,12 @@ pub const FLOW_COMMANDS: [&str; 12] = [
     "shell",
 ];
 
+/// A `jump` searching for its label, and the error to report if the file ends first.
+struct SkipTo {
+    label: String,
+    missing: Box<ScriptReport>,
+}
+
 struct Frame {
     name: String,
     src: Arc<str>,
@@ -32,7 +38,7 @@ pub struct Interpreter {
     pub sim: Sim,
     frames: Vec<Frame>,
     /// Label being searched by `jump` (commands are skipped until it).
-    skip_to: Option<String>,
+    skip_to: Option<SkipTo>,
     /// Set by `next` when a variable is exhausted: the next `jump` is skipped.
     skip_jump: bool,
     quit: bool,
@@ -45,6 +51,67 @@ pub fn all_commands() -> Vec<&'static str> {
     let mut v: Vec<&str> = commands::SIM_COMMANDS.to_vec();
     v.extend_from_slice(&FLOW_COMMANDS);
     v
+}
+
+const IF_USAGE: &str =
+    "if \"condition\" then \"command\" ... [elif \"condition\" \"command\" ...] [else \"command\" ...]";
+
+/// Replaces `$x`, `${name}` and `$(expression)` in `cmd` (see [`lexer::substitute`]); an
+/// unknown variable's error suggests the defined ones.
+fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
+    let mut help = None;
+    let mut expr_span = None;
+    lexer::substitute(cmd, |r| match r {
+        Reference::Variable(name) => context::variable_text(sim, name).inspect_err(|_| {
+            if sim.vars.get(name).is_none() {
+                help = Some((name.clone(), unknown_variable_help(sim, name)));
+            }
+        }),
+        Reference::Immediate(e) => context::eval_equal(sim, e)
+            .map(|v| crate::variables::format_g(v, 15))
+            .map_err(|e| {
+                expr_span = Some(e.span);
+                e.message
+            }),
+    })
+    .map_err(|mut e| {
+        // An error in `$(formula)` points at its place inside the formula.
+        if let Some(r) = expr_span.take() {
+            if let Some(i) = cmd.origin.iter().position(|&o| o == e.span.start) {
+                let (a, b) = (i + 2 + r.start, i + 2 + r.end);
+                if b < cmd.text.len() {
+                    e.span = lexer::span_of(cmd, a..b);
+                }
+            }
+        }
+        if e.help.is_none() {
+            // `$nsteps` is `$n` followed by "steps": say so when `$n` is unknown.
+            let braces = cmd
+                .origin
+                .iter()
+                .position(|&o| o == e.span.start)
+                .is_some_and(|i| cmd.text[i..].starts_with("${"));
+            e.help = help.map(|(name, h): (String, String)| {
+                if name.chars().count() == 1 && !braces {
+                    format!("'${name}' is the one-letter variable '{name}': write ${{NAME}} with braces for longer names")
+                } else {
+                    h
+                }
+            });
+        }
+        e
+    })
+}
+
+/// Help for `${name}` of a variable that does not exist.
+fn unknown_variable_help(sim: &Sim, name: &str) -> String {
+    let names = sim.vars.names();
+    let define =
+        format!("define it with 'variable {name} ...' (or -var {name} VALUE) before it is used");
+    match crate::args::nearest(name, &names) {
+        Some(n) => format!("did you mean '{n}'? Or {define}"),
+        None => define[..1].to_uppercase() + &define[1..],
+    }
 }
 
 impl Interpreter {
@@ -99,6 +166,12 @@ impl Interpreter {
             let top = self.frames.len() - 1;
             let f = &mut self.frames[top];
             if f.pos >= f.cmds.len() {
+                if let Some(skip) = self.skip_to.take() {
+                    // The file ended before the label of a `jump` (LIGGGHTS: "Label
+                    // wasn't found in input script").
+                    self.frames.truncate(depth - 1);
+                    return Err(skip.missing);
+                }
                 self.frames.pop();
                 continue;
             }
@@ -122,20 +195,14 @@ impl Interpreter {
 
     /// Executes one command (substitution, echo, dispatch).
     fn execute(&mut self, raw: &Command) -> CmdResult {
-        if let Some(label) = &self.skip_to {
+        if let Some(skip) = &self.skip_to {
             let w = lexer::words(raw)?;
-            if w.len() >= 2 && w[0].text == "label" && &w[1].text == label {
+            if w.len() >= 2 && w[0].text == "label" && w[1].text == skip.label {
                 self.skip_to = None;
             }
             return Ok(());
         }
-        let sim = &self.sim;
-        let cmd = lexer::substitute(raw, |r| match r {
-            Reference::Variable(name) => context::variable_text(sim, name),
-            Reference::Immediate(e) => context::eval_equal(sim, e)
-                .map(|v| crate::variables::format_g(v, 15))
-                .map_err(|e| e.message),
-        })?;
+        let cmd = substitute_vars(&self.sim, raw)?;
         let words = lexer::words(&cmd)?;
         if words.is_empty() {
             return Ok(());
@@ -178,20 +245,58 @@ impl Interpreter {
                     return Ok(());
                 }
                 let top = self.frames.len() - 1;
-                if file == "SELF" || file == self.frames[top].name {
-                    self.frames[top].pos = 0;
+                let target = if file == "SELF" || file == self.frames[top].name {
+                    None
                 } else {
                     let src = std::fs::read_to_string(&file)
                         .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
                     let src: Arc<str> = src.into();
-                    self.frames[top] = Frame {
-                        name: file,
+                    Some(Frame {
+                        name: file.clone(),
                         cmds: lexer::commands(&src),
                         src,
                         pos: 0,
+                    })
+                };
+                if let Some(label) = label {
+                    let cmds = target.as_ref().map_or(&self.frames[top].cmds, |f| &f.cmds);
+                    let labels: Vec<String> = cmds
+                        .iter()
+                        .filter_map(|c| {
+                            let mut w = c.text.split_whitespace();
+                            (w.next() == Some("label"))
+                                .then(|| w.next().map(String::from))
+                                .flatten()
+                        })
+                        .collect();
+                    let labels: Vec<&str> = labels.iter().map(|l| l.as_str()).collect();
+                    let name = if file == "SELF" {
+                        self.frames[top].name.clone()
+                    } else {
+                        file.clone()
                     };
+                    let help = if labels.is_empty() {
+                        format!("{name} has no 'label' command")
+                    } else {
+                        suggest(&label, &labels)
+                    };
+                    let here = &self.frames[top];
+                    let missing = a
+                        .error_at(
+                            2,
+                            format!("label '{label}' not found in {name}"),
+                            Some(help),
+                        )
+                        .in_file(&here.name, here.src.clone());
+                    self.skip_to = Some(SkipTo {
+                        label,
+                        missing: Box::new(missing),
+                    });
                 }
-                self.skip_to = label;
+                match target {
+                    Some(f) => self.frames[top] = f,
+                    None => self.frames[top].pos = 0,
+                }
             }
             "next" => {
                 let mut names = Vec::new();
@@ -266,8 +371,7 @@ impl Interpreter {
     fn print(&mut self, a: &mut Args, cmd: &Command) -> CmdResult {
         let k = a.pos();
         a.word("text")?;
-        let w = &a.words()[k];
-        let text = self.resubstitute(cmd, w)?;
+        let text = self.resubstitute(cmd, k)?;
         let (mut file, mut screen) = (None, true);
         while !a.is_done() {
             match a.keyword("print keyword", &["file", "append", "screen"])? {
@@ -301,28 +405,9 @@ impl Interpreter {
 
     /// Substitutes variables in a quoted word (quotes stop substitution when the command
     /// is read; `print` and `if` substitute their text when they run, as LIGGGHTS).
-    fn resubstitute(&self, cmd: &Command, w: &lexer::Word) -> CmdResult<String> {
-        let start = cmd
-            .origin
-            .iter()
-            .position(|&o| o >= w.span.start)
-            .unwrap_or(0);
-        let origin: Vec<usize> = (0..w.text.len())
-            .map(|k| cmd.origin[(start + k).min(cmd.origin.len() - 1)])
-            .collect();
-        let inner = Command {
-            text: w.text.clone(),
-            origin,
-            line: cmd.line,
-        };
-        let sim = &self.sim;
-        let out = lexer::substitute(&inner, |r| match r {
-            Reference::Variable(name) => context::variable_text(sim, name),
-            Reference::Immediate(e) => context::eval_equal(sim, e)
-                .map(|v| crate::variables::format_g(v, 15))
-                .map_err(|e| e.message),
-        })?;
-        Ok(out.text)
+    fn resubstitute(&self, cmd: &Command, k: usize) -> CmdResult<String> {
+        let inner = &lexer::word_commands(cmd)?[k];
+        Ok(substitute_vars(&self.sim, inner)?.text)
     }
 
     fn if_command(&mut self, a: &mut Args, cmd: &Command) -> CmdResult {
@@ -330,10 +415,10 @@ impl Interpreter {
         let words = a.words().to_vec();
         let mut k = 1;
         loop {
-            let cond_word = words
-                .get(k)
-                .ok_or_else(|| a.error_at(k, "if: missing condition", None))?;
-            let cond = self.resubstitute(cmd, cond_word)?;
+            if k >= words.len() {
+                return Err(a.error_at(k, "if: missing condition", Some(IF_USAGE.into())));
+            }
+            let cond = self.resubstitute(cmd, k)?;
             let value = context::eval_equal(&self.sim, &cond).map_err(|e| {
                 a.error_at(k, format!("if condition '{cond}': {}", e.message), None)
             })?;
@@ -342,7 +427,11 @@ impl Interpreter {
                 match words.get(k).map(|w| w.text.as_str()) {
                     Some("then") => k += 1,
                     _ => {
-                        return Err(a.error_at(k, "if: expected 'then' after the condition", None))
+                        return Err(a.error_at(
+                            k,
+                            "if: expected 'then' after the condition",
+                            Some(IF_USAGE.into()),
+                        ))
                     }
                 }
             }
@@ -351,32 +440,21 @@ impl Interpreter {
                 k += 1;
             }
             if value != 0.0 {
-                return self.run_inline(cmd, &words[start..k]);
+                return self.run_inline(cmd, start..k);
             }
             match words.get(k).map(|w| w.text.as_str()) {
                 Some("elif") => k += 1,
-                Some("else") => return self.run_inline(cmd, &words[k + 1..]),
+                Some("else") => return self.run_inline(cmd, k + 1..words.len()),
                 _ => return Ok(()),
             }
         }
     }
 
-    fn run_inline(&mut self, cmd: &Command, ws: &[lexer::Word]) -> CmdResult {
-        for w in ws {
-            let start = cmd
-                .origin
-                .iter()
-                .position(|&o| o >= w.span.start)
-                .unwrap_or(0);
-            let origin: Vec<usize> = (0..w.text.len())
-                .map(|k| cmd.origin[(start + k + 1).min(cmd.origin.len() - 1)])
-                .collect();
-            let inner = Command {
-                text: w.text.clone(),
-                origin,
-                line: cmd.line,
-            };
-            self.execute(&inner)?;
+    /// Runs words `range` of `cmd` as commands (the branches of `if`).
+    fn run_inline(&mut self, cmd: &Command, range: std::ops::Range<usize>) -> CmdResult {
+        let inner = lexer::word_commands(cmd)?;
+        for c in &inner[range] {
+            self.execute(c)?;
         }
         Ok(())
     }

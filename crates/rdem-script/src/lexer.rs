@@ -241,6 +241,25 @@ fn parse_reference(s: &str, i: usize) -> Result<(Reference, usize), String> {
 /// Stage 3: splits a command into words at white space outside quotes, removing the
 /// quotes. An unterminated quote is an error at the opening quote.
 pub fn words(cmd: &Command) -> Result<Vec<Word>, ScriptError> {
+    Ok(split_words(cmd)?.into_iter().map(|(w, _)| w).collect())
+}
+
+/// Like [`words`], but each word as a command of its own whose bytes keep their source
+/// offsets (quotes removed), for text that is substituted again when it runs (`print`,
+/// `if`).
+pub fn word_commands(cmd: &Command) -> Result<Vec<Command>, ScriptError> {
+    Ok(split_words(cmd)?
+        .into_iter()
+        .map(|(w, origin)| Command {
+            text: w.text,
+            origin,
+            line: cmd.line,
+        })
+        .collect())
+}
+
+/// The words and, for every byte of each word's text, its source offset.
+fn split_words(cmd: &Command) -> Result<Vec<(Word, Vec<usize>)>, ScriptError> {
     let b = cmd.text.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
@@ -251,6 +270,7 @@ pub fn words(cmd: &Command) -> Result<Vec<Word>, ScriptError> {
         }
         let start = i;
         let mut text = String::new();
+        let mut origin = Vec::new();
         let mut q = Quote::None;
         let mut opened_at = 0;
         while i < b.len() && (q != Quote::None || !b[i].is_ascii_whitespace()) {
@@ -265,20 +285,31 @@ pub fn words(cmd: &Command) -> Result<Vec<Word>, ScriptError> {
             }
             let c = cmd.text[i..].chars().next().unwrap_or(' ');
             text.push(c);
+            origin.extend_from_slice(&cmd.origin[i..i + c.len_utf8()]);
             i += c.len_utf8();
         }
         if q != Quote::None {
+            let mark = match q {
+                Quote::Single => "'",
+                Quote::Triple => "\"\"\"",
+                _ => "\"",
+            };
             return Err(ScriptError::at(
                 cmd,
                 opened_at..b.len(),
                 "this quote is never closed".into(),
-                None,
+                Some(format!(
+                    "close it with {mark} before the end of the command"
+                )),
             ));
         }
-        out.push(Word {
-            text,
-            span: span_of(cmd, start..i),
-        });
+        out.push((
+            Word {
+                text,
+                span: span_of(cmd, start..i),
+            },
+            origin,
+        ));
     }
     Ok(out)
 }

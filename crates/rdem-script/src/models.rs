@@ -121,7 +121,10 @@ pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
             ));
         }
         let k = a.keyword("model keyword", &SWITCHES)?;
-        let on = matches!(a.keyword(k, &["on", "off", "yes", "no"])?, "on" | "yes");
+        let on = matches!(
+            a.keyword(&format!("{k} setting"), &["on", "off", "yes", "no"])?,
+            "on" | "yes"
+        );
         match k {
             "tangential_damping" => m.flags.tangential_damping = on,
             "limitForce" => m.flags.limit_force = on,
@@ -153,6 +156,24 @@ pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
 /// Error for an unknown word where a model type or keyword was expected.
 pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptError {
     let w = &a.words()[k].text;
+    // A model name without its type in front (`pair_style gran hertz ...`).
+    let ty = match w.as_str() {
+        "hertz" | "hooke" | "hooke/hysteresis" => Some("model"),
+        "history" | "no_history" => Some("tangential"),
+        "sjkr" | "sjkr2" => Some("cohesion"),
+        "cdt" | "epsd" | "epsd2" => Some("rolling_friction"),
+        _ => None,
+    };
+    if let Some(ty) = ty {
+        return a.error_at(
+            k,
+            format!("model name '{w}' without its type"),
+            Some(format!(
+                "write '{ty} {w}'; the model types come in the order {}",
+                ORDER.join(", ")
+            )),
+        );
+    }
     let mut valid: Vec<&str> = ORDER.to_vec();
     valid.extend_from_slice(extra);
     valid.extend_from_slice(&SWITCHES);

@@ -85,8 +85,20 @@ pub fn valid_column(kw: &str) -> bool {
     KEYWORDS.contains(&kw) || kw.starts_with("c_") || kw.starts_with("f_") || kw.starts_with("v_")
 }
 
-/// The value of thermo keyword `kw` (also used by formulas).
+/// The value of thermo keyword `kw` (also used by formulas), divided by the atom count
+/// for extensive keywords under `thermo_modify norm yes` (formulas see the normalised
+/// value too, as in LIGGGHTS).
 pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
+    let v = raw_keyword(sim, kw)?;
+    let n = sim.natoms();
+    Ok(if sim.thermo.norm && EXTENSIVE.contains(&kw) && n > 0 {
+        v / n as f64
+    } else {
+        v
+    })
+}
+
+fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
     let w = sim.world.as_ref();
     let natoms = sim.natoms();
     let size = w.map(|w| w.domain.boxhi - w.domain.boxlo);
@@ -190,13 +202,7 @@ pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
         };
         return Ok((v, false));
     }
-    let v = keyword(sim, col)?;
-    let v = if sim.thermo.norm && EXTENSIVE.contains(&col) && sim.natoms() > 0 {
-        v / sim.natoms() as f64
-    } else {
-        v
-    };
-    Ok((v, INT_KEYWORDS.contains(&col)))
+    Ok((keyword(sim, col)?, INT_KEYWORDS.contains(&col)))
 }
 
 /// The header line.
