@@ -81,22 +81,31 @@ fn eval_atom_depth(
     Ok(out)
 }
 
+fn find_compute<'s>(sim: &'s Sim, id: &str) -> Result<&'s crate::computes::Compute, String> {
+    sim.computes
+        .iter()
+        .find(|c| c.id == id)
+        .ok_or_else(|| format!("no compute '{id}'"))
+}
+
+/// The 0-based position of `c_ID` / `c_ID[k]` among `n` values (columns or vector
+/// elements): no index is only valid for a single value.
+fn pick_index(id: &str, idx: Option<usize>, n: usize) -> Result<usize, String> {
+    match (idx, n) {
+        (None, 1) => Ok(0),
+        (Some(k), n) if k >= 1 && k <= n => Ok(k - 1),
+        (None, n) => Err(format!("compute {id} gives {n} values: use c_{id}[i]")),
+        (Some(k), n) => Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)")),
+    }
+}
+
 /// Per-atom values of a compute (column `col`, 1-based, for array computes).
 pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
     let w = world(sim)?;
-    let c = sim
-        .computes
-        .iter()
-        .find(|c| c.id == id)
-        .ok_or_else(|| format!("no compute '{id}'"))?;
+    let c = find_compute(sim, id)?;
     match &c.kind {
         ComputeKind::PropertyAtom(fields) => {
-            let k = match (col, fields.len()) {
-                (None, 1) => 0,
-                (Some(k), n) if k >= 1 && k <= n => k - 1,
-                (None, n) => return Err(format!("compute {id} has {n} columns: use c_{id}[i]")),
-                (Some(k), n) => return Err(format!("c_{id}[{k}]: compute {id} has {n} column(s)")),
-            };
+            let k = pick_index(id, col, fields.len())?;
             computes::field_values(w, &fields[k]).ok_or_else(|| format!("bad field {}", fields[k]))
         }
         ComputeKind::ContactAtom => {
@@ -112,25 +121,12 @@ pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f6
 /// Global value of a compute: its scalar, or element `idx` (1-based) of its vector.
 pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
     let w = world(sim)?;
-    let c = sim
-        .computes
-        .iter()
-        .find(|c| c.id == id)
-        .ok_or_else(|| format!("no compute '{id}'"))?;
+    let c = find_compute(sim, id)?;
     match (&c.kind, idx) {
         (ComputeKind::ERotateSphere, None) => Ok(computes::erotate(w, c.groupbit)),
         (ComputeKind::Ke, None) => Ok(computes::kinetic(w, c.groupbit)),
         (ComputeKind::Reduce { mode, inputs }, _) => {
-            let k = match (idx, inputs.len()) {
-                (None, 1) => 0,
-                (Some(k), n) if k >= 1 && k <= n => k - 1,
-                (None, n) => {
-                    return Err(format!("compute {id} gives a vector of {n}: use c_{id}[i]"))
-                }
-                (Some(k), n) => {
-                    return Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)"))
-                }
-            };
+            let k = pick_index(id, idx, inputs.len())?;
             let values = match &inputs[k] {
                 ReduceInput::Field(f) => {
                     computes::field_values(w, f).ok_or_else(|| format!("bad field {f}"))?
