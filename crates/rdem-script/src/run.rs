@@ -140,13 +140,8 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     let mut last_progress = Instant::now();
     for k in 0..nsteps {
         let step = start_step + k + 1;
-        insert_all(sim, step)?;
         adapt_all(sim, step, false)?;
-        sim.world
-            .as_mut()
-            .expect("checked")
-            .advance()
-            .map_err(|e| e.to_string())?;
+        advance(sim, step)?;
         flush_world_warnings(sim);
         end_of_step(sim, step)?;
         let t_out = Instant::now();
@@ -194,50 +189,65 @@ fn thermo_row(sim: &mut Sim) -> Result<(), String> {
     Ok(())
 }
 
-/// Insertion fixes due at `step` insert before the step (LIGGGHTS inserts during the
-/// step's re-neighboring; the new particles are then integrated from the next step —
-/// here they are integrated from this one: same statistics, one drift earlier).
-fn insert_all(sim: &mut Sim, step: u64) -> Result<(), String> {
-    for k in 0..sim.fixes.len() {
-        let id = sim.fixes[k].id.clone();
-        let FrontFix::Insert(ins) = &mut sim.fixes[k].kind else {
-            continue;
-        };
-        if !ins.pack.due(step) {
-            continue;
-        }
-        let w = sim.world.as_mut().expect("a run has a world");
-        let saved = w.step;
-        w.step = step;
-        let rep = match &mut ins.rate {
-            None => ins.pack.insert(w),
-            Some(r) => {
-                let want = r.per_insertion + r.carry;
-                let mut n = want.floor() as u64;
-                r.carry = want - n as f64;
-                if let Some(lim) = r.limit {
-                    n = n.min(lim.saturating_sub(ins.total));
+/// One step of the engine, with the insertion fixes due at `step` acting inside it as in
+/// LIGGGHTS (after the initial integration: new particles are not moved in the step they
+/// appear, get their forces and the final half kick).
+fn advance(sim: &mut Sim, step: u64) -> Result<(), String> {
+    let due: Vec<usize> = (0..sim.fixes.len())
+        .filter(|&k| matches!(&sim.fixes[k].kind, FrontFix::Insert(ins) if ins.pack.due(step)))
+        .collect();
+    let w = sim.world.as_mut().expect("a run has a world");
+    if due.is_empty() {
+        return w.advance().map_err(|e| e.to_string());
+    }
+    let mut taken: Vec<(usize, FrontFix)> = due
+        .iter()
+        .map(|&k| {
+            (
+                k,
+                std::mem::replace(&mut sim.fixes[k].kind, FrontFix::Engine),
+            )
+        })
+        .collect();
+    let mut reports = Vec::new();
+    let result = w.advance_with(|w| {
+        for (k, f) in taken.iter_mut() {
+            let FrontFix::Insert(ins) = f else { continue };
+            let rep = match &mut ins.rate {
+                None => ins.pack.insert(w)?,
+                Some(r) => {
+                    let want = r.per_insertion + r.carry;
+                    let mut n = want.floor() as u64;
+                    r.carry = want - n as f64;
+                    if let Some(lim) = r.limit {
+                        n = n.min(lim.saturating_sub(ins.total));
+                    }
+                    ins.pack.insert_n(w, n)?
                 }
-                ins.pack.insert_n(w, n)
-            }
-        };
-        w.step = saved;
-        let rep = rep.map_err(|e| format!("fix {id}: {e}"))?;
-        ins.total += rep.inserted;
-        ins.total_mass += rep.mass;
-        let line =
-            fixes::insertion_report(&id, rep.inserted, rep.mass, step, ins.total, ins.total_mass);
-        let short = rep.inserted < rep.wanted;
-        let verbose = ins.verbose;
+            };
+            ins.total += rep.inserted;
+            ins.total_mass += rep.mass;
+            reports.push((*k, rep, ins.total, ins.total_mass, ins.verbose));
+        }
+        Ok(())
+    });
+    for (k, f) in taken {
+        sim.fixes[k].kind = f;
+    }
+    result.map_err(|e| e.to_string())?;
+    for (k, rep, total, total_mass, verbose) in reports {
+        let id = &sim.fixes[k].id;
         // An event that had nothing to insert prints nothing (as LIGGGHTS).
         if verbose && rep.wanted > 0 {
+            let line = fixes::insertion_report(id, rep.inserted, rep.mass, step, total, total_mass);
             sim.out.line(&line);
         }
-        if short {
-            sim.out.warning(&format!(
+        if rep.inserted < rep.wanted {
+            let msg = format!(
                 "Particle insertion {id}: less insertions than requested ({} of {}): the region is too full or maxattempt too small",
                 rep.inserted, rep.wanted
-            ));
+            );
+            sim.out.warning(&msg);
         }
     }
     Ok(())

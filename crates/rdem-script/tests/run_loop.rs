@@ -265,3 +265,30 @@ fn norm_and_lost() {
     let text = format!("{:?}", miette::Report::new(*err));
     assert!(text.contains("lost") && text.contains("run 100"), "{text}");
 }
+
+/// Inserted particles appear inside their step as in LIGGGHTS: not moved in that step,
+/// but given the final half kick (LIGGGHTS 3.8: vz = v0 − g·dt/2 after the insertion
+/// step), then integrated normally.
+#[test]
+fn insertion_happens_inside_the_step() {
+    let i = run(&format!(
+        "{HEAD}fix g all gravity 9.81 vector 0 0 -1\n\
+         fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.002\n\
+         fix pd all particledistribution/discrete 10009 1 pts 1.0\n\
+         region inlet block -0.04 0.04 -0.04 0.04 0.08 0.14 units box\n\
+         fix ins all insert/pack seed 10037 distributiontemplate pd particles_in_region 1 \
+         insert_every once overlapcheck yes region inlet vel constant 0 0 -0.5\n\
+         fix nve all nve/sphere\ncompute z all property/atom z\ncompute zs all reduce sum c_z\n\
+         run 1\nvariable z1 equal c_zs\nvariable v1 equal vz[1]\nprint \"z1=${{z1}}\"\nprint \"v1=${{v1}}\"\n\
+         run 1\nvariable z2 equal c_zs\nprint \"z2=${{z2}}\"\n"
+    ));
+    let dt = 1e-5;
+    let v1 = printed(&i, "v1=");
+    assert!((v1 - (-0.5 - 9.81 * dt / 2.0)).abs() < 1e-15, "{v1}");
+    // The next step moves it by dt · (v1 − g dt/2).
+    let (z1, z2) = (printed(&i, "z1="), printed(&i, "z2="));
+    let dz = dt * (v1 - 9.81 * dt / 2.0);
+    assert!((z2 - z1 - dz).abs() < 1e-15, "{} vs {dz}", z2 - z1);
+    // It is inside the inlet where it was placed (not moved in the insertion step).
+    assert!((0.08..=0.14).contains(&z1));
+}

@@ -2,7 +2,8 @@
 //! one place where the order is written down:
 //!
 //! 1. `step += 1`
-//! 2. initial integrate (`nve/sphere`: half kick, drift)
+//! 2. initial integrate (`nve/sphere`: half kick, drift); then the `pre_exchange` hook of
+//!    [`World::advance_with`] (insertion), whose new particles force step 3's rebuild
 //! 3. neighbor decision: if a rebuild is due (delay/every/check), full re-neighboring
 //!    (periodic remap, shrink-wrap, lost particles, exchange, sort, borders, list build);
 //!    otherwise forward communication of ghost positions and velocities
@@ -41,6 +42,17 @@ impl World {
     /// One timestep (the set-up must have been done; a particle added since forces a
     /// full set-up first).
     pub fn advance(&mut self) -> Result<()> {
+        self.advance_with(|_| Ok(()))
+    }
+
+    /// One timestep with a hook between the initial integration and the neighbor
+    /// decision, where LIGGGHTS' insertion fixes act (`pre_exchange`): particles the hook
+    /// adds are not moved this step, get their forces and the final half kick, and force
+    /// a re-neighboring of this step.
+    pub fn advance_with(
+        &mut self,
+        mut pre_exchange: impl FnMut(&mut World) -> Result<()>,
+    ) -> Result<()> {
         if self.needs_reneighbor {
             self.setup()?;
         }
@@ -52,10 +64,15 @@ impl World {
                 integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
             }
         }
+        pre_exchange(self)?;
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
-        if self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
+        let added = std::mem::take(&mut self.needs_reneighbor);
+        if added || self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
             self.timers.lap(Stage::Neigh, t1);
+            if added {
+                self.extend_tags();
+            }
             self.reneighbor()?;
         } else {
             self.comm.forward(&mut self.particles);
