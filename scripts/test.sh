@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every check on a fresh machine with a Rust toolchain: installs what the tests need
 # (cargo-nextest; the LIGGGHTS tutorial cases from Debian's liggghts-doc package, which the
-# tutorial tests run), then formatting, clippy with warnings as errors, the doc tests and
+# tutorial tests run; VTK's Python reader, with which tests read our VTK files), then formatting, clippy with warnings as errors, the doc tests and
 # the whole test suite (cargo-nextest, release). `.ci/run` calls this script.
 # Usage: bash scripts/test.sh
 set -euo pipefail
@@ -23,6 +23,11 @@ if [ ! -d "$tutorials" ]; then
   export DEBIAN_FRONTEND=noninteractive
   $sudo apt-get update -qq
   $sudo apt-get install -y -q --no-install-recommends liggghts-doc >/dev/null
+fi
+
+if ! python3 -c "import vtk" >/dev/null 2>&1; then
+  echo "VTK's Python reader not found: installing it (pip install vtk)" >&2
+  python3 -m pip install --quiet vtk
 fi
 
 set -x

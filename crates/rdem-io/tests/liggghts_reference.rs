@@ -231,9 +231,9 @@ fn vtk_reads_back_with_an_independent_parser() {
     fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Reads our VTK file with VTK itself (Python bindings, `pip install vtk`).
+/// Reads our VTK file with VTK itself (Python bindings; `scripts/test.sh` installs them
+/// with `pip install vtk`).
 #[test]
-#[ignore = "needs python3 with the vtk module"]
 fn vtk_reads_back_with_vtk() {
     let (mut p, d) = reference_state();
     p.omega[1] = DVec3::new(0.125, -7.5, 1e-9);
