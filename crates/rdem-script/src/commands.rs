@@ -601,6 +601,18 @@ fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_cmd("create_box: the simulation box is already defined", None));
     }
     let n = a.count("number of atom types")?;
+    if a.is_done() {
+        let names: Vec<&str> = sim.regions.keys().map(|s| s.as_str()).collect();
+        return Err(a.error_at(
+            a.pos(),
+            "create_box: missing region ID",
+            Some(if names.is_empty() {
+                "create_box N REGION-ID: define the box region first, e.g. 'region reg block -1 1 -1 1 0 2 units box'".into()
+            } else {
+                format!("create_box N REGION-ID with a defined region: {}", crate::diagnostic::one_of(&names))
+            }),
+        ));
+    }
     let r = sim.region(a)?;
     if !a.is_done() {
         return Err(a.error_at(

@@ -44,8 +44,21 @@ impl ScriptError {
         ScriptReport {
             message: self.message,
             help: self.help,
-            src: NamedSource::new(name, source),
-            span: (start, end - start).into(),
+            src: Some(NamedSource::new(name, source)),
+            span: Some((start, end - start).into()),
+        }
+    }
+}
+
+impl ScriptReport {
+    /// A report that belongs to no place in a script (e.g. the script file cannot be
+    /// read): the message and help only.
+    pub fn without_source(message: String, help: Option<String>) -> Self {
+        Self {
+            message,
+            help,
+            src: None,
+            span: None,
         }
     }
 }
@@ -58,9 +71,9 @@ pub struct ScriptReport {
     #[help]
     help: Option<String>,
     #[source_code]
-    src: NamedSource<Arc<str>>,
+    src: Option<NamedSource<Arc<str>>>,
     #[label("here")]
-    span: SourceSpan,
+    span: Option<SourceSpan>,
 }
 
 /// "one of a, b or c" for help texts listing valid keywords.

@@ -65,13 +65,34 @@ fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResult {
                     )),
                 }
             }
-            Some(_) => Err(a.error_at(k, format!("compute {id} is not per-atom"), None)),
-            None => Err(a.error_at(k, format!("no compute '{id}'"), None)),
+            Some(_) => Err(a.error_at(
+                k,
+                format!("compute {id} is not per-atom"),
+                Some("a dump column needs a per-atom compute (property/atom, contact/atom)".into()),
+            )),
+            None => {
+                let ids: Vec<&str> = sim.computes.iter().map(|c| c.id.as_str()).collect();
+                Err(a.error_at(
+                    k,
+                    format!("no compute '{id}'"),
+                    Some(crate::commands::id_help("compute", id, &ids)),
+                ))
+            }
         },
         Some(('v', id, None)) => match sim.vars.get(id) {
             Some(Variable::Atom(_)) => Ok(()),
-            Some(_) => Err(a.error_at(k, format!("variable {id} is not atom-style"), None)),
-            None => Err(a.error_at(k, format!("no variable '{id}'"), None)),
+            Some(_) => Err(a.error_at(
+                k,
+                format!("variable {id} is not atom-style"),
+                Some(format!(
+                    "a dump column needs a value per particle: define 'variable {id} atom FORMULA'"
+                )),
+            )),
+            None => Err(a.error_at(
+                k,
+                format!("no variable '{id}'"),
+                Some(crate::commands::id_help("variable", id, &sim.vars.names())),
+            )),
         },
         _ => Err(a.error_at(
             k,

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use crate::args::{suggest, Args, CmdResult};
 use crate::commands;
 use crate::context;
-use crate::diagnostic::{ScriptError, ScriptReport};
+use crate::diagnostic::ScriptReport;
 use crate::lexer::{self, Command, Reference};
 use crate::output::Echo;
 use crate::sim::Sim;
@@ -146,17 +146,10 @@ impl Interpreter {
     pub fn run_file(&mut self, path: &str) -> Result<(), Box<ScriptReport>> {
         match std::fs::read_to_string(path) {
             Ok(s) => self.run_source(path, &s),
-            Err(e) => {
-                let src: Arc<str> = "".into();
-                Err(Box::new(
-                    ScriptError {
-                        message: format!("cannot open input script '{path}': {e}"),
-                        span: 0..0,
-                        help: None,
-                    }
-                    .in_file(path, src),
-                ))
-            }
+            Err(e) => Err(Box::new(ScriptReport::without_source(
+                format!("cannot open input script '{path}': {e}"),
+                None,
+            ))),
         }
     }
 

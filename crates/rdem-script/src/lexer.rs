@@ -2,8 +2,9 @@
 //! character's place in the source file, so an error can point at the word it is about:
 //!
 //! 1. [`commands`]: a script becomes commands. A line whose last printable character is
-//!    an unquoted `&` continues on the next line; everything from the first unquoted `#`
-//!    on is a comment; blank commands are dropped.
+//!    `&` continues on the next line, which takes the place of the `&` (as LIGGGHTS joins
+//!    them: `a&` + `b` is `ab`, also inside quotes); everything from the first unquoted
+//!    `#` on is a comment; blank commands are dropped.
 //! 2. [`substitute`]: `$x`, `${name}` and `$(expression)` outside quotes are replaced by
 //!    the text the caller's variable table gives; the replacement text points back at the
 //!    `$…` it came from.
@@ -107,7 +108,8 @@ pub fn commands(src: &str) -> Vec<Command> {
         }
         let kept = &line[..end];
         let trimmed = kept.trim_end();
-        let continues = end == b.len() && trimmed.ends_with('&') && q == Quote::None;
+        // As LIGGGHTS reads lines: a final '&' continues the command even inside quotes.
+        let continues = end == b.len() && trimmed.ends_with('&');
         let body = if continues {
             &trimmed[..trimmed.len() - 1]
         } else {
@@ -115,11 +117,7 @@ pub fn commands(src: &str) -> Vec<Command> {
         };
         cur.text.push_str(body);
         cur.origin.extend((0..body.len()).map(|k| offset + k));
-        if continues {
-            // The joined lines are separated by a space, placed where the '&' was.
-            cur.text.push(' ');
-            cur.origin.push(offset + trimmed.len() - 1);
-        } else {
+        if !continues {
             if !cur.text.trim().is_empty() {
                 out.push(std::mem::replace(
                     &mut cur,
@@ -339,7 +337,7 @@ mod tests {
             texts(src),
             vec![
                 "atom_style granular ",
-                "region reg block -1 1     -1 1 0 2 units box",
+                "region reg block -1 1    -1 1 0 2 units box",
                 "print \"a # b\" ",
             ]
         );
@@ -351,6 +349,23 @@ mod tests {
         let c = &cmds[1];
         let k = c.text.find("units").unwrap();
         assert_eq!(&src[c.origin[k]..c.origin[k] + 5], "units");
+    }
+
+    /// LIGGGHTS 3.8 prints `B: ab` for `print "B: a&` + `b"`, and `C: one   two # not a
+    /// comment` for `print "C: one &` + `  two # not a comment"`: the next line takes the
+    /// place of the '&', and a '#' inside the quotes is text.
+    #[test]
+    fn continuation_joins_in_place_also_inside_quotes() {
+        let src = "print \"B: a&\nb\"\nprint \"C: one &\n  two # not a comment\"\n";
+        assert_eq!(
+            texts(src),
+            vec!["print \"B: ab\"", "print \"C: one   two # not a comment\""]
+        );
+        let c = &commands(src)[0];
+        let w = words(c).unwrap();
+        assert_eq!(w[1].text, "B: ab");
+        // The word runs from the quote on line 1 to the quote on line 2.
+        assert_eq!(&src[w[1].span.clone()], "\"B: a&\nb\"");
     }
 
     #[test]
