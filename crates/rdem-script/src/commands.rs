@@ -175,6 +175,8 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
         "timestep" => {
             let dt = a.positive("timestep")?;
             a.done()?;
+            let now = (sim.world.as_ref().map(|w| w.step).unwrap_or(0), sim.time());
+            sim.time_origin = now;
             sim.pending.dt = dt;
             if let Some(w) = &mut sim.world {
                 w.dt = dt;

@@ -68,7 +68,7 @@ fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
             }
         }),
         Reference::Immediate(e) => context::eval_equal(sim, e)
-            .map(|v| crate::variables::format_g(v, 15))
+            .map(|v| crate::variables::format_g(v, 20))
             .map_err(|e| {
                 expr_span = Some(e.span);
                 e.message

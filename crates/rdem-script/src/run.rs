@@ -44,7 +44,14 @@ pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
     } else {
         n
     };
-    steps(sim, nsteps).map_err(|m| a.error_cmd(m, None))
+    steps(sim, nsteps).map_err(|m| {
+        let help = m.contains("lost").then(|| {
+            "particles that leave through a fixed face stop the run by default; \
+             'thermo_modify lost ignore' (or warn) drops them instead"
+                .to_string()
+        });
+        a.error_cmd(m, help)
+    })
 }
 
 /// Builds the engine's material table from the `fix property/global` values.

@@ -109,7 +109,8 @@ impl Default for Pending {
         Self {
             boundary: [[Boundary::Periodic; 2]; 3],
             neighbor: NeighborSettings::default(),
-            dt: 1e-5,
+            // LIGGGHTS' default for SI units.
+            dt: 1e-8,
             sort: rdem::SortSettings::default(),
             lost: rdem::LostPolicy::Error,
         }
@@ -164,8 +165,11 @@ pub struct Sim {
     pub progress: Option<Box<dyn FnMut(u64, u64)>>,
     /// Pending warnings of insertion fixes and others, printed once.
     pub warned: std::collections::BTreeSet<String>,
-    /// `-var` values and so on may add to this: path of the current script's directory.
+    /// `units si` was given.
     pub units_set: bool,
+    /// (step, simulated time) when the timestep last changed: `time` is
+    /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
+    pub time_origin: (u64, f64),
 }
 
 impl Sim {
@@ -196,6 +200,7 @@ impl Sim {
             progress: None,
             warned: Default::default(),
             units_set: false,
+            time_origin: (0, 0.0),
         }
     }
 
@@ -227,7 +232,10 @@ impl Sim {
             Some(k) => Ok(1u32 << k),
             None => Err(a.error_prev(
                 format!("no group '{g}'"),
-                Some(suggest(g, &self.groups.names())),
+                Some(format!(
+                    "{}; define one with 'group {g} region|type|id ...'",
+                    suggest(g, &self.groups.names())
+                )),
             )),
         }
     }
@@ -256,6 +264,14 @@ impl Sim {
     /// Index of compute `id`.
     pub fn compute_index(&self, id: &str) -> Option<usize> {
         self.computes.iter().position(|c| c.id == id)
+    }
+
+    /// Simulated time at the current step.
+    pub fn time(&self) -> f64 {
+        let (s0, t0) = self.time_origin;
+        let w = self.world.as_ref();
+        let step = w.map(|w| w.step).unwrap_or(0);
+        t0 + (step as f64 - s0 as f64) * self.pending.dt
     }
 
     /// Number of owned particles (0 without a box).

@@ -108,7 +108,7 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
         "elapsed" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
         "elaplong" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
         "dt" => w.map(|w| w.dt).unwrap_or(sim.pending.dt),
-        "time" => w.map(|w| w.step as f64 * w.dt).unwrap_or(0.0),
+        "time" => sim.time(),
         "cpu" => sim.run_started.elapsed().as_secs_f64(),
         "cpuremain" | "spcpu" => 0.0,
         "atoms" => natoms as f64,

@@ -292,3 +292,20 @@ fn insertion_happens_inside_the_step() {
     // It is inside the inlet where it was placed (not moved in the insertion step).
     assert!((0.08..=0.14).contains(&z1));
 }
+
+/// `time` is continuous across timestep changes and `reset_timestep` (LIGGGHTS 3.8 prints
+/// 1e-07 for this script: 10 steps of the default SI timestep 1e-8, then dt changes);
+/// immediate formulas print with 20 significant digits as LIGGGHTS does.
+#[test]
+fn time_and_immediate_format() {
+    let i = run(
+        "units si\nregion r block 0 1 0 1 0 1 units box\ncreate_box 1 r\nreset_timestep 10\n\
+         timestep 0.001\nvariable t equal time\nprint \"t=${t}\"\nprint \"third=$(1/3)\"\n",
+    );
+    assert_eq!(printed(&i, "t="), 1e-7);
+    assert!(
+        screen(&i).contains("third=0.33333333333333331483\n"),
+        "{}",
+        screen(&i)
+    );
+}
