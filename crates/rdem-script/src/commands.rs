@@ -1450,7 +1450,7 @@ fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
             c
         }
-        "one" => ["step", "atoms", "ke"].map(String::from).to_vec(),
+        "one" => ["step", "atoms", "ke", "cpu"].map(String::from).to_vec(),
         _ => return Err(a.error_prev("thermo_style multi is not supported; use custom", None)),
     };
     if sim.thermo.norm

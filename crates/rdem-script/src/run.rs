@@ -131,6 +131,13 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         .unwrap_or((0, 0));
     // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
     adapt_all(sim, start_step, true)?;
+    if sim
+        .world
+        .as_ref()
+        .is_some_and(|w| !w.fixes.iter().any(|f| f.integrates()))
+    {
+        sim.warn_once("No fixes defined, atoms won't move");
+    }
     sim.out.line("Setting up run ...");
     let w = sim.world.as_mut().expect("checked");
     w.setup().map_err(|e| e.to_string())?;
@@ -143,7 +150,12 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     sim.out.line(&thermo::header(sim));
     thermo_row(sim)?;
     crate::dump::write_due(sim, start_step, true)?;
+    if let Some(w) = &mut sim.world {
+        // The breakdown covers the loop only, as "Loop time" does.
+        w.timers.reset();
+    }
     let t0 = Instant::now();
+    sim.run_started = t0;
     let mut last_progress = Instant::now();
     for k in 0..nsteps {
         let step = start_step + k + 1;
@@ -425,11 +437,12 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
             0.0
         }
     };
+    // LIGGGHTS' labels; Modify (the fixes) is rdem's addition.
     let stages = [
-        ("Pair  ", Stage::Pair),
-        ("Neigh ", Stage::Neigh),
-        ("Comm  ", Stage::Comm),
-        ("Outpt ", Stage::Output),
+        ("Pair ", Stage::Pair),
+        ("Neigh", Stage::Neigh),
+        ("Comm ", Stage::Comm),
+        ("Outpt", Stage::Output),
         ("Modify", Stage::Modify),
     ];
     let mut accounted = 0.0;
@@ -439,11 +452,7 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
         lines.push(format!("{name} time (%) = {} ({})", g(t), g(pct(t))));
     }
     let other = (loop_time - accounted).max(0.0);
-    lines.push(format!(
-        "Other  time (%) = {} ({})",
-        g(other),
-        g(pct(other))
-    ));
+    lines.push(format!("Other time (%) = {} ({})", g(other), g(pct(other))));
     lines.push(String::new());
     let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0";
     lines.push(format!("Nlocal:    {nlocal} ave {nlocal} max {nlocal} min"));

@@ -69,7 +69,7 @@ impl Default for Thermo {
     fn default() -> Self {
         Self {
             every: 0,
-            columns: ["step", "atoms", "ke"].map(String::from).to_vec(),
+            columns: ["step", "atoms", "ke", "cpu"].map(String::from).to_vec(),
             norm: false,
             col_format: Vec::new(),
             int_format: None,
@@ -109,7 +109,14 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
         "elaplong" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
         "dt" => w.map(|w| w.dt).unwrap_or(sim.pending.dt),
         "time" => sim.time(),
-        "cpu" => sim.run_started.elapsed().as_secs_f64(),
+        // Wall time since the run's loop started (0 at set-up), as LIGGGHTS.
+        "cpu" => {
+            if w.map(|w| w.step).unwrap_or(0) == sim.run_first {
+                0.0
+            } else {
+                sim.run_started.elapsed().as_secs_f64()
+            }
+        }
         "cpuremain" | "spcpu" => 0.0,
         "atoms" => natoms as f64,
         "ke" => {
