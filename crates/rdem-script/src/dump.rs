@@ -195,6 +195,18 @@ fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {
     Ok(cols)
 }
 
+/// custom/vtk writes legacy `.vtk` files only (LIGGGHTS picks XML formats from other
+/// suffixes; those come with the VTK output issue).
+fn check_file_name(a: &Args, style: &str, file: &str) -> CmdResult {
+    if style == "custom/vtk" && !file.ends_with(".vtk") {
+        return Err(a.error_prev(
+            format!("dump custom/vtk writes legacy VTK: the file name '{file}' must end in .vtk"),
+            Some("XML formats (.vtp, .vtu) are not supported yet".into()),
+        ));
+    }
+    Ok(())
+}
+
 fn writer(style: &str, file: &str) -> Writer {
     let name = DumpFileName::new(file);
     if style == "custom" {
@@ -217,6 +229,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = dump_style(a)?;
     let every = a.count("N (dump every N steps)")?;
     let file = a.word("file name")?.to_string();
+    check_file_name(a, style, &file)?;
     let cols = read_columns(sim, a)?;
     a.done()?;
     sim.world_ref(a)?;
@@ -307,6 +320,7 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let groupbit = sim.group_bit(a, "group ID")?;
     let style = dump_style(a)?;
     let file = a.word("file name")?.to_string();
+    check_file_name(a, style, &file)?;
     let cols = read_columns(sim, a)?;
     let step = sim.world_ref(a)?.step;
     sim.dumps.push(Dump {

@@ -1032,6 +1032,8 @@ fn ave_time(sim: &mut Sim, a: &mut Args) -> CmdResult<FrontFix> {
         match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
             "file" => {
                 let f = a.word("file name")?;
+                rdem_io::atomic::create_parent_dir(std::path::Path::new(f))
+                    .map_err(|e| a.error_prev(e.to_string(), None))?;
                 file = Some(std::io::BufWriter::new(std::fs::File::create(f).map_err(
                     |e| a.error_prev(format!("cannot create '{f}': {e}"), None),
                 )?));
