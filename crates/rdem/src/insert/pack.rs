@@ -260,13 +260,24 @@ impl InsertPack {
                 let mut placed = None;
                 while budget > 0 {
                     budget -= 1;
+                    // A try is a position where the sphere fits the region (LIGGGHTS
+                    // draws from the region shrunk by the radius), so positions too
+                    // close to the boundary are drawn again without using up a try.
                     let rng = &mut self.rng;
-                    let Some(x) = self.region.sample(domain, || rng.gen(), 1000) else {
-                        break;
-                    };
-                    if self.all_in && !self.region.contains_sphere(x, r) {
-                        continue;
+                    let region = &self.region;
+                    let all_in = self.all_in;
+                    let mut x = None;
+                    for _ in 0..1000 {
+                        match region.sample(domain, || rng.gen(), 1000) {
+                            Some(y) if !all_in || region.contains_sphere(y, r) => {
+                                x = Some(y);
+                                break;
+                            }
+                            Some(_) => {}
+                            None => break,
+                        }
                     }
+                    let Some(x) = x else { break };
                     let free = !self.overlap_check || {
                         let c = key(x);
                         !(-1..=1).any(|dz| {
