@@ -820,27 +820,28 @@ fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         a.keyword("delete_atoms keyword", &["compress"])?;
         compress = a.yes_no("compress")?;
     }
+    let settings = sim.pending.neighbor;
     let w = sim.world_mut(a)?;
-    let before = w.natoms();
     w.neighbor.save_history(&w.particles);
     w.particles.clear_ghosts();
     let n = w.particles.remove_locals(&remove);
+    let mut renumbered = false;
     if compress {
         // Renumber tags 1..N keeping their order (LIGGGHTS' compress yes).
         let p = &mut w.particles;
         let mut order: Vec<usize> = (0..p.nlocal()).collect();
         order.sort_by_key(|&i| p.tag[i]);
         for (k, &i) in order.iter().enumerate() {
+            renumbered |= p.tag[i] != k as u64 + 1;
             p.tag[i] = k as u64 + 1;
         }
     }
     let total = w.natoms();
-    let _ = before;
-    sim.world.as_mut().expect("checked").neighbor = {
-        let mut nb = rdem::neighbor::Neighbor::new(sim.pending.neighbor);
-        nb.settings = sim.pending.neighbor;
-        nb
-    };
+    if renumbered {
+        // Saved contact history is keyed by the old tags: start it afresh. Without
+        // renumbering it carries over to the next run's set-up.
+        w.neighbor = rdem::neighbor::Neighbor::new(settings);
+    }
     sim.out
         .line(&format!("Deleted {n} atoms, new total = {total}"));
     Ok(())
