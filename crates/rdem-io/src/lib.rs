@@ -7,6 +7,10 @@
 //! * [`dump_text`]: `dump custom` text snapshots (`ITEM: TIMESTEP` ...).
 //! * [`vtk_legacy`]: `dump custom/vtk` legacy VTK files, laid out as LIGGGHTS 3.8 writes
 //!   them, plus the `_boundingBox` companion file.
+//! * [`vtk_xml`]: VTK XML files as LIGGGHTS writes them: `dump atom/vtk` (`.vtu`),
+//!   `dump custom/vtk` with a `.vtp` name; ASCII, base64 binary, zlib or LZ4.
+//! * [`atom_vtk`]: the `dump atom/vtk` writer.
+//! * [`pvd`]: ParaView `.pvd` collections beside every VTK dump series.
 //! * [`data_file`]: LAMMPS data files for `atom_style granular` (`read_data`, `write_data`).
 //! * [`filename`]: the `*` (timestep) and `%` (rank) wildcards of dump file names.
 //! * [`atomic`]: every file is written under a temporary name and renamed into place.
@@ -16,23 +20,35 @@
 
 #![warn(missing_docs)]
 
+pub mod atom_vtk;
 pub mod atomic;
 pub mod data_file;
 pub mod dump_text;
+pub mod euler_vtk;
 pub mod fields;
 pub mod filename;
 pub mod printf;
+pub mod pvd;
 pub mod vtk_legacy;
+pub mod vtk_xml;
 
+pub use atom_vtk::{AtomVtkDump, Compressor};
 pub use atomic::{write_atomic, AppendFile, IoError};
 pub use data_file::{
     format_data, parse_data, read_data, write_data, DataAtom, DataError, DataFile, DataVelocity,
     ReadDataError,
 };
 pub use dump_text::{format_text_snapshot, parse_line_format, Sort, TextDump, TextOptions};
+pub use euler_vtk::{check_euler_vtk_name, format_euler_vtk, write_euler_vtk};
 pub use fields::{Column, Field};
 pub use filename::DumpFileName;
 pub use printf::{FormatError, Printf, Value};
+pub use pvd::{pvd_path, PvdEntry, PvdSeries};
 pub use vtk_legacy::{
-    bounding_box_path, format_bounding_box, format_vtk, vtk_layout, VtkArray, VtkDump, VtkSource,
+    bounding_box_path, format_bounding_box, format_bounding_box_binary, format_vtk,
+    format_vtk_binary, vtk_layout, VtkArray, VtkDump, VtkSource,
+};
+pub use vtk_xml::{
+    atom_vtk_arrays, custom_vtk_arrays, format_atom_vtu, format_bounding_box_vtr,
+    format_custom_vtu, format_vtp, AtomVtu, XmlArray, XmlData, XmlEncoding,
 };

@@ -47,12 +47,25 @@
 //!   `RECTILINEAR_GRID` ([`format_bounding_box`], [`bounding_box_path`]).
 //!
 //! The only deliberate difference is the title line, which names rdem.
+//!
+//! With `dump_modify binary yes` the same file is written as legacy `BINARY`
+//! ([`format_vtk_binary`], [`format_bounding_box_binary`]): the same header lines, each
+//! block of values replaced by the values in big-endian binary (`float` points, `int`
+//! and `double` arrays, `vtktypeint64` cells) followed by one newline.
+//!
+//! A file name ending in `.vtp` gives VTK XML PolyData instead (`.vtu`: UnstructuredGrid,
+//! as LIGGGHTS picks the format from the suffix), with the same arrays
+//! ([`crate::vtk_xml::format_vtp`]) and a `.vtr` bounding box. LIGGGHTS writes those as
+//! ASCII by default; rdem writes them zlib-compressed (binary) unless `dump_modify binary
+//! no` (ASCII) or `compressor none`/`lz4` says otherwise: whoever picks an XML format
+//! wants compact files, and every VTK reader reads both.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use rdem::{Domain, Particles};
 
+use crate::atom_vtk::Compressor;
 use crate::atomic::{write_atomic, IoError};
 use crate::dump_text::Sort;
 use crate::fields::{Column, Field};
@@ -228,6 +241,91 @@ pub fn format_vtk(
     out
 }
 
+/// Appends the values big-endian: `int` arrays as i32, the rest as f64.
+fn push_be(out: &mut Vec<u8>, v: Value, int: bool) {
+    match (v, int) {
+        (Value::Int(k), true) => out.extend_from_slice(&(k as i32).to_be_bytes()),
+        (Value::Float(x), true) => out.extend_from_slice(&(x as i32).to_be_bytes()),
+        (Value::Int(k), false) => out.extend_from_slice(&(k as f64).to_be_bytes()),
+        (Value::Float(x), false) => out.extend_from_slice(&x.to_be_bytes()),
+    }
+}
+
+/// [`format_vtk`] as legacy `BINARY`: the same lines, each block of values big-endian
+/// binary followed by a newline.
+///
+/// # Panics
+/// If a custom column has fewer values than a selected index needs.
+pub fn format_vtk_binary(
+    p: &Particles,
+    d: &Domain,
+    selection: &[usize],
+    columns: &[Column],
+    layout: &[VtkArray],
+) -> Vec<u8> {
+    let n = selection.len();
+    let mut out = Vec::with_capacity(64 * n * (layout.len() + 1) + 512);
+    out.extend_from_slice(
+        format!(
+            "# vtk DataFile Version 5.1\n{TITLE}\nBINARY\nDATASET POLYDATA\nPOINTS {n} float\n"
+        )
+        .as_bytes(),
+    );
+    for &i in selection {
+        for c in p.x[i].to_array() {
+            out.extend_from_slice(&(c as f32).to_be_bytes());
+        }
+    }
+    out.push(b'\n');
+    if n == 0 {
+        return out;
+    }
+    out.extend_from_slice(format!("VERTICES {} {n}\nOFFSETS vtktypeint64\n", n + 1).as_bytes());
+    for k in 0..=n as i64 {
+        out.extend_from_slice(&k.to_be_bytes());
+    }
+    out.extend_from_slice(b"\nCONNECTIVITY vtktypeint64\n");
+    for k in 0..n as i64 {
+        out.extend_from_slice(&k.to_be_bytes());
+    }
+    out.push(b'\n');
+    if layout.is_empty() {
+        return out;
+    }
+    out.extend_from_slice(format!("POINT_DATA {n}\nFIELD FieldData {}\n", layout.len()).as_bytes());
+    for a in layout {
+        let ncomp = a.components.len();
+        let kind = if a.int { "int" } else { "double" };
+        out.extend_from_slice(format!("{} {ncomp} {n} {kind}\n", a.name).as_bytes());
+        for &i in selection {
+            for s in &a.components {
+                let v = match *s {
+                    VtkSource::Field(f) => f.typed_value(p, d, i),
+                    VtkSource::Custom(k) => columns[k].value(p, d, i),
+                };
+                push_be(&mut out, v, a.int);
+            }
+        }
+        out.push(b'\n');
+    }
+    out
+}
+
+/// [`format_bounding_box`] as legacy `BINARY`.
+pub fn format_bounding_box_binary(d: &Domain) -> Vec<u8> {
+    let mut out = format!(
+        "# vtk DataFile Version 5.1\n{TITLE}\nBINARY\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
+    )
+    .into_bytes();
+    for (a, axis) in ["X", "Y", "Z"].iter().enumerate() {
+        out.extend_from_slice(format!("{axis}_COORDINATES 2 double\n").as_bytes());
+        out.extend_from_slice(&d.boxlo[a].to_be_bytes());
+        out.extend_from_slice(&d.boxhi[a].to_be_bytes());
+        out.push(b'\n');
+    }
+    out
+}
+
 /// The `_boundingBox` companion file: the box as a 2×2×2 rectilinear grid.
 pub fn format_bounding_box(d: &Domain) -> String {
     let double = Printf::parse("%.11g").expect("valid");
@@ -262,7 +360,7 @@ pub fn bounding_box_path(pattern: &str) -> String {
     }
 }
 
-/// A `dump custom/vtk` writing legacy `.vtk` files.
+/// A `dump custom/vtk`: legacy `.vtk` files, or VTK XML PolyData for a `.vtp` name.
 #[derive(Debug, Clone)]
 pub struct VtkDump {
     name: DumpFileName,
@@ -270,21 +368,44 @@ pub struct VtkDump {
     pub sort: Sort,
     /// Rank substituted for `%`.
     pub rank: usize,
+    /// `dump_modify binary`: legacy `BINARY` for `.vtk`, base64 data for `.vtp`/`.vtu`.
+    /// Off by default for `.vtk`, on for the XML formats.
+    pub binary: bool,
+    /// `dump_modify compressor`, for `.vtp`/`.vtu` (zlib by default there; legacy files
+    /// have no compression).
+    pub compressor: Compressor,
 }
 
 impl VtkDump {
     /// A dump writing to `name`.
     pub fn new(name: DumpFileName) -> Self {
+        let xml = is_xml(name.pattern());
         Self {
             name,
             sort: Sort::Off,
             rank: 0,
+            binary: xml,
+            compressor: if xml {
+                Compressor::Zlib
+            } else {
+                Compressor::None
+            },
         }
+    }
+
+    /// The file name pattern.
+    pub fn name(&self) -> &DumpFileName {
+        &self.name
     }
 
     /// The file name pattern (mutable for `dump_modify pad`).
     pub fn name_mut(&mut self) -> &mut DumpFileName {
         &mut self.name
+    }
+
+    /// True when the files are VTK XML (`.vtp` PolyData, `.vtu` UnstructuredGrid).
+    pub fn is_xml(&self) -> bool {
+        is_xml(self.name.pattern())
     }
 
     /// Writes the snapshot file and its bounding-box file; returns both paths. Without
@@ -301,13 +422,44 @@ impl VtkDump {
         self.sort.apply(&mut order, p, d, columns);
         let layout = vtk_layout(columns);
         let path = self.name.path(step, self.rank);
-        write_atomic(&path, format_vtk(p, d, &order, columns, &layout).as_bytes())?;
-        let box_name =
-            DumpFileName::new(bounding_box_path(self.name.pattern())).with_pad(self.name.pad());
-        let box_path = box_name.path(step, self.rank);
-        write_atomic(&box_path, format_bounding_box(d).as_bytes())?;
+        let xml = self.is_xml();
+        let (main, bbox, box_pattern) = if xml {
+            let enc = self.compressor.encoding(self.binary);
+            let text = if self.name.pattern().ends_with(".vtu") {
+                crate::vtk_xml::format_custom_vtu(p, d, &order, columns, &layout, enc)
+            } else {
+                crate::vtk_xml::format_vtp(p, d, &order, columns, &layout, enc)
+            };
+            (
+                text.into_bytes(),
+                crate::vtk_xml::format_bounding_box_vtr(d, enc).into_bytes(),
+                crate::vtk_xml::bounding_box_vtr_path(self.name.pattern()),
+            )
+        } else if self.binary {
+            (
+                format_vtk_binary(p, d, &order, columns, &layout),
+                format_bounding_box_binary(d),
+                bounding_box_path(self.name.pattern()),
+            )
+        } else {
+            (
+                format_vtk(p, d, &order, columns, &layout).into_bytes(),
+                format_bounding_box(d).into_bytes(),
+                bounding_box_path(self.name.pattern()),
+            )
+        };
+        write_atomic(&path, &main)?;
+        let box_path = DumpFileName::new(box_pattern)
+            .with_pad(self.name.pad())
+            .path(step, self.rank);
+        write_atomic(&box_path, &bbox)?;
         Ok([path, box_path])
     }
+}
+
+/// True for a `.vtp` or `.vtu` file name (VTK XML PolyData, UnstructuredGrid).
+fn is_xml(pattern: &str) -> bool {
+    pattern.ends_with(".vtp") || pattern.ends_with(".vtu")
 }
 
 #[cfg(test)]
@@ -444,6 +596,58 @@ mod tests {
              DIMENSIONS 2 2 2\nX_COORDINATES 2 double\n0 1 \nY_COORDINATES 2 double\n0 1 \n\
              Z_COORDINATES 2 double\n0 2 \n"
         );
+    }
+
+    /// BINARY: the ASCII file's lines with each block of values big-endian binary plus a
+    /// newline (the layout LIGGGHTS 3.8 writes with `dump_modify binary yes`).
+    #[test]
+    fn binary_layout() {
+        use rdem::{Boundary, DVec3, NewParticle};
+        let d = Domain::new(DVec3::ZERO, DVec3::new(1.0, 1.0, 2.0), [Boundary::Fixed; 3]).unwrap();
+        let mut p = Particles::new();
+        for k in 0..2u64 {
+            let np = NewParticle::at(DVec3::new(0.25 + k as f64 * 0.5, 0.5, 0.5), 0.1, 2500.0)
+                .with_tag(k + 7)
+                .with_v(DVec3::new(1.5, -2.0, k as f64));
+            p.add_local(&np).unwrap();
+        }
+        let c = cols("id vx vy vz radius");
+        let b = format_vtk_binary(&p, &d, &[1, 0], &c, &vtk_layout(&c));
+        let mut want = b"# vtk DataFile Version 5.1\nGenerated by rdem\nBINARY\nDATASET POLYDATA\n\
+            POINTS 2 float\n"
+            .to_vec();
+        for x in [0.75f32, 0.5, 0.5, 0.25, 0.5, 0.5] {
+            want.extend(x.to_be_bytes());
+        }
+        want.extend(b"\nVERTICES 3 2\nOFFSETS vtktypeint64\n");
+        for k in [0i64, 1, 2] {
+            want.extend(k.to_be_bytes());
+        }
+        want.extend(b"\nCONNECTIVITY vtktypeint64\n");
+        for k in [0i64, 1] {
+            want.extend(k.to_be_bytes());
+        }
+        want.extend(b"\nPOINT_DATA 2\nFIELD FieldData 3\nid 1 2 int\n");
+        for k in [8i32, 7] {
+            want.extend(k.to_be_bytes());
+        }
+        want.extend(b"\nv 3 2 double\n");
+        for x in [1.5f64, -2.0, 1.0, 1.5, -2.0, 0.0] {
+            want.extend(x.to_be_bytes());
+        }
+        want.extend(b"\nradius 1 2 double\n");
+        for x in [0.1f64, 0.1] {
+            want.extend(x.to_be_bytes());
+        }
+        want.push(b'\n');
+        assert_eq!(b, want);
+        // No particles: as in ASCII, the file ends after the (empty) points.
+        assert!(
+            format_vtk_binary(&p, &d, &[], &c, &vtk_layout(&c)).ends_with(b"POINTS 0 float\n\n")
+        );
+        let bb = format_bounding_box_binary(&d);
+        assert!(bb.starts_with(b"# vtk DataFile Version 5.1\nGenerated by rdem\nBINARY\n"));
+        assert_eq!(bb.len(), 94 + 3 * (23 + 16 + 1));
     }
 
     #[test]

@@ -1290,7 +1290,6 @@ fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "pair/gran/local",
             "wall/gran/local",
             "bond/counter",
-            "stress/atom",
             "com",
             "msd",
             "rdf",
@@ -1310,6 +1309,22 @@ fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "erotate/sphere" => ComputeKind::ERotateSphere,
         "ke" => ComputeKind::Ke,
         "contact/atom" => ComputeKind::ContactAtom,
+        "stress/atom" => {
+            // No keyword: every term; otherwise only the listed ones (`virial`: all but ke).
+            let (mut ke, mut pair, mut any) = (false, false, false);
+            while !a.is_done() {
+                match a.keyword("stress/atom keyword", &computes::STRESS_KEYWORDS)? {
+                    "ke" => ke = true,
+                    "pair" | "virial" => pair = true,
+                    _ => {}
+                }
+                any = true;
+            }
+            if !any {
+                (ke, pair) = (true, true);
+            }
+            ComputeKind::StressAtom { ke, pair }
+        }
         "property/atom" => {
             let mut f = Vec::new();
             while let Some(w) = a.peek() {

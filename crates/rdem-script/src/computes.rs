@@ -10,12 +10,20 @@ use crate::atom_fields;
 pub const REDUCE_MODES: [&str; 6] = ["sum", "min", "max", "ave", "sumsq", "avesq"];
 
 /// Valid compute styles.
-pub const STYLES: [&str; 5] = [
+pub const STYLES: [&str; 6] = [
     "erotate/sphere",
     "ke",
     "reduce",
     "property/atom",
     "contact/atom",
+    "stress/atom",
+];
+
+/// Keywords of `compute stress/atom`. Only `ke`, `pair` and `virial` have terms in rdem
+/// (no bonds, angles, ... or kspace; fixes add no virial, as LIGGGHTS' `wall/gran` adds
+/// none), so the others select nothing.
+pub const STRESS_KEYWORDS: [&str; 9] = [
+    "ke", "pair", "bond", "angle", "dihedral", "improper", "kspace", "fix", "virial",
 ];
 
 /// One input of `compute reduce`.
@@ -47,6 +55,14 @@ pub enum ComputeKind {
     PropertyAtom(Vec<String>),
     /// Per-atom number of particle contacts.
     ContactAtom,
+    /// Per-atom stress × volume (6 columns: xx yy zz xy xz yz), LAMMPS' convention:
+    /// −(m v ⊗ v + ½ Σ r_ij ⊗ F_ij).
+    StressAtom {
+        /// Include the kinetic term −m v ⊗ v.
+        ke: bool,
+        /// Include the pair contact virial.
+        pair: bool,
+    },
 }
 
 /// A compute.
@@ -74,7 +90,9 @@ impl Compute {
     pub fn is_peratom(&self) -> bool {
         matches!(
             self.kind,
-            ComputeKind::PropertyAtom(_) | ComputeKind::ContactAtom
+            ComputeKind::PropertyAtom(_)
+                | ComputeKind::ContactAtom
+                | ComputeKind::StressAtom { .. }
         )
     }
 
@@ -82,6 +100,7 @@ impl Compute {
     pub fn peratom_cols(&self) -> usize {
         match &self.kind {
             ComputeKind::PropertyAtom(f) if f.len() > 1 => f.len(),
+            ComputeKind::StressAtom { .. } => 6,
             _ => 0,
         }
     }
@@ -142,6 +161,50 @@ pub fn contact_counts(w: &World) -> Vec<f64> {
         }
     }
     c
+}
+
+/// True when `c` needs the engine's per-particle contact virial.
+pub fn needs_virial(c: &Compute) -> bool {
+    matches!(c.kind, ComputeKind::StressAtom { pair: true, .. })
+}
+
+/// Column `col` (0..6: xx yy zz xy xz yz) of `compute stress/atom` for the owned particles:
+/// −(m v_a v_b + W_ab) for particles in `groupbit`, 0 for the others, in stress × volume
+/// units (N m), as LAMMPS/LIGGGHTS report it. The pair term needs the virial of the
+/// current step ([`rdem::World::current_virial`]).
+pub fn stress_atom(
+    w: &World,
+    groupbit: u32,
+    ke: bool,
+    pair: bool,
+    col: usize,
+) -> Result<Vec<f64>, String> {
+    const AB: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+    let p = &w.particles;
+    let n = p.nlocal();
+    let virial = if pair {
+        Some(w.current_virial().ok_or_else(|| {
+            "compute stress/atom: the contact virial is not available at this step (a run computes it on every step while the compute exists)".to_string()
+        })?)
+    } else {
+        None
+    };
+    let (a, b) = AB[col];
+    Ok((0..n)
+        .map(|i| {
+            if p.mask[i] & groupbit == 0 {
+                return 0.0;
+            }
+            let mut s = 0.0;
+            if let Some(v) = virial {
+                s += v[i][col];
+            }
+            if ke {
+                s += p.rmass[i] * p.v[i][a] * p.v[i][b];
+            }
+            -s
+        })
+        .collect())
 }
 
 /// Per-atom values of `field` for owned particles (unknown field: `None`).

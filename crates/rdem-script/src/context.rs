@@ -114,6 +114,10 @@ pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f6
             }
             Ok(computes::contact_counts(w))
         }
+        ComputeKind::StressAtom { ke, pair } => {
+            let k = pick_index(id, col, 6)?;
+            computes::stress_atom(w, c.groupbit, *ke, *pair, k)
+        }
         _ => Err(format!("compute {id} does not compute per-atom values")),
     }
 }

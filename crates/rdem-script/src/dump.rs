@@ -1,7 +1,9 @@
 //! `dump`, `dump_modify`, `undump` and `write_dump`: which particles and columns are written
 //! when; the file formats themselves are in `rdem-io`.
 
-use rdem_io::{Column, DumpFileName, Sort, TextDump, TextOptions, VtkDump};
+use rdem_io::{
+    AtomVtkDump, Column, Compressor, DumpFileName, PvdSeries, Sort, TextDump, TextOptions, VtkDump,
+};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::context;
@@ -10,17 +12,10 @@ use crate::thermo::split_reference;
 use crate::variables::Variable;
 
 /// Dump styles rdem writes.
-pub const STYLES: [&str; 2] = ["custom", "custom/vtk"];
+pub const STYLES: [&str; 4] = ["custom", "custom/vtk", "atom/vtk", "euler/vtk"];
 
 /// LIGGGHTS dump styles of later releases.
-const LATER: [&str; 6] = [
-    "atom/vtk",
-    "euler/vtk",
-    "mesh/stl",
-    "mesh/gran/VTK",
-    "local/gran/vtk",
-    "atom",
-];
+const LATER: [&str; 4] = ["mesh/stl", "mesh/gran/VTK", "local/gran/vtk", "atom"];
 
 /// The writer of a dump.
 pub enum Writer {
@@ -28,6 +23,11 @@ pub enum Writer {
     Text(TextDump),
     /// `dump custom/vtk`.
     Vtk(VtkDump),
+    /// `dump atom/vtk`.
+    AtomVtk(AtomVtkDump),
+    /// `dump euler/vtk`: the cells of the `fix ave/euler` (the dump's group and sort do
+    /// not apply, as in LIGGGHTS).
+    Euler(DumpFileName),
 }
 
 /// One dump.
@@ -44,6 +44,9 @@ pub struct Dump {
     pub writer: Writer,
     /// Step of the last snapshot.
     pub last: Option<u64>,
+    /// The ParaView collection of a VTK dump whose name has `*` (see [`rdem_io::pvd`]);
+    /// `None` for text dumps, `write_dump` and a VTK file overwritten at each snapshot.
+    pub pvd: Option<PvdSeries>,
 }
 
 /// Checks a column argument: a field, or `c_`/`f_`/`v_` of a per-atom quantity.
@@ -124,13 +127,44 @@ fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String> {
         .collect()
 }
 
-/// Writes every dump due at `step` (at set-up: also dumps that never wrote).
+/// Writes every dump due at `step` (at set-up: also dumps that never wrote). At the last
+/// step of a run, waits for the snapshots still being written in the background.
 pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
     for k in 0..sim.dumps.len() {
         let d = &sim.dumps[k];
         let due = (step % d.every == 0 || (setup && d.last.is_none())) && d.last != Some(step);
         if due {
             write_one(sim, k, step)?;
+        }
+    }
+    if step == sim.run_last {
+        finish_all(sim)?;
+    }
+    Ok(())
+}
+
+/// Waits for every snapshot being written in the background and lists it in its `.pvd`.
+pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
+    for d in &mut sim.dumps {
+        finish(d)?;
+    }
+    Ok(())
+}
+
+fn finish(d: &mut Dump) -> Result<(), String> {
+    if let Writer::AtomVtk(v) = &mut d.writer {
+        let done = v.finish().map_err(|e| format!("dump {}: {e}", d.id))?;
+        record(d, done.into_iter().collect())?;
+    }
+    Ok(())
+}
+
+/// Lists completed snapshots in the dump's `.pvd`.
+fn record(d: &mut Dump, done: Vec<(f64, std::path::PathBuf)>) -> Result<(), String> {
+    if let Some(pvd) = &mut d.pvd {
+        for (time, path) in done {
+            pvd.add(time, &path)
+                .map_err(|e| format!("dump {}: {e}", d.id))?;
         }
     }
     Ok(())
@@ -142,20 +176,39 @@ fn write_one(sim: &mut Sim, k: usize, step: u64) -> Result<(), String> {
         return Err("dump before the simulation box is defined".into());
     };
     let sel = rdem_io::fields::group_selection(&w.particles, sim.dumps[k].groupbit);
+    let time = sim.time();
+    let background = sim.dumps[k].id != WRITE_DUMP;
     let d = &mut sim.dumps[k];
-    match &mut d.writer {
+    let done = match &mut d.writer {
         Writer::Text(t) => t
             .write(step, &w.particles, &w.domain, &sel, &cols)
-            .map(|_| ())
-            .map_err(|e| format!("dump {}: {e}", d.id))?,
+            .map(|_| vec![]),
         Writer::Vtk(v) => v
             .write(step, &w.particles, &w.domain, &sel, &cols)
-            .map(|_| ())
-            .map_err(|e| format!("dump {}: {e}", d.id))?,
+            .map(|[main, _]| vec![(time, main)]),
+        Writer::AtomVtk(v) if background => v.start(step, time, &w.particles, &sel),
+        Writer::AtomVtk(v) => v
+            .write(step, &w.particles, &sel)
+            .map(|path| vec![(time, path)]),
+        Writer::Euler(name) => {
+            let path = name.path(step, 0);
+            let id = d.id.clone();
+            crate::euler::write_euler_snapshot(sim, None, &path)
+                .map_err(|e| format!("dump {id}: {e}"))?;
+            let d = &mut sim.dumps[k];
+            record(d, vec![(time, path)])?;
+            d.last = Some(step);
+            return Ok(());
+        }
     }
+    .map_err(|e| format!("dump {}: {e}", d.id))?;
+    record(d, done)?;
     d.last = Some(step);
     Ok(())
 }
+
+/// The ID of the temporary dump of `write_dump`.
+const WRITE_DUMP: &str = "__write_dump";
 
 fn dump_style(a: &mut Args) -> CmdResult<&'static str> {
     let style_word = a.word("dump style")?;
@@ -195,13 +248,26 @@ fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {
     Ok(cols)
 }
 
-/// custom/vtk writes legacy `.vtk` files only (LIGGGHTS picks XML formats from other
-/// suffixes; those come with the VTK output issue).
+/// custom/vtk picks the format from the suffix, as LIGGGHTS does: `.vtk` legacy VTK,
+/// `.vtp` XML PolyData, `.vtu` XML UnstructuredGrid (the parallel `.pvtp`/`.pvtu` and
+/// anything else are refused). atom/vtk writes XML UnstructuredGrid whatever the name.
 fn check_file_name(a: &Args, style: &str, file: &str) -> CmdResult {
-    if style == "custom/vtk" && !file.ends_with(".vtk") {
+    if style == "euler/vtk" {
+        return crate::euler::check_euler_dump_name(file).map_err(|m| {
+            a.error_prev(
+                m,
+                Some("e.g. post/euler_*.vtk: one legacy VTK file per snapshot".into()),
+            )
+        });
+    }
+    if style == "custom/vtk" && ![".vtk", ".vtp", ".vtu"].iter().any(|s| file.ends_with(s)) {
         return Err(a.error_prev(
-            format!("dump custom/vtk writes legacy VTK: the file name '{file}' must end in .vtk"),
-            Some("XML formats (.vtp, .vtu) are not supported yet".into()),
+            format!("dump custom/vtk: the file name '{file}' must end in .vtk, .vtp or .vtu"),
+            Some(
+                "the suffix picks the format: .vtk legacy VTK, .vtp XML PolyData, .vtu XML \
+                 UnstructuredGrid"
+                    .into(),
+            ),
         ));
     }
     Ok(())
@@ -209,11 +275,57 @@ fn check_file_name(a: &Args, style: &str, file: &str) -> CmdResult {
 
 fn writer(style: &str, file: &str) -> Writer {
     let name = DumpFileName::new(file);
-    if style == "custom" {
-        Writer::Text(TextDump::new(name, TextOptions::default()))
-    } else {
-        Writer::Vtk(VtkDump::new(name))
+    match style {
+        "custom" => Writer::Text(TextDump::new(name, TextOptions::default())),
+        "atom/vtk" => Writer::AtomVtk(AtomVtkDump::new(name)),
+        "euler/vtk" => Writer::Euler(name),
+        _ => Writer::Vtk(VtkDump::new(name)),
     }
+}
+
+/// The `.pvd` collection of a VTK dump series (a name with `*`).
+fn collection(style: &str, file: &str) -> Option<PvdSeries> {
+    if style == "custom" {
+        return None;
+    }
+    PvdSeries::for_pattern(file, 0)
+}
+
+/// The columns of a style: atom/vtk has none.
+fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>> {
+    if style == "euler/vtk" {
+        if let Some(w) = a.peek() {
+            if w != "modify" {
+                return Err(a.error_at(
+                    a.pos(),
+                    "dump euler/vtk takes no columns",
+                    Some(
+                        "it writes the cells of fix ave/euler: v_avg, volumefraction, radius \
+                         and pressure"
+                            .into(),
+                    ),
+                ));
+            }
+        }
+        return Ok(Vec::new());
+    }
+    if style == "atom/vtk" {
+        if let Some(w) = a.peek() {
+            if w != "modify" {
+                return Err(a.error_at(
+                    a.pos(),
+                    "dump atom/vtk takes no columns",
+                    Some(
+                        "it always writes radii, id, type, proc, mass, velocity_lin, \
+                         velocity_ang and force; use custom/vtk to choose columns"
+                            .into(),
+                    ),
+                ));
+            }
+        }
+        return Ok(Vec::new());
+    }
+    read_columns(sim, a)
 }
 
 /// `dump ID group style N file columns...`.
@@ -230,7 +342,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let every = a.count("N (dump every N steps)")?;
     let file = a.word("file name")?.to_string();
     check_file_name(a, style, &file)?;
-    let cols = read_columns(sim, a)?;
+    let cols = style_columns(sim, a, style)?;
     a.done()?;
     sim.world_ref(a)?;
     sim.dumps.push(Dump {
@@ -240,6 +352,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         columns: cols,
         writer: writer(style, &file),
         last: None,
+        pvd: collection(style, &file),
     });
     Ok(())
 }
@@ -255,10 +368,23 @@ pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_at(
             a.pos(),
             "dump_modify: missing keyword",
-            Some("e.g. sort id, pad 5, every N, format \"...\"".into()),
+            Some("e.g. sort id, pad 5, every N, format \"...\", binary yes".into()),
         ));
     }
-    modify(sim, a, k, &["sort", "pad", "format", "every", "first"])
+    modify(
+        sim,
+        a,
+        k,
+        &[
+            "sort",
+            "pad",
+            "format",
+            "every",
+            "first",
+            "binary",
+            "compressor",
+        ],
+    )
 }
 
 /// Applies `dump_modify`-style keywords (those in `valid`) to dump `k`.
@@ -274,6 +400,18 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                 match &mut d.writer {
                     Writer::Text(t) => t.options.sort = s,
                     Writer::Vtk(v) => v.sort = s,
+                    Writer::AtomVtk(_) if s == Sort::Id => {}
+                    Writer::AtomVtk(_) => {
+                        return Err(a.error_prev(
+                            "dump atom/vtk always sorts by id",
+                            Some("use custom/vtk for another order".into()),
+                        ))
+                    }
+                    Writer::Euler(_) => {
+                        return Err(
+                            a.error_prev("dump euler/vtk writes cells: sort does not apply", None)
+                        )
+                    }
                 }
             }
             "pad" => {
@@ -281,6 +419,49 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                 match &mut d.writer {
                     Writer::Text(t) => t.name_mut().set_pad(n),
                     Writer::Vtk(v) => v.name_mut().set_pad(n),
+                    Writer::AtomVtk(v) => v.name_mut().set_pad(n),
+                    Writer::Euler(name) => name.set_pad(n),
+                }
+            }
+            "binary" => {
+                let yes = a.yes_no("binary")?;
+                match &mut d.writer {
+                    Writer::Vtk(v) => v.binary = yes,
+                    Writer::AtomVtk(v) => v.binary = yes,
+                    Writer::Text(_) | Writer::Euler(_) => {
+                        return Err(a.error_prev(
+                            "binary applies to the particle VTK dump styles (custom/vtk, atom/vtk)",
+                            None,
+                        ))
+                    }
+                }
+            }
+            "compressor" => {
+                let w = a.word("compressor (none, zlib or lz4)")?;
+                let Some(c) = Compressor::parse(w) else {
+                    return Err(a.error_prev(
+                        format!("unknown compressor '{w}'"),
+                        Some(suggest(w, &Compressor::NAMES)),
+                    ));
+                };
+                // Compression only exists for binary data: asking for it turns binary on.
+                let on = c != Compressor::None;
+                match &mut d.writer {
+                    Writer::Vtk(v) if v.is_xml() => {
+                        v.compressor = c;
+                        v.binary |= on;
+                    }
+                    Writer::AtomVtk(v) => {
+                        v.compressor = c;
+                        v.binary |= on;
+                    }
+                    _ => {
+                        return Err(a.error_prev(
+                            "compressor applies to VTK XML output (atom/vtk, custom/vtk with \
+                             .vtp or .vtu)",
+                            Some("legacy .vtk files cannot be compressed".into()),
+                        ))
+                    }
                 }
             }
             "format" => {
@@ -306,6 +487,9 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
 pub fn undump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("dump ID")?;
     a.done()?;
+    if let Some(d) = sim.dumps.iter_mut().find(|d| d.id == id) {
+        finish(d).map_err(|m| a.error_cmd(m, None))?;
+    }
     let n = sim.dumps.len();
     sim.dumps.retain(|d| d.id != id);
     if n == sim.dumps.len() {
@@ -321,21 +505,27 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = dump_style(a)?;
     let file = a.word("file name")?.to_string();
     check_file_name(a, style, &file)?;
-    let cols = read_columns(sim, a)?;
+    let cols = style_columns(sim, a, style)?;
     let step = sim.world_ref(a)?.step;
     sim.dumps.push(Dump {
-        id: "__write_dump".into(),
+        id: WRITE_DUMP.into(),
         groupbit,
         every: 1,
         columns: cols,
         writer: writer(style, &file),
         last: None,
+        pvd: None,
     });
     let k = sim.dumps.len() - 1;
     let mut result = Ok(());
     if a.peek() == Some("modify") {
         a.seek(a.pos() + 1);
-        result = modify(sim, a, k, &["sort", "pad", "format"]);
+        result = modify(
+            sim,
+            a,
+            k,
+            &["sort", "pad", "format", "binary", "compressor"],
+        );
     }
     if result.is_ok() {
         result = write_one(sim, k, step).map_err(|m| a.error_cmd(m, None));

@@ -16,7 +16,7 @@ use crate::sim::{FixEntry, Property, Sim};
 use crate::variables::format_g;
 
 /// Fix styles rdem runs.
-pub const STYLES: [&str; 18] = [
+pub const STYLES: [&str; 19] = [
     "property/global",
     "particletemplate/sphere",
     "particledistribution/discrete",
@@ -35,16 +35,16 @@ pub const STYLES: [&str; 18] = [
     "check/timestep/gran",
     "ave/time",
     "property/atom",
+    "ave/euler",
 ];
 
 /// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
-const LATER: [(&str, &str); 9] = [
+const LATER: [(&str, &str); 8] = [
     ("mesh/surface", "meshes"),
     ("mesh/surface/stress", "meshes"),
     ("mesh/surface/planar", "meshes"),
     ("move/mesh", "meshes"),
     ("insert/stream", "stream insertion"),
-    ("ave/euler", "Euler-grid averaging"),
     ("bond/gran", "bonds"),
     ("wall/gran/hooke/history", "old-style wall models"),
     ("particletemplate/multisphere", "multisphere particles"),
@@ -134,6 +134,26 @@ pub struct AveTime {
     pub windows: u64,
 }
 
+/// `fix ave/euler nevery N cell_size_relative c parallel yes|no [basevolume_region R]`:
+/// cell averages on a regular grid ([`rdem::euler`]), computed at the end of every
+/// `nevery`-th step (and at a run's set-up) for `dump euler/vtk`.
+pub struct AveEuler {
+    /// Compute every this many steps.
+    pub nevery: u64,
+    /// Cell size in multiples of the largest particle diameter.
+    pub cell_size_relative: f64,
+    /// `parallel yes|no` (with one process both give the same grid over the whole box).
+    pub parallel: bool,
+    /// `basevolume_region`: the cells' volumes are their parts inside this region.
+    pub base_region: Option<(String, rdem::region::Region)>,
+    /// Base volumes cached for a grid.
+    pub base_volumes: Option<(rdem::euler::EulerGrid, Vec<f64>)>,
+    /// The last result (`None` until the first evaluation).
+    pub cells: Option<rdem::euler::EulerCells>,
+    /// Step of the last result.
+    pub step: u64,
+}
+
 /// Front-end part of a fix.
 pub enum FrontFix {
     /// The fix lives in `World::fixes` under the same ID.
@@ -152,6 +172,8 @@ pub enum FrontFix {
     CheckTimestep(CheckTimestep),
     /// `ave/time`.
     AveTime(Box<AveTime>),
+    /// `ave/euler`.
+    AveEuler(Box<AveEuler>),
 }
 
 /// Value `f_ID` / `f_ID[i]` (1-based).
@@ -292,6 +314,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "adapt" => adapt(sim, a)?,
         "check/timestep/gran" => check_timestep(a)?,
         "ave/time" => ave_time(sim, a)?,
+        "ave/euler" => ave_euler(sim, a, &id)?,
         _ => unreachable!("every style in STYLES is handled"),
     };
     sim.fixes.push(FixEntry {
@@ -976,6 +999,50 @@ fn check_timestep(a: &mut Args) -> CmdResult<FrontFix> {
         vmax,
         values: [0.0; 2],
     }))
+}
+
+fn ave_euler(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
+    // LIGGGHTS 3.8 stops a second ave/euler with "Reuse of compute ID" (each creates an
+    // internal compute of the same name); say so plainly.
+    if let Some(other) = sim
+        .fixes
+        .iter()
+        .find(|f| f.style == "ave/euler" && f.id != id)
+    {
+        return Err(a.error_at(
+            STYLE_WORD,
+            format!(
+                "only one fix ave/euler can exist (fix {} is one already)",
+                other.id
+            ),
+            Some(format!(
+                "LIGGGHTS 3.8 stops on a second one too; 'unfix {}' first",
+                other.id
+            )),
+        ));
+    }
+    a.keyword("ave/euler keyword", &["nevery"])?;
+    let nevery = a.count("nevery")?;
+    a.keyword("ave/euler keyword", &["cell_size_relative"])?;
+    let cell_size_relative = a.positive("cell_size_relative")?;
+    a.keyword("ave/euler keyword", &["parallel"])?;
+    let parallel = a.yes_no("parallel")?;
+    let mut base_region = None;
+    while !a.is_done() {
+        a.keyword("ave/euler keyword", &["basevolume_region"])?;
+        let name = a.peek().unwrap_or("").to_string();
+        let r = sim.region(a)?;
+        base_region = Some((name, r));
+    }
+    Ok(FrontFix::AveEuler(Box::new(AveEuler {
+        nevery,
+        cell_size_relative,
+        parallel,
+        base_region,
+        base_volumes: None,
+        cells: None,
+        step: 0,
+    })))
 }
 
 fn ave_time(sim: &mut Sim, a: &mut Args) -> CmdResult<FrontFix> {

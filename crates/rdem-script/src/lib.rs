@@ -14,6 +14,7 @@ pub mod computes;
 pub mod context;
 pub mod diagnostic;
 pub mod dump;
+pub mod euler;
 pub mod expr;
 pub mod fixes;
 pub mod input;

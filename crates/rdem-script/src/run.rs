@@ -139,8 +139,11 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         sim.warn_once("No fixes defined, atoms won't move");
     }
     sim.out.line("Setting up run ...");
+    let want = crate::euler::wants_virial(sim, start_step, true);
     let w = sim.world.as_mut().expect("checked");
+    w.want_virial = want;
     w.setup().map_err(|e| e.to_string())?;
+    crate::euler::end_of_step(sim, start_step, true)?;
     flush_world_warnings(sim);
     let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
     sim.out.line(&format!(
@@ -160,6 +163,10 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     for k in 0..nsteps {
         let step = start_step + k + 1;
         adapt_all(sim, step, false)?;
+        let want = crate::euler::wants_virial(sim, step, false);
+        if let Some(w) = &mut sim.world {
+            w.want_virial = want;
+        }
         advance(sim, step)?;
         flush_world_warnings(sim);
         end_of_step(sim, step)?;
@@ -330,6 +337,7 @@ fn reset_adapt(sim: &mut Sim) -> Result<(), String> {
 }
 
 fn end_of_step(sim: &mut Sim, step: u64) -> Result<(), String> {
+    crate::euler::end_of_step(sim, step, false)?;
     for k in 0..sim.fixes.len() {
         match &sim.fixes[k].kind {
             FrontFix::CheckTimestep(c) if step % c.every == 0 => {

@@ -24,6 +24,9 @@ pub trait Comm: std::fmt::Debug + Send {
     fn forward(&mut self, p: &mut Particles);
     /// Adds ghost forces and torques onto their owners.
     fn reverse(&mut self, p: &mut Particles);
+    /// Adds the per-particle virial of ghosts (`virial[g]`, 6 components) onto their
+    /// owners, as [`Comm::reverse`] does for forces.
+    fn reverse_virial(&mut self, p: &Particles, virial: &mut [[f64; 6]]);
     /// Global sum.
     fn sum(&self, x: f64) -> f64;
     /// Global sum of a count.
@@ -113,6 +116,17 @@ impl Comm for Serial {
             let (f, t) = (p.f[g], p.torque[g]);
             p.f[o] += f;
             p.torque[o] += t;
+        }
+    }
+
+    fn reverse_virial(&mut self, p: &Particles, virial: &mut [[f64; 6]]) {
+        let nlocal = p.nlocal();
+        for g in nlocal..p.len() {
+            let o = p.origin[g];
+            let w = virial[g];
+            for (a, b) in virial[o].iter_mut().zip(&w) {
+                *a += b;
+            }
         }
     }
 

@@ -11,6 +11,7 @@ pub mod comm;
 pub mod contact;
 pub mod domain;
 pub mod error;
+pub mod euler;
 pub mod fix;
 pub mod insert;
 pub mod neighbor;

@@ -126,6 +126,32 @@ impl PairGran {
             list,
             dt,
             update,
+            virial: None,
+        });
+    }
+
+    /// [`PairGran::compute`] that also adds each contact's virial to `virial` (one entry
+    /// per particle, ghosts included; xx yy zz xy xz yz): for the force F on i from j and
+    /// r = x_i − x_j, both i and j get ½ r ⊗ F (the per-atom virial of LAMMPS'
+    /// `compute stress/atom`). A separate monomorphization of the pass, so that the plain
+    /// force pass carries no trace of it.
+    pub fn compute_with_virial(
+        &self,
+        p: &mut Particles,
+        list: &mut NeighborList,
+        dt: f64,
+        update: bool,
+        virial: &mut [[f64; 6]],
+    ) {
+        debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
+        assert!(virial.len() >= p.len(), "one virial entry per particle");
+        self.model.dispatch(PairPass {
+            pair: self,
+            p,
+            list,
+            dt,
+            update,
+            virial: Some(virial),
         });
     }
 }
@@ -136,17 +162,30 @@ struct PairPass<'a> {
     list: &'a mut NeighborList,
     dt: f64,
     update: bool,
+    virial: Option<&'a mut [[f64; 6]]>,
 }
 
 impl Visitor for PairPass<'_> {
     type Output = ();
-    fn visit<K: ContactKernel>(self) {
+    fn visit<K: ContactKernel>(mut self) {
+        match self.virial.take() {
+            None => self.run::<K, false>(&mut []),
+            Some(v) => self.run::<K, true>(v),
+        }
+    }
+}
+
+impl PairPass<'_> {
+    /// The pass with kernel `K`; with `VIRIAL` the contact virial goes into `virial`.
+    #[inline(always)]
+    fn run<K: ContactKernel, const VIRIAL: bool>(self, virial: &mut [[f64; 6]]) {
         let PairPass {
             pair,
             p,
             list,
             dt,
             update,
+            virial: _,
         } = self;
         let flags = pair.model.flags;
         let table = &pair.table;
@@ -217,6 +256,23 @@ impl Visitor for PairPass<'_> {
                     update,
                 };
                 let out = K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist);
+                if VIRIAL {
+                    let f = out.f_i;
+                    let w = [
+                        0.5 * (d.x * f.x),
+                        0.5 * (d.y * f.y),
+                        0.5 * (d.z * f.z),
+                        0.5 * (d.x * f.y),
+                        0.5 * (d.x * f.z),
+                        0.5 * (d.y * f.z),
+                    ];
+                    for (a, b) in virial[i].iter_mut().zip(&w) {
+                        *a += b;
+                    }
+                    for (a, b) in virial[j].iter_mut().zip(&w) {
+                        *a += b;
+                    }
+                }
                 fi += out.f_i;
                 tqi += out.t_i;
                 f[j] -= out.f_i;

@@ -106,15 +106,35 @@ impl World {
             if self.comm.max(if stale { 1.0 } else { 0.0 }) > 0.0 {
                 pair.build_near_list(&self.particles, &self.neighbor);
             }
-            pair.compute(
-                &mut self.particles,
-                &mut self.neighbor.list,
-                self.dt,
-                update,
-            );
+            if self.want_virial {
+                self.virial.clear();
+                self.virial.resize(self.particles.len(), [0.0; 6]);
+                pair.compute_with_virial(
+                    &mut self.particles,
+                    &mut self.neighbor.list,
+                    self.dt,
+                    update,
+                    &mut self.virial,
+                );
+            } else {
+                pair.compute(
+                    &mut self.particles,
+                    &mut self.neighbor.list,
+                    self.dt,
+                    update,
+                );
+            }
+        } else if self.want_virial {
+            self.virial.clear();
+            self.virial.resize(self.particles.len(), [0.0; 6]);
         }
         let t2 = self.timers.lap(Stage::Pair, t1);
         self.comm.reverse(&mut self.particles);
+        if self.want_virial {
+            self.comm.reverse_virial(&self.particles, &mut self.virial);
+            self.virial.truncate(self.particles.nlocal());
+            self.virial_step = Some(self.step);
+        }
         let t3 = self.timers.lap(Stage::Comm, t2);
         let dt = self.dt;
         for fix in &mut self.fixes {

@@ -76,6 +76,19 @@ pub struct World {
     pub lost: u64,
     /// Warnings raised during runs (lost particles under `warn`, ...), oldest first.
     pub warnings: Vec<String>,
+    /// Set by the caller before a step (or a set-up) whose pair contact virial it needs:
+    /// the force pass then also fills [`World::virial`]. Off, the force pass is the plain
+    /// one and costs nothing more.
+    pub want_virial: bool,
+    /// Per-particle contact virial of the owned particles, xx yy zz xy xz yz: ½ r_ij ⊗ F_ij
+    /// summed over the particle's pair contacts (r_ij = x_i − x_j, F_ij the force on i),
+    /// ghost contributions added to their owners. Wall contacts do not contribute: LIGGGHTS
+    /// 3.8's `compute stress/atom` reports none for a particle pressed on a `wall/gran`
+    /// primitive. Valid when [`World::virial_step`] is the current step.
+    pub virial: Vec<[f64; 6]>,
+    /// Step at which [`World::virial`] was computed (`None`: never, or stale since
+    /// particles were added).
+    pub virial_step: Option<u64>,
     pub(crate) next_sort: u64,
     pub(crate) needs_reneighbor: bool,
 }
@@ -98,6 +111,9 @@ impl World {
             timers: Timers::default(),
             lost: 0,
             warnings: Vec::new(),
+            want_virial: false,
+            virial: Vec::new(),
+            virial_step: None,
             next_sort: 0,
             needs_reneighbor: true,
         }
@@ -120,6 +136,7 @@ impl World {
         }
         let i = self.particles.add_local(np)?;
         self.needs_reneighbor = true;
+        self.virial_step = None;
         Ok(i)
     }
 
@@ -165,6 +182,13 @@ impl World {
         let grow = self.comm.max(grow);
         self.neighbor.growth += grow.max(0.0);
         Ok(())
+    }
+
+    /// The contact virial of the owned particles if it is current (computed at this step
+    /// for these particles; see [`World::want_virial`]).
+    pub fn current_virial(&self) -> Option<&[[f64; 6]]> {
+        (self.virial_step == Some(self.step) && self.virial.len() == self.particles.nlocal())
+            .then_some(&self.virial[..])
     }
 
     /// Total number of owned particles over all ranks.
