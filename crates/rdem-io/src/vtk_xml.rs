@@ -407,10 +407,9 @@ fn file_header(out: &mut String, kind: &str, enc: XmlEncoding) {
     out.push_str(">\n");
 }
 
-/// The points of `selection` as `Float32`, and their vertex cells.
-fn points_and_vertices(p: &Particles, selection: &[usize]) -> (XmlArray, XmlArray, XmlArray) {
-    let n = selection.len();
-    let points = XmlArray::new(
+/// The positions of `selection` as a `Float32` `Points` array.
+fn float32_points(p: &Particles, selection: &[usize]) -> XmlArray {
+    XmlArray::new(
         "Points",
         3,
         XmlData::F32(
@@ -420,7 +419,13 @@ fn points_and_vertices(p: &Particles, selection: &[usize]) -> (XmlArray, XmlArra
                 .map(|v| v as f32)
                 .collect(),
         ),
-    );
+    )
+}
+
+/// The points of `selection` as `Float32`, and their vertex cells.
+fn points_and_vertices(p: &Particles, selection: &[usize]) -> (XmlArray, XmlArray, XmlArray) {
+    let n = selection.len();
+    let points = float32_points(p, selection);
     let conn = XmlArray::new("connectivity", 1, XmlData::I64((0..n as i64).collect()));
     let offsets = XmlArray::new("offsets", 1, XmlData::I64((1..=n as i64).collect()));
     (points, conn, offsets)
@@ -472,20 +477,9 @@ impl AtomVtu {
     /// The snapshot of the particles `selection` (in this order; the dump sorts by id),
     /// with `rank` as `proc`.
     pub fn capture(p: &Particles, selection: &[usize], rank: i32) -> Self {
-        let points = XmlArray::new(
-            "Points",
-            3,
-            XmlData::F32(
-                selection
-                    .iter()
-                    .flat_map(|&i| p.x[i].to_array())
-                    .map(|v| v as f32)
-                    .collect(),
-            ),
-        );
         Self {
             arrays: atom_vtk_arrays(p, selection, rank),
-            points,
+            points: float32_points(p, selection),
         }
     }
 
