@@ -105,6 +105,17 @@ impl Compute {
         }
     }
 
+    /// True if the global value is extensive: thermo divides it by the atom count under
+    /// `thermo_modify norm yes` (LIGGGHTS: ke, erotate/sphere and reduce sum are; reduce
+    /// min/max/ave are not; sumsq follows sum, avesq follows ave).
+    pub fn is_extensive(&self) -> bool {
+        match &self.kind {
+            ComputeKind::ERotateSphere | ComputeKind::Ke => true,
+            ComputeKind::Reduce { mode, .. } => matches!(mode.as_str(), "sum" | "sumsq"),
+            _ => false,
+        }
+    }
+
     /// Length of the global vector (reduce with several inputs), else 0.
     pub fn vector_len(&self) -> usize {
         match &self.kind {

@@ -215,6 +215,11 @@ impl Context for Ctx<'_> {
                         ),
                     }
                     .map_err(|e| format!("in variable '{v}': {}", e.message))
+                    // LIGGGHTS passes an equal-style variable into a formula as its text,
+                    // `%.15g`: v_a with a = 1/3 is 0.333333333333333.
+                    .map(|x| {
+                        crate::args::parse_f64(&crate::variables::format_g(x, 15)).unwrap_or(x)
+                    })
                 }
                 Some(Variable::Atom(f)) => {
                     if self.atom.is_none() {

@@ -1136,8 +1136,9 @@ fn ave_time(sim: &mut Sim, a: &mut Args) -> CmdResult<FrontFix> {
 
 /// Rayleigh and Hertz times of the current state (LIGGGHTS' check/timestep/gran
 /// estimates): the smallest Rayleigh time π r √(ρ/G)/(0.1631 ν + 0.8766) over particles,
-/// and the Hertz contact time 2.87 (m*²/(R* E*² v))^(1/5) of the smallest particle pair
-/// hitting at twice the largest speed (at least `vmax`).
+/// and the Hertz time 2.87 (m²/(r E*² v))^(1/5) per particle, with E* = E/(2(1−ν²)), the
+/// particle's own mass m and radius r, and v the largest particle speed (at least `vmax`)
+/// — the value LIGGGHTS 3.8 reports (checked against it, tests/liggghts_parity.rs).
 pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
     let w = sim.world.as_ref()?;
     let p = &w.particles;
@@ -1158,10 +1159,8 @@ pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
             t_r.min(std::f64::consts::PI * r * (p.density[i] / g).sqrt() / (0.1631 * ni + 0.8766));
         if v > 0.0 {
             let e_star = ei / (2.0 * (1.0 - ni * ni));
-            let m_star = p.rmass[i] / 2.0;
-            let r_star = r / 2.0;
-            t_h =
-                t_h.min(2.87 * (m_star * m_star / (r_star * e_star * e_star * 2.0 * v)).powf(0.2));
+            let m = p.rmass[i];
+            t_h = t_h.min(2.87 * (m * m / (r * e_star * e_star * v)).powf(0.2));
         }
     }
     Some((w.comm.min(t_r), w.comm.min(t_h)))

@@ -131,11 +131,8 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         .unwrap_or((0, 0));
     // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
     adapt_all(sim, start_step, true)?;
-    if sim
-        .world
-        .as_ref()
-        .is_some_and(|w| !w.fixes.iter().any(|f| f.integrates()))
-    {
+    // As LIGGGHTS: only when there is no fix at all.
+    if sim.fixes.is_empty() {
         sim.warn_once("No fixes defined, atoms won't move");
     }
     sim.out.line("Setting up run ...");

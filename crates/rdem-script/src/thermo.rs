@@ -262,11 +262,30 @@ fn header_label(c: &str) -> String {
     }
 }
 
+/// True for a `c_`/`f_` column that thermo normalises under `thermo_modify norm yes`:
+/// extensive computes, and fix check/timestep/gran, whose two fractions LIGGGHTS 3.8
+/// divides by the atom count too (observed; tests/liggghts_parity.rs). Variables and
+/// other fixes are printed as they are.
+fn extensive_reference(sim: &Sim, col: &str) -> bool {
+    match split_reference(col) {
+        Some(('c', id, _)) => sim.computes.iter().any(|c| c.id == id && c.is_extensive()),
+        Some(('f', id, _)) => sim
+            .fixes
+            .iter()
+            .any(|f| f.id == id && matches!(f.kind, crate::fixes::FrontFix::CheckTimestep(_))),
+        _ => false,
+    }
+}
+
 /// One row.
 pub fn row(sim: &Sim) -> Result<String, String> {
     let mut s = String::new();
     for (k, c) in sim.thermo.columns.iter().enumerate() {
-        let (v, int) = column_value(sim, c)?;
+        let (mut v, int) = column_value(sim, c)?;
+        let n = sim.natoms();
+        if sim.thermo.norm && n > 0 && extensive_reference(sim, c) {
+            v /= n as f64;
+        }
         let fmt = sim
             .thermo
             .col_format

@@ -309,3 +309,15 @@ fn time_and_immediate_format() {
         screen(&i)
     );
 }
+
+/// An equal-style variable enters a formula as its `%.15g` text, as in LIGGGHTS 3.8, which
+/// prints `0.33333333333333298176 0.999999999999999` for this script.
+#[test]
+fn equal_variables_enter_formulas_as_text() {
+    let i = run("variable a equal 1/3\nvariable b equal v_a*3\nprint \"x=$(v_a) ${b}\"\n");
+    assert!(
+        screen(&i).contains("x=0.33333333333333298176 0.999999999999999\n"),
+        "{}",
+        screen(&i)
+    );
+}
