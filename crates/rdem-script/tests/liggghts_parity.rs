@@ -184,8 +184,7 @@ fn thermo_norm_and_keywords() {
     // in item7.liggghts.txt (norm yes at 0, 200; norm no at 300).
     let row = |step: &str| -> Vec<f64> {
         out.lines()
-            .filter(|l| l.split_whitespace().next() == Some(step))
-            .last()
+            .rfind(|l| l.split_whitespace().next() == Some(step))
             .unwrap_or_else(|| panic!("no row {step} in\n{out}"))
             .split_whitespace()
             .map(|w| w.parse().unwrap())
