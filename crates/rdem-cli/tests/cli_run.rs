@@ -108,7 +108,7 @@ fn threads_flag_and_env() {
         .output()
         .unwrap();
     assert!(ok.status.success());
-    assert!(String::from_utf8_lossy(&ok.stdout).contains("2 threads asked for"));
+    assert!(String::from_utf8_lossy(&ok.stdout).contains("using 2 threads"));
     let bad = Command::new(env!("CARGO_BIN_EXE_rdem"))
         .args(["-in", "in.s", "-log", "none"])
         .env("RDEM_THREADS", "zero")

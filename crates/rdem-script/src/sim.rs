@@ -159,7 +159,8 @@ pub struct Sim {
     pub run_started: Instant,
     /// Whether a pair style was defined with `pair_coeff` given.
     pub pair_coeff_set: bool,
-    /// Number of threads asked for (`--threads`); the engine runs serial for now.
+    /// Number of threads asked for (`--threads`); the force pass runs on a rayon pool of
+    /// that size, which the caller sets up.
     pub threads: usize,
     /// Called during long runs with (steps done, steps total) for a progress display.
     pub progress: Option<Box<dyn FnMut(u64, u64)>>,

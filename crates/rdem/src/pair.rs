@@ -11,7 +11,8 @@
 use glam::DVec3;
 
 use crate::contact::{
-    clear_history, CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor,
+    clear_history, CoeffTable, ContactForce, ContactKernel, ContactModel, Geom, Materials,
+    PairCoeff, Visitor,
 };
 use crate::error::Result;
 use crate::neighbor::{Neighbor, NeighborList};
@@ -27,6 +28,10 @@ struct NearList {
     first: Vec<u32>,
     partner: Vec<u32>,
     slot: Vec<u32>,
+    /// Reverse CSR over all particles (ghosts too): `rk[rfirst[j]..rfirst[j + 1]]` are the
+    /// near-list positions of the pairs whose partner is j, increasing.
+    rfirst: Vec<u32>,
+    rk: Vec<u32>,
     xref: Vec<DVec3>,
     /// `Neighbor::nbuilds` of the list it was made from (0: none yet).
     built_for: u64,
@@ -42,6 +47,10 @@ pub struct PairGran {
     pub model: ContactModel,
     table: CoeffTable,
     near: NearList,
+    /// Phase 1's per-pair results, one per near-list pair (kept between steps).
+    res: Vec<PairOut>,
+    /// Phase 1's per-pair virials (only used by [`PairGran::compute_with_virial`]).
+    res_virial: Vec<[f64; 6]>,
 }
 
 impl PairGran {
@@ -51,6 +60,8 @@ impl PairGran {
             model,
             table: CoeffTable::default(),
             near: NearList::default(),
+            res: Vec::new(),
+            res_virial: Vec::new(),
         }
     }
 
@@ -112,15 +123,35 @@ impl PairGran {
             }
             near.first.push(near.partner.len() as u32);
         }
+        // Reverse CSR by counting sort (stable: increasing k within each partner).
+        let n = p.len();
+        near.rfirst.clear();
+        near.rfirst.resize(n + 2, 0);
+        for &j in &near.partner {
+            near.rfirst[j as usize + 2] += 1;
+        }
+        for a in 2..n + 2 {
+            near.rfirst[a] += near.rfirst[a - 1];
+        }
+        near.rk.clear();
+        near.rk.resize(near.partner.len(), 0);
+        for (k, &j) in near.partner.iter().enumerate() {
+            let c = &mut near.rfirst[j as usize + 1];
+            near.rk[*c as usize] = k as u32;
+            *c += 1;
+        }
+        near.rfirst.truncate(n + 1);
     }
 
     /// Adds contact forces and torques for every pair of the near list in contact (to
     /// ghosts too; reverse communication moves those to their owners). History of pairs
     /// out of contact is zeroed. The near list must be current (see
-    /// [`PairGran::near_list_stale`]).
-    pub fn compute(&self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
+    /// [`PairGran::near_list_stale`]). Runs on the current rayon pool; the result is
+    /// bit-identical whatever its size (see [`PairPass`]).
+    pub fn compute(&mut self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
         debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
-        self.model.dispatch(PairPass {
+        let model = self.model;
+        model.dispatch(PairPass {
             pair: self,
             p,
             list,
@@ -136,7 +167,7 @@ impl PairGran {
     /// `compute stress/atom`). A separate monomorphization of the pass, so that the plain
     /// force pass carries no trace of it.
     pub fn compute_with_virial(
-        &self,
+        &mut self,
         p: &mut Particles,
         list: &mut NeighborList,
         dt: f64,
@@ -145,7 +176,8 @@ impl PairGran {
     ) {
         debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
         assert!(virial.len() >= p.len(), "one virial entry per particle");
-        self.model.dispatch(PairPass {
+        let model = self.model;
+        model.dispatch(PairPass {
             pair: self,
             p,
             list,
@@ -156,8 +188,35 @@ impl PairGran {
     }
 }
 
+/// Particles per block of work in both phases of the pass. A constant, not a function of
+/// the thread count, so that the work and every sum are the same whatever the pool.
+const BLOCK: usize = 256;
+
+/// What one near-list pair gives its two particles: the force on i (j gets its negative)
+/// and the two torques.
+#[derive(Debug, Clone, Copy, Default)]
+struct PairOut {
+    f_i: DVec3,
+    t_i: DVec3,
+    t_j: DVec3,
+}
+
+/// The force pass, in two phases that make the result independent of the thread count:
+///
+/// 1. in parallel over blocks of [`BLOCK`] owned particles, every near pair's kernel
+///    runs, writes the pair's own history slot and stores its [`PairOut`] (and virial)
+///    in the pair's entry of a buffer indexed by near-list position;
+/// 2. in parallel over blocks of all particles (ghosts too), each particle sums what its
+///    pairs left for it, in increasing near-list position: first the pairs where it is j
+///    and i is before it, then its own pairs (summed apart, then added), then the pairs
+///    where it is j and i is after it (the reverse CSR of the near list gives those).
+///
+/// Phase 2 repeats, operation for operation, the sums of a serial pass over the near list
+/// (i ascending: `f[i] += Σ own`, `f[j] -= f_i` as they come), so the result is the
+/// serial pass's, bit for bit. Pairs out of contact leave zeros, which change no sum
+/// (an accumulator that starts at +0 is never −0).
 struct PairPass<'a> {
-    pair: &'a PairGran,
+    pair: &'a mut PairGran,
     p: &'a mut Particles,
     list: &'a mut NeighborList,
     dt: f64,
@@ -175,87 +234,204 @@ impl Visitor for PairPass<'_> {
     }
 }
 
-impl PairPass<'_> {
-    /// The pass with kernel `K`; with `VIRIAL` the contact virial goes into `virial`.
+/// Phase 1's read-only inputs.
+struct Phase1<'a> {
+    near: &'a NearList,
+    table: &'a CoeffTable,
+    flags: crate::contact::Flags,
+    list_first: &'a [u32],
+    width: usize,
+    nlocal: usize,
+    x: &'a [DVec3],
+    v: &'a [DVec3],
+    omega: &'a [DVec3],
+    radius: &'a [f64],
+    rmass: &'a [f64],
+    ty: &'a [u32],
+    dt: f64,
+    update: bool,
+}
+
+impl Phase1<'_> {
+    /// Runs blocks `b0..b1`; `res`, `rv` and `hist` start at the first pair, the first
+    /// virial entry and the first history value of block `b0`.
+    fn blocks<K: ContactKernel, const VIRIAL: bool>(
+        &self,
+        b0: usize,
+        b1: usize,
+        res: &mut [PairOut],
+        rv: &mut [[f64; 6]],
+        hist: &mut [f64],
+    ) {
+        if b1 - b0 > 1 {
+            let mid = (b0 + b1) / 2;
+            let (lo, m) = (b0 * BLOCK, mid * BLOCK);
+            let kn = (self.near.first[m] - self.near.first[lo]) as usize;
+            let kh = (self.list_first[m] - self.list_first[lo]) as usize * self.width;
+            let (ra, rb) = res.split_at_mut(kn);
+            let (va, vb) = if VIRIAL {
+                rv.split_at_mut(kn)
+            } else {
+                (&mut [][..], &mut [][..])
+            };
+            let (ha, hb) = hist.split_at_mut(kh);
+            rayon::join(
+                || self.blocks::<K, VIRIAL>(b0, mid, ra, va, ha),
+                || self.blocks::<K, VIRIAL>(mid, b1, rb, vb, hb),
+            );
+        } else {
+            self.block::<K, VIRIAL>(b0, res, rv, hist);
+        }
+    }
+
+    /// One block of owned particles.
     #[inline(always)]
-    fn run<K: ContactKernel, const VIRIAL: bool>(self, virial: &mut [[f64; 6]]) {
-        let PairPass {
-            pair,
-            p,
-            list,
-            dt,
-            update,
-            virial: _,
-        } = self;
-        let flags = pair.model.flags;
-        let table = &pair.table;
-        let w = K::HIST;
-        debug_assert_eq!(list.width, w);
-        let nlocal = p.nlocal();
-        let (x, v, omega, radius, rmass, ty) = (&p.x, &p.v, &p.omega, &p.radius, &p.rmass, &p.ty);
-        let (f, torque) = (&mut p.f, &mut p.torque);
+    fn block<K: ContactKernel, const VIRIAL: bool>(
+        &self,
+        b: usize,
+        res: &mut [PairOut],
+        rv: &mut [[f64; 6]],
+        hist: &mut [f64],
+    ) {
+        let w = self.width;
+        let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(self.nlocal));
+        let near = self.near;
+        let k0 = near.first[lo] as usize;
+        let h0 = self.list_first[lo] as usize;
         let mut empty: [f64; 0] = [];
-        for i in 0..nlocal {
-            let xi = x[i];
-            let ri = radius[i];
-            let mi = rmass[i];
-            let coeff_row = table.row(ty[i]);
-            let near = &pair.near;
+        for i in lo..hi {
+            let coeff_row = self.table.row(self.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-            let mut fi = DVec3::ZERO;
-            let mut tqi = DVec3::ZERO;
-            for (&j, &k) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
-                let (j, k) = (j as usize, k as usize);
-                let d = xi - x[j];
-                let rj = radius[j];
-                let radsum = ri + rj;
-                let rsq = d.length_squared();
+            let pairs = near.partner[s..e].iter().zip(&near.slot[s..e]);
+            for (kk, (&j, &slot)) in pairs.enumerate() {
+                let r = s - k0 + kk;
+                let (j, slot) = (j as usize, slot as usize - h0);
                 let hist: &mut [f64] = if w > 0 {
-                    &mut list.hist[k * w..(k + 1) * w]
+                    &mut hist[slot * w..(slot + 1) * w]
                 } else {
                     &mut empty
                 };
-                // Written as "not closer" so that a NaN distance counts as no contact and
-                // a broken particle does not poison its neighbours (it is reported by tag).
-                #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                if !(rsq < radsum * radsum) {
-                    if w > 0 {
-                        clear_history(hist);
+                let Some((d, out)) = self.eval::<K>(i, j, coeff_row, hist) else {
+                    res[r] = PairOut::default();
+                    if VIRIAL {
+                        rv[r] = [0.0; 6];
                     }
                     continue;
+                };
+                if VIRIAL {
+                    let f = out.f_i;
+                    rv[r] = [
+                        0.5 * (d.x * f.x),
+                        0.5 * (d.y * f.y),
+                        0.5 * (d.z * f.z),
+                        0.5 * (d.x * f.y),
+                        0.5 * (d.x * f.z),
+                        0.5 * (d.y * f.z),
+                    ];
                 }
-                let dist = rsq.sqrt();
-                let delta = radsum - dist;
-                let n = if dist > 0.0 {
-                    d * (1.0 / dist)
+                res[r] = PairOut {
+                    f_i: out.f_i,
+                    t_i: out.t_i,
+                    t_j: out.t_j,
+                };
+            }
+        }
+    }
+    /// The contact of owned particle `i` with `j` (`coeff_row`: i's row of the table):
+    /// `None`, with the history cleared, when they do not touch; else r = x_i − x_j and
+    /// the kernel's output.
+    #[inline(always)]
+    fn eval<K: ContactKernel>(
+        &self,
+        i: usize,
+        j: usize,
+        coeff_row: &[PairCoeff],
+        hist: &mut [f64],
+    ) -> Option<(DVec3, ContactForce)> {
+        let w = self.width;
+        let (x, v, omega, radius, rmass, ty) =
+            (self.x, self.v, self.omega, self.radius, self.rmass, self.ty);
+        let (flags, dt, update) = (self.flags, self.dt, self.update);
+        let xi = x[i];
+        let ri = radius[i];
+        let mi = rmass[i];
+        let d = xi - x[j];
+        let rj = radius[j];
+        let radsum = ri + rj;
+        let rsq = d.length_squared();
+        // Written as "not closer" so that a NaN distance counts as no contact and
+        // a broken particle does not poison its neighbours (it is reported by tag).
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(rsq < radsum * radsum) {
+            if w > 0 {
+                clear_history(hist);
+            }
+            return None;
+        }
+        let dist = rsq.sqrt();
+        let delta = radsum - dist;
+        let n = if dist > 0.0 {
+            d * (1.0 / dist)
+        } else {
+            DVec3::Z
+        };
+        let mj = rmass[j];
+        // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
+        let inv = 1.0 / (radsum * (mi + mj));
+        let r_star = ri * rj * (mi + mj) * inv;
+        let m_star = mi * mj * radsum * inv;
+        let g = Geom {
+            n,
+            delta,
+            dist,
+            ri,
+            rj,
+            r_star,
+            m_star,
+            ci: ri - 0.5 * delta,
+            cj: rj - 0.5 * delta,
+            vr: v[i] - v[j],
+            wi: omega[i],
+            wj: omega[j],
+            roll_scale: 1.0,
+            inertia_i: (INERTIA_SPHERE + 1.0) * mi * ri * ri,
+            inertia_j: (INERTIA_SPHERE + 1.0) * mj * rj * rj,
+            dt,
+            update,
+        };
+        let out = K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist);
+        Some((d, out))
+    }
+    /// The whole pass on the calling thread, fused (no per-pair buffer): the serial pass
+    /// whose sums phase 2 repeats, so its result is the two-phase pass's, bit for bit.
+    /// Used when the pool has one thread. `hist` starts at the first history value of
+    /// particle 0.
+    fn serial<K: ContactKernel, const VIRIAL: bool>(
+        &self,
+        hist: &mut [f64],
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        virial: &mut [[f64; 6]],
+    ) {
+        let w = self.width;
+        let near = self.near;
+        let h0 = self.list_first[0] as usize;
+        let mut empty: [f64; 0] = [];
+        for i in 0..self.nlocal {
+            let coeff_row = self.table.row(self.ty[i]);
+            let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
+            let mut fi = DVec3::ZERO;
+            let mut tqi = DVec3::ZERO;
+            for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+                let (j, slot) = (j as usize, slot as usize - h0);
+                let hist: &mut [f64] = if w > 0 {
+                    &mut hist[slot * w..(slot + 1) * w]
                 } else {
-                    DVec3::Z
+                    &mut empty
                 };
-                let mj = rmass[j];
-                // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
-                let inv = 1.0 / (radsum * (mi + mj));
-                let r_star = ri * rj * (mi + mj) * inv;
-                let m_star = mi * mj * radsum * inv;
-                let g = Geom {
-                    n,
-                    delta,
-                    dist,
-                    ri,
-                    rj,
-                    r_star,
-                    m_star,
-                    ci: ri - 0.5 * delta,
-                    cj: rj - 0.5 * delta,
-                    vr: v[i] - v[j],
-                    wi: omega[i],
-                    wj: omega[j],
-                    roll_scale: 1.0,
-                    inertia_i: (INERTIA_SPHERE + 1.0) * mi * ri * ri,
-                    inertia_j: (INERTIA_SPHERE + 1.0) * mj * rj * rj,
-                    dt,
-                    update,
+                let Some((d, out)) = self.eval::<K>(i, j, coeff_row, hist) else {
+                    continue;
                 };
-                let out = K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist);
                 if VIRIAL {
                     let f = out.f_i;
                     let w = [
@@ -280,6 +456,182 @@ impl PairPass<'_> {
             }
             f[i] += fi;
             torque[i] += tqi;
+        }
+    }
+}
+
+/// Phase 2's read-only inputs.
+struct Phase2<'a> {
+    near: &'a NearList,
+    res: &'a [PairOut],
+    rv: &'a [[f64; 6]],
+    nlocal: usize,
+    n: usize,
+}
+
+impl Phase2<'_> {
+    /// Sums blocks `b0..b1`; the slices start at particle `b0 * BLOCK`.
+    fn blocks<const VIRIAL: bool>(
+        &self,
+        b0: usize,
+        b1: usize,
+        f: &mut [DVec3],
+        tq: &mut [DVec3],
+        vir: &mut [[f64; 6]],
+    ) {
+        if b1 - b0 > 1 {
+            let mid = (b0 + b1) / 2;
+            let m = (mid - b0) * BLOCK;
+            let (fa, fb) = f.split_at_mut(m);
+            let (ta, tb) = tq.split_at_mut(m);
+            let (va, vb) = if VIRIAL {
+                vir.split_at_mut(m)
+            } else {
+                (&mut [][..], &mut [][..])
+            };
+            rayon::join(
+                || self.blocks::<VIRIAL>(b0, mid, fa, ta, va),
+                || self.blocks::<VIRIAL>(mid, b1, fb, tb, vb),
+            );
+        } else {
+            self.block::<VIRIAL>(b0, f, tq, vir);
+        }
+    }
+
+    /// One block of particles, owned or ghosts.
+    #[inline(always)]
+    fn block<const VIRIAL: bool>(
+        &self,
+        b: usize,
+        f: &mut [DVec3],
+        tq: &mut [DVec3],
+        vir: &mut [[f64; 6]],
+    ) {
+        let near = self.near;
+        let (res, rv) = (self.res, self.rv);
+        let lo = b * BLOCK;
+        let hi = ((b + 1) * BLOCK).min(self.n);
+        for q in lo..hi {
+            let a = q - lo;
+            let rs = &near.rk[near.rfirst[q] as usize..near.rfirst[q + 1] as usize];
+            let (own, before, after) = if q < self.nlocal {
+                let (s, e) = (near.first[q], near.first[q + 1]);
+                let split = rs.partition_point(|&k| k < s);
+                let (before, after) = rs.split_at(split);
+                (s as usize..e as usize, before, after)
+            } else {
+                (0..0, rs, &[][..])
+            };
+            let (mut fq, mut tqq) = (f[a], tq[a]);
+            for &k in before {
+                let o = &res[k as usize];
+                fq -= o.f_i;
+                tqq += o.t_j;
+            }
+            let (mut fo, mut to) = (DVec3::ZERO, DVec3::ZERO);
+            for o in &res[own.clone()] {
+                fo += o.f_i;
+                to += o.t_i;
+            }
+            fq += fo;
+            tqq += to;
+            for &k in after {
+                let o = &res[k as usize];
+                fq -= o.f_i;
+                tqq += o.t_j;
+            }
+            f[a] = fq;
+            tq[a] = tqq;
+            if VIRIAL {
+                let mut vq = vir[a];
+                let mut add = |w: &[f64; 6]| {
+                    for (x, y) in vq.iter_mut().zip(w) {
+                        *x += y;
+                    }
+                };
+                for &k in before {
+                    add(&rv[k as usize]);
+                }
+                for w in &rv[own] {
+                    add(w);
+                }
+                for &k in after {
+                    add(&rv[k as usize]);
+                }
+                vir[a] = vq;
+            }
+        }
+    }
+}
+
+impl PairPass<'_> {
+    /// The pass with kernel `K`; with `VIRIAL` the contact virial goes into `virial`.
+    #[inline(always)]
+    fn run<K: ContactKernel, const VIRIAL: bool>(self, virial: &mut [[f64; 6]]) {
+        let PairPass {
+            pair,
+            p,
+            list,
+            dt,
+            update,
+            virial: _,
+        } = self;
+        let w = K::HIST;
+        debug_assert_eq!(list.width, w);
+        let nlocal = p.nlocal();
+        let n = p.len();
+        let PairGran {
+            model,
+            table,
+            near,
+            res,
+            res_virial,
+        } = pair;
+        debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
+        let h0 = list.first[0] as usize * w;
+        let h1 = list.first[nlocal] as usize * w;
+        let ph1 = Phase1 {
+            near,
+            table,
+            flags: model.flags,
+            list_first: &list.first,
+            width: w,
+            nlocal,
+            x: &p.x,
+            v: &p.v,
+            omega: &p.omega,
+            radius: &p.radius,
+            rmass: &p.rmass,
+            ty: &p.ty,
+            dt,
+            update,
+        };
+        if rayon::current_num_threads() == 1 {
+            let (f, torque) = (&mut p.f, &mut p.torque);
+            ph1.serial::<K, VIRIAL>(&mut list.hist[h0..h1], f, torque, virial);
+            return;
+        }
+        let npairs = near.partner.len();
+        res.resize(npairs, PairOut::default());
+        if VIRIAL {
+            res_virial.resize(npairs, [0.0; 6]);
+        }
+        let nb_own = nlocal.div_ceil(BLOCK);
+        if nb_own > 0 {
+            let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
+            ph1.blocks::<K, VIRIAL>(0, nb_own, res, rv, &mut list.hist[h0..h1]);
+        }
+        let ph2 = Phase2 {
+            near,
+            res,
+            rv: if VIRIAL { res_virial } else { &[] },
+            nlocal,
+            n,
+        };
+        let nb_all = n.div_ceil(BLOCK);
+        if nb_all > 0 {
+            let vir: &mut [[f64; 6]] = if VIRIAL { &mut virial[..n] } else { &mut [] };
+            ph2.blocks::<VIRIAL>(0, nb_all, &mut p.f[..n], &mut p.torque[..n], vir);
         }
     }
 }
