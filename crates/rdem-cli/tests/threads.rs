@@ -5,20 +5,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const CASE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/cohesion";
+mod common;
+use common::copy_dir;
 
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let e = e.unwrap();
-        let t = to.join(e.file_name());
-        if e.file_type().unwrap().is_dir() {
-            copy_dir(&e.path(), &t);
-        } else {
-            std::fs::copy(e.path(), &t).unwrap();
-        }
-    }
-}
+const CASE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/cohesion";
 
 /// Runs the case on `threads` threads; returns the files of `post/` by name.
 fn run(threads: usize) -> BTreeMap<String, Vec<u8>> {

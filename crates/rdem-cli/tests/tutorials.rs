@@ -21,6 +21,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+use common::copy_dir;
+
 const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
 const SEEDS: [u64; 3] = [32452909, 32452919, 32452997];
 /// Largest allowed relative difference of the four-run mean heights.
@@ -39,19 +42,6 @@ struct Stats {
     insertions: Vec<(u64, u64)>,
     vtk_files: usize,
     loop_lines: usize,
-}
-
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let e = e.unwrap();
-        let t = to.join(e.file_name());
-        if e.file_type().unwrap().is_dir() {
-            copy_dir(&e.path(), &t);
-        } else {
-            std::fs::copy(e.path(), &t).unwrap();
-        }
-    }
 }
 
 /// Runs `dir/file` (with the insert/pack seed replaced by `seed` if given).

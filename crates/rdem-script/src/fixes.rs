@@ -601,7 +601,8 @@ fn insert(
     style: &str,
 ) -> CmdResult<FrontFix> {
     let rate = style == "insert/rate/region";
-    const PACK: [&str; 16] = [
+    // Keywords of both styles, then each style's own (in LIGGGHTS' manual order).
+    const COMMON: [&str; 11] = [
         "seed",
         "distributiontemplate",
         "verbose",
@@ -613,33 +614,28 @@ fn insert(
         "vel",
         "omega",
         "region",
-        "volumefraction_region",
-        "particles_in_region",
-        "mass_in_region",
-        "ntry_mc",
-        "start",
     ];
-    const RATE: [&str; 18] = [
-        "seed",
-        "distributiontemplate",
-        "verbose",
-        "maxattempt",
-        "insert_every",
-        "overlapcheck",
-        "all_in",
-        "random_distribute",
-        "vel",
-        "omega",
-        "region",
-        "nparticles",
-        "mass",
-        "particlerate",
-        "massrate",
-        "ntry_mc",
-        "start",
-        "compress_tags",
-    ];
-    let valid: &[&'static str] = if rate { &RATE } else { &PACK };
+    let own: &[&'static str] = if rate {
+        &[
+            "nparticles",
+            "mass",
+            "particlerate",
+            "massrate",
+            "ntry_mc",
+            "start",
+            "compress_tags",
+        ]
+    } else {
+        &[
+            "volumefraction_region",
+            "particles_in_region",
+            "mass_in_region",
+            "ntry_mc",
+            "start",
+        ]
+    };
+    let valid: Vec<&'static str> = COMMON.iter().chain(own).copied().collect();
+    let valid = valid.as_slice();
     match a.peek() {
         Some("seed") => a.seek(a.pos() + 1),
         Some(w) => {
