@@ -147,6 +147,10 @@ fn main() -> ExitCode {
         println!("rdem {}", env!("CARGO_PKG_VERSION"));
         return ExitCode::SUCCESS;
     }
+    // Under mpirun every rank runs this; MPI ends when the guard is dropped at exit.
+    #[cfg(feature = "mpi")]
+    let _mpi = rdem::comm::init_mpi();
+    let (rank, nprocs) = rdem::comm::process_rank_size();
     let threads = match cli.threads {
         Some(n) => n,
         None => match std::env::var("RDEM_THREADS") {
@@ -157,10 +161,23 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             },
-            Err(_) => std::thread::available_parallelism().map_or(1, |n| n.get()),
+            // All cores, shared between the ranks started on this machine.
+            Err(_) => {
+                let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+                let local = std::env::var("OMPI_COMM_WORLD_LOCAL_SIZE")
+                    .ok()
+                    .and_then(|v| v.parse::<usize>().ok())
+                    .unwrap_or(nprocs)
+                    .max(1);
+                (cores / local).max(1)
+            }
         },
     };
     let mut out = Output::stdout();
+    // Only rank 0 prints and keeps the log, as in LIGGGHTS.
+    if rank != 0 {
+        out.set_screen(None);
+    }
     match cli.screen.as_deref() {
         Some("none") => out.set_screen(None),
         Some(f) => match std::fs::File::create(f) {
@@ -173,7 +190,7 @@ fn main() -> ExitCode {
         None => {}
     }
     let log = cli.log.clone().unwrap_or_else(|| "log.liggghts".into());
-    if log != "none" {
+    if log != "none" && rank == 0 {
         if let Err(e) = out.set_log(Some(&log), false) {
             eprintln!("rdem: cannot open log file '{log}': {e}");
             return ExitCode::from(1);
@@ -209,7 +226,7 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     }
-    let show_progress = std::io::stderr().is_terminal() && cli.screen.is_none();
+    let show_progress = std::io::stderr().is_terminal() && cli.screen.is_none() && rank == 0;
     if show_progress {
         sim.progress = Some(progress_reporter());
     }
@@ -239,7 +256,11 @@ fn main() -> ExitCode {
             let text = format!("{:?}", miette::Report::new(*report));
             interp.sim.out.log_line(&format!("ERROR: {text}"));
             interp.sim.out.flush();
-            eprintln!("{text}");
+            // Every rank reads the same script and the engine's errors are agreed on by
+            // all ranks, so every rank stops here; rank 0 reports.
+            if rank == 0 {
+                eprintln!("{text}");
+            }
             ExitCode::from(1)
         }
     }

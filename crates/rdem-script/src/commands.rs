@@ -108,18 +108,48 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
             }
         }
         "processors" => {
-            for d in ["Px", "Py", "Pz"] {
-                let w = a.word(d)?;
-                if w != "*" && w != "1" {
-                    return Err(a.error_prev(
-                        format!(
-                            "{d} = {w}: rdem runs on 1 process in this release (MPI comes later)"
-                        ),
-                        Some("use 'processors * * *' or '1 1 1'".into()),
-                    ));
+            if sim.world.is_some() {
+                return Err(a.error_cmd(
+                    "processors must come before the box is defined (create_box, read_data)",
+                    None,
+                ));
+            }
+            let mut procs = [0; 3];
+            for (k, d) in ["Px", "Py", "Pz"].into_iter().enumerate() {
+                if a.peek() == Some("*") {
+                    a.word(d)?;
+                } else {
+                    procs[k] = a.count(d)? as usize;
                 }
             }
-            a.done()?;
+            if !a.is_done() {
+                return Err(a.error_at(
+                    a.pos(),
+                    "processors keywords (grid, map, part, file) are not supported",
+                    Some("give only 'processors Px Py Pz' (each a count or *)".into()),
+                ));
+            }
+            let nprocs = rdem::comm::process_rank_size().1;
+            if rdem::domain::least_surface_grid(nprocs, DVec3::ONE, procs).is_none() {
+                let shown: Vec<String> = procs
+                    .iter()
+                    .map(|&n| if n == 0 { "*".into() } else { n.to_string() })
+                    .collect();
+                return Err(a.error_at(
+                    1,
+                    format!(
+                        "no {} grid has {nprocs} process{} (the number this run was started with)",
+                        shown.join(" x "),
+                        if nprocs == 1 { "" } else { "es" }
+                    ),
+                    Some(
+                        "use 'processors * * *', or start rdem (built with --features mpi) \
+                         with mpirun -np N where N is the product of the counts"
+                            .into(),
+                    ),
+                ));
+            }
+            sim.pending.procs = procs;
         }
         "hard_particles" | "soft_particles" => {
             a.yes_no(a.name())?;
@@ -640,11 +670,23 @@ fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
         fixes::g(hi.y),
         fixes::g(hi.z)
     ));
-    sim.out.line("  1 by 1 by 1 MPI processor grid");
     let mut w = World::new(domain);
+    decompose(sim, &mut w, a, 0)?;
     w.dt = sim.pending.dt;
     sim.ntypes = n as usize;
     sim.world = Some(w);
+    Ok(())
+}
+
+/// Splits the new box between the ranks (`processors`) and reports the grid as LIGGGHTS.
+fn decompose(sim: &mut Sim, w: &mut World, a: &Args, word: usize) -> CmdResult {
+    w.decompose(sim.pending.procs)
+        .map_err(|e| a.error_at(word, e.to_string(), None))?;
+    let g = w.domain.procgrid;
+    sim.out.line(&format!(
+        "  {} by {} by {} MPI processor grid",
+        g[0], g[1], g[2]
+    ));
     Ok(())
 }
 
@@ -706,9 +748,16 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     for x in points {
         let mut p = new_default(x, ty);
         p.mask = 1;
-        w.add_particle(&p)
+        // Every rank sees every point; the one whose subdomain holds it creates it.
+        w.domain
+            .check_inside_fixed(x)
             .map_err(|e| a.error_cmd(e.to_string(), None))?;
         n += 1;
+        if !w.owns_point(x) {
+            continue;
+        }
+        w.add_particle(&p)
+            .map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
     w.extend_tags();
     sim.out.line(&format!("Created {n} atoms"));
@@ -740,11 +789,14 @@ fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         fixes::g(data.hi.y),
         fixes::g(data.hi.z)
     ));
-    sim.out.line("  1 by 1 by 1 MPI processor grid");
     let mut w = World::new(domain);
+    decompose(sim, &mut w, a, 1)?;
     w.dt = sim.pending.dt;
     for (mut p, image) in data.new_particles() {
         p.mask = 1;
+        if !w.owns_point(p.x) {
+            continue;
+        }
         let i = w
             .add_particle(&p)
             .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
@@ -953,6 +1005,7 @@ fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 }
             }
         }
+        let count = sim.world_ref(a)?.comm.sum_count(count as u64);
         sim.out.line(&format!("  {count} settings made for {kw}"));
     }
     Ok(())

@@ -261,16 +261,22 @@ impl Context for Ctx<'_> {
             Name::Fix(id, idx) => crate::fixes::fix_value(sim, id, *idx),
             Name::Atom(field, tag) => {
                 let w = world(sim)?;
-                let i = w
-                    .particles
-                    .find_tag(*tag)
-                    .ok_or_else(|| format!("{field}[{tag}]: no atom with ID {tag}"))?;
-                atom_fields::value(w, field, i).ok_or_else(|| {
-                    format!(
+                // The owner's value, on every rank.
+                if !atom_fields::NAMES.contains(&field.as_str()) {
+                    return Err(format!(
                         "unknown atom value '{field}' (valid: {})",
                         atom_fields::NAMES.join(" ")
-                    )
-                })
+                    ));
+                }
+                let i = w.particles.find_tag(*tag);
+                let here = i
+                    .and_then(|i| atom_fields::value(w, field, i))
+                    .unwrap_or(0.0);
+                let found = w.comm.sum_count(i.is_some() as u64);
+                if found == 0 {
+                    return Err(format!("{field}[{tag}]: no atom with ID {tag}"));
+                }
+                Ok(w.comm.sum(here))
             }
         }
     }

@@ -417,18 +417,47 @@ fn end_of_step(sim: &mut Sim, step: u64) -> Result<(), String> {
     Ok(())
 }
 
+/// LAMMPS' per-rank statistics of one count: `Label:    ave ave max max min min` and a
+/// ten-bin histogram of the ranks' values between min and max.
+fn spread(label: &str, vals: &[f64]) -> (String, String) {
+    let g = |v: f64| crate::variables::format_g(v, 6);
+    let n = vals.len().max(1) as f64;
+    let ave = vals.iter().sum::<f64>() / n;
+    let max = vals.iter().copied().fold(f64::MIN, f64::max).max(0.0);
+    let min = vals.iter().copied().fold(f64::MAX, f64::min).min(max);
+    let mut bins = [0usize; 10];
+    for &v in vals {
+        let b = if max > min {
+            (((v - min) / (max - min) * 10.0) as usize).min(9)
+        } else {
+            0
+        };
+        bins[b] += 1;
+    }
+    let hist: Vec<String> = bins.iter().map(|b| b.to_string()).collect();
+    (
+        format!("{label}:    {} ave {} max {} min", g(ave), g(max), g(min)),
+        format!("Histogram: {}", hist.join(" ")),
+    )
+}
+
 /// The end-of-run report in LIGGGHTS' words.
 fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
     let Some(w) = &sim.world else { return };
     let natoms = w.natoms();
-    let nprocs = 1;
+    let nprocs = w.comm.size();
     let timers = w.timers;
     // Builds during the steps (the set-up build is not counted, as in LIGGGHTS).
     let nbuilds = w.neighbor.nbuilds.saturating_sub(builds0.0 + 1);
     let ndanger = w.neighbor.ndangerous - builds0.1;
-    let nlocal = w.particles.nlocal();
-    let nghost = w.particles.nghost();
-    let pairs = w.neighbor.list.partner.len();
+    // Per-rank counts, gathered for the ave/max/min lines and histograms.
+    let counts = w.comm.all_gather(&[
+        w.particles.nlocal() as f64,
+        w.particles.nghost() as f64,
+        w.neighbor.list.partner.len() as f64,
+    ]);
+    let column = |k: usize| -> Vec<f64> { counts.iter().skip(k).step_by(3).copied().collect() };
+    let pairs = column(2).iter().sum::<f64>() as usize;
     let g = |v: f64| crate::variables::format_g(v, 6);
     let mut lines = vec![format!(
         "Loop time of {} on {nprocs} procs for {nsteps} steps with {natoms} atoms",
@@ -459,13 +488,11 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
     let other = (loop_time - accounted).max(0.0);
     lines.push(format!("Other time (%) = {} ({})", g(other), g(pct(other))));
     lines.push(String::new());
-    let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0";
-    lines.push(format!("Nlocal:    {nlocal} ave {nlocal} max {nlocal} min"));
-    lines.push(hist.into());
-    lines.push(format!("Nghost:    {nghost} ave {nghost} max {nghost} min"));
-    lines.push(hist.into());
-    lines.push(format!("Neighs:    {pairs} ave {pairs} max {pairs} min"));
-    lines.push(hist.into());
+    for (label, k) in [("Nlocal", 0), ("Nghost", 1), ("Neighs", 2)] {
+        let (line, hist) = spread(label, &column(k));
+        lines.push(line);
+        lines.push(hist);
+    }
     lines.push(String::new());
     lines.push(format!("Total # of neighbors = {pairs}"));
     if natoms > 0 {

@@ -102,6 +102,8 @@ pub struct Pending {
     pub sort: rdem::SortSettings,
     /// `thermo_modify lost`.
     pub lost: rdem::LostPolicy,
+    /// `processors Px Py Pz` (0 = `*`, free).
+    pub procs: [usize; 3],
 }
 
 impl Default for Pending {
@@ -113,6 +115,7 @@ impl Default for Pending {
             dt: 1e-8,
             sort: rdem::SortSettings::default(),
             lost: rdem::LostPolicy::Error,
+            procs: [0; 3],
         }
     }
 }

@@ -1,11 +1,64 @@
 //! Communication seam. The engine talks to other subdomains only through [`Comm`]; the
 //! serial case is the one-rank implementation [`Serial`], whose only ghosts are periodic
-//! images. An MPI implementation (feature `mpi`, a later issue) implements the same trait.
+//! images. The MPI implementation (feature `mpi`, [`crate::mpi_comm`]) implements the same
+//! trait: the engine has one code path, and serial is its one-rank case.
 
 use glam::DVec3;
 
 use crate::domain::Domain;
-use crate::particles::Particles;
+use crate::error::Result;
+use crate::particles::{Particles, Tag};
+
+/// The communicator for a new simulation: over MPI when this process was started under
+/// MPI (feature `mpi`, after [`init_mpi`]), else [`Serial`].
+pub fn default_comm() -> Box<dyn Comm> {
+    #[cfg(feature = "mpi")]
+    if mpi::environment::is_initialized() && !mpi::environment::is_finalized() {
+        return Box::new(crate::mpi_comm::MpiComm::new(
+            mpi::topology::SimpleCommunicator::world(),
+        ));
+    }
+    Box::new(Serial::new())
+}
+
+/// Rank and number of processes of this run (`(0, 1)` without MPI). Known before any
+/// simulation exists, for the screen and log (only rank 0 prints).
+pub fn process_rank_size() -> (usize, usize) {
+    #[cfg(feature = "mpi")]
+    if mpi::environment::is_initialized() && !mpi::environment::is_finalized() {
+        use mpi::traits::Communicator;
+        let w = mpi::topology::SimpleCommunicator::world();
+        return (w.rank() as usize, w.size() as usize);
+    }
+    (0, 1)
+}
+
+/// Starts MPI (feature `mpi`); MPI ends when the returned guard is dropped. Without the
+/// feature this does nothing.
+#[cfg(feature = "mpi")]
+pub fn init_mpi() -> Option<mpi::environment::Universe> {
+    mpi::initialize()
+}
+
+/// Makes every rank stop at once (after an error that only some ranks saw).
+pub fn abort_all(code: i32) {
+    #[cfg(feature = "mpi")]
+    if mpi::environment::is_initialized() && !mpi::environment::is_finalized() {
+        use mpi::traits::Communicator;
+        mpi::topology::SimpleCommunicator::world().abort(code);
+    }
+    let _ = code;
+}
+
+/// Per-particle data kept outside [`Particles`] that travels with a migrating particle
+/// (the contact history rows of the neighbor list).
+pub trait Carried {
+    /// Appends the data of the particle with tag `tag` to `buf`.
+    fn pack(&self, tag: Tag, buf: &mut Vec<f64>);
+    /// Reads the data of the arriving particle `tag` from the start of `buf`; returns the
+    /// number of values read.
+    fn unpack(&mut self, tag: Tag, buf: &[f64]) -> usize;
+}
 
 /// Exchange of particles and ghost data between subdomains, and global reductions.
 pub trait Comm: std::fmt::Debug + Send {
@@ -13,9 +66,12 @@ pub trait Comm: std::fmt::Debug + Send {
     fn rank(&self) -> usize;
     /// Number of ranks.
     fn size(&self) -> usize;
-    /// Moves owned particles that left this subdomain to their new owners. Ghosts must
-    /// have been cleared.
-    fn exchange(&mut self, p: &mut Particles, domain: &Domain);
+    /// Chooses the processor grid (`fixed`: the user's `processors` counts, 0 = free) and
+    /// sets this rank's subdomain in `domain`.
+    fn decompose(&mut self, domain: &mut Domain, fixed: [usize; 3]) -> Result<()>;
+    /// Moves owned particles that left this subdomain to their new owners, with the data
+    /// `carried` holds for them. Ghosts must have been cleared.
+    fn exchange(&mut self, p: &mut Particles, domain: &Domain, carried: &mut dyn Carried);
     /// Creates ghosts of every particle within `cutoff` of a subdomain face (including
     /// periodic images), after the locals.
     fn borders(&mut self, p: &mut Particles, domain: &Domain, cutoff: f64);
@@ -39,6 +95,21 @@ pub trait Comm: std::fmt::Debug + Send {
     fn max_count(&self, x: u64) -> u64;
     /// Sum of `x` over the ranks below this one (exclusive prefix sum), for tag extension.
     fn exclusive_prefix_count(&self, x: u64) -> u64;
+    /// Element-wise global sum, in place.
+    fn sum_slice(&self, x: &mut [f64]);
+    /// Sends `out[r]` to rank `r` (one buffer per rank); returns what every rank sent to
+    /// this one, concatenated in rank order.
+    fn all_to_all(&self, out: Vec<Vec<f64>>) -> Vec<f64>;
+    /// Concatenation of every rank's `data` in rank order, on rank 0 (`None` elsewhere).
+    fn gather(&self, data: &[f64]) -> Option<Vec<f64>>;
+    /// Concatenation of every rank's `data` in rank order, on every rank.
+    fn all_gather(&self, data: &[f64]) -> Vec<f64>;
+    /// Rank 0's `text` on every rank (the others pass anything).
+    fn broadcast_text(&self, text: &str) -> String;
+    /// True on the rank that prints and writes files (rank 0).
+    fn is_root(&self) -> bool {
+        self.rank() == 0
+    }
 }
 
 /// One process owning the whole box. Ghosts are the periodic images within the cutoff,
@@ -63,7 +134,25 @@ impl Comm for Serial {
     fn size(&self) -> usize {
         1
     }
-    fn exchange(&mut self, _p: &mut Particles, _domain: &Domain) {}
+    fn decompose(&mut self, domain: &mut Domain, fixed: [usize; 3]) -> Result<()> {
+        if fixed.iter().any(|&n| n > 1) {
+            return Err(crate::error::Error::Invalid {
+                what: "processors",
+                reason: format!(
+                    "a {}x{}x{} grid needs {} MPI ranks; this run has 1 (start it with \
+                     mpirun -np N on an rdem built with the 'mpi' feature)",
+                    fixed[0].max(1),
+                    fixed[1].max(1),
+                    fixed[2].max(1),
+                    fixed.iter().map(|&n| n.max(1)).product::<usize>()
+                ),
+            });
+        }
+        domain.set_grid([1, 1, 1], 0);
+        Ok(())
+    }
+
+    fn exchange(&mut self, _p: &mut Particles, _domain: &Domain, _c: &mut dyn Carried) {}
 
     fn borders(&mut self, p: &mut Particles, domain: &Domain, cutoff: f64) {
         p.clear_ghosts();
@@ -147,5 +236,18 @@ impl Comm for Serial {
     }
     fn exclusive_prefix_count(&self, _x: u64) -> u64 {
         0
+    }
+    fn sum_slice(&self, _x: &mut [f64]) {}
+    fn all_to_all(&self, out: Vec<Vec<f64>>) -> Vec<f64> {
+        out.into_iter().next().unwrap_or_default()
+    }
+    fn gather(&self, data: &[f64]) -> Option<Vec<f64>> {
+        Some(data.to_vec())
+    }
+    fn all_gather(&self, data: &[f64]) -> Vec<f64> {
+        data.to_vec()
+    }
+    fn broadcast_text(&self, text: &str) -> String {
+        text.to_string()
     }
 }

@@ -298,10 +298,97 @@ impl Domain {
                 _ => {}
             }
         }
-        if self.procgrid == [1, 1, 1] {
-            self.sublo = self.boxlo;
-            self.subhi = self.boxhi;
+        self.update_subdomain();
+    }
+
+    /// Places this process at `rank` of the grid `procgrid` (x fastest, then y, then z,
+    /// as LAMMPS' default map) and sets its subdomain: an equal share of the box per axis.
+    pub fn set_grid(&mut self, procgrid: [usize; 3], rank: usize) {
+        self.procgrid = procgrid;
+        self.myloc = [
+            rank % procgrid[0],
+            (rank / procgrid[0]) % procgrid[1],
+            rank / (procgrid[0] * procgrid[1]),
+        ];
+        self.update_subdomain();
+    }
+
+    /// Recomputes the subdomain from the box (after the box changed: shrink-wrap).
+    pub fn update_subdomain(&mut self) {
+        let prd = self.prd();
+        for a in 0..3 {
+            let p = self.procgrid[a];
+            let m = self.myloc[a];
+            self.sublo[a] = if m == 0 {
+                self.boxlo[a]
+            } else {
+                self.boxlo[a] + prd[a] * m as f64 / p as f64
+            };
+            self.subhi[a] = if m + 1 == p {
+                self.boxhi[a]
+            } else {
+                self.boxlo[a] + prd[a] * (m + 1) as f64 / p as f64
+            };
         }
+    }
+
+    /// Grid position (per axis) of the subdomain that owns `x` under the half-open rule of
+    /// [`Domain::is_in_subdomain`]; points outside the box go to the nearest edge brick.
+    pub fn owner_loc(&self, x: DVec3) -> [usize; 3] {
+        let prd = self.prd();
+        let mut loc = [0; 3];
+        for a in 0..3 {
+            let p = self.procgrid[a];
+            if p == 1 {
+                continue;
+            }
+            // The same boundaries `update_subdomain` computes, searched from the estimate.
+            let bound = |m: usize| self.boxlo[a] + prd[a] * m as f64 / p as f64;
+            let est = ((x[a] - self.boxlo[a]) / prd[a] * p as f64).floor();
+            let mut m = if est.is_nan() {
+                0
+            } else {
+                est.clamp(0.0, (p - 1) as f64) as usize
+            };
+            while m > 0 && x[a] < bound(m) {
+                m -= 1;
+            }
+            while m + 1 < p && x[a] >= bound(m + 1) {
+                m += 1;
+            }
+            loc[a] = m;
+        }
+        loc
+    }
+
+    /// Rank of the grid position `loc` (x fastest).
+    pub fn rank_of(&self, loc: [usize; 3]) -> usize {
+        loc[0] + self.procgrid[0] * (loc[1] + self.procgrid[1] * loc[2])
+    }
+
+    /// Checks that the ghost cutoff fits in one neighbouring subdomain along every axis
+    /// split between several ranks (ghosts come from the adjacent ranks only).
+    pub fn check_subdomain_cutoff(&self, cutoff: f64) -> Result<()> {
+        let ext = self.sub_extent();
+        for a in 0..3 {
+            if self.procgrid[a] > 1 && ext[a] < cutoff {
+                return Err(Error::Invalid {
+                    what: "processors",
+                    reason: format!(
+                        "the subdomains are {} long along {}, less than the neighbor cutoff \
+                         {cutoff} (twice the largest radius plus the skin); use fewer \
+                         processors along {} ('processors' command)",
+                        ext[a], AXES[a], AXES[a]
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Extent of the subdomain along each axis.
+    pub fn sub_extent(&self) -> DVec3 {
+        self.subhi - self.sublo
     }
 
     /// True if any face is shrink-wrapped.
@@ -323,5 +410,78 @@ impl Domain {
             }
         }
         Ok(())
+    }
+}
+
+/// The processor grid for `nprocs` ranks: among the factorizations Px·Py·Pz = nprocs that
+/// agree with `fixed` (0 = free), the one with the least total subdomain surface for a box
+/// of lengths `prd` (LAMMPS' default rule; ties go to the first found, Px varying slowest).
+/// `None` when no factorization agrees with `fixed`.
+pub fn least_surface_grid(nprocs: usize, prd: DVec3, fixed: [usize; 3]) -> Option<[usize; 3]> {
+    let mut best: Option<([usize; 3], f64)> = None;
+    for px in 1..=nprocs {
+        if nprocs % px != 0 || (fixed[0] != 0 && fixed[0] != px) {
+            continue;
+        }
+        for py in 1..=nprocs / px {
+            if (nprocs / px) % py != 0 || (fixed[1] != 0 && fixed[1] != py) {
+                continue;
+            }
+            let pz = nprocs / px / py;
+            if fixed[2] != 0 && fixed[2] != pz {
+                continue;
+            }
+            let (a, b, c) = (prd.x / px as f64, prd.y / py as f64, prd.z / pz as f64);
+            let surf = a * b + b * c + a * c;
+            if best.is_none_or(|(_, s)| surf < s) {
+                best = Some(([px, py, pz], surf));
+            }
+        }
+    }
+    best.map(|(g, _)| g)
+}
+
+#[cfg(test)]
+mod grid_tests {
+    use super::*;
+
+    #[test]
+    fn least_surface_grid_splits_the_long_axis() {
+        let prd = DVec3::new(1.0, 1.0, 4.0);
+        assert_eq!(least_surface_grid(2, prd, [0; 3]), Some([1, 1, 2]));
+        assert_eq!(least_surface_grid(4, prd, [0; 3]), Some([1, 1, 4]));
+        assert_eq!(least_surface_grid(4, DVec3::ONE, [0; 3]), Some([1, 2, 2]));
+        assert_eq!(least_surface_grid(4, prd, [2, 0, 0]), Some([2, 1, 2]));
+        assert_eq!(least_surface_grid(4, prd, [3, 0, 0]), None);
+        assert_eq!(least_surface_grid(1, prd, [0; 3]), Some([1, 1, 1]));
+    }
+
+    #[test]
+    fn every_point_has_exactly_one_owner() {
+        let mut d = Domain::new(
+            DVec3::new(-0.3, 0.0, 0.1),
+            DVec3::new(0.7, 1.0, 0.4),
+            [Boundary::Periodic, Boundary::Fixed, Boundary::Fixed],
+        )
+        .unwrap();
+        let grid = [3, 1, 2];
+        let pts = [
+            DVec3::new(-0.3, 0.5, 0.1),
+            DVec3::new(0.7, 0.5, 0.4),
+            DVec3::new(-0.3 + 1.0 / 3.0, 0.2, 0.25),
+            DVec3::new(0.0333, 0.9, 0.2499999),
+            DVec3::new(0.366666, 0.0, 0.25),
+        ];
+        for x in pts {
+            let mut owners = vec![];
+            for r in 0..6 {
+                d.set_grid(grid, r);
+                if d.is_in_subdomain(x) {
+                    owners.push(r);
+                }
+            }
+            assert_eq!(owners.len(), 1, "{x:?}: {owners:?}");
+            assert_eq!(d.rank_of(d.owner_loc(x)), owners[0], "{x:?}");
+        }
     }
 }

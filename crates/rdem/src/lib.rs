@@ -14,6 +14,8 @@ pub mod error;
 pub mod euler;
 pub mod fix;
 pub mod insert;
+#[cfg(feature = "mpi")]
+pub mod mpi_comm;
 pub mod neighbor;
 pub mod pair;
 pub mod particles;

@@ -25,8 +25,9 @@
 
 use glam::DVec3;
 
+use crate::comm::Carried;
 use crate::error::{check, Error, Result};
-use crate::particles::{Particles, Tag};
+use crate::particles::{Particles, Tag, REMOTE_GHOST};
 
 /// `neighbor` and `neigh_modify` settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -158,6 +159,13 @@ struct HistoryStore {
     dense: Vec<u32>,
     /// Scratch: (tag, old row) sorted by tag, when they are not.
     sorted: Vec<(Tag, u32)>,
+    /// Mirror entries for contacts with a ghost of another rank, per owner rank: (tag of
+    /// the ghost, tag of the local, history with its odd part negated), flattened; sent to
+    /// the owner by [`Neighbor::take_remote`] and stored there by
+    /// [`Neighbor::append_history`].
+    remote: Vec<Vec<f64>>,
+    /// Entries received with migrating particles, flattened as in `remote`.
+    pending: Vec<f64>,
 }
 
 impl HistoryStore {
@@ -218,6 +226,26 @@ impl HistoryStore {
                 // A ghost: its owner's row, if the owner is one of the old locals.
                 match origin.get(j) {
                     Some(&o) if o < rows && tags[o] == tags[j] => o as u32,
+                    Some(&o) if o >= REMOTE_GHOST => {
+                        let rank = o - REMOTE_GHOST;
+                        if self.remote.len() <= rank {
+                            self.remote.resize(rank + 1, Vec::new());
+                        }
+                        let out = &mut self.remote[rank];
+                        out.push(tags[j] as f64);
+                        out.push(tags[i as usize] as f64);
+                        let h = &list.hist[k as usize * w..(k as usize + 1) * w];
+                        out.extend(h.iter().enumerate().map(
+                            |(c, &v)| {
+                                if c < list.odd {
+                                    -v
+                                } else {
+                                    v
+                                }
+                            },
+                        ));
+                        NONE
+                    }
                     _ => NONE,
                 }
             };
@@ -259,6 +287,67 @@ impl HistoryStore {
         self.tags.extend_from_slice(&tags[..rows]);
         self.max_tag = self.tags.iter().copied().max().unwrap_or(0);
         self.width = w;
+    }
+
+    /// The row of tag `t`, by a linear search (migration only).
+    fn row_of(&self, t: Tag) -> Option<usize> {
+        self.tags.iter().position(|&x| x == t)
+    }
+
+    /// Adds entries `[row tag, partner tag, width values]...` to the rows of their tags
+    /// (rows are created as needed; an entry for a pair the row already has is dropped).
+    fn append(&mut self, entries: &[f64], width: usize) {
+        let stride = 2 + width;
+        if entries.is_empty() || width == 0 {
+            return;
+        }
+        if self.is_empty() {
+            self.width = width;
+        } else if self.width != width {
+            return;
+        }
+        let w = width;
+        // (row tag, partner tag, source): source < 0 is an existing entry.
+        let mut all: Vec<(Tag, Tag, usize)> = Vec::new();
+        for (r, &t) in self.tags.iter().enumerate() {
+            if self.start.is_empty() {
+                break;
+            }
+            for q in self.start[r] as usize..self.start[r + 1] as usize {
+                all.push((t, self.partner[q], q));
+            }
+        }
+        let old = self.partner.len();
+        for (e, c) in entries.chunks_exact(stride).enumerate() {
+            all.push((c[0] as Tag, c[1] as Tag, old + e));
+        }
+        // Stable: existing entries before received ones of the same pair.
+        all.sort_by_key(|&(t, pt, _)| (t, pt));
+        all.dedup_by_key(|e| (e.0, e.1));
+        let mut vals = Vec::with_capacity((all.len() + 1) * w);
+        let (mut tags, mut start, mut partner) = (Vec::new(), vec![0u32], Vec::new());
+        for &(t, pt, src) in &all {
+            if tags.last() != Some(&t) {
+                if !tags.is_empty() {
+                    start.push(partner.len() as u32);
+                }
+                tags.push(t);
+            }
+            partner.push(pt);
+            if src < old {
+                vals.extend_from_slice(&self.vals[src * w..(src + 1) * w]);
+            } else {
+                let c = (src - old) * stride + 2;
+                vals.extend_from_slice(&entries[c..c + w]);
+            }
+        }
+        start.push(partner.len() as u32);
+        vals.extend(std::iter::repeat_n(0.0, w));
+        self.max_tag = tags.iter().copied().max().unwrap_or(0);
+        self.tags = tags;
+        self.start = start;
+        self.partner = partner;
+        self.vals = vals;
     }
 
     /// Copies the saved history into `list` (freshly built for particles with tags `tags`,
@@ -651,6 +740,38 @@ pub struct Neighbor {
     bins: Bins,
 }
 
+/// The saved history travels with a migrating particle: its row, as
+/// `[n, (partner tag, values) × n]`.
+impl Carried for Neighbor {
+    fn pack(&self, tag: Tag, buf: &mut Vec<f64>) {
+        let st = &self.store;
+        let w = st.width;
+        match st.row_of(tag).filter(|_| !st.start.is_empty()) {
+            Some(r) => {
+                let (s, e) = (st.start[r] as usize, st.start[r + 1] as usize);
+                buf.push((e - s) as f64);
+                for q in s..e {
+                    buf.push(st.partner[q] as f64);
+                    buf.extend_from_slice(&st.vals[q * w..(q + 1) * w]);
+                }
+            }
+            None => buf.push(0.0),
+        }
+    }
+
+    fn unpack(&mut self, tag: Tag, buf: &[f64]) -> usize {
+        let n = buf[0] as usize;
+        let w = self.list.width;
+        let mut k = 1;
+        for _ in 0..n {
+            self.store.pending.push(tag as f64);
+            self.store.pending.extend_from_slice(&buf[k..k + 1 + w]);
+            k += 1 + w;
+        }
+        k
+    }
+}
+
 /// True when ghost `b` lies above `a` in (z, y, x) order.
 #[inline(always)]
 fn above(a: DVec3, b: DVec3) -> bool {
@@ -689,8 +810,9 @@ impl Neighbor {
 
     /// LAMMPS' decision at step `step`: rebuild when at least `delay` steps have passed
     /// since the last build, the step is a multiple of `every` after it, and (with `check`)
-    /// some local particle moved more than skin/2 since then.
-    pub fn decide(&mut self, step: u64, x: &[DVec3]) -> bool {
+    /// some particle moved more than skin/2 since then. `any` combines the local answer
+    /// of the distance check over all ranks (the identity serially).
+    pub fn decide(&mut self, step: u64, x: &[DVec3], any: impl Fn(bool) -> bool) -> bool {
         let ago = step.saturating_sub(self.last_build);
         let s = self.settings;
         if ago < s.delay || (s.every > 1 && ago % s.every != 0) {
@@ -699,7 +821,7 @@ impl Neighbor {
         if !s.check {
             return true;
         }
-        let moved = self.moved_too_far(x);
+        let moved = any(self.moved_too_far(x));
         if moved && ago == s.every.max(1).max(s.delay) {
             self.ndangerous += 1;
         }
@@ -734,6 +856,26 @@ impl Neighbor {
         }
         self.store.save(&self.list, &p.tag, &p.origin, p.nlocal());
         self.live = false;
+    }
+
+    /// Takes the mirror entries of contacts with other ranks' ghosts saved by
+    /// [`Neighbor::save_history`], one buffer per rank (`nranks` of them).
+    pub fn take_remote(&mut self, nranks: usize) -> Vec<Vec<f64>> {
+        let mut out = std::mem::take(&mut self.store.remote);
+        out.resize(nranks, Vec::new());
+        out
+    }
+
+    /// Stores history entries `[row tag, partner tag, values]...` received from other
+    /// ranks (mirror entries, or the rows of particles that migrated here).
+    pub fn append_history(&mut self, entries: &[f64]) {
+        self.store.append(entries, self.list.width);
+    }
+
+    /// Stores the rows received with migrating particles ([`Carried::unpack`]).
+    pub fn merge_carried(&mut self) {
+        let pending = std::mem::take(&mut self.store.pending);
+        self.append_history(&pending);
     }
 
     /// Builds the list for the current particles (locals and ghosts) at step `step` and

@@ -98,6 +98,11 @@ impl NewParticle {
     }
 }
 
+/// Values per particle in [`Particles::pack`] before the named properties.
+const PACK_FIXED: usize = 18;
+/// `origin` of a ghost copied from another rank: this plus the owner's rank.
+pub const REMOTE_GHOST: usize = 1 << 60;
+
 /// Struct-of-arrays particle container: indices `0..nlocal` are owned particles,
 /// `nlocal..len` are ghosts (periodic images or, with MPI, copies of other ranks' particles).
 #[derive(Debug, Clone, Default)]
@@ -351,6 +356,81 @@ impl Particles {
             prop.data.extend_from_within(src * w..(src + 1) * w);
         }
         i
+    }
+
+    /// Number of `f64` values [`Particles::pack`] writes per particle.
+    pub fn packed_len(&self) -> usize {
+        PACK_FIXED + self.props.iter().map(|p| p.width).sum::<usize>()
+    }
+
+    /// Appends particle `i` (every per-particle array except forces, named properties
+    /// included) to `buf`, with its position displaced by `shift`, for migration or a
+    /// ghost copy on another rank. Integers travel as `f64` (exact below 2^53).
+    pub fn pack(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
+        let x = self.x[i] + shift;
+        let (v, w, im) = (self.v[i], self.omega[i], self.image[i]);
+        buf.extend_from_slice(&[
+            self.tag[i] as f64,
+            self.ty[i] as f64,
+            self.mask[i] as f64,
+            x.x,
+            x.y,
+            x.z,
+            v.x,
+            v.y,
+            v.z,
+            w.x,
+            w.y,
+            w.z,
+            self.radius[i],
+            self.rmass[i],
+            self.density[i],
+            im[0] as f64,
+            im[1] as f64,
+            im[2] as f64,
+        ]);
+        for prop in &self.props {
+            buf.extend_from_slice(prop.get(i));
+        }
+    }
+
+    /// Appends one particle packed by [`Particles::pack`] (on a rank with the same named
+    /// properties) as an owned particle (`ghost_of: None`; ghosts must have been cleared)
+    /// or as a ghost owned by rank `ghost_of`. Returns the values read.
+    pub fn unpack(&mut self, buf: &[f64], ghost_of: Option<usize>) -> usize {
+        debug_assert!(ghost_of.is_some() || self.nghost() == 0);
+        let v3 = |k: usize| DVec3::new(buf[k], buf[k + 1], buf[k + 2]);
+        self.push_raw(
+            buf[0] as Tag,
+            buf[1] as u32,
+            buf[2] as u32,
+            v3(3),
+            v3(6),
+            v3(9),
+            buf[12],
+            buf[13],
+            buf[14],
+            [buf[15] as i32, buf[16] as i32, buf[17] as i32],
+        );
+        let i = self.len() - 1;
+        let mut k = PACK_FIXED;
+        for prop in &mut self.props {
+            prop.data.extend_from_slice(&buf[k..k + prop.width]);
+            k += prop.width;
+        }
+        match ghost_of {
+            Some(rank) => self.origin[i] = REMOTE_GHOST + rank,
+            None => {
+                self.origin[i] = i;
+                self.nlocal += 1;
+            }
+        }
+        k
+    }
+
+    /// The rank owning ghost `g` when it copies another rank's particle.
+    pub fn remote_owner(&self, g: usize) -> Option<usize> {
+        self.origin[g].checked_sub(REMOTE_GHOST)
     }
 
     /// Drops all ghosts.

@@ -68,7 +68,22 @@ impl World {
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
         let added = std::mem::take(&mut self.needs_reneighbor);
-        if added || self.neighbor.decide(self.step, &self.particles.x[..nlocal]) {
+        // Every rank takes the same decision: particles added on any rank, or moved too
+        // far on any rank.
+        let comm = &self.comm;
+        let any = |b: bool| {
+            if comm.size() > 1 {
+                comm.max(b as u8 as f64) > 0.0
+            } else {
+                b
+            }
+        };
+        let added = any(added);
+        if added
+            || self
+                .neighbor
+                .decide(self.step, &self.particles.x[..nlocal], any)
+        {
             self.timers.lap(Stage::Neigh, t1);
             if added {
                 self.extend_tags();
@@ -161,19 +176,36 @@ impl World {
         for (u, v) in a[..n].iter().zip(&b[..n]) {
             acc += *u * 0.0 + *v * 0.0;
         }
-        if acc.is_finite() {
+        let bad_here = !acc.is_finite();
+        if self.comm.size() > 1 {
+            // Every rank stops with the same error: the smallest offending tag of all.
+            let mine = if bad_here {
+                self.first_nonfinite(names, a, b)
+                    .map(|(i, _)| self.particles.tag[i] as f64)
+                    .unwrap_or(f64::INFINITY)
+            } else {
+                f64::INFINITY
+            };
+            let tag = self.comm.min(mine);
+            if tag.is_infinite() {
+                return Ok(());
+            }
+            let local = (0..n).find(|&i| self.particles.tag[i] as f64 == tag);
+            let which = local
+                .and_then(|i| self.first_nonfinite(names, &a[i..=i], &b[i..=i]))
+                .map(|(_, q)| if q == names[0] { 0.0 } else { 1.0 })
+                .unwrap_or(f64::INFINITY);
+            let which = self.comm.min(which);
+            return Err(Error::NonFinite {
+                quantity: names[if which == 0.0 { 0 } else { 1 }],
+                tag: tag as crate::particles::Tag,
+                step: self.step,
+            });
+        }
+        if !bad_here {
             return Ok(());
         }
-        let bad = (0..n).find_map(|i| {
-            if !a[i].is_finite() {
-                Some((i, names[0]))
-            } else if !b[i].is_finite() {
-                Some((i, names[1]))
-            } else {
-                None
-            }
-        });
-        match bad {
+        match self.first_nonfinite(names, a, b) {
             Some((i, quantity)) => Err(Error::NonFinite {
                 quantity,
                 tag: self.particles.tag[i],
@@ -181,5 +213,24 @@ impl World {
             }),
             None => Ok(()),
         }
+    }
+
+    /// The first owned particle whose `a` or `b` is not finite, with the quantity's name.
+    fn first_nonfinite(
+        &self,
+        names: [&'static str; 2],
+        a: &[DVec3],
+        b: &[DVec3],
+    ) -> Option<(usize, &'static str)> {
+        let n = self.particles.nlocal().min(a.len());
+        (0..n).find_map(|i| {
+            if !a[i].is_finite() {
+                Some((i, names[0]))
+            } else if !b[i].is_finite() {
+                Some((i, names[1]))
+            } else {
+                None
+            }
+        })
     }
 }

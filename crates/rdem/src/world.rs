@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::comm::{Comm, Serial};
+use crate::comm::Comm;
 use crate::contact::Materials;
 use crate::domain::Domain;
 use crate::error::{Error, Result};
@@ -105,7 +105,7 @@ impl World {
             fixes: Vec::new(),
             dt: 1e-8,
             step: 0,
-            comm: Box::new(Serial::new()),
+            comm: crate::comm::default_comm(),
             lost_policy: LostPolicy::Error,
             sort: SortSettings::default(),
             timers: Timers::default(),
@@ -191,6 +191,24 @@ impl World {
             .then_some(&self.virial[..])
     }
 
+    /// Chooses the processor grid (`processors`; 0 = free) and this rank's subdomain.
+    /// Call once the box exists and before particles are created.
+    pub fn decompose(&mut self, fixed: [usize; 3]) -> Result<()> {
+        self.comm.decompose(&mut self.domain, fixed)
+    }
+
+    /// True when a particle created at `x` by a command that every rank runs (create_atoms,
+    /// read_data) belongs to this rank: seed 000's half-open subdomain rule.
+    pub fn owns_point(&self, x: DVec3) -> bool {
+        self.comm.size() == 1 || self.domain.is_in_subdomain(x)
+    }
+
+    /// True when a particle that insertion places at `x` belongs to this rank: seed 000's
+    /// extended subdomain rule (edge ranks also take what lies beyond their outer faces).
+    pub fn owns_inserted(&self, x: DVec3) -> bool {
+        self.comm.size() == 1 || self.domain.is_in_extended_subdomain(x)
+    }
+
     /// Total number of owned particles over all ranks.
     pub fn natoms(&self) -> u64 {
         self.comm.sum_count(self.particles.nlocal() as u64)
@@ -242,6 +260,13 @@ impl World {
     pub(crate) fn reneighbor(&mut self) -> Result<()> {
         let t0 = std::time::Instant::now();
         self.neighbor.save_history(&self.particles);
+        if self.comm.size() > 1 {
+            // Mirror entries of contacts with other ranks' ghosts go to the ghosts' owners,
+            // so that whichever rank lists the pair next finds its history.
+            let out = self.neighbor.take_remote(self.comm.size());
+            let got = self.comm.all_to_all(out);
+            self.neighbor.append_history(&got);
+        }
         self.particles.clear_ghosts();
         let nlocal = self.particles.nlocal();
         {
@@ -271,7 +296,9 @@ impl World {
         }
         self.remove_lost()?;
         let t1 = self.timers.lap(crate::timers::Stage::Neigh, t0);
-        self.comm.exchange(&mut self.particles, &self.domain);
+        self.comm
+            .exchange(&mut self.particles, &self.domain, &mut self.neighbor);
+        self.neighbor.merge_carried();
         let t2 = self.timers.lap(crate::timers::Stage::Comm, t1);
         if self.sort.every > 0 && self.step >= self.next_sort {
             let rmax = self
@@ -306,6 +333,7 @@ impl World {
         );
         let cutoff = self.neighbor.cutoff_for(rmax);
         self.domain.check_periodic_cutoff(cutoff)?;
+        self.domain.check_subdomain_cutoff(cutoff)?;
         let t3 = self.timers.lap(crate::timers::Stage::Neigh, t2);
         self.comm.borders(&mut self.particles, &self.domain, cutoff);
         let t4 = self.timers.lap(crate::timers::Stage::Comm, t3);

@@ -363,27 +363,27 @@ fn moved(x: &[DVec3], by: f64) -> Vec<DVec3> {
 
 /// Steps in `from..=to` at which `decide` says "rebuild" for positions `x`.
 fn decisions(nb: &mut Neighbor, x: &[DVec3], from: u64, to: u64) -> Vec<u64> {
-    (from..=to).filter(|&s| nb.decide(s, x)).collect()
+    (from..=to).filter(|&s| nb.decide(s, x, |b| b)).collect()
 }
 
 #[test]
 fn check_yes_triggers_strictly_beyond_half_the_skin() {
     let (mut nb, x) = built(settings(0, 1, true), 0);
-    assert!(!nb.decide(1, &x), "nothing moved");
+    assert!(!nb.decide(1, &x, |b| b), "nothing moved");
     assert!(
-        !nb.decide(1, &moved(&x, 0.25)),
+        !nb.decide(1, &moved(&x, 0.25), |b| b),
         "exactly skin/2 is not enough"
     );
-    assert!(!nb.decide(1, &moved(&x, -0.25)));
+    assert!(!nb.decide(1, &moved(&x, -0.25), |b| b));
     let just = f64::from_bits(0.25f64.to_bits() + 1);
-    assert!(nb.decide(1, &moved(&x, just)));
-    assert!(nb.decide(1, &moved(&x, -just)));
+    assert!(nb.decide(1, &moved(&x, just), |b| b));
+    assert!(nb.decide(1, &moved(&x, -just), |b| b));
     // Diagonal move of length 0.3 > 0.25 although each component is 0.3/√3 < 0.25.
     let mut y = x.clone();
     y[0] += DVec3::splat(0.3 / 3f64.sqrt());
-    assert!(nb.decide(1, &y));
+    assert!(nb.decide(1, &y, |b| b));
     // A different particle count (particles added or lost) forces a rebuild.
-    assert!(nb.decide(1, &x[..4]));
+    assert!(nb.decide(1, &x[..4], |b| b));
     assert_eq!(nb.xhold(), &x[..]);
 }
 
