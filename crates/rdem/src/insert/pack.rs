@@ -228,11 +228,33 @@ impl InsertPack {
         let p = &world.particles;
         let n = p.nlocal();
         let counts = self.dist.counts_for(wanted as usize);
+        // Existing particles (of every rank) near the region, for the overlap check: each
+        // rank then places the same particles with the same random numbers, and keeps
+        // those in its extended subdomain (seed 000), so the result does not depend on
+        // the number of ranks.
+        let rmax = world.comm.max(
+            p.radius[..n]
+                .iter()
+                .copied()
+                .fold(self.dist.max_radius(), f64::max),
+        );
+        let near: Vec<f64> = if self.overlap_check {
+            let reach = DVec3::splat(2.0 * rmax);
+            let bb = self.region.bounding_box();
+            let mut mine = Vec::new();
+            for i in 0..n {
+                let x = p.x[i];
+                let inside = bb
+                    .is_none_or(|(lo, hi)| x.cmpge(lo - reach).all() && x.cmple(hi + reach).all());
+                if inside {
+                    mine.extend_from_slice(&[x.x, x.y, x.z, p.radius[i]]);
+                }
+            }
+            world.comm.all_gather(&mine)
+        } else {
+            Vec::new()
+        };
         // Existing particles on a grid for the overlap check.
-        let rmax = p.radius[..n]
-            .iter()
-            .copied()
-            .fold(self.dist.max_radius(), f64::max);
         let cell = 2.0 * rmax;
         let mut grid: std::collections::HashMap<[i64; 3], Vec<(DVec3, f64)>> =
             std::collections::HashMap::new();
@@ -243,12 +265,9 @@ impl InsertPack {
                 (x.z / cell).floor() as i64,
             ]
         };
-        if self.overlap_check {
-            for i in 0..n {
-                grid.entry(key(p.x[i]))
-                    .or_default()
-                    .push((p.x[i], p.radius[i]));
-            }
+        for c in near.chunks_exact(4) {
+            let x = DVec3::new(c[0], c[1], c[2]);
+            grid.entry(key(x)).or_default().push((x, c[3]));
         }
         let (mut inserted, mut mass) = (0u64, 0.0);
         // `maxattempt` tries per particle, pooled over the insertion as LIGGGHTS does: a
@@ -305,9 +324,11 @@ impl InsertPack {
                     .with_omega(self.omega);
                 np.v = self.velocity();
                 np.mask = 1 | self.groupbit;
-                let i = world.add_particle(&np)?;
-                mass += world.particles.rmass[i];
+                mass += np.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
                 inserted += 1;
+                if world.owns_inserted(x) {
+                    world.add_particle(&np)?;
+                }
                 if self.overlap_check {
                     grid.entry(key(x)).or_default().push((x, r));
                 }

@@ -1,0 +1,277 @@
+//! MPI runs (feature `mpi`): the same script on 1, 2 and 4 ranks (`mpirun --oversubscribe`)
+//! against the serial binary run without mpirun. Skipped, with a note, when `mpirun` is
+//! not installed.
+#![cfg(feature = "mpi")]
+
+use std::path::Path;
+use std::process::Command;
+
+/// True when `mpirun` can be started.
+fn have_mpirun() -> bool {
+    let ok = Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        eprintln!("note: mpirun not found; MPI test skipped");
+    }
+    ok
+}
+
+/// Runs `script` in a fresh directory, serially (`ranks == 0`, no mpirun) or on `ranks`
+/// MPI ranks, with one thread per rank; returns the screen output.
+fn run(script: &str, ranks: usize) -> String {
+    let dir = tempfile_dir();
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let bin = env!("CARGO_BIN_EXE_rdem");
+    let mut cmd = if ranks == 0 {
+        Command::new(bin)
+    } else {
+        let mut c = Command::new("mpirun");
+        c.args(["--allow-run-as-root", "--oversubscribe", "-np"])
+            .arg(ranks.to_string())
+            .arg(bin);
+        c
+    };
+    let out = cmd
+        .args(["-in", "in.test", "-log", "none"])
+        .env("RDEM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "ranks {ranks}: {text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    text
+}
+
+fn tempfile_dir() -> std::path::PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "rdem-mpi-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The numbers of the last thermo row (the line after the header `Step ...` block).
+fn last_row(out: &str) -> Vec<f64> {
+    let mut last = None;
+    let mut in_table = false;
+    for l in out.lines() {
+        if l.trim_start().starts_with("Step") {
+            in_table = true;
+            continue;
+        }
+        if in_table {
+            let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
+            match v {
+                Ok(v) if !v.is_empty() => last = Some(v),
+                _ => in_table = l.starts_with("INFO") || l.starts_with(" - "),
+            }
+        }
+    }
+    last.expect("a thermo row")
+}
+
+/// The processor grid line.
+fn grid(out: &str) -> String {
+    out.lines()
+        .find(|l| l.contains("MPI processor grid"))
+        .unwrap()
+        .trim()
+        .to_string()
+}
+
+fn assert_close(a: &[f64], b: &[f64], rel: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        let scale = x.abs().max(y.abs()).max(1e-300);
+        assert!(
+            (x - y).abs() <= rel * scale,
+            "{what}: column {k}: {x} vs {y} (relative {:e})",
+            (x - y).abs() / scale
+        );
+    }
+}
+
+/// The common head of the small scripts: a box 0.1 long in x (periodic) and 0.02 in y
+/// and z, split along x by the default grid, Hertz with tangential history.
+const HEAD: &str = "\
+atom_style granular
+atom_modify map array
+boundary p f f
+newton off
+communicate single vel yes
+units si
+region reg block 0 0.1 0 0.02 0 0.02 units box
+create_box 1 reg
+neighbor 0.001 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.000005
+fix integr all nve/sphere
+";
+
+/// Full-precision thermo numbers (after `thermo_style`, which resets them).
+const FORMAT: &str = "thermo_modify format float %24.17g\n";
+
+/// Two oblique impacts with spin, one across the inner faces of the subdomains
+/// (x = 0.05, and 0.025/0.075 with four ranks) and one across the periodic face x = 0,
+/// end in the same state on 1, 2 and 4 ranks as serially, within 1e-12 relative.
+#[test]
+fn impacts_across_subdomain_and_periodic_faces_match_serial() {
+    if !have_mpirun() {
+        return;
+    }
+    let script = format!(
+        "{HEAD}\
+create_atoms 1 single 0.043 0.0102 0.01 units box
+create_atoms 1 single 0.057 0.0098 0.0103 units box
+create_atoms 1 single 0.094 0.01 0.0097 units box
+create_atoms 1 single 0.006 0.0101 0.01 units box
+set atom * diameter 0.008 density 2500
+set atom 1 vx 1.0 vy 0.05 omega 0 0 30
+set atom 2 vx -1.0 vy -0.1
+set atom 3 vx 0.8 vz 0.02
+set atom 4 vx -0.7 omega 10 0 0
+variable a1 equal x[1]
+variable b1 equal vx[1]
+variable c1 equal vy[1]
+variable d2 equal vz[2]
+variable e3 equal x[3]
+variable f3 equal vx[3]
+variable g4 equal vy[4]
+variable h4 equal vz[4]
+thermo_style custom step atoms ke v_a1 v_b1 v_c1 v_d2 v_e3 v_f3 v_g4 v_h4
+{FORMAT}thermo 1000
+run 4000
+"
+    );
+    let serial = run(&script, 0);
+    let reference = last_row(&serial);
+    // The particles did collide: speeds changed.
+    assert!((reference[4] - 1.0).abs() > 0.1, "{reference:?}");
+    assert!((reference[8] - 0.8).abs() > 0.1, "{reference:?}");
+    for (ranks, g) in [(1, "1 by 1 by 1"), (2, "2 by 1 by 1"), (4, "4 by 1 by 1")] {
+        let out = run(&script, ranks);
+        assert!(grid(&out).starts_with(g), "{}", grid(&out));
+        assert_close(
+            &last_row(&out),
+            &reference,
+            1e-12,
+            &format!("{ranks} ranks"),
+        );
+    }
+}
+
+/// Two touching spheres, squeezed between two y walls, roll side by side on a floor wall (z = 0) in +x at different
+/// speeds, across the subdomain face x = 0.05: the tangential springs of their contact
+/// with each other (pair history, which changes rank with the pair) and with the floor
+/// (wall history, a per-particle property) must follow them to the other rank, so the 2-
+/// and 4-rank runs end where the serial run does. Without history the end state differs
+/// by far more than the tolerance (checked too, so the comparison sees the springs).
+#[test]
+fn sliding_spheres_keep_their_tangential_springs_across_a_subdomain_face() {
+    if !have_mpirun() {
+        return;
+    }
+    let script = |tangential: &str| {
+        format!(
+            "{}\
+fix floor all wall/gran model hertz {tangential} primitive type 1 zplane 0.0
+fix ylo all wall/gran model hertz {tangential} primitive type 1 yplane 0.00201
+fix yhi all wall/gran model hertz {tangential} primitive type 1 yplane 0.01799
+create_atoms 1 single 0.0485 0.0060 0.00399 units box
+create_atoms 1 single 0.0483 0.0140 0.00399 units box
+set atom * diameter 0.008 density 2500
+set atom 1 vx 0.05
+set atom 2 vx 0.04
+fix g all gravity 9.81 vector 0.0 0.0 -1.0
+variable x1 equal x[1]
+variable x2 equal x[2]
+variable v1 equal vx[1]
+variable v2 equal vx[2]
+variable o1 equal omegay[1]
+variable o2 equal omegaz[2]
+variable y2 equal y[2]
+thermo_style custom step atoms v_x1 v_x2 v_v1 v_v2 v_o1 v_o2 v_y2
+{FORMAT}thermo 1000
+run 40000
+",
+            HEAD.replace("tangential history", tangential)
+        )
+    };
+    let serial = last_row(&run(&script("tangential history"), 0));
+    // Both crossed x = 0.05 (each spends steps with its partner on the other rank).
+    assert!(serial[2] > 0.0505 && serial[3] > 0.0505, "{serial:?}");
+    let no_history = last_row(&run(&script("tangential no_history"), 0));
+    let gap = (no_history[4] - serial[4]).abs() / serial[4].abs();
+    assert!(
+        gap > 1e-3,
+        "history must matter here: {no_history:?} vs {serial:?}"
+    );
+    for ranks in [2, 4] {
+        let out = run(&script("tangential history"), ranks);
+        assert_close(&last_row(&out), &serial, 1e-10, &format!("{ranks} ranks"));
+    }
+}
+
+/// The pour example (2500 beads through a box split in z at half height, so every bead
+/// crosses a rank boundary on its way down) on 2 ranks: no bead lost, the same mass, and
+/// the settled bed's centre of mass within 1 % of the serial run's.
+#[test]
+fn pour_on_two_ranks_conserves_particles_and_matches_the_serial_bed() {
+    if !have_mpirun() {
+        return;
+    }
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pour/in.pour");
+    let script = std::fs::read_to_string(example)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with("dump"))
+        .map(|l| {
+            if l.starts_with("thermo_style") {
+                "variable zcm equal xcm(all,z)\nvariable m equal mass(all)\n\
+                 thermo_style custom step atoms ke v_zcm v_m"
+                    .to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let serial = last_row(&run(&script, 0));
+    let out = run(&script, 2);
+    assert!(grid(&out).starts_with("1 by 1 by 2"), "{}", grid(&out));
+    let mpi = last_row(&out);
+    assert_eq!(serial[1], 2500.0);
+    assert_eq!(mpi[1], 2500.0, "every bead kept");
+    assert!(
+        (mpi[4] - serial[4]).abs() < 1e-12 * serial[4],
+        "mass {mpi:?} {serial:?}"
+    );
+    assert!(
+        serial[2] < 1e-6 && mpi[2] < 1e-6,
+        "settled: {serial:?} {mpi:?}"
+    );
+    let dz = (mpi[3] - serial[3]).abs() / serial[3];
+    assert!(
+        dz < 0.01,
+        "bed centre of mass {} vs {} ({dz:e})",
+        mpi[3],
+        serial[3]
+    );
+}
