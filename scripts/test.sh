@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Runs every check on a fresh machine with a Rust toolchain: installs what the tests need
 # (cargo-nextest; the LIGGGHTS tutorial cases from Debian's liggghts-doc package, which the
-# tutorial tests run; VTK's Python reader, with which tests read our VTK files), then formatting, clippy with warnings as errors, the doc tests and
-# the whole test suite (cargo-nextest, release). `.ci/run` calls this script.
+# tutorial tests run; OpenMPI and libclang, to build and run rdem's `mpi` feature under
+# mpirun; VTK's Python reader, with which tests read our VTK files), then formatting,
+# clippy with warnings as errors (with and without MPI), the doc tests and the whole test
+# suite with the `mpi` feature (cargo-nextest, release). `.ci/run` calls this script.
 # Usage: bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,12 +19,18 @@ for component in rustfmt clippy; do
   fi
 done
 tutorials=/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public
-if [ ! -d "$tutorials" ]; then
-  echo "LIGGGHTS tutorial cases not found: installing Debian's liggghts-doc" >&2
+packages=()
+[ -d "$tutorials" ] || packages+=(liggghts-doc)
+command -v mpirun >/dev/null 2>&1 || packages+=(openmpi-bin)
+[ -e /usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h ] || [ -e /usr/include/mpi.h ] \
+  || dpkg -s libopenmpi-dev >/dev/null 2>&1 || packages+=(libopenmpi-dev)
+dpkg -s libclang-dev >/dev/null 2>&1 || packages+=(libclang-dev)
+if [ ${#packages[@]} -gt 0 ]; then
+  echo "installing Debian packages: ${packages[*]}" >&2
   sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
   export DEBIAN_FRONTEND=noninteractive
   $sudo apt-get update -qq
-  $sudo apt-get install -y -q --no-install-recommends liggghts-doc >/dev/null
+  $sudo apt-get install -y -q --no-install-recommends "${packages[@]}" >/dev/null
 fi
 
 if ! python3 -c "import vtk" >/dev/null 2>&1; then
@@ -33,6 +41,8 @@ fi
 set -x
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
+cargo clippy --workspace --all-targets --features rdem-cli/mpi -- -D warnings
 # Doc tests first, so that the last summary printed is the test suite's.
 cargo test --workspace --doc --release
-cargo nextest run --workspace --release
+# The MPI tests start mpirun themselves (--oversubscribe, so they run on 2 cores too).
+cargo nextest run --workspace --release --features rdem-cli/mpi

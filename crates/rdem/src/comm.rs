@@ -9,11 +9,12 @@ use crate::domain::Domain;
 use crate::error::Result;
 use crate::particles::{Particles, Tag};
 
-/// The communicator for a new simulation: over MPI when this process was started under
-/// MPI (feature `mpi`, after [`init_mpi`]), else [`Serial`].
+/// The communicator for a new simulation: over MPI when this process is one of several
+/// MPI ranks (feature `mpi`, after [`init_mpi`]), else [`Serial`] (also for one rank, so
+/// that a one-rank run is the serial run, bit for bit).
 pub fn default_comm() -> Box<dyn Comm> {
     #[cfg(feature = "mpi")]
-    if mpi::environment::is_initialized() && !mpi::environment::is_finalized() {
+    if process_rank_size().1 > 1 {
         return Box::new(crate::mpi_comm::MpiComm::new(
             mpi::topology::SimpleCommunicator::world(),
         ));
