@@ -876,17 +876,22 @@ fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let w = sim.world_mut(a)?;
     w.neighbor.save_history(&w.particles);
     w.particles.clear_ghosts();
-    let n = w.particles.remove_locals(&remove);
+    let n = w.comm.sum_count(w.particles.remove_locals(&remove) as u64);
     let mut renumbered = false;
     if compress {
-        // Renumber tags 1..N keeping their order (LIGGGHTS' compress yes).
+        // Renumber tags 1..N keeping their order (LIGGGHTS' compress yes): a tag's new
+        // value is its rank among the tags of all ranks.
         let p = &mut w.particles;
-        let mut order: Vec<usize> = (0..p.nlocal()).collect();
-        order.sort_by_key(|&i| p.tag[i]);
-        for (k, &i) in order.iter().enumerate() {
-            renumbered |= p.tag[i] != k as u64 + 1;
-            p.tag[i] = k as u64 + 1;
+        let mine: Vec<f64> = p.tag[..p.nlocal()].iter().map(|&t| t as f64).collect();
+        let mut all = w.comm.all_gather(&mine);
+        all.sort_by(f64::total_cmp);
+        let nlocal = p.nlocal();
+        for t in &mut p.tag[..nlocal] {
+            let new = all.partition_point(|&x| x < *t as f64) as u64 + 1;
+            renumbered |= *t != new;
+            *t = new;
         }
+        renumbered = w.comm.max(renumbered as u8 as f64) > 0.0;
     }
     let total = w.natoms();
     if renumbered {
@@ -1092,12 +1097,9 @@ fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     p.omega[i] = DVec3::ZERO;
                 }
             } else {
-                let m: f64 = sel.iter().map(|&i| p.rmass[i]).sum();
-                if m > 0.0 {
-                    let vcm = sel.iter().map(|&i| p.v[i] * p.rmass[i]).sum::<DVec3>() / m;
-                    for &i in &sel {
-                        p.v[i] -= vcm;
-                    }
+                let vcm = group_vcm(&*w.comm, p, &sel);
+                for &i in &sel {
+                    p.v[i] -= vcm;
                 }
             }
         }
@@ -1111,9 +1113,13 @@ fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
         Op::Create(t, seed) => {
             use rand::SeedableRng;
             use rand_distr::Distribution;
-            let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
             let normal = rand_distr::StandardNormal;
             for &i in &sel {
+                // One stream per particle tag, so the velocities do not depend on how the
+                // particles are stored or split between ranks.
+                let mut rng = rand_pcg::Pcg64::seed_from_u64(
+                    seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ p.tag[i],
+                );
                 let s = (1.3806504e-23 * t / p.rmass[i]).sqrt();
                 let g: [f64; 3] = [
                     normal.sample(&mut rng),
@@ -1122,16 +1128,26 @@ fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 ];
                 p.v[i] = DVec3::from_array(g) * s;
             }
-            let m: f64 = sel.iter().map(|&i| p.rmass[i]).sum();
-            if m > 0.0 {
-                let vcm = sel.iter().map(|&i| p.v[i] * p.rmass[i]).sum::<DVec3>() / m;
-                for &i in &sel {
-                    p.v[i] -= vcm;
-                }
+            let vcm = group_vcm(&*w.comm, p, &sel);
+            for &i in &sel {
+                p.v[i] -= vcm;
             }
         }
     }
     Ok(())
+}
+
+/// Mass-weighted mean velocity of the particles `sel` over all ranks (zero for no mass).
+fn group_vcm(comm: &dyn rdem::comm::Comm, p: &rdem::Particles, sel: &[usize]) -> DVec3 {
+    let m = comm.sum(sel.iter().map(|&i| p.rmass[i]).sum());
+    let mv = sel.iter().map(|&i| p.v[i] * p.rmass[i]).sum::<DVec3>();
+    let mut mv = mv.to_array();
+    comm.sum_slice(&mut mv);
+    if m > 0.0 {
+        DVec3::from_array(mv) / m
+    } else {
+        DVec3::ZERO
+    }
 }
 
 fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
@@ -1250,6 +1266,7 @@ fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
             count += 1;
         }
     }
+    let count = w.comm.sum_count(count);
     sim.out.line(&format!("{count} atoms in group {name}"));
     Ok(())
 }

@@ -150,12 +150,12 @@ pub fn kinetic(w: &World, groupbit: u32) -> f64 {
 pub fn contact_counts(w: &World) -> Vec<f64> {
     let p = &w.particles;
     let nlocal = p.nlocal();
-    let mut c = vec![0.0; nlocal];
+    let mut c = vec![0.0; p.len()];
     let list = &w.neighbor.list;
-    if list.first.len() != nlocal + 1 {
-        return c;
-    }
-    for i in 0..nlocal {
+    // Each touching pair counts for both particles; a ghost's count goes to its owner.
+    // (A list older than the particles, after an insertion, counts nothing.)
+    let rows = if list.first.len() == nlocal + 1 { nlocal } else { 0 };
+    for i in 0..rows {
         for &j in list.partners(i) {
             let j = j as usize;
             if j >= p.len() {
@@ -164,13 +164,12 @@ pub fn contact_counts(w: &World) -> Vec<f64> {
             let r = p.radius[i] + p.radius[j];
             if (p.x[i] - p.x[j]).length_squared() < r * r {
                 c[i] += 1.0;
-                let o = if j < nlocal { j } else { p.origin[j] };
-                if o < nlocal && (j < nlocal || o != i) {
-                    c[o] += 1.0;
-                }
+                c[j] += 1.0;
             }
         }
     }
+    w.comm.reverse_scalar(p, &mut c);
+    c.truncate(nlocal);
     c
 }
 

@@ -84,6 +84,9 @@ pub trait Comm: std::fmt::Debug + Send {
     /// Adds the per-particle virial of ghosts (`virial[g]`, 6 components) onto their
     /// owners, as [`Comm::reverse`] does for forces.
     fn reverse_virial(&mut self, p: &Particles, virial: &mut [[f64; 6]]);
+    /// Adds one value per ghost (`c[g]`) onto the particle it copies, as
+    /// [`Comm::reverse`] does for forces (for per-particle tallies outside a step).
+    fn reverse_scalar(&self, p: &Particles, c: &mut [f64]);
     /// Global sum.
     fn sum(&self, x: f64) -> f64;
     /// Global sum of a count.
@@ -217,6 +220,12 @@ impl Comm for Serial {
             for (a, b) in virial[o].iter_mut().zip(&w) {
                 *a += b;
             }
+        }
+    }
+
+    fn reverse_scalar(&self, p: &Particles, c: &mut [f64]) {
+        for g in p.nlocal()..p.len() {
+            c[p.origin[g]] += c[g];
         }
     }
 

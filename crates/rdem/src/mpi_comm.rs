@@ -427,6 +427,34 @@ impl Comm for MpiComm {
         );
     }
 
+    fn reverse_scalar(&self, p: &Particles, c: &mut [f64]) {
+        // Only when every rank still has the ghosts of the last swaps (particles added
+        // since drop them until the next re-neighboring).
+        let end = self.swaps.iter().map(|s| s.first + s.nrecv).max();
+        let current = end.is_none_or(|e| e == p.len()) && c.len() == p.len();
+        if self.min(current as u8 as f64) == 0.0 {
+            return;
+        }
+        for s in self.swaps.iter().rev() {
+            if s.here {
+                for (k, &i) in s.send.iter().enumerate() {
+                    c[i] += c[s.first + k];
+                }
+                continue;
+            }
+            let out: Vec<f64> = if s.recv_from.is_some() {
+                c[s.first..s.first + s.nrecv].to_vec()
+            } else {
+                Vec::new()
+            };
+            let mut got = vec![0.0; if s.send_to.is_some() { s.send.len() } else { 0 }];
+            self.raw(s.recv_from, &out, s.send_to, &mut got);
+            for (&i, v) in s.send.iter().zip(&got) {
+                c[i] += v;
+            }
+        }
+    }
+
     fn sum(&self, x: f64) -> f64 {
         self.reduce(x, SystemOperation::sum())
     }
