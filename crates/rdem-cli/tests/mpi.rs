@@ -275,3 +275,33 @@ fn pour_on_two_ranks_conserves_particles_and_matches_the_serial_bed() {
         serial[3]
     );
 }
+
+/// A script error on 2 ranks: every rank stops (exit status 1) and the report, with its
+/// caret, appears once.
+#[test]
+fn an_error_is_reported_once_and_every_rank_stops() {
+    if !have_mpirun() {
+        return;
+    }
+    let dir = tempfile_dir();
+    let script = format!(
+        "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 omegaz 3\nrun 10\n"
+    );
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe", "-np", "2"])
+        .arg(env!("CARGO_BIN_EXE_rdem"))
+        .args(["-in", "in.test", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(
+        err.matches("unknown set keyword 'omegaz'").count(),
+        1,
+        "{err}"
+    );
+    assert!(err.contains("in.test:20:12"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

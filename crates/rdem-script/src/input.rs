@@ -44,6 +44,8 @@ pub struct Interpreter {
     quit: bool,
     /// An error already reported in an included file, passed up through `include`.
     inner_report: Option<Box<ScriptReport>>,
+    /// Number of MPI ranks running the script (1 without MPI).
+    nprocs: usize,
 }
 
 /// Every command name rdem knows (for suggestions).
@@ -124,6 +126,7 @@ impl Interpreter {
             skip_jump: false,
             quit: false,
             inner_report: None,
+            nprocs: rdem::comm::process_rank_size().1,
         }
     }
 
@@ -170,7 +173,24 @@ impl Interpreter {
             }
             let cmd = f.cmds[f.pos].clone();
             f.pos += 1;
-            if let Err(e) = self.execute(&cmd) {
+            let mut result = self.execute(&cmd);
+            if self.nprocs > 1 {
+                // Every rank runs every command: they stop together when any fails, and
+                // the report (printed by rank 0) is the lowest failing rank's.
+                let failed = result.as_ref().err().map(|e| e.message.clone());
+                if let Some((rank, message)) = rdem::comm::agree_on_failure(failed.as_deref()) {
+                    if result.is_ok() {
+                        let end = cmd.text.find(char::is_whitespace).unwrap_or(cmd.text.len());
+                        result = Err(crate::diagnostic::ScriptError::at(
+                            &cmd,
+                            0..end,
+                            format!("on MPI rank {rank}: {message}"),
+                            None,
+                        ));
+                    }
+                }
+            }
+            if let Err(e) = result {
                 if let Some(inner) = self.inner_report.take() {
                     self.frames.truncate(depth - 1);
                     return Err(inner);

@@ -41,6 +41,36 @@ pub fn init_mpi() -> Option<mpi::environment::Universe> {
     mpi::initialize()
 }
 
+/// After a command that every rank ran: `None` when it succeeded on every rank, else the
+/// lowest rank that failed and its message (the same answer on every rank), so that all
+/// ranks stop together and one reports. Serially: this process's failure.
+pub fn agree_on_failure(failed: Option<&str>) -> Option<(usize, String)> {
+    #[cfg(feature = "mpi")]
+    if process_rank_size().1 > 1 {
+        use mpi::collective::{CommunicatorCollectives, Root, SystemOperation};
+        use mpi::traits::Communicator;
+        let w = mpi::topology::SimpleCommunicator::world();
+        let me = if failed.is_some() { w.rank() as u64 } else { w.size() as u64 };
+        let mut first = 0u64;
+        w.all_reduce_into(&me, &mut first, SystemOperation::min());
+        if first == w.size() as u64 {
+            return None;
+        }
+        let root = w.process_at_rank(first as i32);
+        let text = failed.unwrap_or("").as_bytes().to_vec();
+        let mut len = text.len() as u64;
+        root.broadcast_into(&mut len);
+        let mut bytes = if first == w.rank() as u64 {
+            text
+        } else {
+            vec![0u8; len as usize]
+        };
+        root.broadcast_into(&mut bytes[..]);
+        return Some((first as usize, String::from_utf8_lossy(&bytes).into_owned()));
+    }
+    failed.map(|m| (0, m.to_string()))
+}
+
 /// Makes every rank stop at once (after an error that only some ranks saw).
 pub fn abort_all(code: i32) {
     #[cfg(feature = "mpi")]
