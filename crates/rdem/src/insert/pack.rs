@@ -76,6 +76,8 @@ pub struct InsertPack {
     pub omega: DVec3,
     rng: InsertRng,
     last: Option<u64>,
+    /// The thin-subdomain warning was given.
+    warned_extent: bool,
 }
 
 impl InsertPack {
@@ -125,6 +127,7 @@ impl InsertPack {
             omega: DVec3::ZERO,
             rng: super::rng(seed),
             last: None,
+            warned_extent: false,
         })
     }
 
@@ -238,6 +241,18 @@ impl InsertPack {
                 .copied()
                 .fold(self.dist.max_radius(), f64::max),
         );
+        // Seed 000: a subdomain thinner than 2.2 bounding radii along some axis makes the
+        // insertion unreliable across its faces.
+        let (ext, axis) = world.domain.min_subbox_extent();
+        let rbound = self.dist.max_radius();
+        if world.comm.size() > 1 && ext < 2.2 * rbound && !self.warned_extent {
+            self.warned_extent = true;
+            world.warnings.push(format!(
+                "insertion: the subdomain extent along {} ({ext}) is less than 2.2 times the \
+                 largest particle radius ({rbound}); use fewer processors along that axis",
+                ["x", "y", "z"][axis]
+            ));
+        }
         let near: Vec<f64> = if self.overlap_check {
             let reach = DVec3::splat(2.0 * rmax);
             let bb = self.region.bounding_box();
