@@ -71,7 +71,8 @@ pub struct AtomVtkDump {
     pub binary: bool,
     /// `dump_modify compressor` (applies to binary output).
     pub compressor: Compressor,
-    /// Rank substituted for `%` and written as `proc`.
+    /// Rank substituted for `%`, and written as `proc` when no per-particle ranks are
+    /// given.
     pub rank: usize,
     pending: Option<Pending>,
 }
@@ -103,23 +104,40 @@ impl AtomVtkDump {
         self.compressor.encoding(self.binary)
     }
 
-    /// Writes the snapshot of the owned particles `selection` (sorted by id here) and
-    /// returns the file's path.
-    pub fn write(&self, step: u64, p: &Particles, selection: &[usize]) -> Result<PathBuf, IoError> {
-        let (path, snap) = self.capture(step, p, selection);
+    /// Writes the snapshot of the particles `selection` (sorted by id here) and returns
+    /// the file's path. `procs`, when given, is the owning rank of each particle index
+    /// (written as `proc`; otherwise [`AtomVtkDump::rank`]).
+    pub fn write(
+        &self,
+        step: u64,
+        p: &Particles,
+        selection: &[usize],
+        procs: Option<&[i32]>,
+    ) -> Result<PathBuf, IoError> {
+        let (path, snap) = self.capture(step, p, selection, procs);
         write_atomic(&path, snap.format(self.encoding()).as_bytes())?;
         Ok(path)
     }
 
-    fn capture(&self, step: u64, p: &Particles, selection: &[usize]) -> (PathBuf, AtomVtu) {
+    fn capture(
+        &self,
+        step: u64,
+        p: &Particles,
+        selection: &[usize],
+        procs: Option<&[i32]>,
+    ) -> (PathBuf, AtomVtu) {
         let mut order = selection.to_vec();
         order.sort_by_key(|&i| p.tag[i]);
         let path = self.name.path(step, self.rank);
-        (path, AtomVtu::capture(p, &order, self.rank as i32))
+        let snap = match procs {
+            Some(procs) => AtomVtu::capture_procs(p, &order, procs),
+            None => AtomVtu::capture(p, &order, self.rank as i32),
+        };
+        (path, snap)
     }
 
     /// Starts writing the snapshot in the background (see the module documentation),
-    /// tagged with `tag`. Waits for the previous snapshot first; returns the tags and
+    /// tagged with `tag` (`procs` as in [`AtomVtkDump::write`]). Waits for the previous snapshot first; returns the tags and
     /// paths of the snapshots completed by this call (the previous one; this one too if
     /// no thread could be started and it was written at once), or the first error.
     pub fn start(
@@ -128,9 +146,10 @@ impl AtomVtkDump {
         tag: f64,
         p: &Particles,
         selection: &[usize],
+        procs: Option<&[i32]>,
     ) -> Result<Vec<(f64, PathBuf)>, IoError> {
         let mut done: Vec<(f64, PathBuf)> = self.finish()?.into_iter().collect();
-        let (path, snap) = self.capture(step, p, selection);
+        let (path, snap) = self.capture(step, p, selection, procs);
         let enc = self.encoding();
         let job = std::thread::Builder::new()
             .name("rdem-atom-vtk".into())
@@ -144,7 +163,7 @@ impl AtomVtkDump {
         match job {
             Ok(h) => self.pending = Some((tag, h)),
             // No thread to be had: write it now.
-            Err(_) => done.push((tag, self.write(step, p, selection)?)),
+            Err(_) => done.push((tag, self.write(step, p, selection, procs)?)),
         }
         Ok(done)
     }

@@ -49,6 +49,7 @@ pub use vtk_legacy::{
     format_vtk_binary, vtk_layout, VtkArray, VtkDump, VtkSource,
 };
 pub use vtk_xml::{
-    atom_vtk_arrays, custom_vtk_arrays, format_atom_vtu, format_bounding_box_vtr,
-    format_custom_vtu, format_vtp, AtomVtu, XmlArray, XmlData, XmlEncoding,
+    atom_vtk_arrays, atom_vtk_arrays_procs, custom_vtk_arrays, format_atom_vtu,
+    format_bounding_box_vtr, format_custom_vtu, format_vtp, AtomVtu, XmlArray, XmlData,
+    XmlEncoding,
 };

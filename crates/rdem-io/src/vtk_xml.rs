@@ -432,8 +432,23 @@ fn points_and_vertices(p: &Particles, selection: &[usize]) -> (XmlArray, XmlArra
 }
 
 /// The point-data arrays of `dump atom/vtk`, in LIGGGHTS' order: `radii`, `id`, `type`,
-/// `proc`, `mass`, `velocity_lin`, `velocity_ang`, `force`.
+/// `proc`, `mass`, `velocity_lin`, `velocity_ang`, `force`, with `rank` as `proc` of
+/// every particle.
 pub fn atom_vtk_arrays(p: &Particles, selection: &[usize], rank: i32) -> Vec<XmlArray> {
+    atom_vtk_arrays_with(p, selection, &|_| rank)
+}
+
+/// [`atom_vtk_arrays`] with the owning rank of each particle: `procs[i]` is the `proc` of
+/// particle index `i` (particles gathered from every rank onto the writing one).
+pub fn atom_vtk_arrays_procs(p: &Particles, selection: &[usize], procs: &[i32]) -> Vec<XmlArray> {
+    atom_vtk_arrays_with(p, selection, &|i| procs[i])
+}
+
+fn atom_vtk_arrays_with(
+    p: &Particles,
+    selection: &[usize],
+    proc_of: &dyn Fn(usize) -> i32,
+) -> Vec<XmlArray> {
     let f64s = |f: &dyn Fn(usize) -> f64| XmlData::F64(selection.iter().map(|&i| f(i)).collect());
     let vec3 = |v: &[rdem::DVec3]| {
         XmlData::F64(
@@ -455,7 +470,11 @@ pub fn atom_vtk_arrays(p: &Particles, selection: &[usize], rank: i32) -> Vec<Xml
             1,
             XmlData::I32(selection.iter().map(|&i| p.ty[i] as i32).collect()),
         ),
-        XmlArray::new("proc", 1, XmlData::I32(vec![rank; selection.len()])),
+        XmlArray::new(
+            "proc",
+            1,
+            XmlData::I32(selection.iter().map(|&i| proc_of(i)).collect()),
+        ),
         XmlArray::new("mass", 1, f64s(&|i| p.rmass[i])),
         XmlArray::new("velocity_lin", 3, vec3(&p.v)),
         XmlArray::new("velocity_ang", 3, vec3(&p.omega)),
@@ -479,6 +498,15 @@ impl AtomVtu {
     pub fn capture(p: &Particles, selection: &[usize], rank: i32) -> Self {
         Self {
             arrays: atom_vtk_arrays(p, selection, rank),
+            points: float32_points(p, selection),
+        }
+    }
+
+    /// [`AtomVtu::capture`] with the owning rank of each particle as `proc` (`procs[i]`
+    /// for particle index `i`).
+    pub fn capture_procs(p: &Particles, selection: &[usize], procs: &[i32]) -> Self {
+        Self {
+            arrays: atom_vtk_arrays_procs(p, selection, procs),
             points: float32_points(p, selection),
         }
     }

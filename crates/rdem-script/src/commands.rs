@@ -261,14 +261,18 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
             let ntypes = sim.ntypes as u32;
             let w = sim.world_ref(a)?;
             let f = f.replace('*', &w.step.to_string());
-            rdem_io::write_data(
-                std::path::Path::new(&f),
-                &w.particles,
-                &w.domain,
-                ntypes,
-                w.step,
-            )
-            .map_err(|e| a.error_at(1, e.to_string(), None))?;
+            // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.
+            let all: Vec<usize> = (0..w.particles.nlocal()).collect();
+            if let Some(g) = dump::gather_owned(&*w.comm, &w.particles, &all, &[]) {
+                rdem_io::write_data(
+                    std::path::Path::new(&f),
+                    &g.particles,
+                    &w.domain,
+                    ntypes,
+                    w.step,
+                )
+                .map_err(|e| a.error_at(1, e.to_string(), None))?;
+            }
         }
         name => {
             if let Some((_, what)) = LATER.iter().find(|(c, _)| *c == name) {

@@ -154,7 +154,11 @@ pub fn contact_counts(w: &World) -> Vec<f64> {
     let list = &w.neighbor.list;
     // Each touching pair counts for both particles; a ghost's count goes to its owner.
     // (A list older than the particles, after an insertion, counts nothing.)
-    let rows = if list.first.len() == nlocal + 1 { nlocal } else { 0 };
+    let rows = if list.first.len() == nlocal + 1 {
+        nlocal
+    } else {
+        0
+    };
     for i in 0..rows {
         for &j in list.partners(i) {
             let j = j as usize;

@@ -5,6 +5,9 @@ use rdem_io::{
     AtomVtkDump, Column, Compressor, DumpFileName, PvdSeries, Sort, TextDump, TextOptions, VtkDump,
 };
 
+use rdem::comm::Comm;
+use rdem::{DVec3, Particles};
+
 use crate::args::{suggest, Args, CmdResult};
 use crate::context;
 use crate::sim::Sim;
@@ -144,11 +147,13 @@ pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
 }
 
 /// Waits for every snapshot being written in the background and lists it in its `.pvd`.
+/// Collective (only rank 0 writes, so a failure there stops every rank).
 pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
-    for d in &mut sim.dumps {
-        finish(d)?;
+    let outcome = sim.dumps.iter_mut().try_for_each(finish);
+    match &sim.world {
+        Some(w) => agree(&*w.comm, "dump", outcome),
+        None => outcome,
     }
-    Ok(())
 }
 
 fn finish(d: &mut Dump) -> Result<(), String> {
@@ -170,41 +175,162 @@ fn record(d: &mut Dump, done: Vec<(f64, std::path::PathBuf)>) -> Result<(), Stri
     Ok(())
 }
 
+/// The owned particles of every rank, gathered on rank 0 by [`gather_owned`].
+pub(crate) struct Gathered {
+    /// The particles, all owned (`nlocal` = their number), in rank order then each rank's
+    /// storage order; positions, velocities, forces, torques, radii, masses, densities,
+    /// types, masks and image flags (no named properties).
+    pub particles: Particles,
+    /// The rank that owns each gathered particle (the `proc` of `dump atom/vtk`).
+    pub procs: Vec<i32>,
+    /// The values of each custom column, by gathered particle index.
+    pub custom: Vec<Vec<f64>>,
+}
+
+/// Gathers the owned particles `selection` of every rank, with their values of the
+/// `custom` columns (`custom[k][i]` for owned particle index `i`), on rank 0: `None` on
+/// the other ranks. A collective call: every rank must make it, in the same order.
+pub(crate) fn gather_owned(
+    comm: &dyn Comm,
+    p: &Particles,
+    selection: &[usize],
+    custom: &[&[f64]],
+) -> Option<Gathered> {
+    // The fixed part of `Particles::pack` (no named properties): tag, type, mask, x, v,
+    // omega, radius, mass, density, image flags; then force, torque, rank, custom values.
+    let fixed = Particles::new().packed_len();
+    let rec = fixed + 7 + custom.len();
+    let rank = comm.rank() as f64;
+    let mut buf = Vec::with_capacity(selection.len() * rec);
+    let mut one = Vec::with_capacity(p.packed_len());
+    for &i in selection {
+        one.clear();
+        p.pack(i, DVec3::ZERO, &mut one);
+        // The position exactly as stored (a zero shift would turn -0.0 into +0.0).
+        one[3..6].copy_from_slice(&p.x[i].to_array());
+        buf.extend_from_slice(&one[..fixed]);
+        buf.extend_from_slice(&p.f[i].to_array());
+        buf.extend_from_slice(&p.torque[i].to_array());
+        buf.push(rank);
+        buf.extend(custom.iter().map(|c| c[i]));
+    }
+    let all = comm.gather(&buf)?;
+    let n = all.len() / rec;
+    let mut g = Gathered {
+        particles: Particles::new(),
+        procs: Vec::with_capacity(n),
+        custom: vec![Vec::with_capacity(n); custom.len()],
+    };
+    for r in all.chunks_exact(rec) {
+        let q = &mut g.particles;
+        q.unpack(&r[..fixed], None);
+        let k = q.nlocal() - 1;
+        q.f[k] = DVec3::from_slice(&r[fixed..fixed + 3]);
+        q.torque[k] = DVec3::from_slice(&r[fixed + 3..fixed + 6]);
+        g.procs.push(r[fixed + 6] as i32);
+        for (c, &v) in g.custom.iter_mut().zip(&r[fixed + 7..]) {
+            c.push(v);
+        }
+    }
+    Some(g)
+}
+
+/// Makes the outcome of writing a file, which only rank 0 does, the same on every rank: a
+/// failure on rank 0 becomes an error everywhere, so that all ranks stop together instead
+/// of the others going on to the next collective call. Collective.
+fn agree<T>(comm: &dyn Comm, what: &str, r: Result<T, String>) -> Result<T, String> {
+    let failed = comm.max(if r.is_err() { 1.0 } else { 0.0 }) > 0.0;
+    match r {
+        Ok(_) if failed => Err(format!("{what}: writing failed on rank 0")),
+        r => r,
+    }
+}
+
 fn write_one(sim: &mut Sim, k: usize, step: u64) -> Result<(), String> {
+    let time = sim.time();
+    if let Writer::Euler(name) = &sim.dumps[k].writer {
+        // The cells are global (summed over the ranks); rank 0 writes them.
+        let path = name.path(step, 0);
+        let id = sim.dumps[k].id.clone();
+        let wrote = crate::euler::write_euler_snapshot(sim, None, &path)
+            .map_err(|e| format!("dump {id}: {e}"));
+        let d = &mut sim.dumps[k];
+        let outcome = match wrote {
+            Ok(true) => record(d, vec![(time, path)]),
+            Ok(false) => Ok(()),
+            Err(e) => Err(e),
+        };
+        if let Some(w) = &sim.world {
+            agree(&*w.comm, &format!("dump {id}"), outcome)?;
+        } else {
+            outcome?;
+        }
+        sim.dumps[k].last = Some(step);
+        return Ok(());
+    }
     let cols = columns(sim, &sim.dumps[k].columns)?;
     let Some(w) = &sim.world else {
         return Err("dump before the simulation box is defined".into());
     };
     let sel = rdem_io::fields::group_selection(&w.particles, sim.dumps[k].groupbit);
-    let time = sim.time();
+    let custom: Vec<&[f64]> = cols
+        .iter()
+        .filter_map(|c| match c {
+            Column::Custom { values, .. } => Some(values.as_slice()),
+            Column::Field(_) => None,
+        })
+        .collect();
+    // Every rank sends its particles; rank 0 writes them all (also for a name with `%`,
+    // which becomes 0: one file, not one per rank).
+    let gathered = gather_owned(&*w.comm, &w.particles, &sel, &custom);
     let background = sim.dumps[k].id != WRITE_DUMP;
     let d = &mut sim.dumps[k];
-    let done = match &mut d.writer {
-        Writer::Text(t) => t
-            .write(step, &w.particles, &w.domain, &sel, &cols)
-            .map(|_| vec![]),
-        Writer::Vtk(v) => v
-            .write(step, &w.particles, &w.domain, &sel, &cols)
-            .map(|[main, _]| vec![(time, main)]),
-        Writer::AtomVtk(v) if background => v.start(step, time, &w.particles, &sel),
-        Writer::AtomVtk(v) => v
-            .write(step, &w.particles, &sel)
-            .map(|path| vec![(time, path)]),
-        Writer::Euler(name) => {
-            let path = name.path(step, 0);
-            let id = d.id.clone();
-            crate::euler::write_euler_snapshot(sim, None, &path)
-                .map_err(|e| format!("dump {id}: {e}"))?;
-            let d = &mut sim.dumps[k];
-            record(d, vec![(time, path)])?;
-            d.last = Some(step);
-            return Ok(());
-        }
-    }
-    .map_err(|e| format!("dump {}: {e}", d.id))?;
-    record(d, done)?;
+    let outcome = match gathered {
+        None => Ok(()),
+        Some(g) => write_gathered(d, g, cols, &w.domain, step, time, background),
+    };
+    agree(&*w.comm, &format!("dump {}", d.id), outcome)?;
     d.last = Some(step);
     Ok(())
+}
+
+/// Rank 0's part of [`write_one`]: writes the gathered particles `g` with the columns
+/// `cols` (whose custom values are replaced by the gathered ones) and lists the files in
+/// the dump's `.pvd`.
+fn write_gathered(
+    d: &mut Dump,
+    g: Gathered,
+    cols: Vec<Column>,
+    domain: &rdem::Domain,
+    step: u64,
+    time: f64,
+    background: bool,
+) -> Result<(), String> {
+    let mut values = g.custom.into_iter();
+    let cols: Vec<Column> = cols
+        .into_iter()
+        .map(|c| match c {
+            Column::Custom { name, .. } => Column::Custom {
+                name,
+                values: values.next().unwrap_or_default(),
+            },
+            field => field,
+        })
+        .collect();
+    let p = &g.particles;
+    let sel: Vec<usize> = (0..p.nlocal()).collect();
+    let procs = Some(g.procs.as_slice());
+    let done = match &mut d.writer {
+        Writer::Text(t) => t.write(step, p, domain, &sel, &cols).map(|_| vec![]),
+        Writer::Vtk(v) => v
+            .write(step, p, domain, &sel, &cols)
+            .map(|[main, _]| vec![(time, main)]),
+        Writer::AtomVtk(v) if background => v.start(step, time, p, &sel, procs),
+        Writer::AtomVtk(v) => v.write(step, p, &sel, procs).map(|path| vec![(time, path)]),
+        Writer::Euler(_) => unreachable!("euler/vtk is written by write_one"),
+    }
+    .map_err(|e| format!("dump {}: {e}", d.id))?;
+    record(d, done)
 }
 
 /// The ID of the temporary dump of `write_dump`.

@@ -68,7 +68,7 @@ pub fn end_of_step(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> 
                 e.base_volumes.as_ref().map(|(_, v)| v.as_slice())
             }
         };
-        e.cells = Some(euler::average(&grid, p, f.groupbit, virial, base));
+        e.cells = Some(euler::average(&grid, p, f.groupbit, virial, base, &*w.comm));
         e.step = step;
     }
     Ok(())
@@ -114,8 +114,15 @@ pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, String>
     Ok(rdem_io::euler_vtk::format_euler_vtk(cells))
 }
 
-/// Writes [`euler_snapshot`] to `path` (atomically, creating missing directories).
-pub fn write_euler_snapshot(sim: &Sim, fix_id: Option<&str>, path: &Path) -> Result<(), String> {
+/// Writes [`euler_snapshot`] to `path` (atomically, creating missing directories) on
+/// rank 0; the cells are global (summed over the ranks by [`rdem::euler::average`]), so
+/// the other ranks only check that there is something to write. Returns whether this
+/// rank wrote the file.
+pub fn write_euler_snapshot(sim: &Sim, fix_id: Option<&str>, path: &Path) -> Result<bool, String> {
     let text = euler_snapshot(sim, fix_id)?;
-    rdem_io::write_atomic(path, text.as_bytes()).map_err(|e| e.to_string())
+    let root = sim.world.as_ref().is_none_or(|w| w.comm.is_root());
+    if root {
+        rdem_io::write_atomic(path, text.as_bytes()).map_err(|e| e.to_string())?;
+    }
+    Ok(root)
 }

@@ -50,7 +50,11 @@ pub fn agree_on_failure(failed: Option<&str>) -> Option<(usize, String)> {
         use mpi::collective::{CommunicatorCollectives, Root, SystemOperation};
         use mpi::traits::Communicator;
         let w = mpi::topology::SimpleCommunicator::world();
-        let me = if failed.is_some() { w.rank() as u64 } else { w.size() as u64 };
+        let me = if failed.is_some() {
+            w.rank() as u64
+        } else {
+            w.size() as u64
+        };
         let mut first = 0u64;
         w.all_reduce_into(&me, &mut first, SystemOperation::min());
         if first == w.size() as u64 {

@@ -24,6 +24,7 @@
 
 use glam::DVec3;
 
+use crate::comm::Comm;
 use crate::particles::Particles;
 use crate::region::Region;
 
@@ -146,34 +147,48 @@ impl EulerCells {
     }
 }
 
-/// Cell averages of the owned particles of `p` in `groupbit` on `grid` (see the module
-/// documentation). `virial` holds the contact virial of each owned particle
+/// Cell averages of the particles in `groupbit` on `grid` over every rank of `comm` (see
+/// the module documentation): each rank adds up its owned particles, the per-cell sums
+/// are summed over the ranks before the averages are formed, so every rank gets the same
+/// global result. `virial` holds the contact virial of each owned particle
 /// (xx yy zz xy xz yz); `base_volume`, when given, the volume of each cell to divide by.
+/// This is a collective call: every rank must make it.
 pub fn average(
     grid: &EulerGrid,
     p: &Particles,
     groupbit: u32,
     virial: &[[f64; 6]],
     base_volume: Option<&[f64]>,
+    comm: &dyn Comm,
 ) -> EulerCells {
     let nc = grid.ncells();
     let nlocal = p.nlocal();
     let cell_of: Vec<usize> = (0..nlocal).map(|i| grid.cell_of(p.x[i])).collect();
     let selected = |i: usize| p.mask[i] & groupbit != 0;
-    let mut count = vec![0usize; nc];
-    let mut mass = vec![0.0; nc];
-    let mut mv = vec![DVec3::ZERO; nc];
-    let mut rsum = vec![0.0; nc];
-    let mut vsolid = vec![0.0; nc];
+    // Per cell: count, mass, momentum (3), radius sum, solid volume.
+    const W: usize = 7;
+    let mut sums = vec![0.0; nc * W];
     for i in (0..nlocal).filter(|&i| selected(i)) {
-        let c = cell_of[i];
+        let s = &mut sums[cell_of[i] * W..(cell_of[i] + 1) * W];
         let r = p.radius[i];
-        count[c] += 1;
-        mass[c] += p.rmass[i];
-        mv[c] += p.rmass[i] * p.v[i];
-        rsum[c] += r;
-        vsolid[c] += 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+        let mv = p.rmass[i] * p.v[i];
+        s[0] += 1.0;
+        s[1] += p.rmass[i];
+        s[2] += mv.x;
+        s[3] += mv.y;
+        s[4] += mv.z;
+        s[5] += r;
+        s[6] += 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
     }
+    comm.sum_slice(&mut sums);
+    let cell = |c: usize| &sums[c * W..(c + 1) * W];
+    let count: Vec<f64> = (0..nc).map(|c| cell(c)[0]).collect();
+    let mass: Vec<f64> = (0..nc).map(|c| cell(c)[1]).collect();
+    let mv: Vec<DVec3> = (0..nc)
+        .map(|c| DVec3::new(cell(c)[2], cell(c)[3], cell(c)[4]))
+        .collect();
+    let rsum: Vec<f64> = (0..nc).map(|c| cell(c)[5]).collect();
+    let vsolid: Vec<f64> = (0..nc).map(|c| cell(c)[6]).collect();
     let v_avg: Vec<DVec3> = (0..nc)
         .map(|c| {
             if mass[c] > 0.0 {
@@ -192,13 +207,14 @@ pub fn average(
         let m = p.rmass[i];
         trace[c] += -(m * dv.x * dv.x + w[0]) - (m * dv.y * dv.y + w[1]) - (m * dv.z * dv.z + w[2]);
     }
+    comm.sum_slice(&mut trace);
     let mut out = EulerCells::default();
     for c in 0..nc {
         let vol = base_volume.map_or(grid.cell_volume(), |b| b[c]);
         out.centre.push(grid.centre(c));
         out.v_avg.push(v_avg[c]);
-        out.radius.push(if count[c] > 0 {
-            rsum[c] / count[c] as f64
+        out.radius.push(if count[c] > 0.0 {
+            rsum[c] / count[c]
         } else {
             0.0
         });
@@ -336,7 +352,7 @@ mod tests {
 
         let grid = EulerGrid::new(w.domain.boxlo, w.domain.boxhi, 3.0 * 2.0 * 0.0025);
         assert_eq!(grid.ncells(), 1);
-        let cells = average(&grid, &w.particles, 1, &virial, None);
+        let cells = average(&grid, &w.particles, 1, &virial, None, &*w.comm);
         let p = cells.pressure[0];
         assert!(
             (p - want_p).abs() <= 1e-9 * want_p.abs(),
