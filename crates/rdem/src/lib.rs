@@ -18,6 +18,7 @@ pub mod insert;
 pub mod mpi_comm;
 pub mod neighbor;
 pub mod pair;
+pub mod par;
 pub mod particles;
 pub mod region;
 pub mod sort;

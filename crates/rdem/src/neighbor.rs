@@ -25,8 +25,11 @@
 
 use glam::DVec3;
 
+use rayon::prelude::*;
+
 use crate::comm::Carried;
 use crate::error::{check, Error, Result};
+use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, Tag, REMOTE_GHOST};
 
 /// `neighbor` and `neigh_modify` settings.
@@ -436,12 +439,8 @@ struct Bins {
     /// Bins within the stencil's box of a ghost bin (1) or not (0), and a scratch copy.
     near: Vec<u8>,
     near_tmp: Vec<u8>,
-    /// Slot ranges of the current bin's half-stencil rows (locals) and full-stencil rows
-    /// (ghosts).
-    lranges: Vec<(usize, usize)>,
-    granges: Vec<(usize, usize)>,
-    /// Pairs found, as (row, partner), before they are laid out in rows.
-    pairs: Vec<(u32, u32)>,
+    /// Search buffers: one, or one per layer of bins in parallel.
+    parts: Vec<Part>,
 }
 
 impl Bins {
@@ -593,108 +592,60 @@ impl Bins {
             std::mem::swap(near, tmp);
         }
 
-        // Search, bin by bin: every candidate is written to `pairs` as (row, partner) and
-        // kept (the end advanced) only if it is closer than the cutoff, without a branch.
-        // Local pairs go to the row of the lower index; a ghost pair to the local's row.
-        let Bins {
-            lstart,
-            gstart,
-            slots,
-            index,
-            half,
-            full,
-            lranges,
-            granges,
-            pairs,
-            cursor,
-            near,
-            ..
-        } = self;
-        // Plain slices, so that the compiler keeps their addresses in registers.
-        let (slots, index, lstart, gstart) = (&slots[..], &index[..], &lstart[..], &gstart[..]);
-        let mut np = 0;
-        for cz in sz..sz + nz {
-            for cy in sy..sy + ny {
-                let base = (cz * py + cy) * px;
-                for b in base + sx..base + sx + nx {
-                    let (ls, le) = (lstart[b] as usize, lstart[b + 1] as usize);
-                    if ls == le {
-                        continue;
-                    }
-                    // Slot ranges of the stencil rows for this bin.
-                    let own_end = lstart[b + m0 + 1] as usize;
-                    lranges.clear();
-                    let mut lsum = 0;
-                    for &(r0, r1) in half.iter() {
-                        let s = lstart[(b as isize + r0) as usize] as usize;
-                        let e = lstart[(b as isize + r1) as usize] as usize;
-                        if s < e {
-                            lranges.push((s, e));
-                            lsum += e - s;
-                        }
-                    }
-                    granges.clear();
-                    let mut gsum = 0;
-                    if ghosts && near[b] != 0 {
-                        for &(r0, r1) in full.iter() {
-                            let s = gstart[(b as isize + r0) as usize] as usize;
-                            let e = gstart[(b as isize + r1) as usize] as usize;
-                            if s < e {
-                                granges.push((s, e));
-                                gsum += e - s;
-                            }
-                        }
-                    }
-                    for s in ls..le {
-                        // Room for every candidate of this particle.
-                        let need = np + (own_end - s - 1) + lsum + gsum;
-                        if pairs.len() < need {
-                            pairs.resize(need.max(2 * pairs.len()), (0, 0));
-                        }
-                        let buf = &mut pairs[..];
-                        let Slot { x: xi, r: ri } = slots[s];
-                        let i = index[s];
-                        let mut local = |t: usize| {
-                            let o = slots[t];
-                            let rc = ri + o.r + skin;
-                            let hit = (o.x - xi).length_squared() < rc * rc;
-                            let j = index[t];
-                            buf[np] = (i.min(j), i.max(j));
-                            np += hit as usize;
-                        };
-                        // The rest of this bin and the bins after it in the same row.
-                        for t in s + 1..own_end {
-                            local(t);
-                        }
-                        for &(a, e) in lranges.iter() {
-                            for t in a..e {
-                                local(t);
-                            }
-                        }
-                        for &(a, e) in granges.iter() {
-                            for t in a..e {
-                                let o = slots[t];
-                                let rc = ri + o.r + skin;
-                                let hit = above(xi, o.x) & ((o.x - xi).length_squared() < rc * rc);
-                                buf[np] = (i, index[t]);
-                                np += hit as usize;
-                            }
-                        }
-                    }
-                }
+        // Search, bin by bin, one layer of bins (cz) after the other: every candidate is
+        // written to `pairs` as (row, partner) and kept (the end advanced) only if it is
+        // closer than the cutoff, without a branch. Local pairs go to the row of the
+        // lower index; a ghost pair to the local's row. In parallel, each layer has its
+        // own buffer and the buffers are read in layer order: the pairs come in the
+        // serial order whatever the thread count.
+        let ctx = Search {
+            lstart: &self.lstart,
+            gstart: &self.gstart,
+            slots: &self.slots,
+            index: &self.index,
+            half: &self.half,
+            full: &self.full,
+            near: &self.near,
+            ghosts,
+            skin,
+            sx,
+            sy,
+            nx,
+            ny,
+            px,
+            py,
+            m0,
+        };
+        let parts = &mut self.parts;
+        if !parallel(nlocal) {
+            parts.truncate(1);
+            parts.resize_with(1, Default::default);
+            let part = &mut parts[0];
+            part.np = 0;
+            for cz in sz..sz + nz {
+                ctx.layer(cz, part);
             }
+        } else {
+            parts.resize_with(nz.max(parts.len()), Default::default);
+            parts.truncate(nz);
+            parts.par_iter_mut().enumerate().for_each(|(l, part)| {
+                part.np = 0;
+                ctx.layer(sz + l, part);
+            });
         }
-        let pairs = &pairs[..np];
+        let pairs = parts.iter().flat_map(|part| &part.pairs[..part.np]);
+        let np = parts.iter().map(|part| part.np).sum();
 
         // Lay the pairs out in rows: count, offsets, then fill in the order found.
         list.first.clear();
         list.first.resize(nlocal + 1, 0);
-        for &(a, _) in pairs {
+        for &(a, _) in pairs.clone() {
             list.first[a as usize + 1] += 1;
         }
         for i in 0..nlocal {
             list.first[i + 1] += list.first[i];
         }
+        let cursor = &mut self.cursor;
         cursor.clear();
         cursor.extend_from_slice(&list.first[..nlocal]);
         list.partner.clear();
@@ -706,10 +657,173 @@ impl Bins {
         }
         // Partners in increasing index order: the force passes then walk the particle
         // arrays forwards (about 30 % faster on a settled bed than in bin order), and the
-        // row does not depend on the binning.
-        for i in 0..nlocal {
-            list.partner[list.first[i] as usize..list.first[i + 1] as usize].sort_unstable();
+        // row does not depend on the binning (nor on the search order).
+        let first = &list.first;
+        // Rows lo..lo + CHUNK, which start at `rows`.
+        let sort_rows = |lo: usize, rows: &mut [u32]| {
+            let mut rest = rows;
+            for i in lo..(lo + CHUNK).min(nlocal) {
+                let (row, tail) = rest.split_at_mut((first[i + 1] - first[i]) as usize);
+                row.sort_unstable();
+                rest = tail;
+            }
+        };
+        if !parallel(nlocal) {
+            let mut rest = &mut list.partner[..];
+            for lo in (0..nlocal).step_by(CHUNK) {
+                let hi = (lo + CHUNK).min(nlocal);
+                let (rows, tail) = rest.split_at_mut((first[hi] - first[lo]) as usize);
+                sort_rows(lo, rows);
+                rest = tail;
+            }
+        } else {
+            let mut chunks = Vec::with_capacity(nlocal.div_ceil(CHUNK));
+            let mut rest = &mut list.partner[..];
+            for lo in (0..nlocal).step_by(CHUNK) {
+                let hi = (lo + CHUNK).min(nlocal);
+                let (rows, tail) = rest.split_at_mut((first[hi] - first[lo]) as usize);
+                chunks.push((lo, rows));
+                rest = tail;
+            }
+            chunks
+                .into_par_iter()
+                .for_each(|(lo, rows)| sort_rows(lo, rows));
         }
+    }
+}
+
+/// One layer's search buffers: the pairs found (`pairs[..np]`) and the slot ranges of the
+/// current bin's stencil rows.
+#[derive(Debug, Clone, Default)]
+struct Part {
+    /// Pairs found, as (row, partner), before they are laid out in rows; only grows.
+    pairs: Vec<(u32, u32)>,
+    np: usize,
+    /// Slot ranges of the current bin's half-stencil rows (locals) and full-stencil rows
+    /// (ghosts).
+    lranges: Vec<(usize, usize)>,
+    granges: Vec<(usize, usize)>,
+}
+
+/// The read-only inputs of the search.
+struct Search<'a> {
+    lstart: &'a [u32],
+    gstart: &'a [u32],
+    slots: &'a [Slot],
+    index: &'a [u32],
+    half: &'a [(isize, isize)],
+    full: &'a [(isize, isize)],
+    near: &'a [u8],
+    ghosts: bool,
+    skin: f64,
+    sx: usize,
+    sy: usize,
+    nx: usize,
+    ny: usize,
+    px: usize,
+    py: usize,
+    m0: usize,
+}
+
+impl Search<'_> {
+    /// Appends the pairs found from the bins of layer `cz` (of the padded grid) to
+    /// `part`.
+    fn layer(&self, cz: usize, part: &mut Part) {
+        let Search {
+            lstart,
+            gstart,
+            slots,
+            index,
+            half,
+            full,
+            near,
+            ghosts,
+            skin,
+            sx,
+            sy,
+            nx,
+            ny,
+            px,
+            py,
+            m0,
+        } = *self;
+        let Part {
+            pairs,
+            np,
+            lranges,
+            granges,
+        } = part;
+        let mut np = *np;
+        for cy in sy..sy + ny {
+            let base = (cz * py + cy) * px;
+            for b in base + sx..base + sx + nx {
+                let (ls, le) = (lstart[b] as usize, lstart[b + 1] as usize);
+                if ls == le {
+                    continue;
+                }
+                // Slot ranges of the stencil rows for this bin.
+                let own_end = lstart[b + m0 + 1] as usize;
+                lranges.clear();
+                let mut lsum = 0;
+                for &(r0, r1) in half.iter() {
+                    let s = lstart[(b as isize + r0) as usize] as usize;
+                    let e = lstart[(b as isize + r1) as usize] as usize;
+                    if s < e {
+                        lranges.push((s, e));
+                        lsum += e - s;
+                    }
+                }
+                granges.clear();
+                let mut gsum = 0;
+                if ghosts && near[b] != 0 {
+                    for &(r0, r1) in full.iter() {
+                        let s = gstart[(b as isize + r0) as usize] as usize;
+                        let e = gstart[(b as isize + r1) as usize] as usize;
+                        if s < e {
+                            granges.push((s, e));
+                            gsum += e - s;
+                        }
+                    }
+                }
+                for s in ls..le {
+                    // Room for every candidate of this particle.
+                    let need = np + (own_end - s - 1) + lsum + gsum;
+                    if pairs.len() < need {
+                        pairs.resize(need.max(2 * pairs.len()), (0, 0));
+                    }
+                    let buf = &mut pairs[..];
+                    let Slot { x: xi, r: ri } = slots[s];
+                    let i = index[s];
+                    let mut local = |t: usize| {
+                        let o = slots[t];
+                        let rc = ri + o.r + skin;
+                        let hit = (o.x - xi).length_squared() < rc * rc;
+                        let j = index[t];
+                        buf[np] = (i.min(j), i.max(j));
+                        np += hit as usize;
+                    };
+                    // The rest of this bin and the bins after it in the same row.
+                    for t in s + 1..own_end {
+                        local(t);
+                    }
+                    for &(a, e) in lranges.iter() {
+                        for t in a..e {
+                            local(t);
+                        }
+                    }
+                    for &(a, e) in granges.iter() {
+                        for t in a..e {
+                            let o = slots[t];
+                            let rc = ri + o.r + skin;
+                            let hit = above(xi, o.x) & ((o.x - xi).length_squared() < rc * rc);
+                            buf[np] = (i, index[t]);
+                            np += hit as usize;
+                        }
+                    }
+                }
+            }
+        }
+        part.np = np;
     }
 }
 
@@ -840,9 +954,12 @@ impl Neighbor {
             return true;
         }
         let lim = half * half;
-        x.iter()
-            .zip(&self.xhold)
-            .any(|(a, b)| (*a - *b).length_squared() > lim)
+        let far = |(a, b): (&DVec3, &DVec3)| (*a - *b).length_squared() > lim;
+        if parallel_light(x.len()) {
+            x.par_iter().zip(&self.xhold).any(far)
+        } else {
+            x.iter().zip(&self.xhold).any(far)
+        }
     }
 
     /// Saves the contact history of the current list by tag pair (contacts whose history

@@ -9,6 +9,7 @@
 //! rare makes the full list about three times longer than the contact count).
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::contact::{
     clear_history, CoeffTable, ContactForce, ContactKernel, ContactModel, Geom, Materials,
@@ -16,6 +17,7 @@ use crate::contact::{
 };
 use crate::error::Result;
 use crate::neighbor::{Neighbor, NeighborList};
+use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
 
 /// Fraction of the skin that the near list adds to r_i + r_j.
@@ -49,6 +51,8 @@ pub struct PairGran {
     near: NearList,
     /// Phase 1's per-pair results, one per near-list pair (kept between steps).
     res: Vec<PairOut>,
+    /// Phase 1's per-particle sums over its own pairs, one per owned particle.
+    own: Vec<OwnSum>,
     /// Phase 1's per-pair virials (only used by [`PairGran::compute_with_virial`]).
     res_virial: Vec<[f64; 6]>,
 }
@@ -61,6 +65,7 @@ impl PairGran {
             table: CoeffTable::default(),
             near: NearList::default(),
             res: Vec::new(),
+            own: Vec::new(),
             res_virial: Vec::new(),
         }
     }
@@ -90,9 +95,12 @@ impl PairGran {
             return true;
         }
         let lim = half * half;
-        x.iter()
-            .zip(&near.xref)
-            .any(|(a, b)| (*a - *b).length_squared() > lim)
+        let far = |(a, b): (&DVec3, &DVec3)| (*a - *b).length_squared() > lim;
+        if parallel_light(x.len()) {
+            x.par_iter().zip(&near.xref).any(far)
+        } else {
+            x.iter().zip(&near.xref).any(far)
+        }
     }
 
     /// Rebuilds the near list from the neighbor list.
@@ -110,18 +118,49 @@ impl PairGran {
         near.slot.clear();
         near.first.push(0);
         let margin = near.margin;
-        for i in 0..nlocal {
-            let xi = p.x[i];
-            let ri = p.radius[i] + margin;
-            for k in list.first[i] as usize..list.first[i + 1] as usize {
-                let j = list.partner[k] as usize;
-                let rc = ri + p.radius[j];
-                if (p.x[j] - xi).length_squared() < rc * rc {
-                    near.partner.push(j as u32);
-                    near.slot.push(k as u32);
+        // Rows lo..hi: the pairs within the margin, appended in list order, and the end
+        // of each row (relative to the first pair of row lo).
+        let rows = |lo: usize,
+                    hi: usize,
+                    partner: &mut Vec<u32>,
+                    slot: &mut Vec<u32>,
+                    ends: &mut Vec<u32>| {
+            let base = partner.len();
+            for i in lo..hi {
+                let xi = p.x[i];
+                let ri = p.radius[i] + margin;
+                for k in list.first[i] as usize..list.first[i + 1] as usize {
+                    let j = list.partner[k] as usize;
+                    let rc = ri + p.radius[j];
+                    if (p.x[j] - xi).length_squared() < rc * rc {
+                        partner.push(j as u32);
+                        slot.push(k as u32);
+                    }
                 }
+                ends.push((partner.len() - base) as u32);
             }
-            near.first.push(near.partner.len() as u32);
+        };
+        if !parallel(nlocal) {
+            let mut ends = std::mem::take(&mut near.first);
+            rows(0, nlocal, &mut near.partner, &mut near.slot, &mut ends);
+            near.first = ends;
+        } else {
+            // In parallel over chunks of rows, joined in chunk order: the same list.
+            let parts: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = (0..nlocal.div_ceil(CHUNK))
+                .into_par_iter()
+                .map(|c| {
+                    let (lo, hi) = (c * CHUNK, ((c + 1) * CHUNK).min(nlocal));
+                    let mut part = (Vec::new(), Vec::new(), Vec::with_capacity(hi - lo));
+                    rows(lo, hi, &mut part.0, &mut part.1, &mut part.2);
+                    part
+                })
+                .collect();
+            for (partner, slot, ends) in parts {
+                let base = near.partner.len() as u32;
+                near.first.extend(ends.iter().map(|e| base + e));
+                near.partner.extend_from_slice(&partner);
+                near.slot.extend_from_slice(&slot);
+            }
         }
         // Reverse CSR by counting sort (stable: increasing k within each partner).
         let n = p.len();
@@ -192,20 +231,28 @@ impl PairGran {
 /// the thread count, so that the work and every sum are the same whatever the pool.
 const BLOCK: usize = 256;
 
-/// What one near-list pair gives its two particles: the force on i (j gets its negative)
-/// and the two torques.
+/// What one near-list pair gives its partner j: the force on i (j gets its negative) and
+/// the torque on j. (What it gives i is summed per particle in phase 1, see [`OwnSum`].)
 #[derive(Debug, Clone, Copy, Default)]
 struct PairOut {
     f_i: DVec3,
-    t_i: DVec3,
     t_j: DVec3,
+}
+
+/// The sums of force and torque over an owned particle's own pairs (its row of the near
+/// list), in row order from zero: what a serial pass adds to it at the end of its row.
+#[derive(Debug, Clone, Copy, Default)]
+struct OwnSum {
+    f: DVec3,
+    t: DVec3,
 }
 
 /// The force pass, in two phases that make the result independent of the thread count:
 ///
 /// 1. in parallel over blocks of [`BLOCK`] owned particles, every near pair's kernel
 ///    runs, writes the pair's own history slot and stores its [`PairOut`] (and virial)
-///    in the pair's entry of a buffer indexed by near-list position;
+///    in the pair's entry of a buffer indexed by near-list position, and each owned
+///    particle's sums over its row go to its [`OwnSum`];
 /// 2. in parallel over blocks of all particles (ghosts too), each particle sums what its
 ///    pairs left for it, in increasing near-list position: first the pairs where it is j
 ///    and i is before it, then its own pairs (summed apart, then added), then the pairs
@@ -254,7 +301,8 @@ struct Phase1<'a> {
 
 impl Phase1<'_> {
     /// Runs blocks `b0..b1`; `res`, `rv` and `hist` start at the first pair, the first
-    /// virial entry and the first history value of block `b0`.
+    /// virial entry and the first history value of block `b0`, `own` at its first
+    /// particle.
     fn blocks<K: ContactKernel, const VIRIAL: bool>(
         &self,
         b0: usize,
@@ -262,6 +310,7 @@ impl Phase1<'_> {
         res: &mut [PairOut],
         rv: &mut [[f64; 6]],
         hist: &mut [f64],
+        own: &mut [OwnSum],
     ) {
         if b1 - b0 > 1 {
             let mid = (b0 + b1) / 2;
@@ -275,12 +324,13 @@ impl Phase1<'_> {
                 (&mut [][..], &mut [][..])
             };
             let (ha, hb) = hist.split_at_mut(kh);
+            let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
-                || self.blocks::<K, VIRIAL>(b0, mid, ra, va, ha),
-                || self.blocks::<K, VIRIAL>(mid, b1, rb, vb, hb),
+                || self.blocks::<K, VIRIAL>(b0, mid, ra, va, ha, oa),
+                || self.blocks::<K, VIRIAL>(mid, b1, rb, vb, hb, ob),
             );
         } else {
-            self.block::<K, VIRIAL>(b0, res, rv, hist);
+            self.block::<K, VIRIAL>(b0, res, rv, hist, own);
         }
     }
 
@@ -292,6 +342,7 @@ impl Phase1<'_> {
         res: &mut [PairOut],
         rv: &mut [[f64; 6]],
         hist: &mut [f64],
+        own: &mut [OwnSum],
     ) {
         let w = self.width;
         let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(self.nlocal));
@@ -303,6 +354,7 @@ impl Phase1<'_> {
             let coeff_row = self.table.row(self.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
             let pairs = near.partner[s..e].iter().zip(&near.slot[s..e]);
+            let mut sum = OwnSum::default();
             for (kk, (&j, &slot)) in pairs.enumerate() {
                 let r = s - k0 + kk;
                 let (j, slot) = (j as usize, slot as usize - h0);
@@ -331,10 +383,12 @@ impl Phase1<'_> {
                 }
                 res[r] = PairOut {
                     f_i: out.f_i,
-                    t_i: out.t_i,
                     t_j: out.t_j,
                 };
+                sum.f += out.f_i;
+                sum.t += out.t_i;
             }
+            own[i - lo] = sum;
         }
     }
     /// The contact of owned particle `i` with `j` (`coeff_row`: i's row of the table):
@@ -464,6 +518,7 @@ impl Phase1<'_> {
 struct Phase2<'a> {
     near: &'a NearList,
     res: &'a [PairOut],
+    own: &'a [OwnSum],
     rv: &'a [[f64; 6]],
     nlocal: usize,
     n: usize,
@@ -514,7 +569,7 @@ impl Phase2<'_> {
         for q in lo..hi {
             let a = q - lo;
             let rs = &near.rk[near.rfirst[q] as usize..near.rfirst[q + 1] as usize];
-            let (own, before, after) = if q < self.nlocal {
+            let (own_pairs, before, after) = if q < self.nlocal {
                 let (s, e) = (near.first[q], near.first[q + 1]);
                 let split = rs.partition_point(|&k| k < s);
                 let (before, after) = rs.split_at(split);
@@ -528,13 +583,11 @@ impl Phase2<'_> {
                 fq -= o.f_i;
                 tqq += o.t_j;
             }
-            let (mut fo, mut to) = (DVec3::ZERO, DVec3::ZERO);
-            for o in &res[own.clone()] {
-                fo += o.f_i;
-                to += o.t_i;
+            if q < self.nlocal {
+                let o = &self.own[q];
+                fq += o.f;
+                tqq += o.t;
             }
-            fq += fo;
-            tqq += to;
             for &k in after {
                 let o = &res[k as usize];
                 fq -= o.f_i;
@@ -552,7 +605,7 @@ impl Phase2<'_> {
                 for &k in before {
                     add(&rv[k as usize]);
                 }
-                for w in &rv[own] {
+                for w in &rv[own_pairs] {
                     add(w);
                 }
                 for &k in after {
@@ -585,6 +638,7 @@ impl PairPass<'_> {
             table,
             near,
             res,
+            own,
             res_virial,
         } = pair;
         debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
@@ -616,14 +670,16 @@ impl PairPass<'_> {
         if VIRIAL {
             res_virial.resize(npairs, [0.0; 6]);
         }
+        own.resize(nlocal, OwnSum::default());
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
             let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
-            ph1.blocks::<K, VIRIAL>(0, nb_own, res, rv, &mut list.hist[h0..h1]);
+            ph1.blocks::<K, VIRIAL>(0, nb_own, res, rv, &mut list.hist[h0..h1], own);
         }
         let ph2 = Phase2 {
             near,
             res,
+            own,
             rv: if VIRIAL { res_virial } else { &[] },
             nlocal,
             n,

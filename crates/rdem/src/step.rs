@@ -25,7 +25,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::error::{Error, Result};
-use crate::fix::{integrate, FixKind};
+use crate::fix::integrate;
 use crate::timers::Stage;
 use crate::world::World;
 
@@ -102,7 +102,7 @@ impl World {
         }
         let t3 = self.timers.lap(Stage::Modify, t2);
         let p = &self.particles;
-        self.check_finite(["position", "velocity"], &p.x, &p.v)?;
+        self.check_finite(["position", "velocity"], &p.x, &p.v, None)?;
         self.timers.lap(Stage::Other, t3);
         Ok(())
     }
@@ -112,8 +112,7 @@ impl World {
     pub(crate) fn compute_forces(&mut self, update: bool) -> Result<()> {
         let t0 = Instant::now();
         let p = &mut self.particles;
-        p.f.iter_mut().for_each(|f| *f = DVec3::ZERO);
-        p.torque.iter_mut().for_each(|t| *t = DVec3::ZERO);
+        crate::par::zero(&mut p.f, &mut p.torque);
         let t1 = self.timers.lap(Stage::Other, t0);
         if let Some(pair) = &mut self.pair {
             let nlocal = self.particles.nlocal();
@@ -151,32 +150,29 @@ impl World {
             self.virial_step = Some(self.step);
         }
         let t3 = self.timers.lap(Stage::Comm, t2);
-        let dt = self.dt;
-        for fix in &mut self.fixes {
-            if let FixKind::WallGran(wall) = &mut fix.kind {
-                wall.apply(&mut self.particles, dt, update);
-            } else if fix.post_force() {
-                fix.apply_post_force(&mut self.particles);
-            }
-        }
+        let finite = crate::fix::post_force(&self.fixes, &mut self.particles, self.dt, update);
         let t4 = self.timers.lap(Stage::Modify, t3);
-        let p = &self.particles;
-        self.check_finite(["force", "torque"], &p.f, &p.torque)?;
+        if !finite || self.comm.size() > 1 {
+            let p = &self.particles;
+            self.check_finite(["force", "torque"], &p.f, &p.torque, Some(!finite))?;
+        }
         self.timers.lap(Stage::Other, t4);
         Ok(())
     }
 
     /// Stops with the first particle whose `a` or `b` (named `names`) is not finite. One
-    /// pass over both arrays first: x·0 is 0 for a finite x and NaN otherwise, so the sum
-    /// of those products is NaN exactly when something is not finite (no overflow false
-    /// alarms, independent lanes that vectorize).
-    fn check_finite(&self, names: [&'static str; 2], a: &[DVec3], b: &[DVec3]) -> Result<()> {
+    /// pass over both arrays first ([`crate::par::all_finite_par`]), in parallel.
+    /// `known_bad`: this rank's answer when already known (the fused post-force pass).
+    /// With several ranks every rank must call this (it agrees on the answer).
+    fn check_finite(
+        &self,
+        names: [&'static str; 2],
+        a: &[DVec3],
+        b: &[DVec3],
+        known_bad: Option<bool>,
+    ) -> Result<()> {
         let n = self.particles.nlocal();
-        let mut acc = DVec3::ZERO;
-        for (u, v) in a[..n].iter().zip(&b[..n]) {
-            acc += *u * 0.0 + *v * 0.0;
-        }
-        let bad_here = !acc.is_finite();
+        let bad_here = known_bad.unwrap_or_else(|| !crate::par::all_finite_par(a, b, n));
         if self.comm.size() > 1 {
             // Every rank stops with the same error: the smallest offending tag of all.
             let mine = if bad_here {

@@ -127,3 +127,138 @@ fn force_pass_is_bit_identical_on_1_2_and_4_threads() {
 fn force_pass_with_virial_is_bit_identical_on_1_2_and_4_threads() {
     check(true);
 }
+
+/// Runs `f` on a pool of `threads` threads.
+fn on_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        assert_eq!(rayon::current_num_threads(), threads);
+        f()
+    })
+}
+
+/// The neighbor list (rows and partners, and every pair's history) after the set-up and
+/// after 150 steps with rebuilds, on 1, 2 and 4 threads: the parallel search joins its
+/// layers in order, so the lists are the same, pair for pair.
+#[test]
+fn neighbor_list_is_identical_on_1_2_and_4_threads() {
+    type Lists = Vec<(Vec<u32>, Vec<u32>, Vec<u64>)>;
+    let build = |threads: usize| -> (Lists, u64) {
+        on_pool(threads, || {
+            let mut w = dense_bed(false);
+            assert!(w.particles.nlocal() >= rdem::par::PAR_MIN, "parallel path");
+            assert!(
+                w.particles.nlocal() > 2 * rdem::par::CHUNK,
+                "several chunks"
+            );
+            w.setup().unwrap();
+            let mut lists = Vec::new();
+            let mut snap = |w: &World| {
+                let l = &w.neighbor.list;
+                let hist = l.hist.iter().map(|h| h.to_bits()).collect();
+                lists.push((l.first.clone(), l.partner.clone(), hist));
+            };
+            snap(&w);
+            for _ in 0..3 {
+                for _ in 0..50 {
+                    w.advance().unwrap();
+                }
+                w.setup().unwrap();
+                snap(&w);
+            }
+            (lists, w.neighbor.nbuilds)
+        })
+    };
+    let (one, nbuilds) = build(1);
+    assert!(nbuilds >= 4, "{nbuilds} builds");
+    assert!(one[0].1.len() > 10_000, "{} pairs", one[0].1.len());
+    assert!(one[0].0.len() > rdem::par::PAR_MIN);
+    for threads in [2, 4] {
+        let (other, _) = build(threads);
+        assert_eq!(other.len(), one.len());
+        for (k, (a, b)) in other.iter().zip(&one).enumerate() {
+            assert!(a.0 == b.0, "{threads} threads, list {k}: other rows");
+            assert!(a.1 == b.1, "{threads} threads, list {k}: other partners");
+            assert!(a.2 == b.2, "{threads} threads, list {k}: other history");
+        }
+    }
+}
+
+/// Wall forces, torques, wall history and candidate lists on 1, 2 and 4 threads: the bed
+/// against its floor and lid and a cylinder through it, with viscous damping and an
+/// added force after the walls, evaluated once (set-up) and after 100 steps.
+#[test]
+fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
+    type Snap = (Vec<[u64; 3]>, Vec<[u64; 3]>, Vec<Vec<u64>>, Vec<Vec<u32>>);
+    let walls = |threads: usize| -> Vec<Snap> {
+        on_pool(threads, || {
+            let mut w = dense_bed(false);
+            let shape = WallShape::Cylinder {
+                axis: 2,
+                radius: 0.0123,
+                c1: 0.02,
+                c2: 0.02,
+            };
+            let cyl = PrimitiveWall::new("cyl", ContactModel::hertz_history(), 1, shape).unwrap();
+            w.add_fix(Fix::new("cyl", 1, FixKind::WallGran(Box::new(cyl))).unwrap())
+                .unwrap();
+            w.add_fix(Fix::new("visc", 1, FixKind::Viscous { gamma: 1e-4 }).unwrap())
+                .unwrap();
+            let force = DVec3::new(1e-5, -2e-5, 3e-5);
+            w.add_fix(Fix::new("push", 1, FixKind::AddForce { force }).unwrap())
+                .unwrap();
+            assert!(w.particles.nlocal() >= rdem::par::PAR_MIN, "parallel path");
+            let snap = |w: &World| -> Snap {
+                let p = &w.particles;
+                let n = p.nlocal();
+                let mut hist = Vec::new();
+                let mut cands = Vec::new();
+                for fix in &w.fixes {
+                    if let FixKind::WallGran(wall) = &fix.kind {
+                        let id = p.property(&wall.history_name).unwrap();
+                        hist.push(p.props[id.0].data.iter().map(|h| h.to_bits()).collect());
+                        cands.push(wall.candidates().to_vec());
+                    }
+                }
+                (bits(&p.f[..n]), bits(&p.torque[..n]), hist, cands)
+            };
+            w.setup().unwrap();
+            let first = snap(&w);
+            w.run(100).unwrap();
+            vec![first, snap(&w)]
+        })
+    };
+    let one = walls(1);
+    for (s, snap) in one.iter().enumerate() {
+        let touching = |c: usize| snap.2[c].iter().filter(|&&h| h != 0).count();
+        // floor, lid, cylinder: the floor and the cylinder must carry contacts.
+        assert_eq!(snap.3.len(), 3);
+        assert!(
+            snap.3[2].len() > 100,
+            "{} cylinder candidates",
+            snap.3[2].len()
+        );
+        if s == 1 {
+            assert!(touching(0) > 100, "floor contacts {}", touching(0));
+            assert!(touching(2) > 100, "cylinder contacts {}", touching(2));
+        }
+    }
+    for threads in [2, 4] {
+        let other = walls(threads);
+        for (s, (a, b)) in other.iter().zip(&one).enumerate() {
+            assert!(
+                a.3 == b.3,
+                "{threads} threads, snapshot {s}: other candidates"
+            );
+            assert!(
+                a.2 == b.2,
+                "{threads} threads, snapshot {s}: other wall history"
+            );
+            assert!(a.0 == b.0, "{threads} threads, snapshot {s}: other forces");
+            assert!(a.1 == b.1, "{threads} threads, snapshot {s}: other torques");
+        }
+    }
+}

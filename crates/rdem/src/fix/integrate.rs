@@ -1,36 +1,138 @@
 //! `fix nve/sphere`: velocity Verlet for translation and rotation of solid spheres.
 //! Initial half step: v += dt/2 · f/m, x += dt · v, ω += dt/2 · τ/(0.4 m r²);
 //! final half step: v += dt/2 · f/m, ω += dt/2 · τ/(0.4 m r²).
+//!
+//! Each particle is updated on its own, so the loops run in parallel over chunks of the
+//! owned particles (see [`crate::par`]) with results independent of the thread count.
 
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::par::{parallel, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
+
+/// Read-only per-particle inputs of the update, from particle `lo` on.
+#[derive(Clone, Copy)]
+struct Inputs<'a> {
+    f: &'a [DVec3],
+    torque: &'a [DVec3],
+    mask: &'a [u32],
+    rmass: &'a [f64],
+    radius: &'a [f64],
+}
+
+impl Inputs<'_> {
+    /// The half kick of particle `k` (relative to the slices' start): Δv and Δω, or
+    /// `None` when it is not in the group.
+    #[inline(always)]
+    fn kick(&self, k: usize, groupbit: u32, dtf: f64) -> Option<(DVec3, DVec3)> {
+        if self.mask[k] & groupbit == 0 {
+            return None;
+        }
+        let m = self.rmass[k];
+        let r = self.radius[k];
+        Some((
+            (dtf / m) * self.f[k],
+            (dtf / (INERTIA_SPHERE * m * r * r)) * self.torque[k],
+        ))
+    }
+
+    fn at(&self, lo: usize, hi: usize) -> Self {
+        Inputs {
+            f: &self.f[lo..hi],
+            torque: &self.torque[lo..hi],
+            mask: &self.mask[lo..hi],
+            rmass: &self.rmass[lo..hi],
+            radius: &self.radius[lo..hi],
+        }
+    }
+}
 
 /// First half of the velocity Verlet step for the owned particles of `groupbit`.
 pub fn initial_integrate(p: &mut Particles, groupbit: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let n = p.nlocal();
-    for i in 0..n {
-        if p.mask[i] & groupbit == 0 {
-            continue;
+    let Particles {
+        x,
+        v,
+        omega,
+        f,
+        torque,
+        mask,
+        rmass,
+        radius,
+        ..
+    } = p;
+    let inp = Inputs {
+        f,
+        torque,
+        mask,
+        rmass,
+        radius,
+    };
+    let run = |inp: Inputs, x: &mut [DVec3], v: &mut [DVec3], omega: &mut [DVec3]| {
+        for k in 0..x.len() {
+            if let Some((dv, dw)) = inp.kick(k, groupbit, dtf) {
+                v[k] += dv;
+                x[k] += dt * v[k];
+                omega[k] += dw;
+            }
         }
-        let m = p.rmass[i];
-        let r = p.radius[i];
-        p.v[i] += (dtf / m) * p.f[i];
-        p.x[i] += dt * p.v[i];
-        p.omega[i] += (dtf / (INERTIA_SPHERE * m * r * r)) * p.torque[i];
+    };
+    let (x, v, omega) = (&mut x[..n], &mut v[..n], &mut omega[..n]);
+    if !parallel(n) {
+        run(inp.at(0, n), x, v, omega);
+        return;
     }
+    x.par_chunks_mut(CHUNK)
+        .zip(v.par_chunks_mut(CHUNK))
+        .zip(omega.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(c, ((x, v), omega))| {
+            let lo = c * CHUNK;
+            run(inp.at(lo, lo + x.len()), x, v, omega);
+        });
 }
 
 /// Second half of the velocity Verlet step.
 pub fn final_integrate(p: &mut Particles, groupbit: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let n = p.nlocal();
-    for i in 0..n {
-        if p.mask[i] & groupbit == 0 {
-            continue;
+    let Particles {
+        v,
+        omega,
+        f,
+        torque,
+        mask,
+        rmass,
+        radius,
+        ..
+    } = p;
+    let inp = Inputs {
+        f,
+        torque,
+        mask,
+        rmass,
+        radius,
+    };
+    let run = |inp: Inputs, v: &mut [DVec3], omega: &mut [DVec3]| {
+        for k in 0..v.len() {
+            if let Some((dv, dw)) = inp.kick(k, groupbit, dtf) {
+                v[k] += dv;
+                omega[k] += dw;
+            }
         }
-        let m = p.rmass[i];
-        let r = p.radius[i];
-        p.v[i] += (dtf / m) * p.f[i];
-        p.omega[i] += (dtf / (INERTIA_SPHERE * m * r * r)) * p.torque[i];
+    };
+    let (v, omega) = (&mut v[..n], &mut omega[..n]);
+    if !parallel(n) {
+        run(inp.at(0, n), v, omega);
+        return;
     }
+    v.par_chunks_mut(CHUNK)
+        .zip(omega.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(c, (v, omega))| {
+            let lo = c * CHUNK;
+            run(inp.at(lo, lo + v.len()), v, omega);
+        });
 }

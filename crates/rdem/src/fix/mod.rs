@@ -5,8 +5,12 @@ pub mod integrate;
 
 use glam::DVec3;
 
+use rayon::prelude::*;
+
 use crate::error::{check, Error, Result};
+use crate::par::{all_finite, parallel, View, CHUNK};
 use crate::particles::Particles;
+use crate::wall::primitive::chunk_hist;
 use crate::wall::PrimitiveWall;
 
 /// What a fix does.
@@ -130,43 +134,54 @@ impl Fix {
     /// The post-force action on the owned particles.
     pub fn apply_post_force(&self, p: &mut Particles) {
         let n = p.nlocal();
+        let (view, f, torque, _) = View::split(p);
+        self.post_force_range(&view, 0, &mut f[..n], &mut torque[..n]);
+    }
+
+    /// [`Fix::apply_post_force`] on the particles `lo..lo + f.len()`; `f` and `torque`
+    /// start at particle `lo`.
+    fn post_force_range(&self, p: &View, lo: usize, f: &mut [DVec3], torque: &mut [DVec3]) {
+        let n = f.len();
         let bit = self.groupbit;
+        let mask = &p.mask[lo..lo + n];
         match &self.kind {
             FixKind::Gravity { accel } => {
-                for i in 0..n {
-                    if p.mask[i] & bit != 0 {
-                        p.f[i] += p.rmass[i] * *accel;
+                let rmass = &p.rmass[lo..lo + n];
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] += rmass[k] * *accel;
                     }
                 }
             }
             FixKind::Freeze => {
-                for i in 0..n {
-                    if p.mask[i] & bit != 0 {
-                        p.f[i] = DVec3::ZERO;
-                        p.torque[i] = DVec3::ZERO;
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] = DVec3::ZERO;
+                        torque[k] = DVec3::ZERO;
                     }
                 }
             }
             FixKind::Viscous { gamma } => {
-                for i in 0..n {
-                    if p.mask[i] & bit != 0 {
-                        p.f[i] -= *gamma * p.v[i];
+                let v = &p.v[lo..lo + n];
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] -= *gamma * v[k];
                     }
                 }
             }
             FixKind::AddForce { force } => {
-                for i in 0..n {
-                    if p.mask[i] & bit != 0 {
-                        p.f[i] += *force;
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] += *force;
                     }
                 }
             }
             FixKind::SetForce { force } => {
-                for i in 0..n {
-                    if p.mask[i] & bit != 0 {
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
                         for (a, value) in force.iter().enumerate() {
                             if let Some(v) = value {
-                                p.f[i][a] = *v;
+                                f[k][a] = *v;
                             }
                         }
                     }
@@ -175,4 +190,71 @@ impl Fix {
             FixKind::NveSphere | FixKind::WallGran(_) => {}
         }
     }
+}
+
+/// Step 7 of [`crate::step`]: the post-force fixes, walls included, in definition order on
+/// the owned particles; returns false when some force or torque is then not finite (the
+/// caller finds which). Every fix acts on each particle alone, so the pass runs all fixes
+/// chunk by chunk in parallel (see [`crate::par`]): each particle sees the fixes in the
+/// same order whatever the thread count.
+pub(crate) fn post_force(fixes: &[Fix], p: &mut Particles, dt: f64, update: bool) -> bool {
+    let n = p.nlocal();
+    // The walls' history properties (ID, width), taken out of the particles meanwhile.
+    let hist_ids: Vec<Option<(usize, usize)>> = fixes
+        .iter()
+        .map(|fix| match &fix.kind {
+            FixKind::WallGran(wall) => wall.history_prop().map(|id| (id.0, p.props[id.0].width)),
+            _ => None,
+        })
+        .collect();
+    let (view, f, torque, props) = View::split(p);
+    let mut hists: Vec<Vec<f64>> = hist_ids
+        .iter()
+        .map(|h| h.map_or_else(Vec::new, |(id, _)| std::mem::take(&mut props[id].data)))
+        .collect();
+    let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [&mut [f64]]| {
+        for (fix, h) in fixes.iter().zip(hs.iter_mut()) {
+            if let FixKind::WallGran(wall) = &fix.kind {
+                wall.apply_range(&view, lo, f, torque, h, dt, update);
+            } else if fix.post_force() {
+                fix.post_force_range(&view, lo, f, torque);
+            }
+        }
+        all_finite(f, torque)
+    };
+    let ok = if !parallel(n) {
+        let mut hs: Vec<&mut [f64]> = hists
+            .iter_mut()
+            .zip(&hist_ids)
+            .map(|(h, id)| match id {
+                Some((_, w)) => &mut h[..n * w],
+                None => Default::default(),
+            })
+            .collect();
+        chunk(0, &mut f[..n], &mut torque[..n], &mut hs)
+    } else {
+        let mut per: Vec<Vec<&mut [f64]>> = (0..n.div_ceil(CHUNK))
+            .map(|_| Vec::with_capacity(fixes.len()))
+            .collect();
+        for (h, id) in hists.iter_mut().zip(&hist_ids) {
+            let w = id.map_or(0, |(_, w)| w);
+            for (c, s) in per.iter_mut().zip(chunk_hist(h, n, w)) {
+                c.push(s);
+            }
+        }
+        let oks: Vec<bool> = f[..n]
+            .par_chunks_mut(CHUNK)
+            .zip(torque[..n].par_chunks_mut(CHUNK))
+            .zip(per)
+            .enumerate()
+            .map(|(c, ((f, torque), mut hs))| chunk(c * CHUNK, f, torque, &mut hs))
+            .collect();
+        oks.into_iter().all(|ok| ok)
+    };
+    for (h, id) in hists.into_iter().zip(&hist_ids) {
+        if let Some((id, _)) = id {
+            props[*id].data = h;
+        }
+    }
+    ok
 }

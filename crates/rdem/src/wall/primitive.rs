@@ -8,7 +8,10 @@ use glam::DVec3;
 use crate::contact::{
     clear_history, CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor,
 };
+use rayon::prelude::*;
+
 use crate::error::{Error, Result};
+use crate::par::{parallel, View, CHUNK};
 use crate::particles::{Particles, PropId, INERTIA_SPHERE};
 
 /// Shape of a primitive wall.
@@ -171,18 +174,50 @@ impl PrimitiveWall {
     }
 
     /// Lists the owned particles of group `groupbit` within r + `skin` of the wall (call
-    /// at every re-neighboring) and zeroes the history of all others.
+    /// at every re-neighboring) and zeroes the history of all others. In parallel over
+    /// chunks of particles, the lists joined in chunk order.
     pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
         self.candidates.clear();
+        let n = p.nlocal();
         let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
-        for i in 0..p.nlocal() {
-            let near =
-                p.mask[i] & groupbit != 0 && self.shape.distance(p.x[i]).0 < p.radius[i] + skin;
-            if near {
-                self.candidates.push(i as u32);
-            } else if let Some(id) = self.hist {
-                p.props[id.0].data[i * w..(i + 1) * w].fill(0.0);
+        let (view, _, _, props) = View::split(p);
+        let shape = self.shape;
+        let mut empty: [f64; 0] = [];
+        let hist: &mut [f64] = match self.hist {
+            Some(id) if w > 0 => &mut props[id.0].data[..n * w],
+            _ => &mut empty,
+        };
+        // Appends the candidates among particles lo..lo + len to `out`; `hist` starts at
+        // particle lo (or is empty).
+        let scan = |lo: usize, len: usize, hist: &mut [f64], out: &mut Vec<u32>| {
+            for k in 0..len {
+                let i = lo + k;
+                let near = view.mask[i] & groupbit != 0
+                    && shape.distance(view.x[i]).0 < view.radius[i] + skin;
+                if near {
+                    out.push(i as u32);
+                } else if w > 0 {
+                    hist[k * w..(k + 1) * w].fill(0.0);
+                }
             }
+        };
+        if !parallel(n) {
+            scan(0, n, hist, &mut self.candidates);
+            return;
+        }
+        let hists = chunk_hist(hist, n, w);
+        let parts: Vec<Vec<u32>> = hists
+            .into_par_iter()
+            .enumerate()
+            .map(|(c, h)| {
+                let lo = c * CHUNK;
+                let mut out = Vec::new();
+                scan(lo, CHUNK.min(n - lo), h, &mut out);
+                out
+            })
+            .collect();
+        for part in parts {
+            self.candidates.extend_from_slice(&part);
         }
     }
 
@@ -194,19 +229,72 @@ impl PrimitiveWall {
     /// Adds the wall forces and torques on the owned particles listed by the last
     /// [`PrimitiveWall::build_candidates`].
     pub fn apply(&mut self, p: &mut Particles, dt: f64, update: bool) {
+        let n = p.nlocal();
+        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
+        let (view, f, torque, props) = View::split(p);
+        let mut empty: [f64; 0] = [];
+        let hist: &mut [f64] = match self.hist {
+            Some(id) if w > 0 => &mut props[id.0].data[..n * w],
+            _ => &mut empty,
+        };
+        self.apply_range(&view, 0, &mut f[..n], &mut torque[..n], hist, dt, update);
+    }
+
+    /// The history property's ID, if the model has history.
+    pub(crate) fn history_prop(&self) -> Option<PropId> {
+        self.hist
+    }
+
+    /// [`PrimitiveWall::apply`] on the particles `lo..lo + f.len()`: `f`, `torque` and
+    /// `hist` (the history property's values, or empty without history) start at
+    /// particle `lo`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn apply_range(
+        &self,
+        view: &View,
+        lo: usize,
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        hist: &mut [f64],
+        dt: f64,
+        update: bool,
+    ) {
+        let hi = lo + f.len();
+        let a = self.candidates.partition_point(|&i| (i as usize) < lo);
+        let b = a + self.candidates[a..].partition_point(|&i| (i as usize) < hi);
         let model = self.model;
         model.dispatch(WallPass {
             wall: self,
-            p,
+            cand: &self.candidates[a..b],
+            view,
+            lo,
+            f,
+            torque,
+            hist,
             dt,
             update,
         });
     }
 }
 
+/// The history values of particles 0..n (`w` each, or `hist` empty) in chunks of
+/// [`CHUNK`] particles (empty slices without history).
+pub(crate) fn chunk_hist(hist: &mut [f64], n: usize, w: usize) -> Vec<&mut [f64]> {
+    if w > 0 && !hist.is_empty() {
+        hist[..n * w].chunks_mut(CHUNK * w).collect()
+    } else {
+        (0..n.div_ceil(CHUNK)).map(|_| Default::default()).collect()
+    }
+}
+
 struct WallPass<'a> {
-    wall: &'a mut PrimitiveWall,
-    p: &'a mut Particles,
+    wall: &'a PrimitiveWall,
+    cand: &'a [u32],
+    view: &'a View<'a>,
+    lo: usize,
+    f: &'a mut [DVec3],
+    torque: &'a mut [DVec3],
+    hist: &'a mut [f64],
     dt: f64,
     update: bool,
 }
@@ -216,24 +304,25 @@ impl Visitor for WallPass<'_> {
     fn visit<K: ContactKernel>(self) {
         let WallPass {
             wall,
-            p,
+            cand,
+            view: p,
+            lo,
+            f,
+            torque,
+            hist: hist_data,
             dt,
             update,
         } = self;
         let flags = wall.model.flags;
         let mut empty: [f64; 0] = [];
         let w = K::HIST;
-        // Split the borrow: the history property separately from the particle arrays.
-        let mut hist_data = match wall.hist {
-            Some(id) => std::mem::take(&mut p.props[id.0].data),
-            None => Vec::new(),
-        };
-        for &i in &wall.candidates {
+        for &i in cand {
             let i = i as usize;
+            let k = i - lo;
             let r = p.radius[i];
             let (d, n) = wall.shape.distance(p.x[i]);
             let hist: &mut [f64] = if w > 0 {
-                &mut hist_data[i * w..(i + 1) * w]
+                &mut hist_data[k * w..(k + 1) * w]
             } else {
                 &mut empty
             };
@@ -264,11 +353,8 @@ impl Visitor for WallPass<'_> {
             };
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
-            p.f[i] += out.f_i;
-            p.torque[i] += out.t_i;
-        }
-        if let Some(id) = wall.hist {
-            p.props[id.0].data = hist_data;
+            f[k] += out.f_i;
+            torque[k] += out.t_i;
         }
     }
 }
