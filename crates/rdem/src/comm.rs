@@ -1,6 +1,6 @@
 //! Communication seam. The engine talks to other subdomains only through [`Comm`]; the
 //! serial case is the one-rank implementation [`Serial`], whose only ghosts are periodic
-//! images. The MPI implementation (feature `mpi`, [`crate::mpi_comm`]) implements the same
+//! images. The MPI implementation (feature `mpi`, `mpi_comm`) implements the same
 //! trait: the engine has one code path, and serial is its one-rank case.
 
 use glam::DVec3;
@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::particles::{Particles, Tag};
 
 /// The communicator for a new simulation: over MPI when this process is one of several
-/// MPI ranks (feature `mpi`, after [`init_mpi`]), else [`Serial`] (also for one rank, so
+/// MPI ranks (feature `mpi`, after `init_mpi`), else [`Serial`] (also for one rank, so
 /// that a one-rank run is the serial run, bit for bit).
 pub fn default_comm() -> Box<dyn Comm> {
     #[cfg(feature = "mpi")]
