@@ -82,8 +82,9 @@ impl PairGran {
     }
 
     /// True when the near list must be rebuilt before the next force pass: the neighbor
-    /// list was rebuilt, or some owned particle moved more than half the margin since.
-    /// (With several ranks the caller combines the answers of all ranks.)
+    /// list was rebuilt, or some particle of the list (`x`: owned particles and ghosts)
+    /// moved more than half the margin since. Ghosts are checked too, so that each rank
+    /// decides for its own list without asking the others.
     pub fn near_list_stale(&self, x: &[DVec3], neighbor: &Neighbor) -> bool {
         let near = &self.near;
         if near.built_for != neighbor.nbuilds || near.xref.len() != x.len() {
@@ -112,7 +113,7 @@ impl PairGran {
         near.growth_ref = neighbor.growth;
         let nlocal = p.nlocal();
         near.xref.clear();
-        near.xref.extend_from_slice(&p.x[..nlocal]);
+        near.xref.extend_from_slice(&p.x);
         near.first.clear();
         near.partner.clear();
         near.slot.clear();

@@ -115,9 +115,8 @@ impl World {
         crate::par::zero(&mut p.f, &mut p.torque);
         let t1 = self.timers.lap(Stage::Other, t0);
         if let Some(pair) = &mut self.pair {
-            let nlocal = self.particles.nlocal();
-            let stale = pair.near_list_stale(&self.particles.x[..nlocal], &self.neighbor);
-            if self.comm.max(if stale { 1.0 } else { 0.0 }) > 0.0 {
+            // A local decision: the check covers this rank's ghosts too.
+            if pair.near_list_stale(&self.particles.x, &self.neighbor) {
                 pair.build_near_list(&self.particles, &self.neighbor);
             }
             if self.want_virial {
