@@ -305,3 +305,51 @@ fn an_error_is_reported_once_and_every_rank_stops() {
     assert!(err.contains("in.test:20:12"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Sphere 2 (x > 0.05, rank 1 of 2) slides down along sphere 1 (x < 0.05, rank 0, held by
+/// `fix freeze`) at a constant velocity (`fix setforce`), touching it all the way; its
+/// spin comes only from the tangential spring of the contact. While sphere 2 is higher,
+/// rank 0 lists the pair (the ghost lies above); once it passes below sphere 1 the listing
+/// moves to rank 1, which needs the spring rank 0 built (the mirrored history entry). The
+/// 2-rank spin equals serial within 1e-10; it differs without history.
+#[test]
+fn contact_history_follows_the_pair_when_the_listing_rank_changes() {
+    if !have_mpirun() {
+        return;
+    }
+    let script = |tangential: &str| {
+        format!(
+            "{}\
+create_atoms 1 single 0.0461 0.01 0.0100 units box
+create_atoms 1 single 0.0539 0.01 0.0110 units box
+set atom * diameter 0.008 density 2500
+set atom 2 vz -0.05 vx -0.0005
+group base id 1
+group mover id 2
+fix hold base freeze
+fix glide mover setforce 0.0 0.0 0.0
+variable z2 equal z[2]
+variable o2 equal omegay[2]
+variable p2 equal omegax[2]
+thermo_style custom step atoms v_z2 v_o2 v_p2
+{FORMAT}thermo 1000
+run 7000
+",
+            HEAD.replace("tangential history", tangential)
+        )
+    };
+    let serial = last_row(&run(&script("tangential history"), 0));
+    assert!(
+        serial[2] < 0.0100 - 5e-4,
+        "passed below sphere 1: {serial:?}"
+    );
+    assert!(serial[3].abs() > 1e-3, "spun by the spring: {serial:?}");
+    let no_history = last_row(&run(&script("tangential no_history"), 0));
+    assert!(
+        (no_history[3] - serial[3]).abs() > 1e-4 * serial[3].abs(),
+        "history must matter: {no_history:?} vs {serial:?}"
+    );
+    let out = run(&script("tangential history"), 2);
+    assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
+    assert_close(&last_row(&out), &serial, 1e-10, "2 ranks");
+}
