@@ -3,37 +3,18 @@
 //! not installed.
 #![cfg(feature = "mpi")]
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
-/// True when `mpirun` can be started.
-fn have_mpirun() -> bool {
-    let ok = Command::new("mpirun")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        eprintln!("note: mpirun not found; MPI test skipped");
-    }
-    ok
-}
+use std::path::Path;
+
+use common::{have_mpirun, rdem_command};
 
 /// Runs `script` in a fresh directory, serially (`ranks == 0`, no mpirun) or on `ranks`
 /// MPI ranks, with one thread per rank; returns the screen output.
 fn run(script: &str, ranks: usize) -> String {
     let dir = tempfile_dir();
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let bin = env!("CARGO_BIN_EXE_rdem");
-    let mut cmd = if ranks == 0 {
-        Command::new(bin)
-    } else {
-        let mut c = Command::new("mpirun");
-        c.args(["--allow-run-as-root", "--oversubscribe", "-np"])
-            .arg(ranks.to_string())
-            .arg(bin);
-        c
-    };
-    let out = cmd
+    let out = rdem_command((ranks > 0).then_some(ranks))
         .args(["-in", "in.test", "-log", "none"])
         .env("RDEM_THREADS", "1")
         .current_dir(&dir)
@@ -288,9 +269,7 @@ fn an_error_is_reported_once_and_every_rank_stops() {
         "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 omegaz 3\nrun 10\n"
     );
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = Command::new("mpirun")
-        .args(["--allow-run-as-root", "--oversubscribe", "-np", "2"])
-        .arg(env!("CARGO_BIN_EXE_rdem"))
+    let out = rdem_command(Some(2))
         .args(["-in", "in.test", "-log", "none"])
         .current_dir(&dir)
         .output()

@@ -10,18 +10,13 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+mod common;
+use common::{have_mpirun, rdem_command};
 
 const N: usize = 1024;
 /// Half the box's x extent: rank 0 owns x < SPLIT, rank 1 the rest.
 const SPLIT: f64 = 0.0304;
-
-fn mpirun_available() -> bool {
-    Command::new("mpirun")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
 
 /// The data file: 16 × 8 × 8 spheres (d = 4 mm) 3.8 mm apart, tags in scrambled order,
 /// type 2 in the first five x layers, varied velocities and spins.
@@ -72,7 +67,6 @@ fn run(np: Option<usize>, nsteps: u64) -> BTreeMap<String, String> {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/mpi/in.dumps");
     std::fs::copy(src, d.join("in.dumps")).unwrap();
     std::fs::write(d.join("init.data"), init_data()).unwrap();
-    let bin = env!("CARGO_BIN_EXE_rdem");
     let args = [
         "-in",
         "in.dumps",
@@ -83,17 +77,11 @@ fn run(np: Option<usize>, nsteps: u64) -> BTreeMap<String, String> {
         &nsteps.to_string(),
     ]
     .map(String::from);
-    let mut cmd = match np {
-        Some(n) => {
-            let mut c = Command::new("mpirun");
-            c.args(["--allow-run-as-root", "--oversubscribe", "-np"])
-                .arg(n.to_string())
-                .arg(bin);
-            c
-        }
-        None => Command::new(bin),
-    };
-    let out = cmd.args(&args).current_dir(&d).output().unwrap();
+    let out = rdem_command(np)
+        .args(&args)
+        .current_dir(&d)
+        .output()
+        .unwrap();
     assert!(
         out.status.success(),
         "{tag}: {}\n{}",
@@ -341,8 +329,7 @@ fn compare(nsteps: u64) {
 /// Step 0 only (`run 0`): positions and velocities as read, forces at set-up.
 #[test]
 fn two_ranks_write_the_serial_files_at_setup() {
-    if !mpirun_available() {
-        eprintln!("note: mpirun is not on PATH; skipping the 2-rank dump test");
+    if !have_mpirun() {
         return;
     }
     compare(0);
@@ -351,8 +338,7 @@ fn two_ranks_write_the_serial_files_at_setup() {
 /// Ten steps, snapshots at 0, 5 and 10.
 #[test]
 fn two_ranks_write_the_serial_files_after_ten_steps() {
-    if !mpirun_available() {
-        eprintln!("note: mpirun is not on PATH; skipping the 2-rank dump test");
+    if !have_mpirun() {
         return;
     }
     compare(10);

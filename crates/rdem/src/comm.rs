@@ -75,16 +75,6 @@ pub fn agree_on_failure(failed: Option<&str>) -> Option<(usize, String)> {
     failed.map(|m| (0, m.to_string()))
 }
 
-/// Makes every rank stop at once (after an error that only some ranks saw).
-pub fn abort_all(code: i32) {
-    #[cfg(feature = "mpi")]
-    if mpi::environment::is_initialized() && !mpi::environment::is_finalized() {
-        use mpi::traits::Communicator;
-        mpi::topology::SimpleCommunicator::world().abort(code);
-    }
-    let _ = code;
-}
-
 /// Per-particle data kept outside [`Particles`] that travels with a migrating particle
 /// (the contact history rows of the neighbor list).
 pub trait Carried {
@@ -142,8 +132,6 @@ pub trait Comm: std::fmt::Debug + Send {
     fn gather(&self, data: &[f64]) -> Option<Vec<f64>>;
     /// Concatenation of every rank's `data` in rank order, on every rank.
     fn all_gather(&self, data: &[f64]) -> Vec<f64>;
-    /// Rank 0's `text` on every rank (the others pass anything).
-    fn broadcast_text(&self, text: &str) -> String;
     /// True on the rank that prints and writes files (rank 0).
     fn is_root(&self) -> bool {
         self.rank() == 0
@@ -227,12 +215,7 @@ impl Comm for Serial {
         let nlocal = p.nlocal();
         for (k, &s) in self.shift.iter().enumerate() {
             let g = nlocal + k;
-            let o = p.origin[g];
-            p.x[g] = p.x[o] + s;
-            p.v[g] = p.v[o];
-            p.omega[g] = p.omega[o];
-            p.radius[g] = p.radius[o];
-            p.rmass[g] = p.rmass[o];
+            p.copy_forward(g, p.origin[g], s);
         }
     }
 
@@ -290,8 +273,5 @@ impl Comm for Serial {
     }
     fn all_gather(&self, data: &[f64]) -> Vec<f64> {
         data.to_vec()
-    }
-    fn broadcast_text(&self, text: &str) -> String {
-        text.to_string()
     }
 }

@@ -26,10 +26,7 @@ use mpi::traits::*;
 use crate::comm::{Carried, Comm};
 use crate::domain::{least_surface_grid, Domain};
 use crate::error::{Error, Result};
-use crate::particles::{Particles, Tag};
-
-/// Values per particle in forward communication: x, v, ω, radius, mass.
-const FORWARD: usize = 11;
+use crate::particles::{Particles, Tag, FORWARD_LEN};
 
 /// One ghost swap: particles `send` go to rank `send_to` (or are copied here when
 /// `here`), and `nrecv` ghosts arrive from rank `recv_from` as indices `first..`.
@@ -351,12 +348,7 @@ impl Comm for MpiComm {
         for s in &swaps {
             if s.here {
                 for (k, &i) in s.send.iter().enumerate() {
-                    let g = s.first + k;
-                    p.x[g] = p.x[i] + s.shift;
-                    p.v[g] = p.v[i];
-                    p.omega[g] = p.omega[i];
-                    p.radius[g] = p.radius[i];
-                    p.rmass[g] = p.rmass[i];
+                    p.copy_forward(s.first + k, i, s.shift);
                 }
                 continue;
             }
@@ -364,36 +356,18 @@ impl Comm for MpiComm {
             buf.clear();
             if s.send_to.is_some() {
                 for &i in &s.send {
-                    let (x, v, w) = (p.x[i] + s.shift, p.v[i], p.omega[i]);
-                    buf.extend_from_slice(&[
-                        x.x,
-                        x.y,
-                        x.z,
-                        v.x,
-                        v.y,
-                        v.z,
-                        w.x,
-                        w.y,
-                        w.z,
-                        p.radius[i],
-                        p.rmass[i],
-                    ]);
+                    p.pack_forward(i, s.shift, &mut buf);
                 }
             }
             let n = if s.recv_from.is_some() {
-                s.nrecv * FORWARD
+                s.nrecv * FORWARD_LEN
             } else {
                 0
             };
             self.send_recv(s.send_to, &buf, s.recv_from, Some(n));
             self.buf = buf;
-            for (k, c) in self.rbuf.chunks_exact(FORWARD).enumerate() {
-                let g = s.first + k;
-                p.x[g] = DVec3::new(c[0], c[1], c[2]);
-                p.v[g] = DVec3::new(c[3], c[4], c[5]);
-                p.omega[g] = DVec3::new(c[6], c[7], c[8]);
-                p.radius[g] = c[9];
-                p.rmass[g] = c[10];
+            for (k, c) in self.rbuf.chunks_exact(FORWARD_LEN).enumerate() {
+                p.unpack_forward(s.first + k, c);
             }
         }
         self.swaps = swaps;
@@ -500,20 +474,10 @@ impl Comm for MpiComm {
         let mut recv_counts = vec![0i32; self.size];
         self.comm
             .all_to_all_into(&send_counts[..], &mut recv_counts[..]);
-        let displs = |c: &[i32]| -> Vec<i32> {
-            c.iter()
-                .scan(0, |s, &n| {
-                    let d = *s;
-                    *s += n;
-                    Some(d)
-                })
-                .collect()
-        };
-        let sdispls = displs(&send_counts);
-        let rdispls = displs(&recv_counts);
+        let (sdispls, _) = offsets(&send_counts);
+        let (rdispls, total) = offsets(&recv_counts);
         let flat: Vec<f64> = out.concat();
-        let total: i32 = recv_counts.iter().sum();
-        let mut got = vec![0.0; total as usize];
+        let mut got = vec![0.0; total];
         {
             let sp = Partition::new(&flat[..], &send_counts[..], &sdispls[..]);
             let mut rp = PartitionMut::new(&mut got[..], &recv_counts[..], &rdispls[..]);
@@ -528,16 +492,8 @@ impl Comm for MpiComm {
         if self.rank == 0 {
             let mut counts = vec![0i32; self.size];
             root.gather_into_root(&n, &mut counts[..]);
-            let displs: Vec<i32> = counts
-                .iter()
-                .scan(0, |s, &c| {
-                    let d = *s;
-                    *s += c;
-                    Some(d)
-                })
-                .collect();
-            let total: i32 = counts.iter().sum();
-            let mut all = vec![0.0; total as usize];
+            let (displs, total) = offsets(&counts);
+            let mut all = vec![0.0; total];
             {
                 let mut rp = PartitionMut::new(&mut all[..], &counts[..], &displs[..]);
                 root.gather_varcount_into_root(data, &mut rp);
@@ -552,35 +508,28 @@ impl Comm for MpiComm {
 
     fn all_gather(&self, data: &[f64]) -> Vec<f64> {
         let counts = self.all_counts(data.len());
-        let displs: Vec<i32> = counts
-            .iter()
-            .scan(0, |s, &c| {
-                let d = *s;
-                *s += c;
-                Some(d)
-            })
-            .collect();
-        let total: i32 = counts.iter().sum();
-        let mut all = vec![0.0; total as usize];
+        let (displs, total) = offsets(&counts);
+        let mut all = vec![0.0; total];
         {
             let mut rp = PartitionMut::new(&mut all[..], &counts[..], &displs[..]);
             self.comm.all_gather_varcount_into(data, &mut rp);
         }
         all
     }
+}
 
-    fn broadcast_text(&self, text: &str) -> String {
-        let root = self.comm.process_at_rank(0);
-        let mut len = text.len() as u64;
-        root.broadcast_into(&mut len);
-        let mut bytes = if self.rank == 0 {
-            text.as_bytes().to_vec()
-        } else {
-            vec![0u8; len as usize]
-        };
-        root.broadcast_into(&mut bytes[..]);
-        String::from_utf8_lossy(&bytes).into_owned()
-    }
+/// Start offsets of consecutive blocks of `counts` values, and their total.
+fn offsets(counts: &[i32]) -> (Vec<i32>, usize) {
+    let mut at = 0;
+    let displs = counts
+        .iter()
+        .map(|&c| {
+            let d = at;
+            at += c;
+            d
+        })
+        .collect();
+    (displs, at as usize)
 }
 
 fn show(n: usize) -> String {

@@ -100,6 +100,8 @@ impl NewParticle {
 
 /// Values per particle in [`Particles::pack`] before the named properties.
 const PACK_FIXED: usize = 18;
+/// Values per particle in [`Particles::pack_forward`].
+pub const FORWARD_LEN: usize = 11;
 /// `origin` of a ghost copied from another rank: this plus the owner's rank.
 pub const REMOTE_GHOST: usize = 1 << 60;
 
@@ -426,6 +428,44 @@ impl Particles {
             }
         }
         k
+    }
+
+    /// Appends what forward communication refreshes of particle `i` (position displaced
+    /// by `shift`, velocity, angular velocity, radius, mass: [`FORWARD_LEN`] values).
+    pub fn pack_forward(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
+        let (x, v, w) = (self.x[i] + shift, self.v[i], self.omega[i]);
+        buf.extend_from_slice(&[
+            x.x,
+            x.y,
+            x.z,
+            v.x,
+            v.y,
+            v.z,
+            w.x,
+            w.y,
+            w.z,
+            self.radius[i],
+            self.rmass[i],
+        ]);
+    }
+
+    /// Sets ghost `g` from values packed by [`Particles::pack_forward`].
+    pub fn unpack_forward(&mut self, g: usize, c: &[f64]) {
+        self.x[g] = DVec3::new(c[0], c[1], c[2]);
+        self.v[g] = DVec3::new(c[3], c[4], c[5]);
+        self.omega[g] = DVec3::new(c[6], c[7], c[8]);
+        self.radius[g] = c[9];
+        self.rmass[g] = c[10];
+    }
+
+    /// Refreshes ghost `g` from particle `i` of this process (a periodic image displaced
+    /// by `shift`), as forward communication does across ranks.
+    pub fn copy_forward(&mut self, g: usize, i: usize, shift: DVec3) {
+        self.x[g] = self.x[i] + shift;
+        self.v[g] = self.v[i];
+        self.omega[g] = self.omega[i];
+        self.radius[g] = self.radius[i];
+        self.rmass[g] = self.rmass[i];
     }
 
     /// The rank owning ghost `g` when it copies another rank's particle.
