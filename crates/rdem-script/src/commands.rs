@@ -895,7 +895,7 @@ fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             renumbered |= *t != new;
             *t = new;
         }
-        renumbered = w.comm.max(renumbered as u8 as f64) > 0.0;
+        renumbered = w.comm.any(renumbered);
     }
     let total = w.natoms();
     if renumbered {

@@ -79,7 +79,7 @@ pub fn agree_on_failure(failed: Option<&str>) -> Option<(usize, String)> {
 /// (the contact history rows of the neighbor list).
 pub trait Carried {
     /// Appends the data of the particle with tag `tag` to `buf`.
-    fn pack(&self, tag: Tag, buf: &mut Vec<f64>);
+    fn pack(&mut self, tag: Tag, buf: &mut Vec<f64>);
     /// Reads the data of the arriving particle `tag` from the start of `buf`; returns the
     /// number of values read.
     fn unpack(&mut self, tag: Tag, buf: &[f64]) -> usize;
@@ -119,6 +119,10 @@ pub trait Comm: std::fmt::Debug + Send {
     fn min(&self, x: f64) -> f64;
     /// Global maximum.
     fn max(&self, x: f64) -> f64;
+    /// True on every rank when `b` is true on any rank.
+    fn any(&self, b: bool) -> bool {
+        self.max(b as u8 as f64) > 0.0
+    }
     /// Global maximum of a count or tag.
     fn max_count(&self, x: u64) -> u64;
     /// Sum of `x` over the ranks below this one (exclusive prefix sum), for tag extension.

@@ -406,7 +406,7 @@ impl Comm for MpiComm {
         // since drop them until the next re-neighboring).
         let end = self.swaps.iter().map(|s| s.first + s.nrecv).max();
         let current = end.is_none_or(|e| e == p.len()) && c.len() == p.len();
-        if self.min(current as u8 as f64) == 0.0 {
+        if self.any(!current) {
             return;
         }
         for s in self.swaps.iter().rev() {

@@ -169,6 +169,10 @@ struct HistoryStore {
     remote: Vec<Vec<f64>>,
     /// Entries received with migrating particles, flattened as in `remote`.
     pending: Vec<f64>,
+    /// (tag, row) sorted by tag, for the rows that migrating particles take along; valid
+    /// while `by_tag_fresh`.
+    by_tag: Vec<(Tag, u32)>,
+    by_tag_fresh: bool,
 }
 
 impl HistoryStore {
@@ -177,6 +181,7 @@ impl HistoryStore {
         self.start.clear();
         self.partner.clear();
         self.max_tag = 0;
+        self.by_tag_fresh = false;
     }
 
     fn is_empty(&self) -> bool {
@@ -238,15 +243,7 @@ impl HistoryStore {
                         out.push(tags[j] as f64);
                         out.push(tags[i as usize] as f64);
                         let h = &list.hist[k as usize * w..(k as usize + 1) * w];
-                        out.extend(h.iter().enumerate().map(
-                            |(c, &v)| {
-                                if c < list.odd {
-                                    -v
-                                } else {
-                                    v
-                                }
-                            },
-                        ));
+                        out.extend(mirrored(h, list.odd));
                         NONE
                     }
                     _ => NONE,
@@ -282,8 +279,11 @@ impl HistoryStore {
                 let q = self.fill[owner as usize] as usize;
                 self.fill[owner as usize] += 1;
                 self.partner[q] = tags[i];
-                for (c, (d, &v)) in self.vals[q * w..(q + 1) * w].iter_mut().zip(h).enumerate() {
-                    *d = if c < list.odd { -v } else { v };
+                for (d, v) in self.vals[q * w..(q + 1) * w]
+                    .iter_mut()
+                    .zip(mirrored(h, list.odd))
+                {
+                    *d = v;
                 }
             }
         }
@@ -292,9 +292,18 @@ impl HistoryStore {
         self.width = w;
     }
 
-    /// The row of tag `t`, by a linear search (migration only).
-    fn row_of(&self, t: Tag) -> Option<usize> {
-        self.tags.iter().position(|&x| x == t)
+    /// The row of tag `t` (migration), by a binary search in an index made once per set
+    /// of rows.
+    fn row_of(&mut self, t: Tag) -> Option<usize> {
+        if !self.by_tag_fresh {
+            self.by_tag.clear();
+            self.by_tag
+                .extend(self.tags.iter().enumerate().map(|(r, &t)| (t, r as u32)));
+            self.by_tag.sort_unstable();
+            self.by_tag_fresh = true;
+        }
+        let k = self.by_tag.binary_search_by_key(&t, |e| e.0).ok()?;
+        Some(self.by_tag[k].1 as usize)
     }
 
     /// Adds entries `[row tag, partner tag, width values]...` to the rows of their tags
@@ -310,7 +319,7 @@ impl HistoryStore {
             return;
         }
         let w = width;
-        // (row tag, partner tag, source): source < 0 is an existing entry.
+        // (row tag, partner tag, source): a source below `old` is an existing entry.
         let mut all: Vec<(Tag, Tag, usize)> = Vec::new();
         for (r, &t) in self.tags.iter().enumerate() {
             if self.start.is_empty() {
@@ -347,6 +356,7 @@ impl HistoryStore {
         start.push(partner.len() as u32);
         vals.extend(std::iter::repeat_n(0.0, w));
         self.max_tag = tags.iter().copied().max().unwrap_or(0);
+        self.by_tag_fresh = false;
         self.tags = tags;
         self.start = start;
         self.partner = partner;
@@ -857,10 +867,11 @@ pub struct Neighbor {
 /// The saved history travels with a migrating particle: its row, as
 /// `[n, (partner tag, values) × n]`.
 impl Carried for Neighbor {
-    fn pack(&self, tag: Tag, buf: &mut Vec<f64>) {
+    fn pack(&mut self, tag: Tag, buf: &mut Vec<f64>) {
+        let row = self.store.row_of(tag);
         let st = &self.store;
         let w = st.width;
-        match st.row_of(tag).filter(|_| !st.start.is_empty()) {
+        match row.filter(|_| !st.start.is_empty()) {
             Some(r) => {
                 let (s, e) = (st.start[r] as usize, st.start[r + 1] as usize);
                 buf.push((e - s) as f64);
@@ -884,6 +895,13 @@ impl Carried for Neighbor {
         }
         k
     }
+}
+
+/// A pair's history as seen from its other particle: the odd (antisymmetric) part negated.
+fn mirrored(h: &[f64], odd: usize) -> impl Iterator<Item = f64> + '_ {
+    h.iter()
+        .enumerate()
+        .map(move |(c, &v)| if c < odd { -v } else { v })
 }
 
 /// True when ghost `b` lies above `a` in (z, y, x) order.

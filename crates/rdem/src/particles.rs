@@ -100,6 +100,12 @@ impl NewParticle {
 
 /// Values per particle in [`Particles::pack`] before the named properties.
 const PACK_FIXED: usize = 18;
+/// Mass of a sphere of `density` and `radius` (the one formula every particle's mass
+/// comes from, so that masses computed apart agree bit for bit).
+pub fn sphere_mass(density: f64, radius: f64) -> f64 {
+    density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
+}
+
 /// Values per particle in [`Particles::pack_forward`].
 pub const FORWARD_LEN: usize = 11;
 /// `origin` of a ghost copied from another rank: this plus the owner's rank.
@@ -284,7 +290,7 @@ impl Particles {
         }
         debug_assert_eq!(self.nghost(), 0, "add_local with ghosts present");
         self.clear_ghosts();
-        let mass = p.density * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+        let mass = sphere_mass(p.density, p.radius);
         self.push_raw(
             p.tag,
             p.ty,
@@ -661,7 +667,7 @@ impl Particles {
     pub fn set_radius(&mut self, i: usize, radius: f64) -> Result<()> {
         check("radius", radius, radius > 0.0, "must be > 0")?;
         self.radius[i] = radius;
-        self.rmass[i] = self.density[i] * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+        self.rmass[i] = sphere_mass(self.density[i], radius);
         Ok(())
     }
 

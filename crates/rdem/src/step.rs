@@ -71,18 +71,11 @@ impl World {
         // Every rank takes the same decision: particles added on any rank, or moved too
         // far on any rank.
         let comm = &self.comm;
-        let any = |b: bool| {
-            if comm.size() > 1 {
-                comm.max(b as u8 as f64) > 0.0
-            } else {
-                b
-            }
-        };
-        let added = any(added);
+        let added = comm.any(added);
         if added
             || self
                 .neighbor
-                .decide(self.step, &self.particles.x[..nlocal], any)
+                .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
         {
             self.timers.lap(Stage::Neigh, t1);
             if added {
@@ -173,27 +166,22 @@ impl World {
         let n = self.particles.nlocal();
         let bad_here = known_bad.unwrap_or_else(|| !crate::par::all_finite_par(a, b, n));
         if self.comm.size() > 1 {
-            // Every rank stops with the same error: the smallest offending tag of all.
+            // Every rank stops with the same error: the lowest of each rank's first
+            // offending particle, as 2·tag + (0 for `a`, 1 for `b`), in one reduction.
             let mine = if bad_here {
                 self.first_nonfinite(names, a, b)
-                    .map(|(i, _)| self.particles.tag[i] as f64)
+                    .map(|(i, q)| 2.0 * self.particles.tag[i] as f64 + (q != names[0]) as u8 as f64)
                     .unwrap_or(f64::INFINITY)
             } else {
                 f64::INFINITY
             };
-            let tag = self.comm.min(mine);
-            if tag.is_infinite() {
+            let first = self.comm.min(mine);
+            if first.is_infinite() {
                 return Ok(());
             }
-            let local = (0..n).find(|&i| self.particles.tag[i] as f64 == tag);
-            let which = local
-                .and_then(|i| self.first_nonfinite(names, &a[i..=i], &b[i..=i]))
-                .map(|(_, q)| if q == names[0] { 0.0 } else { 1.0 })
-                .unwrap_or(f64::INFINITY);
-            let which = self.comm.min(which);
             return Err(Error::NonFinite {
-                quantity: names[if which == 0.0 { 0 } else { 1 }],
-                tag: tag as crate::particles::Tag,
+                quantity: names[(first % 2.0) as usize],
+                tag: (first / 2.0).floor() as crate::particles::Tag,
                 step: self.step,
             });
         }

@@ -339,7 +339,7 @@ impl InsertPack {
                     .with_omega(self.omega);
                 np.v = self.velocity();
                 np.mask = 1 | self.groupbit;
-                mass += np.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+                mass += crate::particles::sphere_mass(np.density, r);
                 inserted += 1;
                 if world.owns_inserted(x) {
                     world.add_particle(&np)?;
