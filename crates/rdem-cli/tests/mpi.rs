@@ -332,3 +332,39 @@ run 7000
     assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
     assert_close(&last_row(&out), &serial, 1e-10, "2 ranks");
 }
+
+/// A particle of rank 1 leaves a fixed face: every rank stops with the same error, which
+/// names the global count and the particle's tag (not rank 0's empty view of it).
+#[test]
+fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
+    if !have_mpirun() {
+        return;
+    }
+    let dir = tempfile_dir();
+    let script = format!(
+        "{HEAD}create_atoms 1 single 0.02 0.01 0.01 units box\n\
+         create_atoms 1 single 0.07 0.01 0.01 units box\n\
+         set atom * diameter 0.004 density 2500\nset atom 2 vz 1e6\nrun 10\n"
+    );
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = rdem_command(Some(2))
+        .args(["-in", "in.test", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(
+        err.matches("1 particle(s) lost at step 1").count(),
+        1,
+        "{err}"
+    );
+    // The report may wrap the message: compare its words.
+    let words = err
+        .replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(words.contains("first lost tag 2"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

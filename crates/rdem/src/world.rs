@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::fix::{Fix, FixKind};
 use crate::neighbor::{Neighbor, NeighborSettings};
 use crate::pair::PairGran;
-use crate::particles::{NewParticle, Particles};
+use crate::particles::{NewParticle, Particles, Tag};
 use crate::sort::sort_particles;
 use crate::timers::Timers;
 
@@ -355,15 +355,16 @@ impl World {
             .map(|&x| self.domain.is_lost(x))
             .collect();
         let nlost_local = lost.iter().filter(|&&l| l).count();
-        let first_tag = lost
-            .iter()
-            .position(|&l| l)
-            .map(|i| self.particles.tag[i])
-            .unwrap_or(0);
         let nlost = self.comm.sum_count(nlost_local as u64);
         if nlost == 0 {
             return Ok(());
         }
+        // The lowest of the ranks' first lost tags, the same on every rank.
+        let first_tag = self.comm.min(
+            lost.iter()
+                .position(|&l| l)
+                .map_or(f64::INFINITY, |i| self.particles.tag[i] as f64),
+        ) as Tag;
         if self.lost_policy == LostPolicy::Error {
             return Err(Error::LostParticles {
                 count: nlost as usize,
