@@ -1383,6 +1383,24 @@ fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "erotate/sphere" => ComputeKind::ERotateSphere,
         "ke" => ComputeKind::Ke,
         "contact/atom" => ComputeKind::ContactAtom,
+        "nbond/atom" => ComputeKind::NBondAtom,
+        "bond/counter" => {
+            if let Some(other) = sim
+                .computes
+                .iter()
+                .find(|c| matches!(c.kind, ComputeKind::BondCounter(_)))
+            {
+                return Err(a.error_at(
+                    2,
+                    format!(
+                        "only one compute bond/counter is allowed (compute {} is one)",
+                        other.id
+                    ),
+                    Some(format!("use c_{}[1..6]", other.id)),
+                ));
+            }
+            ComputeKind::BondCounter(Default::default())
+        }
         "stress/atom" => {
             // No keyword: every term; otherwise only the listed ones (`virial`: all but ke).
             let (mut ke, mut pair, mut any) = (false, false, false);

@@ -2,6 +2,8 @@
 //! evaluated on demand from the current state (a LIGGGHTS compute is evaluated when
 //! thermo, a dump, a variable or `fix ave/time` asks for it; the values are the same).
 
+use std::cell::RefCell;
+
 use rdem::World;
 
 use crate::atom_fields;
@@ -10,13 +12,15 @@ use crate::atom_fields;
 pub const REDUCE_MODES: [&str; 6] = ["sum", "min", "max", "ave", "sumsq", "avesq"];
 
 /// Valid compute styles.
-pub const STYLES: [&str; 6] = [
+pub const STYLES: [&str; 8] = [
     "erotate/sphere",
     "ke",
     "reduce",
     "property/atom",
     "contact/atom",
     "stress/atom",
+    "bond/counter",
+    "nbond/atom",
 ];
 
 /// Keywords of `compute stress/atom`. Only `ke`, `pair` and `virial` have terms in rdem
@@ -63,6 +67,21 @@ pub enum ComputeKind {
         /// Include the pair contact virial.
         pair: bool,
     },
+    /// `bond/counter` (seed 003): bonds created and broken since the last evaluation and
+    /// intact now, for pairs and for walls.
+    BondCounter(RefCell<BondCounterState>),
+    /// `nbond/atom` (an rdem addition): intact bonds per particle.
+    NBondAtom,
+}
+
+/// What `compute bond/counter` remembers between evaluations.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BondCounterState {
+    /// Cumulative pair created, pair broken, wall created, wall broken at the last
+    /// evaluation (summed over ranks).
+    pub last: [f64; 4],
+    /// Step of the last evaluation and its values (one evaluation per step, as LIGGGHTS).
+    pub cached: Option<(u64, [f64; 6])>,
 }
 
 /// A compute.
@@ -93,6 +112,7 @@ impl Compute {
             ComputeKind::PropertyAtom(_)
                 | ComputeKind::ContactAtom
                 | ComputeKind::StressAtom { .. }
+                | ComputeKind::NBondAtom
         )
     }
 
@@ -120,6 +140,7 @@ impl Compute {
     pub fn vector_len(&self) -> usize {
         match &self.kind {
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
+            ComputeKind::BondCounter(_) => 6,
             _ => 0,
         }
     }
@@ -144,6 +165,35 @@ pub fn kinetic(w: &World, groupbit: u32) -> f64 {
         .map(|i| 0.5 * p.rmass[i] * p.v[i].length_squared())
         .sum();
     w.comm.sum(e) + 0.0
+}
+
+/// `compute bond/counter`'s six values at the current step: pair bonds created and broken
+/// since the last evaluation, intact pair bonds, then the same for wall bonds; summed over
+/// ranks (every rank must call it). Evaluated once per step: later calls at the same step
+/// return the same values. The intact counts are counted anew; they equal seed 003's
+/// N + C⁺ − C⁻ (the count at the previous evaluation plus the bonds created and minus
+/// those broken since), which is what LIGGGHTS-INL reports.
+pub fn bond_counter(w: &World, state: &RefCell<BondCounterState>) -> [f64; 6] {
+    let mut s = state.borrow_mut();
+    if let Some((step, v)) = s.cached {
+        if step == w.step {
+            return v;
+        }
+    }
+    let mut t = w.bond_tallies().map(|x| x as f64);
+    w.comm.sum_slice(&mut t);
+    let cum = [t[0], t[1], t[3], t[4]];
+    let v = [
+        cum[0] - s.last[0],
+        cum[1] - s.last[1],
+        t[2],
+        cum[2] - s.last[2],
+        cum[3] - s.last[3],
+        t[5],
+    ];
+    s.last = cum;
+    s.cached = Some((w.step, v));
+    v
 }
 
 /// Per-atom contact counts (pairs closer than r_i + r_j), owned particles.

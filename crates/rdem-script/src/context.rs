@@ -114,6 +114,12 @@ pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f6
             }
             Ok(computes::contact_counts(w))
         }
+        ComputeKind::NBondAtom => {
+            if col.is_some() {
+                return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
+            }
+            Ok(w.bonds_per_particle())
+        }
         ComputeKind::StressAtom { ke, pair } => {
             let k = pick_index(id, col, 6)?;
             computes::stress_atom(w, c.groupbit, *ke, *pair, k)
@@ -143,6 +149,13 @@ pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, St
             };
             Ok(computes::reduce(w, mode, c.groupbit, &values))
         }
+        (ComputeKind::BondCounter(state), Some(_)) => {
+            let k = pick_index(id, idx, 6)?;
+            Ok(computes::bond_counter(w, state)[k])
+        }
+        (ComputeKind::BondCounter(_), None) => Err(format!(
+            "compute {id} is a global vector of 6: use c_{id}[1] .. c_{id}[6]"
+        )),
         (_, Some(k)) => Err(format!("c_{id}[{k}]: compute {id} has no global vector")),
         (_, None) => Err(format!(
             "compute {id} has no global scalar (it is per-atom)"

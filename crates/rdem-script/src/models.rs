@@ -5,7 +5,6 @@
 use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind, TangentialKind};
 
 use crate::args::{suggest, Args, CmdResult};
-use crate::diagnostic::one_of;
 
 /// Model types, in the order LIGGGHTS requires.
 pub const ORDER: [&str; 5] = [
@@ -22,6 +21,25 @@ pub const SWITCHES: [&str; 4] = [
     "limitForce",
     "torsionTorque",
     "tangential_reduce",
+];
+
+/// Keywords of `cohesion bond` (LIGGGHTS-INL), switches like [`SWITCHES`].
+pub const BOND_SWITCHES: [&str; 15] = [
+    "stressBreak",
+    "temperatureBreak",
+    "tensionStress",
+    "compressionStress",
+    "shearStress",
+    "normalTorqueStress",
+    "shearTorqueStress",
+    "createBondAlways",
+    "dampingBond",
+    "dampingBondSmooth",
+    "dissipationBond",
+    "druckerPrager",
+    "ratioTensionCompression",
+    "computeDissipatedEnergy",
+    "computeElasticPotential",
 ];
 
 /// Reads the model-type/name pairs at the cursor (stops at the first other word).
@@ -71,16 +89,10 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                 }
             }
             2 => {
-                if a.peek() == Some("bond") {
-                    a.seek(a.pos() + 1);
-                    return Err(a.error_prev(
-                        "cohesion bond is not supported yet (bonded particles are a later rdem release)",
-                        Some(format!("supported: {}", one_of(&["off", "sjkr", "sjkr2"]))),
-                    ));
-                }
-                m.cohesion = match a.keyword("cohesion model", &["off", "sjkr", "sjkr2"])? {
+                m.cohesion = match a.keyword("cohesion model", &["off", "sjkr", "sjkr2", "bond"])? {
                     "sjkr" => CohesionKind::Sjkr,
                     "sjkr2" => CohesionKind::Sjkr2,
+                    "bond" => CohesionKind::Bond,
                     _ => CohesionKind::Off,
                 }
             }
@@ -103,7 +115,8 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
 
 /// True if the word at the cursor is a switch keyword.
 pub fn at_switch(a: &Args) -> bool {
-    a.peek().is_some_and(|w| SWITCHES.contains(&w))
+    a.peek()
+        .is_some_and(|w| SWITCHES.contains(&w) || BOND_SWITCHES.contains(&w))
 }
 
 /// Reads switch keywords at the cursor until the end of the command.
@@ -120,12 +133,51 @@ pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
                 )),
             ));
         }
-        let k = a.keyword("model keyword", &SWITCHES)?;
+        let bonds = m.cohesion == CohesionKind::Bond;
+        if BOND_SWITCHES.contains(&w) && !bonds {
+            return Err(a.error_at(
+                a.pos(),
+                format!("'{w}' is a keyword of the bond model"),
+                Some("it needs 'cohesion bond' among the model types".into()),
+            ));
+        }
+        let valid: Vec<&str> = if bonds {
+            SWITCHES.iter().chain(&BOND_SWITCHES).copied().collect()
+        } else {
+            SWITCHES.to_vec()
+        };
+        let k = a.keyword("model keyword", &valid)?;
         let on = matches!(
             a.keyword(&format!("{k} setting"), &["on", "off", "yes", "no"])?,
             "on" | "yes"
         );
+        let b = &mut m.bond;
         match k {
+            "stressBreak" => b.stress_break = on,
+            "tensionStress" => b.tension = on,
+            "compressionStress" => b.compression = on,
+            "shearStress" => b.shear = on,
+            "normalTorqueStress" => b.normal_torque = on,
+            "shearTorqueStress" => b.shear_torque = on,
+            "createBondAlways" => b.create_always = on,
+            "dampingBond" => b.damping = on,
+            "dampingBondSmooth" => b.damping_smooth = on,
+            "dissipationBond" => b.dissipation = on,
+            "druckerPrager" => b.drucker_prager = on,
+            "ratioTensionCompression" => b.ratio_tc = on,
+            "temperatureBreak" | "computeDissipatedEnergy" | "computeElasticPotential" => {
+                if on {
+                    let why = if k == "temperatureBreak" {
+                        "bond breakage by temperature is not supported (LIGGGHTS-INL does not implement it either)"
+                    } else {
+                        "the bond energy bookkeeping (fix calculate/dissipated_energy) is not supported"
+                    };
+                    return Err(a.error_prev(
+                        format!("{k} on: {why}"),
+                        Some(format!("write '{k} off' or leave it out")),
+                    ));
+                }
+            }
             "tangential_damping" => m.flags.tangential_damping = on,
             "limitForce" => m.flags.limit_force = on,
             "torsionTorque" => {
@@ -139,10 +191,10 @@ pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
                 m.flags.torsion_torque = on
             }
             _ => {
-                if on && m.cohesion == CohesionKind::Off {
+                if on && !matches!(m.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2) {
                     return Err(a.error_at(
                         a.pos() - 2,
-                        "tangential_reduce needs a cohesion model (cohesion sjkr or sjkr2)",
+                        "tangential_reduce needs a contact cohesion model (cohesion sjkr or sjkr2)",
                         None,
                     ));
                 }
@@ -160,7 +212,7 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
     let ty = match w.as_str() {
         "hertz" | "hooke" | "hooke/hysteresis" => Some("model"),
         "history" | "no_history" => Some("tangential"),
-        "sjkr" | "sjkr2" => Some("cohesion"),
+        "sjkr" | "sjkr2" | "bond" => Some("cohesion"),
         "cdt" | "epsd" | "epsd2" => Some("rolling_friction"),
         _ => None,
     };
@@ -177,6 +229,7 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
     let mut valid: Vec<&str> = ORDER.to_vec();
     valid.extend_from_slice(extra);
     valid.extend_from_slice(&SWITCHES);
+    valid.extend_from_slice(&BOND_SWITCHES);
     a.error_at(
         k,
         format!("unknown keyword '{w}'"),

@@ -62,6 +62,32 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
         ..Default::default()
     };
     for (name, p) in &sim.properties {
+        if rdem::bond::PROPERTIES.contains(&name.as_str()) {
+            let scalar = name == "tsCreateBond";
+            let ok = if scalar {
+                p.style == "scalar"
+            } else {
+                p.style == "peratomtypepair"
+            };
+            if !ok {
+                return Err(format!(
+                    "property {name} (fix {}) must be {}, not {}",
+                    p.fix_id,
+                    if scalar { "scalar" } else { "peratomtypepair" },
+                    p.style
+                ));
+            }
+            if !scalar && p.values.len() != n * n {
+                return Err(format!(
+                    "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {} are needed",
+                    p.fix_id,
+                    p.values.len(),
+                    n * n
+                ));
+            }
+            m.bond.push((name.clone(), p.values.clone()));
+            continue;
+        }
         let slot = match name.as_str() {
             "youngsModulus" => &mut m.youngs_modulus,
             "poissonsRatio" => &mut m.poissons_ratio,

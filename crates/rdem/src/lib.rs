@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bond;
 pub mod comm;
 pub mod contact;
 pub mod domain;

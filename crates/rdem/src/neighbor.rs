@@ -2,7 +2,8 @@
 //! check`), and contact history that lives beside each listed pair and is carried across
 //! rebuilds by particle tag.
 //!
-//! The list holds every pair closer than r_i + r_j + skin once: a local pair (i, j) with
+//! The list holds every pair closer than max(r_i + r_j, reach) + skin once (the reach is
+//! the longest bond with `cohesion bond`, else 0): a local pair (i, j) with
 //! j > i, and a pair of a local i with a ghost g when g lies "above" i (larger z, then y,
 //! then x), which picks exactly one of the two periodic images of a pair across a
 //! periodic face. The order of the partners within a row follows the bin traversal; it is
@@ -455,8 +456,15 @@ struct Bins {
 
 impl Bins {
     /// Fills `list.first` and `list.partner` (which must be empty) with every pair closer
-    /// than r_i + r_j + skin, as described in the module docs.
-    fn search(&mut self, p: &Particles, cut: f64, skin: f64, list: &mut NeighborList) {
+    /// than max(r_i + r_j, `bond_reach`) + skin, as described in the module docs.
+    fn search(
+        &mut self,
+        p: &Particles,
+        cut: f64,
+        skin: f64,
+        bond_reach: f64,
+        list: &mut NeighborList,
+    ) {
         let n = p.len();
         let nlocal = p.nlocal();
         // Bins of at least cut/2 over the bounding box of all particles.
@@ -618,6 +626,7 @@ impl Bins {
             near: &self.near,
             ghosts,
             skin,
+            reach: bond_reach,
             sx,
             sy,
             nx,
@@ -726,6 +735,7 @@ struct Search<'a> {
     near: &'a [u8],
     ghosts: bool,
     skin: f64,
+    reach: f64,
     sx: usize,
     sy: usize,
     nx: usize,
@@ -749,6 +759,7 @@ impl Search<'_> {
             near,
             ghosts,
             skin,
+            reach,
             sx,
             sy,
             nx,
@@ -806,7 +817,7 @@ impl Search<'_> {
                     let i = index[s];
                     let mut local = |t: usize| {
                         let o = slots[t];
-                        let rc = ri + o.r + skin;
+                        let rc = (ri + o.r).max(reach) + skin;
                         let hit = (o.x - xi).length_squared() < rc * rc;
                         let j = index[t];
                         buf[np] = (i.min(j), i.max(j));
@@ -824,7 +835,7 @@ impl Search<'_> {
                     for &(a, e) in granges.iter() {
                         for t in a..e {
                             let o = slots[t];
-                            let rc = ri + o.r + skin;
+                            let rc = (ri + o.r).max(reach) + skin;
                             let hit = above(xi, o.x) & ((o.x - xi).length_squared() < rc * rc);
                             buf[np] = (i, index[t]);
                             np += hit as usize;
@@ -855,6 +866,9 @@ pub struct Neighbor {
     /// Largest radius growth of any particle since the last build (`fix adapt`): it eats
     /// into the skin, so the distance check allows skin/2 − growth of motion.
     pub growth: f64,
+    /// Centre distance below which every pair is listed whatever its radii: the longest
+    /// bond (`cohesion bond`), 0 without bonds.
+    pub reach: f64,
     last_build: u64,
     /// True from a build until the history is saved: the list's indices still refer to
     /// the particles (ghosts included) it was built for.
@@ -935,9 +949,10 @@ impl Neighbor {
         }
     }
 
-    /// The neighbor cutoff for particles of largest radius `rmax`: 2·rmax + skin.
+    /// The neighbor cutoff for particles of largest radius `rmax`: max(2·rmax, reach) +
+    /// skin.
     pub fn cutoff_for(&self, rmax: f64) -> f64 {
-        2.0 * rmax + self.settings.skin
+        (2.0 * rmax).max(self.reach) + self.settings.skin
     }
 
     /// LAMMPS' decision at step `step`: rebuild when at least `delay` steps have passed
@@ -1036,7 +1051,7 @@ impl Neighbor {
             self.list.first.push(0);
             return;
         }
-        self.bins.search(p, cut, skin, &mut self.list);
+        self.bins.search(p, cut, skin, self.reach, &mut self.list);
         let w = self.list.width;
         self.list.hist.resize(self.list.partner.len() * w, 0.0);
         self.store.restore(&mut self.list, &p.tag, nlocal);

@@ -11,6 +11,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
 use crate::contact::{
     clear_history, CoeffTable, ContactForce, ContactKernel, ContactModel, Geom, Materials,
     PairCoeff, Visitor,
@@ -40,6 +41,8 @@ struct NearList {
     margin: f64,
     /// `Neighbor::growth` when the near list was built.
     growth_ref: f64,
+    /// Centre distance below which a pair is listed whatever its radii (the bond reach).
+    reach: f64,
 }
 
 /// The granular pair style: a contact model, its mixed coefficients and the near list.
@@ -55,6 +58,13 @@ pub struct PairGran {
     own: Vec<OwnSum>,
     /// Phase 1's per-pair virials (only used by [`PairGran::compute_with_virial`]).
     res_virial: Vec<[f64; 6]>,
+    /// With `cohesion bond`: the bond parameters (made by [`PairGran::setup`]).
+    bond: Option<BondTable>,
+    /// Pair bonds created and broken on this rank so far.
+    pub bond_events: BondEvents,
+    /// The current step (set before each force pass; bonds are created at
+    /// `tsCreateBond`).
+    pub step: u64,
 }
 
 impl PairGran {
@@ -67,13 +77,50 @@ impl PairGran {
             res: Vec::new(),
             own: Vec::new(),
             res_virial: Vec::new(),
+            bond: None,
+            bond_events: BondEvents::default(),
+            step: 0,
         }
     }
 
-    /// Mixes the material table (called before every run).
+    /// Mixes the material table, and the bond table with `cohesion bond` (called before
+    /// every run).
     pub fn setup(&mut self, materials: &Materials) -> Result<()> {
         self.table = CoeffTable::new(materials, self.model.needs())?;
+        self.bond = if self.model.has_bonds() {
+            Some(BondTable::new(
+                &materials.bond,
+                materials.ntypes,
+                self.model.bond,
+            )?)
+        } else {
+            None
+        };
         Ok(())
+    }
+
+    /// The bond parameters, with `cohesion bond` (after [`PairGran::setup`]).
+    pub fn bond_table(&self) -> Option<&BondTable> {
+        self.bond.as_ref()
+    }
+
+    /// Centre distance up to which pairs must be listed whatever their radii: the longest
+    /// bond (0 without bonds).
+    pub fn reach(&self) -> f64 {
+        self.bond.as_ref().map_or(0.0, |b| b.pair_reach)
+    }
+
+    /// Intact pair bonds held in `list` (rows of owned particles: each pair once).
+    pub fn count_bonds(&self, list: &NeighborList) -> u64 {
+        if self.bond.is_none() || list.width == 0 {
+            return 0;
+        }
+        let w = list.width;
+        let flag = w - bond::PAIR_TAIL;
+        list.hist
+            .chunks_exact(w)
+            .filter(|h| bond::is_bonded(&h[flag..]))
+            .count() as u64
     }
 
     /// The mixed coefficients.
@@ -111,6 +158,8 @@ impl PairGran {
         near.margin = NEAR_MARGIN * neighbor.settings.skin;
         near.built_for = neighbor.nbuilds;
         near.growth_ref = neighbor.growth;
+        near.reach = self.bond.as_ref().map_or(0.0, |b| b.pair_reach);
+        let reach = near.reach;
         let nlocal = p.nlocal();
         near.xref.clear();
         near.xref.extend_from_slice(&p.x);
@@ -129,10 +178,10 @@ impl PairGran {
             let base = partner.len();
             for i in lo..hi {
                 let xi = p.x[i];
-                let ri = p.radius[i] + margin;
+                let ri = p.radius[i];
                 for k in list.first[i] as usize..list.first[i + 1] as usize {
                     let j = list.partner[k] as usize;
-                    let rc = ri + p.radius[j];
+                    let rc = (ri + p.radius[j]).max(reach) + margin;
                     if (p.x[j] - xi).length_squared() < rc * rc {
                         partner.push(j as u32);
                         slot.push(k as u32);
@@ -275,9 +324,12 @@ struct PairPass<'a> {
 impl Visitor for PairPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(mut self) {
-        match self.virial.take() {
-            None => self.run::<K, false>(&mut []),
-            Some(v) => self.run::<K, true>(v),
+        let bond = self.pair.bond.is_some();
+        match (self.virial.take(), bond) {
+            (None, false) => self.run::<K, false, false>(&mut []),
+            (Some(v), false) => self.run::<K, true, false>(v),
+            (None, true) => self.run::<K, false, true>(&mut []),
+            (Some(v), true) => self.run::<K, true, true>(v),
         }
     }
 }
@@ -298,13 +350,20 @@ struct Phase1<'a> {
     ty: &'a [u32],
     dt: f64,
     update: bool,
+    /// Bond parameters and switches (with `cohesion bond`).
+    bond: Option<&'a BondTable>,
+    bond_flags: bond::BondFlags,
+    /// Whether bonds are created in this pass.
+    create_now: bool,
+    events: &'a BondEvents,
 }
 
 impl Phase1<'_> {
     /// Runs blocks `b0..b1`; `res`, `rv` and `hist` start at the first pair, the first
     /// virial entry and the first history value of block `b0`, `own` at its first
     /// particle.
-    fn blocks<K: ContactKernel, const VIRIAL: bool>(
+    #[allow(clippy::too_many_arguments)]
+    fn blocks<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
         &self,
         b0: usize,
         b1: usize,
@@ -327,17 +386,17 @@ impl Phase1<'_> {
             let (ha, hb) = hist.split_at_mut(kh);
             let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
-                || self.blocks::<K, VIRIAL>(b0, mid, ra, va, ha, oa),
-                || self.blocks::<K, VIRIAL>(mid, b1, rb, vb, hb, ob),
+                || self.blocks::<K, VIRIAL, BOND>(b0, mid, ra, va, ha, oa),
+                || self.blocks::<K, VIRIAL, BOND>(mid, b1, rb, vb, hb, ob),
             );
         } else {
-            self.block::<K, VIRIAL>(b0, res, rv, hist, own);
+            self.block::<K, VIRIAL, BOND>(b0, res, rv, hist, own);
         }
     }
 
     /// One block of owned particles.
     #[inline(always)]
-    fn block<K: ContactKernel, const VIRIAL: bool>(
+    fn block<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
         &self,
         b: usize,
         res: &mut [PairOut],
@@ -364,7 +423,7 @@ impl Phase1<'_> {
                 } else {
                     &mut empty
                 };
-                let Some((d, out)) = self.eval::<K>(i, j, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, coeff_row, hist) else {
                     res[r] = PairOut::default();
                     if VIRIAL {
                         rv[r] = [0.0; 6];
@@ -392,33 +451,83 @@ impl Phase1<'_> {
             own[i - lo] = sum;
         }
     }
-    /// The contact of owned particle `i` with `j` (`coeff_row`: i's row of the table):
-    /// `None`, with the history cleared, when they do not touch; else r = x_i − x_j and
-    /// the kernel's output.
+    /// The pair of owned particle `i` with `j` (`coeff_row`: i's row of the table):
+    /// `None` when they neither touch nor are bonded (the contact history cleared); else
+    /// r = x_i − x_j and the force and torques (contact, and with `BOND` the bond).
     #[inline(always)]
-    fn eval<K: ContactKernel>(
+    fn eval<K: ContactKernel, const BOND: bool>(
         &self,
         i: usize,
         j: usize,
         coeff_row: &[PairCoeff],
         hist: &mut [f64],
     ) -> Option<(DVec3, ContactForce)> {
-        let w = self.width;
-        let (x, v, omega, radius, rmass, ty) =
-            (self.x, self.v, self.omega, self.radius, self.rmass, self.ty);
+        let d = self.x[i] - self.x[j];
+        let rsq = d.length_squared();
+        if !BOND {
+            return self
+                .contact::<K>(i, j, coeff_row, hist, d, rsq)
+                .map(|o| (d, o));
+        }
+        let (vecs, rest) = hist.split_at_mut(bond::VEC);
+        let (hc, tail) = rest.split_at_mut(K::HIST);
+        let mut out = self.contact::<K>(i, j, coeff_row, hc, d, rsq);
+        let table = self.bond.expect("bond table");
+        let (ti, tj) = (self.ty[i], self.ty[j]);
+        let c = table.get(ti, tj);
+        if !bond::is_bonded(tail) {
+            let dist = rsq.sqrt();
+            if !bond::creates(c, self.create_now, dist) {
+                return out.map(|o| (d, o));
+            }
+            bond::create(vecs, tail, dist);
+            self.events.count(Event::Created);
+        }
+        let g = BondGeom {
+            d,
+            ri: self.radius[i],
+            rj: self.radius[j],
+            vr: self.v[i] - self.v[j],
+            wi: self.omega[i],
+            wj: self.omega[j],
+            dt: self.dt,
+            update: self.update,
+            reach: table.pair_reach,
+        };
+        let (b, e) = bond::bond(&g, c, self.bond_flags, vecs, tail);
+        self.events.count(e);
+        if e != Event::Broken {
+            let o = out.get_or_insert_with(ContactForce::default);
+            o.f_i += b.f_i;
+            o.t_i += b.t_i;
+            o.t_j += b.t_j;
+        }
+        out.map(|o| (d, o))
+    }
+
+    /// The contact of owned particle `i` with `j` at r = `d` (`rsq` = |d|²): `None`, with
+    /// the history `hist` cleared, when they do not touch; else the kernel's output.
+    #[inline(always)]
+    fn contact<K: ContactKernel>(
+        &self,
+        i: usize,
+        j: usize,
+        coeff_row: &[PairCoeff],
+        hist: &mut [f64],
+        d: DVec3,
+        rsq: f64,
+    ) -> Option<ContactForce> {
+        let (v, omega, radius, rmass, ty) = (self.v, self.omega, self.radius, self.rmass, self.ty);
         let (flags, dt, update) = (self.flags, self.dt, self.update);
-        let xi = x[i];
         let ri = radius[i];
         let mi = rmass[i];
-        let d = xi - x[j];
         let rj = radius[j];
         let radsum = ri + rj;
-        let rsq = d.length_squared();
         // Written as "not closer" so that a NaN distance counts as no contact and
         // a broken particle does not poison its neighbours (it is reported by tag).
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(rsq < radsum * radsum) {
-            if w > 0 {
+            if !hist.is_empty() {
                 clear_history(hist);
             }
             return None;
@@ -454,14 +563,13 @@ impl Phase1<'_> {
             dt,
             update,
         };
-        let out = K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist);
-        Some((d, out))
+        Some(K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist))
     }
     /// The whole pass on the calling thread, fused (no per-pair buffer): the serial pass
     /// whose sums phase 2 repeats, so its result is the two-phase pass's, bit for bit.
     /// Used when the pool has one thread. `hist` starts at the first history value of
     /// particle 0.
-    fn serial<K: ContactKernel, const VIRIAL: bool>(
+    fn serial<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
         &self,
         hist: &mut [f64],
         f: &mut [DVec3],
@@ -484,7 +592,7 @@ impl Phase1<'_> {
                 } else {
                     &mut empty
                 };
-                let Some((d, out)) = self.eval::<K>(i, j, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, coeff_row, hist) else {
                     continue;
                 };
                 if VIRIAL {
@@ -621,7 +729,7 @@ impl Phase2<'_> {
 impl PairPass<'_> {
     /// The pass with kernel `K`; with `VIRIAL` the contact virial goes into `virial`.
     #[inline(always)]
-    fn run<K: ContactKernel, const VIRIAL: bool>(self, virial: &mut [[f64; 6]]) {
+    fn run<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(self, virial: &mut [[f64; 6]]) {
         let PairPass {
             pair,
             p,
@@ -630,8 +738,8 @@ impl PairPass<'_> {
             update,
             virial: _,
         } = self;
-        let w = K::HIST;
-        debug_assert_eq!(list.width, w);
+        let w = list.width;
+        debug_assert_eq!(w, pair.model.history_width());
         let nlocal = p.nlocal();
         let n = p.len();
         let PairGran {
@@ -641,7 +749,11 @@ impl PairPass<'_> {
             res,
             own,
             res_virial,
+            bond,
+            bond_events,
+            step,
         } = pair;
+        let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
         let h0 = list.first[0] as usize * w;
         let h1 = list.first[nlocal] as usize * w;
@@ -660,10 +772,14 @@ impl PairPass<'_> {
             ty: &p.ty,
             dt,
             update,
+            bond: bond.as_ref(),
+            bond_flags: model.bond,
+            create_now,
+            events: bond_events,
         };
         if rayon::current_num_threads() == 1 {
             let (f, torque) = (&mut p.f, &mut p.torque);
-            ph1.serial::<K, VIRIAL>(&mut list.hist[h0..h1], f, torque, virial);
+            ph1.serial::<K, VIRIAL, BOND>(&mut list.hist[h0..h1], f, torque, virial);
             return;
         }
         let npairs = near.partner.len();
@@ -675,7 +791,7 @@ impl PairPass<'_> {
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
             let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
-            ph1.blocks::<K, VIRIAL>(0, nb_own, res, rv, &mut list.hist[h0..h1], own);
+            ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], own);
         }
         let ph2 = Phase2 {
             near,

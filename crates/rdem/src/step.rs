@@ -106,8 +106,15 @@ impl World {
         let t0 = Instant::now();
         let p = &mut self.particles;
         crate::par::zero(&mut p.f, &mut p.torque);
+        // Bonds are created at a given step.
+        for fix in &mut self.fixes {
+            if let crate::fix::FixKind::WallGran(wall) = &mut fix.kind {
+                wall.step = self.step;
+            }
+        }
         let t1 = self.timers.lap(Stage::Other, t0);
         if let Some(pair) = &mut self.pair {
+            pair.step = self.step;
             // A local decision: the check covers this rank's ghosts too.
             if pair.near_list_stale(&self.particles.x, &self.neighbor) {
                 pair.build_near_list(&self.particles, &self.neighbor);

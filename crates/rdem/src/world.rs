@@ -238,8 +238,10 @@ impl World {
             pair.setup(&self.materials)?;
             let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
             self.neighbor.set_history_layout(w, odd);
+            self.neighbor.reach = pair.reach();
         } else {
             self.neighbor.set_history_layout(0, 0);
+            self.neighbor.reach = 0.0;
         }
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
@@ -381,6 +383,71 @@ impl World {
             ));
         }
         Ok(())
+    }
+
+    /// This rank's bond tallies (`cohesion bond`): pair bonds created and broken so far,
+    /// intact pair bonds now (each pair once: the rank and row that list it), then the
+    /// same three for wall bonds (all walls together).
+    pub fn bond_tallies(&self) -> [u64; 6] {
+        let mut t = [0u64; 6];
+        if let Some(pair) = &self.pair {
+            let (c, b) = pair.bond_events.totals();
+            t[0] = c;
+            t[1] = b;
+            t[2] = pair.count_bonds(&self.neighbor.list);
+        }
+        for fix in &self.fixes {
+            if let FixKind::WallGran(wall) = &fix.kind {
+                let (c, b) = wall.bond_events.totals();
+                t[3] += c;
+                t[4] += b;
+                t[5] += wall.count_bonds(&self.particles);
+            }
+        }
+        t
+    }
+
+    /// Intact bonds of each owned particle (pair bonds, counted for both particles, and
+    /// wall bonds), as f64 for the per-atom computes.
+    pub fn bonds_per_particle(&self) -> Vec<f64> {
+        let p = &self.particles;
+        let nlocal = p.nlocal();
+        let mut c = vec![0.0; p.len()];
+        let list = &self.neighbor.list;
+        let has_bonds = self
+            .pair
+            .as_ref()
+            .is_some_and(|pair| pair.model.has_bonds());
+        // A list older than the particles (after an insertion) counts nothing.
+        if has_bonds && list.width > 0 && list.first.len() == nlocal + 1 {
+            let flag = list.width - crate::bond::PAIR_TAIL;
+            for i in 0..nlocal {
+                for k in list.first[i] as usize..list.first[i + 1] as usize {
+                    let j = list.partner[k] as usize;
+                    let h = &list.hist[k * list.width..(k + 1) * list.width];
+                    if j < p.len() && crate::bond::is_bonded(&h[flag..]) {
+                        c[i] += 1.0;
+                        c[j] += 1.0;
+                    }
+                }
+            }
+        }
+        self.comm.reverse_scalar(p, &mut c);
+        c.truncate(nlocal);
+        for fix in &self.fixes {
+            if let FixKind::WallGran(wall) = &fix.kind {
+                if let (Some(id), true) = (wall.history_prop(), wall.model.has_bonds()) {
+                    let prop = &p.props[id.0];
+                    let w = prop.width;
+                    for (i, h) in prop.data[..nlocal * w].chunks_exact(w).enumerate() {
+                        if crate::bond::is_bonded(&h[w - crate::bond::WALL_TAIL..]) {
+                            c[i] += 1.0;
+                        }
+                    }
+                }
+            }
+        }
+        c
     }
 
     /// Seed 002 eq. (13) for this process: bytes held by particles and the neighbor list.

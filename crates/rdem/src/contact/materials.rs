@@ -32,6 +32,9 @@ pub struct Materials {
     pub plasticity_depth: Vec<f64>,
     /// `coefficientMaxElasticStiffness` per type pair (hooke/hysteresis: k2max = value · k1).
     pub max_elastic_stiffness: Vec<f64>,
+    /// The `cohesion bond` properties ([`crate::bond::PROPERTIES`]) that were given, as
+    /// (name, values); per type pair row-major, `tsCreateBond` a single value.
+    pub bond: Vec<(String, Vec<f64>)>,
 }
 
 impl Materials {
@@ -116,7 +119,9 @@ pub struct CoeffTable {
     coeffs: Vec<PairCoeff>,
 }
 
-fn pair_table(
+/// A per-type-pair table `table` for `n` types, checked (length, `ok`, symmetry); zeros
+/// when not `needed`.
+pub(crate) fn pair_table(
     name: &'static str,
     table: &[f64],
     n: usize,

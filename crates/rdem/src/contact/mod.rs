@@ -57,6 +57,9 @@ pub enum CohesionKind {
     Sjkr,
     /// `sjkr2`: F = k · 2π δ (2R*).
     Sjkr2,
+    /// `bond`: the parallel-bond model ([`crate::bond`]); the contact itself has no
+    /// cohesion.
+    Bond,
 }
 
 /// Model keywords that are plain switches.
@@ -96,6 +99,8 @@ pub struct ContactModel {
     pub cohesion: CohesionKind,
     /// Switches.
     pub flags: Flags,
+    /// Switches of `cohesion bond` (used only with [`CohesionKind::Bond`]).
+    pub bond: crate::bond::BondFlags,
 }
 
 impl Default for ContactModel {
@@ -113,6 +118,7 @@ impl ContactModel {
             rolling: RollingKind::Off,
             cohesion: CohesionKind::Off,
             flags: Flags::default(),
+            bond: crate::bond::BondFlags::default(),
         }
     }
 
@@ -121,7 +127,7 @@ impl ContactModel {
         Needs {
             rolling_friction: self.rolling != RollingKind::Off,
             rolling_damping: self.rolling == RollingKind::Epsd,
-            cohesion: self.cohesion != CohesionKind::Off,
+            cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
             characteristic_velocity: matches!(
                 self.normal,
                 NormalKind::Hooke | NormalKind::HookeHysteresis
@@ -130,15 +136,42 @@ impl ContactModel {
         }
     }
 
-    /// Number of f64 history values per contact.
-    pub fn history_width(&self) -> usize {
-        self.dispatch(HistoryWidth)
+    /// True with `cohesion bond`.
+    pub fn has_bonds(&self) -> bool {
+        self.cohesion == CohesionKind::Bond
     }
 
-    /// Of the history values, how many leading ones change sign when the two particles of
-    /// a pair swap roles (vectors attached to the i→j orientation).
+    /// Number of f64 history values per particle pair: the contact's, and with bonds
+    /// the bond's around them ([`crate::bond`]: its vectors first, its flag and d₀ last).
+    pub fn history_width(&self) -> usize {
+        let w = self.dispatch(HistoryWidth);
+        if self.has_bonds() {
+            crate::bond::VEC + w + crate::bond::PAIR_TAIL
+        } else {
+            w
+        }
+    }
+
+    /// Number of f64 history values per particle for a wall (as [`Self::history_width`],
+    /// the bond's tail also holding the anchor point).
+    pub fn wall_history_width(&self) -> usize {
+        let w = self.dispatch(HistoryWidth);
+        if self.has_bonds() {
+            crate::bond::VEC + w + crate::bond::WALL_TAIL
+        } else {
+            w
+        }
+    }
+
+    /// Of the pair history values, how many leading ones change sign when the two
+    /// particles of a pair swap roles (vectors attached to the i→j orientation).
     pub fn history_odd(&self) -> usize {
-        self.dispatch(HistoryOdd)
+        let odd = self.dispatch(HistoryOdd);
+        if self.has_bonds() {
+            crate::bond::VEC + odd
+        } else {
+            odd
+        }
     }
 
     /// Calls `v.visit::<K>()` with the kernel type `K` of this selection: the one place
@@ -169,7 +202,7 @@ impl ContactModel {
         v: V,
     ) -> V::Output {
         match self.cohesion {
-            CohesionKind::Off => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
+            CohesionKind::Off | CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
             CohesionKind::Sjkr => v.visit::<Kernel<N, T, R, cohesion::Sjkr>>(),
             CohesionKind::Sjkr2 => v.visit::<Kernel<N, T, R, cohesion::Sjkr2>>(),
         }

@@ -5,6 +5,7 @@
 
 use glam::DVec3;
 
+use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
 use crate::contact::{
     clear_history, CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor,
 };
@@ -131,6 +132,13 @@ pub struct PrimitiveWall {
     /// re-neighboring: the only ones that can touch it before the next (the wall is
     /// fixed and no particle moves more than skin/2 in between).
     candidates: Vec<u32>,
+    /// With `cohesion bond`: the bond parameters (particle type × wall type).
+    bond: Option<BondTable>,
+    /// Wall bonds created and broken on this rank so far.
+    pub bond_events: BondEvents,
+    /// The current step (set before each force pass; bonds are created at
+    /// `tsCreateBond`).
+    pub step: u64,
 }
 
 impl PrimitiveWall {
@@ -152,6 +160,9 @@ impl PrimitiveWall {
             table: CoeffTable::default(),
             hist: None,
             candidates: Vec::new(),
+            bond: None,
+            bond_events: BondEvents::default(),
+            step: 0,
         })
     }
 
@@ -164,7 +175,16 @@ impl PrimitiveWall {
                 ntypes: materials.ntypes as u32,
             });
         }
-        let w = self.model.history_width();
+        self.bond = if self.model.has_bonds() {
+            Some(BondTable::new(
+                &materials.bond,
+                materials.ntypes,
+                self.model.bond,
+            )?)
+        } else {
+            None
+        };
+        let w = self.model.wall_history_width();
         self.hist = if w > 0 {
             Some(p.add_property(&self.history_name, w, &vec![0.0; w])?)
         } else {
@@ -173,10 +193,11 @@ impl PrimitiveWall {
         Ok(())
     }
 
-    /// Lists the owned particles of group `groupbit` within r + `skin` of the wall (call
-    /// at every re-neighboring) and zeroes the history of all others. In parallel over
-    /// chunks of particles, the lists joined in chunk order.
+    /// Lists the owned particles of group `groupbit` within max(r, bond reach) + `skin` of
+    /// the wall (call at every re-neighboring) and zeroes the history of all others. In
+    /// parallel over chunks of particles, the lists joined in chunk order.
     pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
+        let reach = self.bond.as_ref().map_or(0.0, |b| b.wall_reach);
         self.candidates.clear();
         let n = p.nlocal();
         let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
@@ -193,7 +214,7 @@ impl PrimitiveWall {
             for k in 0..len {
                 let i = lo + k;
                 let near = view.mask[i] & groupbit != 0
-                    && shape.distance(view.x[i]).0 < view.radius[i] + skin;
+                    && shape.distance(view.x[i]).0 < view.radius[i].max(reach) + skin;
                 if near {
                     out.push(i as u32);
                 } else if w > 0 {
@@ -219,6 +240,20 @@ impl PrimitiveWall {
         for part in parts {
             self.candidates.extend_from_slice(&part);
         }
+    }
+
+    /// Intact bonds of owned particles with this wall.
+    pub fn count_bonds(&self, p: &Particles) -> u64 {
+        let (Some(id), Some(_)) = (self.hist, &self.bond) else {
+            return 0;
+        };
+        let prop = &p.props[id.0];
+        let w = prop.width;
+        let flag = w - bond::WALL_TAIL;
+        prop.data[..p.nlocal() * w]
+            .chunks_exact(w)
+            .filter(|h| bond::is_bonded(&h[flag..]))
+            .count() as u64
     }
 
     /// The particles listed by the last [`PrimitiveWall::build_candidates`].
@@ -302,6 +337,18 @@ struct WallPass<'a> {
 impl Visitor for WallPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
+        if self.wall.bond.is_some() {
+            self.run::<K, true>()
+        } else {
+            self.run::<K, false>()
+        }
+    }
+}
+
+impl WallPass<'_> {
+    /// The pass with kernel `K`, and with `BOND` the wall bonds.
+    #[inline(always)]
+    fn run<K: ContactKernel, const BOND: bool>(self) {
         let WallPass {
             wall,
             cand,
@@ -315,7 +362,12 @@ impl Visitor for WallPass<'_> {
         } = self;
         let flags = wall.model.flags;
         let mut empty: [f64; 0] = [];
-        let w = K::HIST;
+        let w = if BOND {
+            bond::VEC + K::HIST + bond::WALL_TAIL
+        } else {
+            K::HIST
+        };
+        let create_now = update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
         for &i in cand {
             let i = i as usize;
             let k = i - lo;
@@ -326,6 +378,47 @@ impl Visitor for WallPass<'_> {
             } else {
                 &mut empty
             };
+            let (hist, vecs, tail) = if BOND {
+                let (vecs, rest) = hist.split_at_mut(bond::VEC);
+                let (hc, tail) = rest.split_at_mut(K::HIST);
+                (hc, vecs, tail)
+            } else {
+                (hist, &mut [][..], &mut [][..])
+            };
+            if BOND {
+                let table = wall.bond.as_ref().expect("bond table");
+                let c = table.get(p.ty[i], wall.wall_type);
+                let mut bonded = bond::is_bonded(tail);
+                if !bonded && bond::creates(c, create_now, 2.0 * d) {
+                    bond::create(vecs, tail, d);
+                    let anchor = p.x[i] - d * n;
+                    tail[2..5].copy_from_slice(&anchor.to_array());
+                    wall.bond_events.count(Event::Created);
+                    bonded = true;
+                }
+                if bonded {
+                    let mut anchor = DVec3::from_slice(&tail[2..5]);
+                    if update {
+                        anchor += wall.velocity * dt;
+                        tail[2..5].copy_from_slice(&anchor.to_array());
+                    }
+                    let g = BondGeom {
+                        d: p.x[i] - anchor,
+                        ri: r,
+                        rj: f64::INFINITY,
+                        vr: p.v[i] - wall.velocity,
+                        wi: p.omega[i],
+                        wj: DVec3::ZERO,
+                        dt,
+                        update,
+                        reach: table.wall_reach,
+                    };
+                    let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
+                    wall.bond_events.count(e);
+                    f[k] += b.f_i;
+                    torque[k] += b.t_i;
+                }
+            }
             if d >= r {
                 clear_history(hist);
                 continue;

@@ -1,0 +1,801 @@
+//! `cohesion bond`: the parallel-bond model of Potyondy & Cundall (2004) as LIGGGHTS-INL
+//! documents it, for particle–particle bonds (in `pair_style gran`) and particle–wall
+//! bonds (in `fix wall/gran`).
+//!
+//! A bond is created with zero load between two particles closer than
+//! `createDistanceBond` (centre distance; a wall counts as a mirror particle, so twice the
+//! distance to the wall), at step `tsCreateBond` or, with `createBondAlways on`, at any
+//! step. It is a cylinder of radius r_b = `radiusMultiplierBond` · min(r_i, r_j) (a wall
+//! bond: r_i), with A = π r_b², J = π r_b⁴/2, I = π r_b⁴/4, and carries
+//!
+//! - a normal force F_n = k_n A (d₀ − d) along the pair, from the distance d₀ at creation
+//!   (explicit);
+//! - a shear force, a twisting torque and a bending torque that grow by
+//!   −k_t A v_t dt, −k_t J ω_n dt and −k_n I ω_t dt (incremental; v_t is the relative
+//!   tangential velocity at the bond's centre, ω = ω_i − ω_j split along and across the
+//!   pair) and turn with the pair: every step the stored vectors are brought into the
+//!   current frame (shear force and bending torque projected onto the plane normal to the
+//!   pair and rescaled to their length, twisting torque onto the pair's axis).
+//!
+//! It breaks when the centre distance exceeds `maxDistanceBond`, or with `stressBreak on`
+//! when σ = |F_n|/A + |T_t| r_b/I exceeds `maxSigmaBond` (times `ratioTensionCompression`
+//! in tension when that switch is on) or τ = |F_t|/A + |T_n| r_b/J exceeds `maxTauBond`
+//! (plus sign(d₀ − d) |F_n|/A tan φ with `druckerPrager on`). Damping
+//! (`dampingBond`, default on) subtracts α |F_k| sign(v_k) from each component of each
+//! force and torque, against the component of the matching relative velocity;
+//! `dissipationBond` relaxes each of them by dt/τ per step.
+//!
+//! The history of a bond lives in the contact history of its pair (or, for a wall, in
+//! the particle's wall history), so it survives re-neighboring, sorting, periodic wrap and
+//! migration like any contact history. Layout: [`VEC`] values that change sign when the
+//! pair's roles swap (shear force, twisting and bending torque on i), then the contact
+//! model's own values, then the flag and d₀ (and, for walls, the anchor point).
+//!
+//! Where this differs from LIGGGHTS-INL's code (on purpose, each a bug there by our
+//! reading): the wall bond's shear velocity uses the full lever arm (the anchor lies at
+//! distance d from the centre; INL takes half of ω_i), the bending torque turns with the
+//! pair (INL projects it onto the current bending rotation rate, and skips its update
+//! when that is zero), and a bond stretched beyond the neighbor reach (possible only with
+//! `tensionStress off`) breaks instead of silently disappearing from the list.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use glam::DVec3;
+
+use crate::contact::materials::pair_table;
+use crate::error::{check, Error, Result};
+
+/// History values that flip sign when i and j swap: F_t, T_n, T_t (3 each).
+pub const VEC: usize = 9;
+/// Trailing history values of a pair bond: flag (0 = none, 1 = bonded), d₀.
+pub const PAIR_TAIL: usize = 2;
+/// Trailing history values of a wall bond: flag, d₀, anchor point (3).
+pub const WALL_TAIL: usize = 5;
+
+/// Below this radius multiplier a type pair does not bond (as LIGGGHTS-INL).
+const MIN_MULTIPLIER: f64 = 1e-6;
+
+/// Extra room on the longest possible bond for the neighbor reach (LIGGGHTS-INL's factor).
+const REACH_FACTOR: f64 = 1.1;
+
+/// The `cohesion bond` switches (LIGGGHTS-INL names and defaults).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BondFlags {
+    /// `stressBreak` (off): break by stress instead of by distance.
+    pub stress_break: bool,
+    /// `tensionStress` (on): the normal force acts in tension.
+    pub tension: bool,
+    /// `compressionStress` (on): the normal force acts in compression.
+    pub compression: bool,
+    /// `shearStress` (on): the shear force acts.
+    pub shear: bool,
+    /// `normalTorqueStress` (on): the twisting torque acts.
+    pub normal_torque: bool,
+    /// `shearTorqueStress` (on): the bending torque acts.
+    pub shear_torque: bool,
+    /// `createBondAlways` (off): create at every step, not only at `tsCreateBond`.
+    pub create_always: bool,
+    /// `dampingBond` (on).
+    pub damping: bool,
+    /// `dampingBondSmooth` (off): damping switched linearly near zero velocity.
+    pub damping_smooth: bool,
+    /// `dissipationBond` (off).
+    pub dissipation: bool,
+    /// `druckerPrager` (off).
+    pub drucker_prager: bool,
+    /// `ratioTensionCompression` (off).
+    pub ratio_tc: bool,
+}
+
+impl Default for BondFlags {
+    fn default() -> Self {
+        Self {
+            stress_break: false,
+            tension: true,
+            compression: true,
+            shear: true,
+            normal_torque: true,
+            shear_torque: true,
+            create_always: false,
+            damping: true,
+            damping_smooth: false,
+            dissipation: false,
+            drucker_prager: false,
+            ratio_tc: false,
+        }
+    }
+}
+
+/// The `fix property/global` names the bond model reads (per type pair, except
+/// `tsCreateBond`, a scalar).
+pub const PROPERTIES: [&str; 18] = [
+    "radiusMultiplierBond",
+    "normalBondStiffnessPerUnitArea",
+    "tangentialBondStiffnessPerUnitArea",
+    "dampingNormalForceBond",
+    "dampingTangentialForceBond",
+    "dampingNormalTorqueBond",
+    "dampingTangentialTorqueBond",
+    "dissipationNormalForceBond",
+    "dissipationTangentialForceBond",
+    "dissipationNormalTorqueBond",
+    "dissipationTangentialTorqueBond",
+    "maxDistanceBond",
+    "maxSigmaBond",
+    "maxTauBond",
+    "createDistanceBond",
+    "frictionAngle",
+    "ratioTensionCompression",
+    "tsCreateBond",
+];
+
+/// The bond parameters of one type pair (or particle type × wall type).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BondCoeff {
+    /// `radiusMultiplierBond` (0: this pair does not bond).
+    pub multiplier: f64,
+    /// `normalBondStiffnessPerUnitArea` k_n.
+    pub kn: f64,
+    /// `tangentialBondStiffnessPerUnitArea` k_t.
+    pub kt: f64,
+    /// Damping coefficients α: normal force, shear force, twisting, bending torque.
+    pub damping: [f64; 4],
+    /// Dissipation rates 1/τ, same order.
+    pub dissipation: [f64; 4],
+    /// `maxDistanceBond`.
+    pub max_distance: f64,
+    /// `maxSigmaBond`.
+    pub max_sigma: f64,
+    /// `maxTauBond`.
+    pub max_tau: f64,
+    /// `ratioTensionCompression` (1 when off).
+    pub ratio_tc: f64,
+    /// tan of `frictionAngle` (degrees in the script; 0 when off).
+    pub tan_phi: f64,
+    /// `createDistanceBond`.
+    pub create_distance: f64,
+}
+
+/// The bond parameters of every type pair, the creation step and the reach.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BondTable {
+    ntypes: usize,
+    coeffs: Vec<BondCoeff>,
+    /// `tsCreateBond` (`None` with `createBondAlways on`).
+    pub ts_create: Option<u64>,
+    /// Longest centre distance at which a pair of particles may be bonded (or bond).
+    pub pair_reach: f64,
+    /// Longest distance from a wall at which a particle may be bonded to it.
+    pub wall_reach: f64,
+}
+
+/// Looks up a per-type-pair property by its LIGGGHTS name.
+fn prop<'a>(props: &'a [(String, Vec<f64>)], name: &str) -> Option<&'a [f64]> {
+    props
+        .iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, v)| v.as_slice())
+}
+
+impl BondTable {
+    /// Reads the bond properties `props` (`(name, values)`, per type pair row-major) for
+    /// `ntypes` types and switches `fl`, checking what is required and the ranges.
+    pub fn new(props: &[(String, Vec<f64>)], ntypes: usize, fl: BondFlags) -> Result<Self> {
+        let n = ntypes;
+        let need = |name: &'static str, why: &str| -> Result<&[f64]> {
+            prop(props, name).ok_or_else(|| Error::Invalid {
+                what: name,
+                reason: format!(
+                    "cohesion bond{why} needs 'fix ID all property/global {name} peratomtypepair {n} ...'"
+                ),
+            })
+        };
+        let table = |name: &'static str,
+                     why: &str,
+                     needed: bool,
+                     ok: fn(f64) -> bool,
+                     range: &'static str|
+         -> Result<Vec<f64>> {
+            if !needed {
+                return Ok(vec![0.0; n * n]);
+            }
+            pair_table(name, need(name, why)?, n, true, ok, range)
+        };
+        if !fl.damping && !fl.damping_smooth && !fl.dissipation {
+            return Err(Error::Invalid {
+                what: "cohesion bond",
+                reason:
+                    "damping or dissipation has to be on (dampingBond on, or dissipationBond on)"
+                        .into(),
+            });
+        }
+        let damping = fl.damping || fl.damping_smooth;
+        let pos = |v: f64| v > 0.0;
+        let nonneg = |v: f64| v >= 0.0;
+        let mult = table("radiusMultiplierBond", "", true, nonneg, "must be >= 0")?;
+        let kn = table(
+            "normalBondStiffnessPerUnitArea",
+            "",
+            true,
+            nonneg,
+            "must be >= 0",
+        )?;
+        let kt = table(
+            "tangentialBondStiffnessPerUnitArea",
+            "",
+            true,
+            nonneg,
+            "must be >= 0",
+        )?;
+        let create = table("createDistanceBond", "", true, nonneg, "must be >= 0")?;
+        let mut damp = Vec::new();
+        for name in [
+            "dampingNormalForceBond",
+            "dampingTangentialForceBond",
+            "dampingNormalTorqueBond",
+            "dampingTangentialTorqueBond",
+        ] {
+            damp.push(table(
+                name,
+                " with dampingBond on",
+                damping,
+                |v| (0.0..=1.0).contains(&v),
+                "must be in [0, 1]",
+            )?);
+        }
+        let mut diss = Vec::new();
+        for name in [
+            "dissipationNormalForceBond",
+            "dissipationTangentialForceBond",
+            "dissipationNormalTorqueBond",
+            "dissipationTangentialTorqueBond",
+        ] {
+            diss.push(table(
+                name,
+                " with dissipationBond on",
+                fl.dissipation,
+                pos,
+                "must be > 0 (a relaxation time)",
+            )?);
+        }
+        let simple = !fl.stress_break;
+        let max_d = table("maxDistanceBond", "", simple, pos, "must be > 0")?;
+        let sigma = table(
+            "maxSigmaBond",
+            " with stressBreak on",
+            fl.stress_break,
+            pos,
+            "must be > 0",
+        )?;
+        let tau = table(
+            "maxTauBond",
+            " with stressBreak on",
+            fl.stress_break,
+            pos,
+            "must be > 0",
+        )?;
+        let rtc = table(
+            "ratioTensionCompression",
+            " with ratioTensionCompression on",
+            fl.stress_break && fl.ratio_tc,
+            pos,
+            "must be > 0",
+        )?;
+        let phi = table(
+            "frictionAngle",
+            " with druckerPrager on",
+            fl.stress_break && fl.drucker_prager,
+            |v| (0.0..90.0).contains(&v),
+            "must be in [0, 90) degrees",
+        )?;
+        let ts_create = if fl.create_always {
+            None
+        } else {
+            let v = need("tsCreateBond", " with createBondAlways off")?;
+            let t = *v.first().unwrap_or(&-1.0);
+            check(
+                "tsCreateBond",
+                t,
+                t >= 0.0 && t.fract() == 0.0,
+                "must be a step number >= 0",
+            )?;
+            Some(t as u64)
+        };
+        let mut coeffs = Vec::with_capacity(n * n);
+        let (mut pair_reach, mut wall_reach) = (0.0f64, 0.0f64);
+        for k in 0..n * n {
+            let c = BondCoeff {
+                multiplier: mult[k],
+                kn: kn[k],
+                kt: kt[k],
+                damping: [damp[0][k], damp[1][k], damp[2][k], damp[3][k]],
+                dissipation: [diss[0][k], diss[1][k], diss[2][k], diss[3][k]].map(|t| {
+                    if t > 0.0 {
+                        1.0 / t
+                    } else {
+                        0.0
+                    }
+                }),
+                max_distance: max_d[k],
+                max_sigma: sigma[k],
+                max_tau: tau[k],
+                ratio_tc: if fl.ratio_tc { rtc[k] } else { 1.0 },
+                tan_phi: (phi[k] * std::f64::consts::PI / 180.0).tan(),
+                create_distance: create[k],
+            };
+            if c.multiplier >= MIN_MULTIPLIER {
+                if fl.stress_break && c.kn <= 0.0 {
+                    return Err(Error::Invalid {
+                        what: "normalBondStiffnessPerUnitArea",
+                        reason: "must be > 0 with stressBreak on (it sets the longest bond)".into(),
+                    });
+                }
+                let (p, w) = if fl.stress_break {
+                    let stretch = c.max_sigma * c.ratio_tc.max(1.0) / c.kn;
+                    (
+                        c.create_distance + stretch,
+                        0.5 * c.create_distance + stretch,
+                    )
+                } else {
+                    (
+                        c.max_distance.max(c.create_distance),
+                        c.max_distance.max(0.5 * c.create_distance),
+                    )
+                };
+                pair_reach = pair_reach.max(REACH_FACTOR * p);
+                wall_reach = wall_reach.max(REACH_FACTOR * w);
+            }
+            coeffs.push(c);
+        }
+        Ok(Self {
+            ntypes: n,
+            coeffs,
+            ts_create,
+            pair_reach,
+            wall_reach,
+        })
+    }
+
+    /// Parameters of the 1-based type pair `(ti, tj)`.
+    #[inline(always)]
+    pub fn get(&self, ti: u32, tj: u32) -> &BondCoeff {
+        &self.coeffs[(ti as usize - 1) * self.ntypes + (tj as usize - 1)]
+    }
+
+    /// Whether bonds may be created at step `step` (of a history-advancing evaluation).
+    pub fn creates_at(&self, step: u64) -> bool {
+        self.ts_create.is_none_or(|t| t == step)
+    }
+}
+
+/// Bond creation and breakage events, counted from any thread (integer sums: the totals
+/// do not depend on the order).
+#[derive(Debug, Default)]
+pub struct BondEvents {
+    created: AtomicU64,
+    broken: AtomicU64,
+}
+
+impl Clone for BondEvents {
+    fn clone(&self) -> Self {
+        let (c, b) = self.totals();
+        Self {
+            created: AtomicU64::new(c),
+            broken: AtomicU64::new(b),
+        }
+    }
+}
+
+impl BondEvents {
+    /// Counts one event.
+    #[inline]
+    pub fn count(&self, e: Event) {
+        match e {
+            Event::None => {}
+            Event::Created => {
+                self.created.fetch_add(1, Ordering::Relaxed);
+            }
+            Event::Broken => {
+                self.broken.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    }
+
+    /// Bonds created and broken on this rank since the start.
+    pub fn totals(&self) -> (u64, u64) {
+        (
+            self.created.load(Ordering::Relaxed),
+            self.broken.load(Ordering::Relaxed),
+        )
+    }
+}
+
+/// What happened to a bond in one evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Event {
+    /// Nothing.
+    None,
+    /// It was created.
+    Created,
+    /// It broke.
+    Broken,
+}
+
+/// The kinematics of one bonded (or bondable) pair, as seen from particle i. For a wall,
+/// j is the anchor on the wall: `rj = ∞`, `wj = 0`.
+#[derive(Debug, Clone, Copy)]
+pub struct BondGeom {
+    /// x_i − x_j (a wall: x_i − anchor).
+    pub d: DVec3,
+    /// Radius of i.
+    pub ri: f64,
+    /// Radius of j (∞ for a wall).
+    pub rj: f64,
+    /// v_i − v_j (a wall: v_i − v_wall).
+    pub vr: DVec3,
+    /// Angular velocity of i.
+    pub wi: DVec3,
+    /// Angular velocity of j (0 for a wall).
+    pub wj: DVec3,
+    /// Timestep.
+    pub dt: f64,
+    /// Whether this evaluation advances the history (false at a run's set-up).
+    pub update: bool,
+    /// Longest distance at which the bond may exist (the neighbor reach).
+    pub reach: f64,
+}
+
+/// Force and torques of one bond.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BondForce {
+    /// Force on i (j gets the opposite).
+    pub f_i: DVec3,
+    /// Torque on i.
+    pub t_i: DVec3,
+    /// Torque on j.
+    pub t_j: DVec3,
+}
+
+/// Whether a pair `r_create` apart (a wall: twice the distance) gets a bond now.
+#[inline(always)]
+pub fn creates(c: &BondCoeff, create_now: bool, r_create: f64) -> bool {
+    create_now && c.multiplier >= MIN_MULTIPLIER && r_create < c.create_distance
+}
+
+/// Starts a bond at distance `d0`: flag set, loads zero (the wall anchor is the caller's).
+#[inline(always)]
+pub fn create(vecs: &mut [f64], tail: &mut [f64], d0: f64) {
+    vecs[..VEC].fill(0.0);
+    tail[0] = 1.0;
+    tail[1] = d0;
+}
+
+/// True if the history tail holds a bond.
+#[inline(always)]
+pub fn is_bonded(tail: &[f64]) -> bool {
+    tail[0] != 0.0
+}
+
+/// The damping multiplier of one component: sign(v), or with `dampingBondSmooth` a
+/// linear ramp below a velocity set by the force (as LIGGGHTS-INL computes it).
+#[inline(always)]
+fn ramp(smooth: bool, v: f64, f: f64, minvel: f64, dt: f64) -> f64 {
+    if smooth {
+        (v / minvel.max(0.01 * f * dt)).clamp(-1.0, 1.0)
+    } else if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// `f − α |f_k| m(v_k)` per component.
+#[inline(always)]
+fn damped(f: DVec3, v: DVec3, alpha: f64, smooth: bool, minvel: f64, dt: f64) -> DVec3 {
+    let m = DVec3::new(
+        ramp(smooth, v.x, f.x, minvel, dt),
+        ramp(smooth, v.y, f.y, minvel, dt),
+        ramp(smooth, v.z, f.z, minvel, dt),
+    );
+    f - alpha * f.abs() * m
+}
+
+/// `h` brought onto the plane normal to `n` with its length kept (a rotation for the
+/// small turn of one step).
+#[inline(always)]
+fn turn_tangent(h: DVec3, n: DVec3) -> DVec3 {
+    let len2 = h.length_squared();
+    if len2 == 0.0 {
+        return h;
+    }
+    let t = h - h.dot(n) * n;
+    let t2 = t.length_squared();
+    if t2 == 0.0 {
+        DVec3::ZERO
+    } else {
+        t * (len2 / t2).sqrt()
+    }
+}
+
+#[inline(always)]
+fn load(h: &[f64], k: usize) -> DVec3 {
+    DVec3::new(h[3 * k], h[3 * k + 1], h[3 * k + 2])
+}
+
+#[inline(always)]
+fn store(h: &mut [f64], k: usize, v: DVec3) {
+    h[3 * k] = v.x;
+    h[3 * k + 1] = v.y;
+    h[3 * k + 2] = v.z;
+}
+
+/// Breaks the bond: every bond value zeroed.
+#[inline(always)]
+fn break_bond(vecs: &mut [f64], tail: &mut [f64]) {
+    vecs[..VEC].fill(0.0);
+    tail.fill(0.0);
+}
+
+/// One bonded pair (the tail's flag must be set): forces and torques, and whether it
+/// broke. `vecs` are the [`VEC`] odd history values, `tail` the flag and d₀ (and anchor).
+#[inline(always)]
+pub fn bond(
+    g: &BondGeom,
+    c: &BondCoeff,
+    fl: BondFlags,
+    vecs: &mut [f64],
+    tail: &mut [f64],
+) -> (BondForce, Event) {
+    let r = g.d.length();
+    let update = g.update;
+    if !update && !(r > 0.0) {
+        return (BondForce::default(), Event::None);
+    }
+    if update && ((!fl.stress_break && r > c.max_distance) || !(r <= g.reach) || !(r > 0.0)) {
+        break_bond(vecs, tail);
+        return (BondForce::default(), Event::Broken);
+    }
+    let wall = !g.rj.is_finite();
+    let n = g.d / r;
+    let rmin = if wall { g.ri } else { g.ri.min(g.rj) };
+    let rb = c.multiplier * rmin;
+    let area = std::f64::consts::PI * rb * rb;
+    let j_polar = 0.5 * area * rb * rb;
+    let i_bend = 0.5 * j_polar;
+    let dt = g.dt;
+    // Lever arms from the centres to the bond's middle (a wall: the anchor).
+    let (ci, cj) = if wall {
+        (r, 0.0)
+    } else {
+        let s = r / (g.ri + g.rj);
+        (g.ri * s, g.rj * s)
+    };
+    let vn = g.vr.dot(n) * n;
+    let vt = g.vr - vn;
+    // Relative velocity of i's side of the bond's middle against j's, across the pair.
+    let v_shear = vt + n.cross(ci * g.wi + cj * g.wj);
+    let w = g.wi - g.wj;
+    let wn = w.dot(n) * n;
+    let wt = w - wn;
+    let minvel = 1e-5 * rmin / dt;
+    let smooth = fl.damping_smooth;
+    let damping = fl.damping || smooth;
+    let relax = |k: usize| 1.0 - (dt * c.dissipation[k]).min(1.0);
+
+    let u = tail[1] - r;
+    if fl.dissipation && update {
+        tail[1] += (r - tail[1]) * (dt * c.dissipation[0]).min(1.0);
+    }
+    let mut fnorm = DVec3::ZERO;
+    let mut fnorm_d = DVec3::ZERO;
+    if (fl.tension && u < -1e-15) || (fl.compression && u > 1e-15) {
+        fnorm = c.kn * area * u * n;
+        fnorm_d = if damping {
+            damped(fnorm, vn, c.damping[0], smooth, minvel, dt)
+        } else {
+            fnorm
+        };
+    }
+    let mut ft = load(vecs, 0);
+    let mut ft_d = DVec3::ZERO;
+    if fl.shear {
+        ft = turn_tangent(ft, n);
+        if fl.dissipation {
+            ft *= relax(1);
+        }
+        ft -= c.kt * area * dt * v_shear;
+        ft_d = if damping {
+            damped(ft, v_shear, c.damping[1], smooth, minvel, dt)
+        } else {
+            ft
+        };
+    }
+    let mut tn = load(vecs, 1);
+    let mut tn_d = DVec3::ZERO;
+    if fl.normal_torque {
+        tn = tn.dot(n) * n;
+        if fl.dissipation {
+            tn *= relax(2);
+        }
+        tn -= c.kt * j_polar * dt * wn;
+        tn_d = if damping {
+            damped(tn, wn, c.damping[2], false, minvel, dt)
+        } else {
+            tn
+        };
+    }
+    let mut tt = load(vecs, 2);
+    let mut tt_d = DVec3::ZERO;
+    if fl.shear_torque {
+        tt = turn_tangent(tt, n);
+        if fl.dissipation {
+            tt *= relax(3);
+        }
+        tt -= c.kn * i_bend * dt * wt;
+        tt_d = if damping {
+            damped(tt, wt, c.damping[3], false, minvel, dt)
+        } else {
+            tt
+        };
+    }
+    if fl.stress_break && update {
+        let fn_mag = fnorm.length();
+        let sigma = fn_mag / area + tt.length() * rb / i_bend;
+        let tau = ft.length() / area + tn.length() * rb / j_polar;
+        let sigma_max = if fl.ratio_tc && u < 1e-16 {
+            c.max_sigma * c.ratio_tc
+        } else {
+            c.max_sigma
+        };
+        let tau_max = if fl.drucker_prager {
+            c.max_tau + u.signum() * fn_mag / area * c.tan_phi
+        } else {
+            c.max_tau
+        };
+        if sigma > sigma_max || tau > tau_max {
+            break_bond(vecs, tail);
+            return (BondForce::default(), Event::Broken);
+        }
+    }
+    if update {
+        store(vecs, 0, ft);
+        store(vecs, 1, tn);
+        store(vecs, 2, tt);
+    }
+    let lever = ft_d.cross(n);
+    let tb = tn_d + tt_d;
+    (
+        BondForce {
+            f_i: fnorm_d + ft_d,
+            t_i: ci * lever + tb,
+            t_j: cj * lever - tb,
+        },
+        Event::None,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flags_plain() -> BondFlags {
+        BondFlags {
+            damping: false,
+            dissipation: true,
+            ..Default::default()
+        }
+    }
+
+    fn coeff() -> BondCoeff {
+        BondCoeff {
+            multiplier: 1.0,
+            kn: 1e9,
+            kt: 5e8,
+            damping: [0.0; 4],
+            dissipation: [0.0; 4],
+            max_distance: 1.0,
+            max_sigma: 0.0,
+            max_tau: 0.0,
+            ratio_tc: 1.0,
+            tan_phi: 0.0,
+            create_distance: 0.0021,
+        }
+    }
+
+    fn geom(d: DVec3) -> BondGeom {
+        BondGeom {
+            d,
+            ri: 0.001,
+            rj: 0.001,
+            vr: DVec3::ZERO,
+            wi: DVec3::ZERO,
+            wj: DVec3::ZERO,
+            dt: 1e-7,
+            update: true,
+            reach: 1.0,
+        }
+    }
+
+    /// A stretched bond pulls with k_n A (d − d₀); the twist and bend increments follow
+    /// the formulas, and a pair moved rigidly across gets no shear force.
+    #[test]
+    fn forces_follow_the_formulas() {
+        let c = coeff();
+        let fl = flags_plain();
+        let (mut v, mut t) = ([0.0; VEC], [0.0; PAIR_TAIL]);
+        create(&mut v, &mut t, 0.002);
+        let area = std::f64::consts::PI * 1e-6;
+        let (out, e) = bond(&geom(DVec3::new(0.0021, 0.0, 0.0)), &c, fl, &mut v, &mut t);
+        assert_eq!(e, Event::None);
+        let want = -c.kn * area * 1e-4;
+        assert!((out.f_i.x - want).abs() < 1e-9 * want.abs(), "{out:?}");
+        // Twist: ω_i − ω_j along the pair.
+        let mut g = geom(DVec3::new(0.002, 0.0, 0.0));
+        g.wi = DVec3::new(3.0, 0.0, 0.0);
+        let (out, _) = bond(&g, &c, fl, &mut v, &mut t);
+        let j = 0.5 * area * 1e-6;
+        assert!((out.t_i.x + c.kt * j * g.dt * 3.0).abs() < 1e-18, "{out:?}");
+        assert_eq!(out.t_j.x, -out.t_i.x);
+        // Rigid rotation of the pair about its middle: v_i − v_j = ω × d, ω_i = ω_j = ω.
+        let (mut v, mut t) = ([0.0; VEC], [0.0; PAIR_TAIL]);
+        create(&mut v, &mut t, 0.002);
+        let mut g = geom(DVec3::new(0.002, 0.0, 0.0));
+        let w = DVec3::new(0.0, 0.0, 7.0);
+        g.wi = w;
+        g.wj = w;
+        g.vr = w.cross(g.d);
+        let (out, _) = bond(&g, &c, fl, &mut v, &mut t);
+        assert!(out.f_i.length() < 1e-12, "{out:?}");
+    }
+
+    /// Distance breakage, and stress breakage at σ = |F_n|/A.
+    #[test]
+    fn breaks() {
+        let mut c = coeff();
+        c.max_distance = 0.0022;
+        let fl = flags_plain();
+        let (mut v, mut t) = ([0.0; VEC], [0.0; PAIR_TAIL]);
+        create(&mut v, &mut t, 0.002);
+        let (_, e) = bond(&geom(DVec3::new(0.00219, 0.0, 0.0)), &c, fl, &mut v, &mut t);
+        assert_eq!(e, Event::None);
+        let (_, e) = bond(&geom(DVec3::new(0.00221, 0.0, 0.0)), &c, fl, &mut v, &mut t);
+        assert_eq!(e, Event::Broken);
+        assert!(!is_bonded(&t));
+        let fl = BondFlags {
+            stress_break: true,
+            ..flags_plain()
+        };
+        c.max_sigma = c.kn * 1e-4; // breaks beyond a stretch of 0.1 mm
+        c.max_tau = 1e30;
+        create(&mut v, &mut t, 0.002);
+        let (_, e) = bond(
+            &geom(DVec3::new(0.0020999, 0.0, 0.0)),
+            &c,
+            fl,
+            &mut v,
+            &mut t,
+        );
+        assert_eq!(e, Event::None);
+        let (_, e) = bond(
+            &geom(DVec3::new(0.0021001, 0.0, 0.0)),
+            &c,
+            fl,
+            &mut v,
+            &mut t,
+        );
+        assert_eq!(e, Event::Broken);
+    }
+
+    /// Shear history turns with the pair and keeps its length.
+    #[test]
+    fn shear_turns_with_the_pair() {
+        let h = DVec3::new(0.0, 2.0, 0.0);
+        // The pair turned by 0.1 rad about z: n was (1, 0, 0).
+        let n = DVec3::new(0.1f64.cos(), 0.1f64.sin(), 0.0);
+        let t = turn_tangent(h, n);
+        assert!(t.dot(n).abs() < 1e-14, "{t}");
+        assert!((t.length() - 2.0).abs() < 1e-15);
+    }
+}
