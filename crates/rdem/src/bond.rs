@@ -541,6 +541,7 @@ fn break_bond(vecs: &mut [f64], tail: &mut [f64]) {
 /// One bonded pair (the tail's flag must be set): forces and torques, and whether it
 /// broke. `vecs` are the [`VEC`] odd history values, `tail` the flag and d₀ (and anchor).
 #[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub fn bond(
     g: &BondGeom,
     c: &BondCoeff,
@@ -550,6 +551,8 @@ pub fn bond(
 ) -> (BondForce, Event) {
     let r = g.d.length();
     let update = g.update;
+    // Written as "not within" so that a NaN distance breaks the bond (or, at set-up,
+    // gives no force).
     if !update && !(r > 0.0) {
         return (BondForce::default(), Event::None);
     }
