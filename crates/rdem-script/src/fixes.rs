@@ -842,6 +842,7 @@ fn insert(
 
 fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
     let mut model = models::parse_types(a)?;
+    models::parse_leading_switches(a, &mut model)?;
     let style_at = a.pos();
     match a.peek() {
         Some("primitive") => a.seek(a.pos() + 1),

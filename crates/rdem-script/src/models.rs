@@ -121,7 +121,24 @@ pub fn at_switch(a: &Args) -> bool {
 
 /// Reads switch keywords at the cursor until the end of the command.
 pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
+    parse_switches_while(a, m, |_| true)
+}
+
+/// Reads switch keywords at the cursor while there are some (`fix wall/gran` takes them
+/// before its wall too, as LIGGGHTS-INL scripts write them).
+pub fn parse_leading_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
+    parse_switches_while(a, m, |a| at_switch(a))
+}
+
+fn parse_switches_while(
+    a: &mut Args,
+    m: &mut ContactModel,
+    more: impl Fn(&Args) -> bool,
+) -> CmdResult {
     while let Some(w) = a.peek() {
+        if !more(a) {
+            return Ok(());
+        }
         if ORDER.contains(&w) {
             return Err(a.error_at(
                 a.pos(),
