@@ -110,3 +110,26 @@ fn growth_packing() {
     assert!(n > 1000);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The bonded agglomerate: all 1176 nearest-neighbour pairs of the 461-sphere ball are
+/// bonded at step 1, the impact breaks a part of them (at 5 m/s about 30 %; between 5 %
+/// and 95 % here), and the last snapshot colours every particle by its intact bonds:
+/// the field `c_nb` sums to twice the intact pair bonds printed at the end.
+#[test]
+fn bonded_agglomerate() {
+    let (out, dir) = run("bonded_agglomerate", "in.agglomerate");
+    let intact = printed(&out, "intact pair bonds at the end:")[0];
+    assert!(intact > 0.05 * 1176.0 && intact < 0.95 * 1176.0, "{out}");
+    assert!(out.contains("1176"), "all bonds created: {out}");
+    assert_eq!(last_vtk_points(&dir, "agglomerate_"), (15000, 461));
+    let text = std::fs::read_to_string(dir.join("post/agglomerate_15000.vtk")).unwrap();
+    let mut lines = text.lines().skip_while(|l| !l.starts_with("c_nb "));
+    assert!(lines.next().is_some(), "no c_nb field");
+    let nb: Vec<f64> = lines
+        .take_while(|l| !l.chars().next().is_some_and(|c| c.is_alphabetic()))
+        .flat_map(|l| l.split_whitespace().map(|w| w.parse::<f64>().unwrap()))
+        .collect();
+    assert_eq!(nb.len(), 461);
+    assert_eq!(nb.iter().sum::<f64>(), 2.0 * intact);
+    let _ = std::fs::remove_dir_all(dir);
+}
