@@ -212,3 +212,53 @@ fn bond_migrates_between_ranks() {
     assert!(text.contains("2 by 1 by 1"), "grid: {text}");
     check_periodic(&rows);
 }
+
+/// Runs `tests/data/bonds/<script>` on `threads` threads; returns the screen's thermo
+/// rows and the files of `post/` by name.
+fn run_threads(script: &str, threads: usize) -> (String, Vec<(String, Vec<u8>)>) {
+    let dir = scratch();
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bonds");
+    std::fs::copy(src.join(script), dir.join(script)).unwrap();
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    let out = rdem_command(None)
+        .args(["-in", script, "-log", "none", "--threads"])
+        .arg(threads.to_string())
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{threads} threads: {text}");
+    let rows: String = text
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("Step"))
+        .take_while(|l| !l.starts_with("Loop time"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir.join("post"))
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, std::fs::read(e.path()).unwrap())
+        })
+        .collect();
+    files.sort();
+    let _ = std::fs::remove_dir_all(&dir);
+    (rows, files)
+}
+
+/// A 2120-sphere bonded ball (enough particles for the parallel force passes) breaking on
+/// a bonding floor: thermo (bond counter included) and full-precision dumps of positions,
+/// velocities, spins, forces, torques and bond numbers are byte-identical on 1, 2 and 4
+/// threads.
+#[test]
+fn bonds_do_not_depend_on_the_thread_count() {
+    let (rows1, files1) = run_threads("in.threads", 1);
+    assert_eq!(files1.len(), 5, "dump files");
+    assert!(rows1.contains("5771"), "all bonds created:\n{rows1}");
+    for threads in [2, 4] {
+        let (rows, files) = run_threads("in.threads", threads);
+        assert_eq!(rows, rows1, "{threads} threads: thermo");
+        assert!(files == files1, "{threads} threads: dumps differ");
+    }
+}
