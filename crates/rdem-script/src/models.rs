@@ -127,7 +127,7 @@ pub fn parse_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
 /// Reads switch keywords at the cursor while there are some (`fix wall/gran` takes them
 /// before its wall too, as LIGGGHTS-INL scripts write them).
 pub fn parse_leading_switches(a: &mut Args, m: &mut ContactModel) -> CmdResult {
-    parse_switches_while(a, m, |a| at_switch(a))
+    parse_switches_while(a, m, at_switch)
 }
 
 fn parse_switches_while(

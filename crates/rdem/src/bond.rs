@@ -644,9 +644,14 @@ pub fn bond(
         };
     }
     if fl.stress_break && update {
-        let fn_mag = fnorm.length();
+        // |F_n| = k_n A |u| and T_n lies along n: no square roots for those two.
+        let fn_mag = if fnorm == DVec3::ZERO {
+            0.0
+        } else {
+            c.kn * area * u.abs()
+        };
         let sigma = fn_mag / area + tt.length() * rb / i_bend;
-        let tau = ft.length() / area + tn.length() * rb / j_polar;
+        let tau = ft.length() / area + tn.dot(n).abs() * rb / j_polar;
         let sigma_max = if fl.ratio_tc && u < 1e-16 {
             c.max_sigma * c.ratio_tc
         } else {
