@@ -28,6 +28,10 @@ const KN: f64 = 1e10;
 const AREA: f64 = PI * R * R;
 /// Bending moment of inertia π r_b⁴/4.
 const I_BEND: f64 = PI * R * R * R * R / 4.0;
+/// `tangentialBondStiffnessPerUnitArea`.
+const KT: f64 = 5e9;
+/// Rest length of a pair bond (touching spheres).
+const L: f64 = 2.0 * R;
 
 /// A fresh, empty directory for one run.
 fn temp_dir() -> PathBuf {
@@ -160,7 +164,7 @@ fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
 fix b1 all property/global radiusMultiplierBond peratomtypepair 1 1.0
 fix b2 all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 {KN}
-fix b3 all property/global tangentialBondStiffnessPerUnitArea peratomtypepair 1 5.e9
+fix b3 all property/global tangentialBondStiffnessPerUnitArea peratomtypepair 1 {KT}
 fix b5 all property/global createDistanceBond peratomtypepair 1 0.00201
 fix b6 all property/global tsCreateBond scalar 1
 fix d1 all property/global dampingNormalForceBond peratomtypepair 1 0.0
@@ -225,25 +229,49 @@ fn loads_around(fb: f64) -> Vec<f64> {
     v
 }
 
-/// The load (column `load_col`) of the first thermo row whose intact pair bond count
-/// (c_bc[3]) is 0 after the bond was created, checking that this row counts the one
-/// breakage (c_bc[2] = 1), that no other bond broke, and that the bond held at every
-/// earlier row.
-fn breaking_load(out: &str, load_col: usize) -> f64 {
+/// The load (column `load_col`) of the first thermo row whose intact bond count (c_bc[3]
+/// for pair bonds, c_bc[6] with `wall`) is 0 after the bond was created, checking that
+/// this row counts the one breakage (c_bc[2], c_bc[5]), that no other bond broke, and that
+/// the bond held at every earlier row.
+fn breaking_load(out: &str, load_col: usize, wall: bool) -> f64 {
     let rows = rows(out);
+    let (broken_col, intact_col) = if wall { (6, 7) } else { (3, 4) };
     let created = rows
         .iter()
-        .position(|r| r[4] == 1.0)
+        .position(|r| r[intact_col] == 1.0)
         .expect("the bond was created");
     let k = created
         + rows[created..]
             .iter()
-            .position(|r| r[4] == 0.0)
+            .position(|r| r[intact_col] == 0.0)
             .unwrap_or_else(|| panic!("the bond never broke:\n{out}"));
-    assert_eq!(rows[k][3], 1.0, "the breaking row counts one breakage");
-    let broken: f64 = rows.iter().map(|r| r[3]).sum();
+    assert_eq!(
+        rows[k][broken_col], 1.0,
+        "the breaking row counts one breakage"
+    );
+    let broken: f64 = rows.iter().map(|r| r[3] + r[6]).sum();
     assert_eq!(broken, 1.0, "one breakage in all");
     rows[k][load_col]
+}
+
+/// Checks that the bond broke at the first load of [`loads_around`] above the predicted
+/// `fb` (0.25 % above it): the load before (0.25 % below) held. A bond breaking 0.25 %
+/// early or late fails.
+fn assert_first_above(got: f64, fb: f64) {
+    assert!(
+        got > fb && got < 1.005 * fb,
+        "broke at {got} N ({:+.3} %), expected the first load above {fb} N",
+        100.0 * (got / fb - 1.0)
+    );
+}
+
+/// Lateral displacement of the free sphere of a pair (the other one held) under a load
+/// `f` across the bond, small-angle: the shear spring k_t A carries f, and with the
+/// sphere's rotation φ (its torque balance: the bending torque k_n I φ equals the moment
+/// of the shear force about its centre, (L/2) f) the bond's middle lags the centre by
+/// (L/2) φ, so y = f/(k_t A) + (L/2)² f/(k_n I).
+fn lateral_displacement(f: f64) -> f64 {
+    f / (KT * AREA) + (0.5 * L) * (0.5 * L) * f / (KN * I_BEND)
 }
 
 /// A bonded pair, sphere 1 frozen and sphere 2 pulled along the bond by F = 0.1 N
@@ -254,7 +282,7 @@ fn breaking_load(out: &str, load_col: usize) -> f64 {
 fn a_pulled_pair_stretches_by_force_over_kn_area() {
     let f = 0.1;
     let mut s = head(
-        &[[0.0, 0.0, 0.0], [2.0 * R, 0.0, 0.0]],
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
         &by_distance(0.0025),
         false,
     );
@@ -371,7 +399,7 @@ fn a_bond_breaks_beyond_max_distance() {
     let max_d = 0.0021;
     let fb = KN * AREA * (max_d - 2.0 * R);
     let mut s = head(
-        &[[0.0, 0.0, 0.0], [2.0 * R, 0.0, 0.0]],
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
         &by_distance(max_d),
         false,
     );
@@ -381,9 +409,29 @@ fn a_bond_breaks_beyond_max_distance() {
     s += "run 10\n";
     s += &staircase(&loads_around(fb), [1.0, 0.0, 0.0], 200);
     let out = run(&s);
-    let got = breaking_load(&out, 9);
+    let got = breaking_load(&out, 9, false);
     eprintln!("distance break: load {got}, expected {fb}");
-    assert!(rel(got, fb) < 0.01, "broke at {got} N, expected {fb} N");
+    assert_first_above(got, fb);
+}
+
+/// Breakage of a wall bond by distance (`maxDistanceBond` 1.1 mm, the distance from the
+/// centre to the bond's anchor on the wall, d₀ = r = 1 mm): a sphere bonded to the wall
+/// z = 0 and pulled off by loads raised in 0.5 % steps breaks at k_n A (1.1 mm − r) =
+/// 3.1416 N (the first load above it), and the counters show it (c_bc[5] = 1, c_bc[6] = 0).
+#[test]
+fn a_wall_bond_breaks_beyond_max_distance() {
+    let max_d = 0.0011;
+    let fb = KN * AREA * (max_d - R);
+    let mut s = head(&[[0.0, 0.0, R]], &by_distance(max_d), true);
+    s += "group tip id 1\nfix visc tip viscous 1.0\nvariable dz equal z[1]\n\
+          variable load equal 0\n";
+    s += &thermo("v_dz v_load", 200);
+    s += "run 10\n";
+    s += &staircase(&loads_around(fb), [0.0, 0.0, 1.0], 200);
+    let out = run(&s);
+    let got = breaking_load(&out, 9, true);
+    eprintln!("wall distance break: load {got}, expected {fb}");
+    assert_first_above(got, fb);
 }
 
 /// Breakage by normal stress (`stressBreak on`, `maxSigmaBond` 1e6 Pa, `maxTauBond` far
@@ -394,7 +442,7 @@ fn a_bond_breaks_in_tension_at_max_sigma() {
     let sigma = 1e6;
     let fb = sigma * AREA;
     let mut s = head(
-        &[[0.0, 0.0, 0.0], [2.0 * R, 0.0, 0.0]],
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
         &by_stress(sigma, 1e12),
         false,
     );
@@ -404,7 +452,182 @@ fn a_bond_breaks_in_tension_at_max_sigma() {
     s += "run 10\n";
     s += &staircase(&loads_around(fb), [1.0, 0.0, 0.0], 200);
     let out = run(&s);
-    let got = breaking_load(&out, 9);
+    let got = breaking_load(&out, 9, false);
     eprintln!("tension stress break: load {got}, expected {fb}");
-    assert!(rel(got, fb) < 0.01, "broke at {got} N, expected {fb} N");
+    assert_first_above(got, fb);
+}
+
+/// The pair of the tension test loaded across the bond (F = 0.1 N along y on sphere 2):
+/// the shear force and the bending torque balance the load, and sphere 2 settles at the
+/// lateral displacement F/(k_t A) + (L/2)² F/(k_n I) = 6.3662e-6 + 1.2732e-5 =
+/// 1.9099e-5 m (see [`lateral_displacement`]), within 1 %.
+#[test]
+fn a_pair_loaded_across_shears_and_bends() {
+    let f = 0.1;
+    let mut s = head(
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
+        &by_distance(0.0025),
+        false,
+    );
+    s += "group end id 1\ngroup tip id 2\nfix hold end freeze\nfix visc tip viscous 1.0\n\
+          variable dy equal y[2]-y[1]\n";
+    s += &thermo("v_dy", 1000);
+    s += &format!("run 10\nfix pull tip addforce 0 {f} 0\nrun 6000\n");
+    let out = run(&s);
+    let rows = rows(&out);
+    let last = rows.last().unwrap();
+    let want = lateral_displacement(f);
+    eprintln!("lateral: displacement {:e}, expected {want:e}", last[8]);
+    assert!(
+        rel(last[8], want) < 0.01,
+        "lateral displacement {:e}, expected {want:e}",
+        last[8]
+    );
+    assert_eq!(last[4], 1.0, "the bond is intact");
+}
+
+/// The script of a pair, sphere 1 frozen, whose stress-breaking bond (σ_max `sigma`,
+/// τ_max `tau`) is loaded across (along y) by the loads of [`loads_around`] `fb`, 500
+/// steps each; returns the load at which it broke.
+fn shear_break(sigma: f64, tau: f64, fb: f64) -> f64 {
+    let mut s = head(
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
+        &by_stress(sigma, tau),
+        false,
+    );
+    s += "group end id 1\ngroup tip id 2\nfix hold end freeze\nfix visc tip viscous 1.0\n\
+          variable dy equal y[2]-y[1]\nvariable load equal 0\n";
+    s += &thermo("v_dy v_load", 500);
+    s += "run 10\n";
+    s += &staircase(&loads_around(fb), [0.0, 1.0, 0.0], 500);
+    let out = run(&s);
+    breaking_load(&out, 9, false)
+}
+
+/// Breakage by shear stress (`stressBreak on`, `maxTauBond` 1e5 Pa, `maxSigmaBond` 1e7
+/// Pa): a pair loaded across the bond by F. At rest the bond force balances F, so the
+/// shear force is F cos θ (θ = atan(y/L), the turn of the bond, y from
+/// [`lateral_displacement`]) and τ = F cos θ/A (no twist), which reaches `maxTauBond` at
+/// F = τ_max A / cos θ = 0.31430 N (θ = 0.030: +0.045 % on τ_max A). The bending stress
+/// there, (L/2) F r_b/I ≈ 4e5 Pa (plus F sin θ/A), stays far below `maxSigmaBond`. The
+/// first load that breaks the bond (0.5 % steps) is the first above the prediction.
+#[test]
+fn a_bond_loaded_across_breaks_at_max_tau() {
+    let (sigma, tau) = (1e7, 1e5);
+    let mut fb = tau * AREA;
+    for _ in 0..20 {
+        let theta = (lateral_displacement(fb) / L).atan();
+        fb = tau * AREA / theta.cos();
+    }
+    let theta = (lateral_displacement(fb) / L).atan();
+    let sigma_at_break = fb * theta.sin() / AREA + 0.5 * L * fb * theta.cos() * R / I_BEND;
+    assert!(
+        sigma_at_break < 0.1 * sigma,
+        "σ {sigma_at_break} would govern"
+    );
+    let got = shear_break(sigma, tau, fb);
+    eprintln!("shear (tau) break: load {got}, expected {fb}");
+    assert_first_above(got, fb);
+}
+
+/// Breakage by bending (`stressBreak on`, `maxSigmaBond` 2e5 Pa, `maxTauBond` 1e12 Pa):
+/// a pair loaded across the bond by F. At rest the bond force balances F (normal part
+/// F sin θ, shear part F cos θ, θ = atan(y/L) with y from [`lateral_displacement`]) and
+/// the bending torque balances the shear force's moment about the free sphere's centre,
+/// |T_t| = (L/2) F cos θ (the bond's middle is L/2 from the centre), so
+/// σ = F sin θ/A + (L/2) F cos θ r_b/I reaches `maxSigmaBond` at F = 0.15650 N (without
+/// the turn, σ_max I/((L/2) r_b) = 0.15708 N: the normal part is a 0.37 % correction).
+/// The first load that breaks the bond (0.5 % steps) is the first above the prediction.
+#[test]
+fn a_bond_loaded_across_breaks_by_bending_at_max_sigma() {
+    let (sigma, tau) = (2e5, 1e12);
+    let mut fb = sigma * I_BEND / (0.5 * L * R);
+    for _ in 0..20 {
+        let theta = (lateral_displacement(fb) / L).atan();
+        fb = sigma / (theta.sin() / AREA + 0.5 * L * theta.cos() * R / I_BEND);
+    }
+    let got = shear_break(sigma, tau, fb);
+    eprintln!("bending (sigma) break: load {got}, expected {fb}");
+    assert_first_above(got, fb);
+}
+
+/// Text with white space and the report's gutter bars removed, so that a message that
+/// miette wrapped at the terminal width still compares equal.
+fn squeeze(s: &str) -> String {
+    s.chars()
+        .filter(|c| !c.is_whitespace() && *c != '│')
+        .collect()
+}
+
+/// Runs `script`, which must stop with exit code 1 and a report on standard error that
+/// points at `in.test:LINE:COL`, where LINE is the first line containing `line_text` and
+/// COL the column of the last `at` within that text (any column with `at` = `None`), and
+/// that contains `message`.
+fn assert_error(script: &str, line_text: &str, at: Option<&str>, message: &str) {
+    let out = run_raw(script);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "exit code\n{stderr}");
+    let (n, line) = script
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.contains(line_text))
+        .expect("the line is in the script");
+    let loc = match at {
+        Some(at) => {
+            let col =
+                line.find(line_text).unwrap() + line_text.rfind(at).expect("`at` in the text");
+            format!("in.test:{}:{}", n + 1, col + 1)
+        }
+        None => format!("in.test:{}:", n + 1),
+    };
+    assert!(stderr.contains(&loc), "no {loc} in\n{stderr}");
+    assert!(
+        squeeze(&stderr).contains(&squeeze(message)),
+        "no '{message}' in\n{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "panic\n{stderr}");
+}
+
+/// Bad bond input stops with a located error (exit code 1, `in.test:line:col` on standard
+/// error): `temperatureBreak on` is not supported (at the switch's value); a missing
+/// required property (`normalBondStiffnessPerUnitArea`) is named, at the first `run`; a
+/// second `compute bond/counter` is refused, on its line.
+#[test]
+fn bad_bond_input_is_a_located_error() {
+    let tail = "run 10\n";
+    let ok = head(
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
+        &by_distance(0.0025),
+        false,
+    );
+    // The good script runs.
+    run(&format!("{ok}{tail}"));
+
+    let s = ok.replace("cohesion bond\n", "cohesion bond temperatureBreak on\n");
+    assert_error(
+        &format!("{s}{tail}"),
+        "temperatureBreak on",
+        Some("on"),
+        "temperatureBreak on: bond breakage by temperature is not supported",
+    );
+
+    let s: String = ok
+        .lines()
+        .filter(|l| !l.contains("normalBondStiffnessPerUnitArea"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_error(
+        &format!("{s}{tail}"),
+        "run 10",
+        Some("run"),
+        "cohesion bond needs 'fix ID all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 ...'",
+    );
+
+    assert_error(
+        &format!("{ok}compute bc2 all bond/counter\n{tail}"),
+        "compute bc2 all bond/counter",
+        // (The report points at the group ID, `all`; the column is not checked.)
+        None,
+        "only one compute bond/counter is allowed (compute bc is one)",
+    );
 }
