@@ -626,8 +626,32 @@ fn bad_bond_input_is_a_located_error() {
     assert_error(
         &format!("{ok}compute bc2 all bond/counter\n{tail}"),
         "compute bc2 all bond/counter",
-        // (The report points at the group ID, `all`; the column is not checked.)
-        None,
+        Some("bond/counter"),
         "only one compute bond/counter is allowed (compute bc is one)",
     );
+}
+
+/// `tsCreateBond 0` makes no bond (bonds are made in the force evaluation of that step, and
+/// step 0 is only evaluated at a run's set-up, which never advances history): the run
+/// warns once and the counter stays at zero.
+#[test]
+fn ts_create_bond_at_the_set_up_step_warns() {
+    let ok = head(
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
+        &by_distance(0.0025),
+        false,
+    );
+    let s = ok.replace("tsCreateBond scalar 1", "tsCreateBond scalar 0");
+    let out = run(&format!("{s}{}run 10\nrun 10\n", thermo("", 5)));
+    assert_eq!(
+        out.matches("tsCreateBond 0 is not after the current step")
+            .count(),
+        1,
+        "{out}"
+    );
+    for r in rows(&out) {
+        assert!(r[2..8].iter().all(|&v| v == 0.0), "{r:?}");
+    }
+    let out = run(&format!("{ok}{}run 10\n", thermo("", 5)));
+    assert!(!out.contains("tsCreateBond"), "{out}");
 }

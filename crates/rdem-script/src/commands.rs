@@ -1391,7 +1391,7 @@ fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 .find(|c| matches!(c.kind, ComputeKind::BondCounter(_)))
             {
                 return Err(a.error_at(
-                    2,
+                    3,
                     format!(
                         "only one compute bond/counter is allowed (compute {} is one)",
                         other.id

@@ -65,6 +65,8 @@ pub struct PairGran {
     /// The current step (set before each force pass; bonds are created at
     /// `tsCreateBond`).
     pub step: u64,
+    /// Whether the "no bond will be created" warning was given.
+    pub(crate) ts_warned: bool,
 }
 
 impl PairGran {
@@ -80,6 +82,7 @@ impl PairGran {
             bond: None,
             bond_events: BondEvents::default(),
             step: 0,
+            ts_warned: false,
         }
     }
 
@@ -752,6 +755,7 @@ impl PairPass<'_> {
             bond,
             bond_events,
             step,
+            ts_warned: _,
         } = pair;
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");

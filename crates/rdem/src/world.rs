@@ -239,6 +239,18 @@ impl World {
             let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
             self.neighbor.set_history_layout(w, odd);
             self.neighbor.reach = pair.reach();
+            if let Some(ts) = pair.bond_table().and_then(|b| b.ts_create) {
+                let none = ts <= self.step
+                    && !pair.ts_warned
+                    && self.comm.sum_count(pair.count_bonds(&self.neighbor.list)) == 0;
+                if none {
+                    pair.ts_warned = true;
+                    self.warnings.push(format!(
+                        "tsCreateBond {ts} is not after the current step {}: no bond exists and none will be created (bonds are made in the force evaluation of step tsCreateBond, never at a run's set-up)",
+                        self.step
+                    ));
+                }
+            }
         } else {
             self.neighbor.set_history_layout(0, 0);
             self.neighbor.reach = 0.0;
