@@ -655,3 +655,55 @@ fn ts_create_bond_at_the_set_up_step_warns() {
     let out = run(&format!("{ok}{}run 10\n", thermo("", 5)));
     assert!(!out.contains("tsCreateBond"), "{out}");
 }
+
+/// Twisting: the free sphere of a bonded pair (the other frozen) spun about the bond's
+/// axis at ω₀ oscillates on the twisting spring T_n = −k_t J θ alone (the spin has no
+/// shear or bending part): ω_x(t) = ω₀ cos(Ω t), Ω = √(k_t J / I_p), I_p = 2/5 m r², so
+/// ω_x first vanishes at t = π/(2Ω) (within 0.5 %). With `stressBreak on` the twist
+/// stress peaks at τ = k_t J θ_max r_b / J = k_t r_b ω₀/Ω: the bond holds at 0.97 and
+/// breaks at 1.03 times the ω₀ that makes that peak equal `maxTauBond`.
+#[test]
+fn a_twisted_pair_oscillates_and_breaks_at_max_tau() {
+    let mass = 2500.0 * 4.0 / 3.0 * PI * R * R * R;
+    let ip = 0.4 * mass * R * R;
+    let j = PI * R.powi(4) / 2.0;
+    let omega_t = (KT * j / ip).sqrt();
+    let dt = 1e-7;
+    let tau_max = 1e6;
+    let spin = |w0: f64, brk: &Break, steps: usize, every: usize| {
+        let mut s = head(&[[0.0, 0.0, 0.0], [L, 0.0, 0.0]], brk, false);
+        s += &format!(
+            "timestep {dt}\ngroup end id 1\nfix hold end freeze\nrun 10\n\
+             set atom 2 omega {w0} 0.0 0.0\nvariable w equal omegax[2]\n"
+        );
+        s += &thermo("v_w", every);
+        s += &format!("run {steps}\n");
+        // Only the rows of the spinning run (the first run prints default columns).
+        let rows: Vec<Vec<f64>> = rows(&run(&s))
+            .into_iter()
+            .filter(|r| r.len() == 9)
+            .collect();
+        rows
+    };
+    // Period: the first zero of ω_x, interpolated between thermo rows (every step).
+    let w0 = 10.0;
+    let r = spin(w0, &by_distance(0.0025), 600, 1);
+    let k = r
+        .iter()
+        .position(|r| r[8] <= 0.0)
+        .expect("ω_x changes sign");
+    let (a, b) = (&r[k - 1], &r[k]);
+    // The spin is set at step 10.
+    let t = (a[0] + a[8] / (a[8] - b[8]) * (b[0] - a[0]) - 10.0) * dt;
+    let want = PI / (2.0 * omega_t);
+    assert!(rel(t, want) < 5e-3, "quarter period {t} s, want {want} s");
+    assert!(r.iter().all(|r| r[4] == 1.0), "bond intact");
+    // Breakage by twist.
+    let w_break = tau_max * omega_t / (KT * R);
+    let hold = spin(0.97 * w_break, &by_stress(1e12, tau_max), 800, 100);
+    assert!(hold.iter().all(|r| r[4] == 1.0 && r[3] == 0.0), "{hold:?}");
+    let broke = spin(1.03 * w_break, &by_stress(1e12, tau_max), 800, 100);
+    let last = broke.last().unwrap();
+    assert_eq!(last[4], 0.0, "{broke:?}");
+    assert_eq!(broke.iter().map(|r| r[3]).sum::<f64>(), 1.0, "{broke:?}");
+}
