@@ -15,10 +15,7 @@
 mod common;
 
 use std::f64::consts::PI;
-use std::path::PathBuf;
 use std::process::Output;
-
-use common::rdem_command;
 
 /// Sphere radius.
 const R: f64 = 0.001;
@@ -33,69 +30,22 @@ const KT: f64 = 5e9;
 /// Rest length of a pair bond (touching spheres).
 const L: f64 = 2.0 * R;
 
-/// A fresh, empty directory for one run.
-fn temp_dir() -> PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "rdem-bonds-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Runs `script` (as `in.test`) in a fresh directory with `-log none`.
 fn run_raw(script: &str) -> Output {
-    let dir = temp_dir();
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(None)
-        .args(["-in", "in.test", "-log", "none"])
-        .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    out
+    common::run_script_raw(script, None)
 }
 
 /// Runs `script`, which must succeed; returns the screen output.
 fn run(script: &str) -> String {
-    let out = run_raw(script);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    text
+    common::run_script(script, None)
 }
 
 /// Every thermo row (the lines of numbers after a `Step ...` header), in order, without
 /// the first row of a run that repeats the step of the previous run's last row (the
 /// counters, evaluated once per step, repeat there).
 fn rows(out: &str) -> Vec<Vec<f64>> {
-    let mut all = Vec::new();
-    let mut in_table = false;
-    for l in out.lines() {
-        if l.trim_start().starts_with("Step") {
-            in_table = true;
-            continue;
-        }
-        if in_table {
-            let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
-            match v {
-                Ok(v) if !v.is_empty() => {
-                    if all.last().is_none_or(|l: &Vec<f64>| l[0] != v[0]) {
-                        all.push(v)
-                    }
-                }
-                _ => in_table = false,
-            }
-        }
-    }
+    let mut all: Vec<Vec<f64>> = common::thermo_rows(out);
+    all.dedup_by(|b, a| a[0] == b[0]);
     assert!(!all.is_empty(), "no thermo row in\n{out}");
     all
 }

@@ -50,8 +50,6 @@
 
 mod common;
 
-use common::rdem_command;
-
 /// Sphere radius r (bond radius r_b = r), density, k_n.
 const R: f64 = 1e-3;
 const RHO: f64 = 2500.0;
@@ -61,54 +59,12 @@ const DT: f64 = 2e-6;
 
 /// Runs `script` in a fresh directory; returns the screen output.
 fn run(script: &str) -> String {
-    let dir = tempfile_dir();
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(None)
-        .args(["-in", "in.test", "-log", "none"])
-        .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::remove_dir_all(&dir);
-    text
+    common::run_script(script, None)
 }
 
-fn tempfile_dir() -> std::path::PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "rdem-cantilever-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// The numbers of the last thermo row (the line after the header `Step ...` block).
+/// The numbers of the last thermo row.
 fn last_row(out: &str) -> Vec<f64> {
-    let mut last = None;
-    let mut in_table = false;
-    for l in out.lines() {
-        if l.trim_start().starts_with("Step") {
-            in_table = true;
-            continue;
-        }
-        if in_table {
-            let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
-            match v {
-                Ok(v) if !v.is_empty() => last = Some(v),
-                _ => in_table = l.starts_with("INFO") || l.starts_with(" - "),
-            }
-        }
-    }
-    last.expect("a thermo row")
+    common::thermo_rows(out).pop().expect("a thermo row")
 }
 
 /// One cantilever: `n` bonds along the unit vector `e`, tip load along the unit vector

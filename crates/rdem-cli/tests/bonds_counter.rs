@@ -10,16 +10,7 @@ use common::rdem_command;
 
 /// A fresh scratch directory.
 fn scratch() -> PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "rdem-bonds-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_dir("bonds")
 }
 
 /// Runs `tests/data/bonds/<script>` serially (`ranks` None) or on MPI ranks, one thread

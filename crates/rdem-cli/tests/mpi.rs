@@ -12,34 +12,7 @@ use common::{have_mpirun, rdem_command};
 /// Runs `script` in a fresh directory, serially (`ranks == 0`, no mpirun) or on `ranks`
 /// MPI ranks, with one thread per rank; returns the screen output.
 fn run(script: &str, ranks: usize) -> String {
-    let dir = tempfile_dir();
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command((ranks > 0).then_some(ranks))
-        .args(["-in", "in.test", "-log", "none"])
-        .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "ranks {ranks}: {text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::remove_dir_all(&dir);
-    text
-}
-
-fn tempfile_dir() -> std::path::PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "rdem-mpi-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::run_script(script, (ranks > 0).then_some(ranks))
 }
 
 /// The numbers of the last thermo row (the line after the header `Step ...` block).
@@ -264,7 +237,7 @@ fn an_error_is_reported_once_and_every_rank_stops() {
     if !have_mpirun() {
         return;
     }
-    let dir = tempfile_dir();
+    let dir = common::scratch_dir("mpi");
     let script = format!(
         "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 omegaz 3\nrun 10\n"
     );
@@ -340,7 +313,7 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
     if !have_mpirun() {
         return;
     }
-    let dir = tempfile_dir();
+    let dir = common::scratch_dir("mpi");
     let script = format!(
         "{HEAD}create_atoms 1 single 0.02 0.01 0.01 units box\n\
          create_atoms 1 single 0.07 0.01 0.01 units box\n\

@@ -356,6 +356,17 @@ impl BondTable {
         })
     }
 
+    /// The table for `model` with `cohesion bond` (else `None`), from `materials`.
+    pub fn for_model(
+        model: &crate::contact::ContactModel,
+        materials: &crate::contact::Materials,
+    ) -> Result<Option<Self>> {
+        if !model.has_bonds() {
+            return Ok(None);
+        }
+        Self::new(&materials.bond, materials.ntypes, model.bond).map(Some)
+    }
+
     /// Parameters of the 1-based type pair `(ti, tj)`.
     #[inline(always)]
     pub fn get(&self, ti: u32, tj: u32) -> &BondCoeff {
@@ -601,47 +612,31 @@ pub fn bond(
             fnorm
         };
     }
-    let mut ft = load(vecs, 0);
-    let mut ft_d = DVec3::ZERO;
+    // The incremental loads: the stored value (already in the current frame), relaxed
+    // with `dissipationBond`, plus this step's increment; and its damped value.
+    let advance = |h: DVec3, k: usize, inc: DVec3, v: DVec3, smooth: bool| {
+        let h = if fl.dissipation { h * relax(k) } else { h } + inc;
+        let d = if damping {
+            damped(h, v, c.damping[k], smooth, minvel, dt)
+        } else {
+            h
+        };
+        (h, d)
+    };
+    let (mut ft, mut ft_d) = (load(vecs, 0), DVec3::ZERO);
     if fl.shear {
-        ft = turn_tangent(ft, n);
-        if fl.dissipation {
-            ft *= relax(1);
-        }
-        ft -= c.kt * area * dt * v_shear;
-        ft_d = if damping {
-            damped(ft, v_shear, c.damping[1], smooth, minvel, dt)
-        } else {
-            ft
-        };
+        let inc = -c.kt * area * dt * v_shear;
+        (ft, ft_d) = advance(turn_tangent(ft, n), 1, inc, v_shear, smooth);
     }
-    let mut tn = load(vecs, 1);
-    let mut tn_d = DVec3::ZERO;
+    let (mut tn, mut tn_d) = (load(vecs, 1), DVec3::ZERO);
     if fl.normal_torque {
-        tn = tn.dot(n) * n;
-        if fl.dissipation {
-            tn *= relax(2);
-        }
-        tn -= c.kt * j_polar * dt * wn;
-        tn_d = if damping {
-            damped(tn, wn, c.damping[2], false, minvel, dt)
-        } else {
-            tn
-        };
+        let inc = -c.kt * j_polar * dt * wn;
+        (tn, tn_d) = advance(tn.dot(n) * n, 2, inc, wn, false);
     }
-    let mut tt = load(vecs, 2);
-    let mut tt_d = DVec3::ZERO;
+    let (mut tt, mut tt_d) = (load(vecs, 2), DVec3::ZERO);
     if fl.shear_torque {
-        tt = turn_tangent(tt, n);
-        if fl.dissipation {
-            tt *= relax(3);
-        }
-        tt -= c.kn * i_bend * dt * wt;
-        tt_d = if damping {
-            damped(tt, wt, c.damping[3], false, minvel, dt)
-        } else {
-            tt
-        };
+        let inc = -c.kn * i_bend * dt * wt;
+        (tt, tt_d) = advance(turn_tangent(tt, n), 3, inc, wt, false);
     }
     if fl.stress_break && update {
         // |F_n| = k_n A |u| and T_n lies along n: no square roots for those two.

@@ -90,15 +90,7 @@ impl PairGran {
     /// every run).
     pub fn setup(&mut self, materials: &Materials) -> Result<()> {
         self.table = CoeffTable::new(materials, self.model.needs())?;
-        self.bond = if self.model.has_bonds() {
-            Some(BondTable::new(
-                &materials.bond,
-                materials.ntypes,
-                self.model.bond,
-            )?)
-        } else {
-            None
-        };
+        self.bond = BondTable::for_model(&self.model, materials)?;
         Ok(())
     }
 

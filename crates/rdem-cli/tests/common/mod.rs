@@ -45,3 +45,66 @@ pub fn rdem_command(ranks: Option<usize>) -> std::process::Command {
         }
     }
 }
+
+/// A fresh, empty directory under the system temp directory, named after `prefix`, the
+/// process and a counter.
+pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "rdem-{prefix}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs `script` (written as `in.test` in a scratch directory) with `-log none` and one
+/// thread per process, serially (`ranks: None`) or on MPI ranks; the directory is removed.
+pub fn run_script_raw(script: &str, ranks: Option<usize>) -> std::process::Output {
+    let dir = scratch_dir("script");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = rdem_command(ranks)
+        .args(["-in", "in.test", "-log", "none"])
+        .env("RDEM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    out
+}
+
+/// [`run_script_raw`] for a script that must succeed; returns the screen output.
+pub fn run_script(script: &str, ranks: Option<usize>) -> String {
+    let out = run_script_raw(script, ranks);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{ranks:?} ranks: {text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
+/// Every thermo row of a screen output (the lines of numbers after each `Step ...`
+/// header), in order.
+pub fn thermo_rows(out: &str) -> Vec<Vec<f64>> {
+    let mut all = Vec::new();
+    let mut in_table = false;
+    for l in out.lines() {
+        if l.trim_start().starts_with("Step") {
+            in_table = true;
+            continue;
+        }
+        if in_table {
+            let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
+            match v {
+                Ok(v) if !v.is_empty() => all.push(v),
+                _ => in_table = false,
+            }
+        }
+    }
+    all
+}

@@ -175,15 +175,7 @@ impl PrimitiveWall {
                 ntypes: materials.ntypes as u32,
             });
         }
-        self.bond = if self.model.has_bonds() {
-            Some(BondTable::new(
-                &materials.bond,
-                materials.ntypes,
-                self.model.bond,
-            )?)
-        } else {
-            None
-        };
+        self.bond = BondTable::for_model(&self.model, materials)?;
         let w = self.model.wall_history_width();
         self.hist = if w > 0 {
             Some(p.add_property(&self.history_name, w, &vec![0.0; w])?)
