@@ -348,20 +348,21 @@ fn a_wall_bond_stretches_by_force_over_kn_area() {
 fn a_bond_breaks_beyond_max_distance() {
     let max_d = 0.0021;
     let fb = KN * AREA * (max_d - 2.0 * R);
-    let mut s = head(
-        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
-        &by_distance(max_d),
-        false,
-    );
+    let got = pull_pair_to_break(&by_distance(max_d), fb);
+    eprintln!("distance break: load {got}, expected {fb}");
+    assert_first_above(got, fb);
+}
+
+/// The load at which a bonded pair (sphere 1 frozen) pulled along the bond by loads
+/// raised step by step around `fb` breaks (criterion `brk`).
+fn pull_pair_to_break(brk: &Break, fb: f64) -> f64 {
+    let mut s = head(&[[0.0, 0.0, 0.0], [L, 0.0, 0.0]], brk, false);
     s += "group end id 1\ngroup tip id 2\nfix hold end freeze\nfix visc tip viscous 1.0\n\
           variable dx equal x[2]-x[1]\nvariable load equal 0\n";
     s += &thermo("v_dx v_load", 200);
     s += "run 10\n";
     s += &staircase(&loads_around(fb), [1.0, 0.0, 0.0], 200);
-    let out = run(&s);
-    let got = breaking_load(&out, 9, false);
-    eprintln!("distance break: load {got}, expected {fb}");
-    assert_first_above(got, fb);
+    breaking_load(&run(&s), 9, false)
 }
 
 /// Breakage of a wall bond by distance (`maxDistanceBond` 1.1 mm, the distance from the
@@ -391,18 +392,7 @@ fn a_wall_bond_breaks_beyond_max_distance() {
 fn a_bond_breaks_in_tension_at_max_sigma() {
     let sigma = 1e6;
     let fb = sigma * AREA;
-    let mut s = head(
-        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
-        &by_stress(sigma, 1e12),
-        false,
-    );
-    s += "group end id 1\ngroup tip id 2\nfix hold end freeze\nfix visc tip viscous 1.0\n\
-          variable dx equal x[2]-x[1]\nvariable load equal 0\n";
-    s += &thermo("v_dx v_load", 200);
-    s += "run 10\n";
-    s += &staircase(&loads_around(fb), [1.0, 0.0, 0.0], 200);
-    let out = run(&s);
-    let got = breaking_load(&out, 9, false);
+    let got = pull_pair_to_break(&by_stress(sigma, 1e12), fb);
     eprintln!("tension stress break: load {got}, expected {fb}");
     assert_first_above(got, fb);
 }

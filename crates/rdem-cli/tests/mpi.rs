@@ -15,24 +15,9 @@ fn run(script: &str, ranks: usize) -> String {
     common::run_script(script, (ranks > 0).then_some(ranks))
 }
 
-/// The numbers of the last thermo row (the line after the header `Step ...` block).
+/// The numbers of the last thermo row.
 fn last_row(out: &str) -> Vec<f64> {
-    let mut last = None;
-    let mut in_table = false;
-    for l in out.lines() {
-        if l.trim_start().starts_with("Step") {
-            in_table = true;
-            continue;
-        }
-        if in_table {
-            let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
-            match v {
-                Ok(v) if !v.is_empty() => last = Some(v),
-                _ => in_table = l.starts_with("INFO") || l.starts_with(" - "),
-            }
-        }
-    }
-    last.expect("a thermo row")
+    common::thermo_rows(out).pop().expect("a thermo row")
 }
 
 /// The processor grid line.

@@ -89,7 +89,7 @@ pub fn run_script(script: &str, ranks: Option<usize>) -> String {
 }
 
 /// Every thermo row of a screen output (the lines of numbers after each `Step ...`
-/// header), in order.
+/// header, across `INFO` and ` - ` note lines), in order.
 pub fn thermo_rows(out: &str) -> Vec<Vec<f64>> {
     let mut all = Vec::new();
     let mut in_table = false;
@@ -102,7 +102,7 @@ pub fn thermo_rows(out: &str) -> Vec<Vec<f64>> {
             let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse).collect();
             match v {
                 Ok(v) if !v.is_empty() => all.push(v),
-                _ => in_table = false,
+                _ => in_table = l.starts_with("INFO") || l.starts_with(" - "),
             }
         }
     }
