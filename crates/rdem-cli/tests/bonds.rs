@@ -563,6 +563,19 @@ fn bad_bond_input_is_a_located_error() {
         "cohesion bond needs 'fix ID all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 ...'",
     );
 
+    // A bond reach beyond 10 diameters (1.1 × 25 mm against 2 mm spheres).
+    let far = head(
+        &[[0.0, 0.0, 0.0], [L, 0.0, 0.0]],
+        &by_distance(0.025),
+        false,
+    );
+    assert_error(
+        &format!("{far}{tail}"),
+        "run 10",
+        Some("run"),
+        "exceeds 10 diameters of the smallest particle",
+    );
+
     assert_error(
         &format!("{ok}compute bc2 all bond/counter\n{tail}"),
         "compute bc2 all bond/counter",

@@ -471,8 +471,11 @@ impl Phase1<'_> {
         let (ti, tj) = (self.ty[i], self.ty[j]);
         let c = table.get(ti, tj);
         if !bond::is_bonded(tail) {
+            if !self.create_now {
+                return out.map(|o| (d, o));
+            }
             let dist = rsq.sqrt();
-            if !bond::creates(c, self.create_now, dist) {
+            if !bond::creates(c, true, dist) {
                 return out.map(|o| (d, o));
             }
             bond::create(vecs, tail, dist);

@@ -239,6 +239,27 @@ impl World {
             let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
             self.neighbor.set_history_layout(w, odd);
             self.neighbor.reach = pair.reach();
+            if pair.reach() > 0.0 {
+                // As LIGGGHTS-INL: a bond longer than 10 diameters of the smallest particle
+                // would make the neighbor lists explode.
+                let n = self.particles.nlocal();
+                let rmin = self.comm.min(
+                    self.particles.radius[..n]
+                        .iter()
+                        .copied()
+                        .fold(f64::INFINITY, f64::min),
+                );
+                if rmin.is_finite() && pair.reach() > 20.0 * rmin {
+                    return Err(Error::Invalid {
+                        what: "cohesion bond",
+                        reason: format!(
+                            "the longest bond ({:.4e}, from maxDistanceBond, or createDistanceBond and maxSigmaBond/normalBondStiffnessPerUnitArea) exceeds 10 diameters of the smallest particle ({:.4e}); reduce maxDistanceBond or maxSigmaBond",
+                            pair.reach(),
+                            2.0 * rmin
+                        ),
+                    });
+                }
+            }
             if let Some(ts) = pair.bond_table().and_then(|b| b.ts_create) {
                 let none = ts <= self.step
                     && !pair.ts_warned
