@@ -339,6 +339,29 @@ fn a_wall_bond_stretches_by_force_over_kn_area() {
     assert_eq!(created, 1.0, "one wall bond created");
 }
 
+/// A wall bond's anchor moves with the wall surface (`shear x 0.1`): a sphere bonded to
+/// the plane z = 0 (motion damped by `fix viscous`) is dragged along at the wall speed,
+/// v_x = 0.1 m/s within 0.5 % after 20 ms, having moved v t behind the anchor by no more
+/// than the shear spring's lag γ v/(k_t A) plus the bending's (1 % of v t allowed); the
+/// bond stays intact.
+#[test]
+fn a_wall_bond_follows_a_moving_wall_surface() {
+    let v = 0.1;
+    let mut s = head(&[[0.0, 0.0, R]], &by_distance(0.0025), true)
+        .replace("zplane 0.0\n", &format!("zplane 0.0 shear x {v}\n"));
+    assert!(s.contains("shear x"));
+    s += "group tip id 1\nfix visc tip viscous 1.0\nvariable px equal x[1]\n\
+          variable pv equal vx[1]\n";
+    s += &thermo("v_px v_pv", 1000);
+    s += "run 20000\n";
+    let out = run(&s);
+    let last = rows(&out).last().unwrap().clone();
+    let t = 20000.0 * 1e-6;
+    assert!(rel(last[9], v) < 5e-3, "velocity {} (want {v})", last[9]);
+    assert!(rel(last[8], v * t) < 1e-2, "x {} (want {})", last[8], v * t);
+    assert_eq!(last[7], 1.0, "the wall bond holds");
+}
+
 /// Breakage by distance (`maxDistanceBond` 2.1 mm): a pair pulled apart by a load raised
 /// in small steps (runs of 200 steps at 0.5 % increments around the prediction) breaks
 /// once the centre distance exceeds 2.1 mm, i.e. at the load k_n A (2.1 mm − d₀) =
