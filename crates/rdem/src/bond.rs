@@ -791,6 +791,50 @@ mod tests {
         assert_eq!(e, Event::Broken);
     }
 
+    /// Damping: each component of the stretched bond's force loses α |F_k| against the
+    /// sign of the relative normal velocity; with `dampingBondSmooth` a velocity far
+    /// below the ramp's threshold (1e-5 r/dt here) takes only its share v/threshold.
+    /// Dissipation relaxes d₀ towards d by dt/τ per step, and the shear force by the
+    /// factor 1 − dt/τ.
+    #[test]
+    fn damping_and_dissipation() {
+        let mut c = coeff();
+        c.damping = [0.3; 4];
+        let fl = BondFlags::default();
+        let (mut v, mut t) = ([0.0; VEC], [0.0; PAIR_TAIL]);
+        create(&mut v, &mut t, 0.002);
+        let mut g = geom(DVec3::new(0.0021, 0.0, 0.0));
+        g.vr = DVec3::new(1e-3, 0.0, 0.0); // separating
+        let (out, _) = bond(&g, &c, fl, &mut v, &mut t);
+        let f = -c.kn * std::f64::consts::PI * 1e-6 * 1e-4;
+        assert!((out.f_i.x - 1.3 * f).abs() < 1e-12 * f.abs(), "{out:?}");
+        let smooth = BondFlags {
+            damping_smooth: true,
+            ..fl
+        };
+        let threshold = 1e-5 * 0.001 / g.dt;
+        g.vr = DVec3::new(0.25 * threshold, 0.0, 0.0);
+        let (out, _) = bond(&g, &c, smooth, &mut v, &mut t);
+        assert!(
+            (out.f_i.x - (1.0 + 0.3 * 0.25) * f).abs() < 1e-9 * f.abs(),
+            "{out:?}"
+        );
+        // Dissipation of the rest length and of the shear force.
+        let diss = BondFlags {
+            damping: false,
+            dissipation: true,
+            ..fl
+        };
+        c.dissipation = [1.0 / 1e-5; 4]; // τ = 10 µs, dt/τ = 0.01
+        let (mut v, mut t) = ([0.0; VEC], [0.0; PAIR_TAIL]);
+        create(&mut v, &mut t, 0.002);
+        v[1] = 2.0; // a stored shear force along y
+        let g = geom(DVec3::new(0.0021, 0.0, 0.0));
+        bond(&g, &c, diss, &mut v, &mut t);
+        assert!((t[1] - (0.002 + 0.01 * 1e-4)).abs() < 1e-15, "d0 {}", t[1]);
+        assert!((v[1] - 2.0 * 0.99).abs() < 1e-12, "shear {}", v[1]);
+    }
+
     /// Shear history turns with the pair and keeps its length.
     #[test]
     fn shear_turns_with_the_pair() {
