@@ -14,6 +14,7 @@
 //! * [`data_file`]: LAMMPS data files for `atom_style granular` (`read_data`, `write_data`).
 //! * [`filename`]: the `*` (timestep) and `%` (rank) wildcards of dump file names.
 //! * [`atomic`]: every file is written under a temporary name and renamed into place.
+//! * [`stl`]: STL triangle files (ASCII in double precision, binary) for `fix mesh/surface`.
 //!
 //! Nothing here decides *when* to write; the front end calls the writers on the right
 //! timesteps with the selection of particles (group, region) it has worked out.
@@ -29,6 +30,7 @@ pub mod fields;
 pub mod filename;
 pub mod printf;
 pub mod pvd;
+pub mod stl;
 pub mod vtk_legacy;
 pub mod vtk_xml;
 

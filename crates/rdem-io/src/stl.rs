@@ -1,0 +1,228 @@
+//! STL files (`fix mesh/surface file F`): binary STL through the `stl_io` crate, and ASCII
+//! STL read here in double precision, as LIGGGHTS reads it (`stl_io` parses ASCII
+//! coordinates into `f32`, which would move a wall written as `0.05` by 7e-10 m, enough to
+//! change a contact force in its sixth digit). The result is a triangle soup; merging and
+//! topology are the engine's ([`rdem::mesh::TriMesh`]).
+
+use std::path::Path;
+
+use glam::DVec3;
+
+/// A triangle of an STL file, corners in the file's order.
+pub type Triangle = [DVec3; 3];
+
+/// Why an STL file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum StlError {
+    /// The file could not be opened or read.
+    #[error("cannot read STL file {path}: {source}")]
+    Io {
+        /// File name.
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The contents are not a valid STL file.
+    #[error("STL file {path}, line {line}: {reason}")]
+    Syntax {
+        /// File name.
+        path: String,
+        /// Line number (1-based; 0 for a binary file).
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// Reads the triangles of the ASCII or binary STL file at `path`.
+pub fn read_stl(path: &Path) -> Result<Vec<Triangle>, StlError> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| StlError::Io {
+        path: name.clone(),
+        source,
+    })?;
+    parse_stl(&bytes, &name)
+}
+
+/// Parses STL `bytes` (`name` for messages). A file whose size is exactly 84 + 50 n bytes
+/// for the n its header gives is binary (a binary header may also begin with `solid`);
+/// otherwise it must be ASCII.
+pub fn parse_stl(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
+    if bytes.len() >= 84 {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        if bytes.len() == 84 + 50 * n {
+            return parse_binary(bytes, name);
+        }
+    }
+    let text = std::str::from_utf8(bytes).map_err(|_| StlError::Syntax {
+        path: name.into(),
+        line: 0,
+        reason: "neither a binary STL file (size does not match its triangle count) nor ASCII text"
+            .into(),
+    })?;
+    parse_ascii(text, name)
+}
+
+fn parse_binary(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
+    let mut cursor = std::io::Cursor::new(bytes);
+    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| StlError::Syntax {
+        path: name.into(),
+        line: 0,
+        reason: format!("binary STL: {e}"),
+    })?;
+    let mut out = Vec::new();
+    for t in reader {
+        let t = t.map_err(|e| StlError::Syntax {
+            path: name.into(),
+            line: 0,
+            reason: format!("binary STL: {e}"),
+        })?;
+        out.push(
+            t.vertices
+                .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)),
+        );
+    }
+    Ok(out)
+}
+
+fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
+    let err = |line: usize, reason: String| StlError::Syntax {
+        path: name.into(),
+        line,
+        reason,
+    };
+    let mut out = Vec::new();
+    let mut corners: Vec<DVec3> = Vec::with_capacity(3);
+    let mut in_solid = false;
+    let mut in_loop = false;
+    for (k, raw) in text.lines().enumerate() {
+        let line = k + 1;
+        let mut w = raw.split_whitespace();
+        let Some(word) = w.next() else {
+            continue;
+        };
+        match word {
+            "solid" => {
+                if in_solid {
+                    return Err(err(line, "'solid' inside a solid".into()));
+                }
+                in_solid = true;
+            }
+            "endsolid" => in_solid = false,
+            "facet" | "endfacet" => {
+                if !in_solid {
+                    return Err(err(line, format!("'{word}' outside 'solid ... endsolid'")));
+                }
+            }
+            "outer" => {
+                corners.clear();
+                in_loop = true;
+            }
+            "vertex" => {
+                if !in_loop {
+                    return Err(err(line, "'vertex' outside 'outer loop ... endloop'".into()));
+                }
+                let mut v = [0.0; 3];
+                for c in &mut v {
+                    let t = w
+                        .next()
+                        .ok_or_else(|| err(line, "'vertex' needs three numbers".into()))?;
+                    *c = t
+                        .parse()
+                        .map_err(|_| err(line, format!("'{t}' is not a number")))?;
+                }
+                corners.push(DVec3::from_array(v));
+            }
+            "endloop" => {
+                if corners.len() != 3 {
+                    return Err(err(
+                        line,
+                        format!(
+                            "a facet has {} vertices; STL facets are triangles",
+                            corners.len()
+                        ),
+                    ));
+                }
+                out.push([corners[0], corners[1], corners[2]]);
+                in_loop = false;
+            }
+            _ => {
+                return Err(err(
+                    line,
+                    format!(
+                        "unexpected '{word}' (an ASCII STL file has solid, facet normal, outer loop, vertex, endloop, endfacet, endsolid)"
+                    ),
+                ))
+            }
+        }
+    }
+    if in_loop {
+        return Err(err(
+            text.lines().count(),
+            "the file ends inside a facet".into(),
+        ));
+    }
+    if out.is_empty() {
+        return Err(err(0, "no triangle in the file".into()));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ASCII: &str = "solid test
+  facet normal 0 0 1
+    outer loop
+      vertex 0 0 0.05
+      vertex 1 0 0.05
+      vertex 1 1 0.05
+    endloop
+  endfacet
+endsolid test
+";
+
+    /// ASCII coordinates are read in double precision (0.05 exactly as `str::parse`).
+    #[test]
+    fn ascii_in_double_precision() {
+        let t = parse_stl(ASCII.as_bytes(), "t.stl").unwrap();
+        assert_eq!(t.len(), 1);
+        assert_eq!(t[0][2], DVec3::new(1.0, 1.0, 0.05));
+    }
+
+    /// A binary file written by `stl_io` reads back, also when its header starts with
+    /// `solid`.
+    #[test]
+    fn binary_round_trip() {
+        let tri = stl_io::Triangle {
+            normal: stl_io::Normal::new([0.0, 0.0, 1.0]),
+            vertices: [
+                stl_io::Vertex::new([0.0, 0.0, 0.5]),
+                stl_io::Vertex::new([1.0, 0.0, 0.5]),
+                stl_io::Vertex::new([0.0, 1.0, 0.5]),
+            ],
+        };
+        let mut bytes = Vec::new();
+        stl_io::write_stl(&mut bytes, [tri.clone(), tri].iter()).unwrap();
+        bytes[..5].copy_from_slice(b"solid");
+        let t = parse_stl(&bytes, "b.stl").unwrap();
+        assert_eq!(t.len(), 2);
+        assert_eq!(t[1][1], DVec3::new(1.0, 0.0, 0.5));
+    }
+
+    /// Broken files give the line and the reason.
+    #[test]
+    fn errors_name_the_line() {
+        let bad = ASCII.replace("vertex 1 0 0.05", "vertex 1 zero 0.05");
+        let e = parse_stl(bad.as_bytes(), "t.stl").unwrap_err().to_string();
+        assert!(e.contains("line 5") && e.contains("'zero'"), "{e}");
+        let quad = ASCII.replace(
+            "      vertex 1 1 0.05\n",
+            "      vertex 1 1 0.05\n      vertex 0 1 0.05\n",
+        );
+        let e = parse_stl(quad.as_bytes(), "t.stl").unwrap_err().to_string();
+        assert!(e.contains("4 vertices"), "{e}");
+        assert!(parse_stl(b"\xff\xfe", "x.stl").is_err());
+    }
+}
