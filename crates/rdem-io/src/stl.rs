@@ -204,7 +204,7 @@ endsolid test
             ],
         };
         let mut bytes = Vec::new();
-        stl_io::write_stl(&mut bytes, [tri.clone(), tri].iter()).unwrap();
+        stl_io::write_stl(&mut bytes, [tri, tri].iter()).unwrap();
         bytes[..5].copy_from_slice(b"solid");
         let t = parse_stl(&bytes, "b.stl").unwrap();
         assert_eq!(t.len(), 2);
