@@ -225,7 +225,7 @@ impl World {
             || self
                 .fixes
                 .iter()
-                .any(|f| matches!(f.kind, FixKind::WallGran(_)));
+                .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
         if uses_materials {
             if let Some(&ty) = self.particles.ty[..self.particles.nlocal()]
                 .iter()
@@ -278,6 +278,10 @@ impl World {
         }
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
+                self.neighbor.save_history(&self.particles);
+                self.particles.clear_ghosts();
+                wall.setup(&self.materials, &mut self.particles)?;
+            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
                 self.neighbor.save_history(&self.particles);
                 self.particles.clear_ghosts();
                 wall.setup(&self.materials, &mut self.particles)?;
@@ -376,6 +380,8 @@ impl World {
         let skin = self.neighbor.settings.skin;
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
+                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
+            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
                 wall.build_candidates(&mut self.particles, fix.groupbit, skin);
             }
         }

@@ -42,6 +42,8 @@ pub enum FixKind {
     },
     /// `fix wall/gran ... primitive ...`.
     WallGran(Box<PrimitiveWall>),
+    /// `fix wall/gran ... mesh n_meshes k meshes ...`.
+    MeshWall(Box<crate::wall::MeshWall>),
 }
 
 /// A fix: an ID, a group (bit mask) and what it does.
@@ -86,7 +88,7 @@ impl Fix {
                     });
                 }
             }
-            FixKind::NveSphere | FixKind::Freeze | FixKind::WallGran(_) => {}
+            FixKind::NveSphere | FixKind::Freeze | FixKind::WallGran(_) | FixKind::MeshWall(_) => {}
         }
         Ok(Self {
             id: id.to_string(),
@@ -187,7 +189,7 @@ impl Fix {
                     }
                 }
             }
-            FixKind::NveSphere | FixKind::WallGran(_) => {}
+            FixKind::NveSphere | FixKind::WallGran(_) | FixKind::MeshWall(_) => {}
         }
     }
 }
@@ -204,6 +206,7 @@ pub(crate) fn post_force(fixes: &[Fix], p: &mut Particles, dt: f64, update: bool
         .iter()
         .map(|fix| match &fix.kind {
             FixKind::WallGran(wall) => wall.history_prop().map(|id| (id.0, p.props[id.0].width)),
+            FixKind::MeshWall(wall) => wall.history_prop().map(|id| (id.0, p.props[id.0].width)),
             _ => None,
         })
         .collect();
@@ -215,6 +218,8 @@ pub(crate) fn post_force(fixes: &[Fix], p: &mut Particles, dt: f64, update: bool
     let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [&mut [f64]]| {
         for (fix, h) in fixes.iter().zip(hs.iter_mut()) {
             if let FixKind::WallGran(wall) = &fix.kind {
+                wall.apply_range(&view, lo, f, torque, h, dt, update);
+            } else if let FixKind::MeshWall(wall) = &fix.kind {
                 wall.apply_range(&view, lo, f, torque, h, dt, update);
             } else if fix.post_force() {
                 fix.post_force_range(&view, lo, f, torque);

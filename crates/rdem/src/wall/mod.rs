@@ -1,6 +1,8 @@
-//! Walls. Primitive walls (planes and cylinders) here; triangle meshes are a later issue
-//! and will plug into the same contact kernel through [`crate::contact::Geom`].
+//! Walls: primitive walls (planes and cylinders) and triangle-mesh walls, both through
+//! the contact kernel's [`crate::contact::Geom`].
 
+pub mod mesh;
 pub mod primitive;
 
+pub use mesh::{MeshSurface, MeshWall};
 pub use primitive::{PrimitiveWall, WallShape};

@@ -1,0 +1,514 @@
+//! `fix wall/gran ... mesh n_meshes k meshes ID...`: granular walls made of triangle
+//! meshes ([`crate::mesh::TriMesh`]), with the particle–particle contact law.
+//!
+//! Each step a particle's contacts are the closest points of the triangles it overlaps,
+//! each with its feature (face, edge or corner). A feature seen from several triangles
+//! (a shared edge or corner) counts once; an edge is dropped when a triangle that has
+//! it is touched on its face, and a corner when a face or edge that has it is touched, so
+//! a sphere rolling across a shared edge or corner feels exactly one contact.
+//!
+//! History: each particle has [`SLOTS`] contact slots (a per-particle property, so it
+//! travels with the particle through sorting and migration), each a feature key and the
+//! contact model's history. A contact keeps the slot of its feature; a new contact takes
+//! over the slot of an ended contact whose feature shares a vertex with its own (the
+//! sphere rolled from one triangle to its neighbour), else starts from zero.
+//!
+//! Candidates: at each re-neighboring, the triangles within r + skin of each particle,
+//! found through a grid of bins over the triangles' bounding boxes.
+
+use glam::DVec3;
+
+use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
+use crate::error::{Error, Result};
+use crate::mesh::{Feature, TriMesh};
+use crate::par::View;
+use crate::particles::{Particles, PropId, INERTIA_SPHERE};
+
+/// Contact slots per particle and mesh wall.
+pub const SLOTS: usize = 6;
+
+/// Largest history of one particle (all slots).
+const MAX_WIDTH: usize = 128;
+
+/// Most triangle features one particle is checked against in a step (more are ignored).
+const MAX_TOUCH: usize = 64;
+
+/// A mesh of a wall: the triangles, their material type and the velocity of the surface
+/// (`surface_vel`: a conveyor belt moves its surface, not its triangles).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshSurface {
+    /// Name (the `fix mesh/surface` ID).
+    pub id: String,
+    /// The triangles.
+    pub mesh: TriMesh,
+    /// Material type (1-based).
+    pub wall_type: u32,
+    /// Velocity of the surface material.
+    pub surface_vel: DVec3,
+}
+
+/// A granular wall made of meshes.
+#[derive(Debug, Clone)]
+pub struct MeshWall {
+    /// Contact model.
+    pub model: ContactModel,
+    /// The meshes.
+    pub meshes: Vec<MeshSurface>,
+    /// Name of the per-particle history property.
+    pub history_name: String,
+    table: CoeffTable,
+    hist: Option<PropId>,
+    /// Candidate triangles of each owned particle: `cand[cand_first[i]..cand_first[i+1]]`
+    /// as (mesh, triangle).
+    cand_first: Vec<u32>,
+    cand: Vec<(u32, u32)>,
+}
+
+/// The key of a feature in a history slot: 0 is "empty".
+fn key(mesh: u32, f: Feature) -> f64 {
+    let (kind, id) = match f {
+        Feature::Face(t) => (1u64, t),
+        Feature::Edge(e) => (2, e),
+        Feature::Vertex(v) => (3, v),
+    };
+    (((mesh as u64) << 34) | (kind << 32) | id as u64) as f64
+}
+
+fn unkey(k: f64) -> Option<(u32, Feature)> {
+    if k == 0.0 {
+        return None;
+    }
+    let k = k as u64;
+    let (mesh, kind, id) = ((k >> 34) as u32, (k >> 32) & 3, k as u32);
+    Some((
+        mesh,
+        match kind {
+            1 => Feature::Face(id),
+            2 => Feature::Edge(id),
+            _ => Feature::Vertex(id),
+        },
+    ))
+}
+
+/// The vertices of a feature (up to 3).
+fn feature_verts(m: &TriMesh, f: Feature) -> ([u32; 3], usize) {
+    match f {
+        Feature::Face(t) => (m.tris[t as usize], 3),
+        Feature::Edge(e) => {
+            let [a, b] = m.edges[e as usize];
+            ([a, b, u32::MAX], 2)
+        }
+        Feature::Vertex(v) => ([v, u32::MAX, u32::MAX], 1),
+    }
+}
+
+/// True when two features of one mesh share a vertex.
+fn adjacent(m: &TriMesh, a: Feature, b: Feature) -> bool {
+    let (va, na) = feature_verts(m, a);
+    let (vb, nb) = feature_verts(m, b);
+    va[..na].iter().any(|v| vb[..nb].contains(v))
+}
+
+/// One contact of a particle with a mesh.
+#[derive(Debug, Clone, Copy)]
+struct Touch {
+    mesh: u32,
+    feature: Feature,
+    /// Unit normal from the wall to the centre.
+    n: DVec3,
+    /// Distance from the closest point to the centre.
+    dist: f64,
+}
+
+impl MeshWall {
+    /// A wall called `id` (the fix ID) of `meshes`.
+    pub fn new(id: &str, model: ContactModel, meshes: Vec<MeshSurface>) -> Result<Self> {
+        if meshes.is_empty() {
+            return Err(Error::Invalid {
+                what: "mesh wall",
+                reason: "needs at least one mesh".into(),
+            });
+        }
+        if model.has_bonds() {
+            return Err(Error::Invalid {
+                what: "mesh wall",
+                reason: "cohesion bond on mesh walls is not supported yet (primitive walls only)"
+                    .into(),
+            });
+        }
+        Ok(Self {
+            model,
+            meshes,
+            history_name: format!("wallhist_{id}"),
+            table: CoeffTable::default(),
+            hist: None,
+            cand_first: Vec::new(),
+            cand: Vec::new(),
+        })
+    }
+
+    /// Mixes the material table and registers the history property; called before a run.
+    pub fn setup(&mut self, materials: &Materials, p: &mut Particles) -> Result<()> {
+        self.table = CoeffTable::new(materials, self.model.needs())?;
+        for m in &self.meshes {
+            if m.wall_type == 0 || m.wall_type as usize > materials.ntypes {
+                return Err(Error::TypeOutOfRange {
+                    ty: m.wall_type,
+                    ntypes: materials.ntypes as u32,
+                });
+            }
+        }
+        let w = SLOTS * (1 + self.model.history_width());
+        assert!(w <= MAX_WIDTH, "mesh wall history too wide");
+        self.hist = Some(p.add_property(&self.history_name, w, &vec![0.0; w])?);
+        Ok(())
+    }
+
+    /// The history property's ID.
+    pub(crate) fn history_prop(&self) -> Option<PropId> {
+        self.hist
+    }
+
+    /// Lists, for each owned particle of group `groupbit`, the triangles within r + `skin`
+    /// (call at every re-neighboring); particles with none get their history cleared.
+    pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
+        let n = p.nlocal();
+        let rmax = p.radius[..n].iter().copied().fold(0.0, f64::max);
+        let reach = rmax + skin;
+        // One grid per mesh over its bounds grown by the reach; cells of about the reach
+        // (at least the mean triangle size, so a triangle spans few cells).
+        self.cand_first.clear();
+        self.cand.clear();
+        self.cand_first.push(0);
+        let grids: Vec<Grid> = self
+            .meshes
+            .iter()
+            .map(|m| Grid::new(&m.mesh, reach))
+            .collect();
+        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
+        let mut found: Vec<(u32, u32)> = Vec::new();
+        for i in 0..n {
+            found.clear();
+            if p.mask[i] & groupbit != 0 {
+                let x = p.x[i];
+                let lim = p.radius[i] + skin;
+                for (mi, (m, g)) in self.meshes.iter().zip(&grids).enumerate() {
+                    for &t in g.near(x) {
+                        let (q, _) = m.mesh.closest_point(t, x);
+                        if (x - q).length_squared() < lim * lim {
+                            found.push((mi as u32, t));
+                        }
+                    }
+                }
+                found.sort_unstable();
+                found.dedup();
+            }
+            if found.is_empty() && w > 0 {
+                let id = self.hist.unwrap().0;
+                p.props[id].data[i * w..(i + 1) * w].fill(0.0);
+            }
+            self.cand.extend_from_slice(&found);
+            self.cand_first.push(self.cand.len() as u32);
+        }
+    }
+
+    /// The candidate triangles of owned particle `i` (mesh, triangle).
+    pub fn candidates_of(&self, i: usize) -> &[(u32, u32)] {
+        &self.cand[self.cand_first[i] as usize..self.cand_first[i + 1] as usize]
+    }
+
+    /// Adds the wall forces on particles `lo..lo + f.len()`; `hist` (the history
+    /// property's values) starts at particle `lo`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn apply_range(
+        &self,
+        view: &View,
+        lo: usize,
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        hist: &mut [f64],
+        dt: f64,
+        update: bool,
+    ) {
+        if self.cand_first.len() < lo + f.len() + 1 {
+            return;
+        }
+        let model = self.model;
+        model.dispatch(MeshPass {
+            wall: self,
+            view,
+            lo,
+            f,
+            torque,
+            hist,
+            dt,
+            update,
+        });
+    }
+}
+
+/// A uniform grid of bins over a mesh's triangles (by bounding box grown by the reach).
+struct Grid {
+    lo: DVec3,
+    inv: f64,
+    n: [usize; 3],
+    first: Vec<u32>,
+    tris: Vec<u32>,
+}
+
+impl Grid {
+    fn new(m: &TriMesh, reach: f64) -> Self {
+        let (lo, hi) = m.bounds();
+        let lo = lo - DVec3::splat(reach);
+        let hi = hi + DVec3::splat(reach);
+        let ext = hi - lo;
+        let mean_edge = {
+            let s: f64 = m
+                .edges
+                .iter()
+                .map(|[a, b]| (m.verts[*a as usize] - m.verts[*b as usize]).length())
+                .sum();
+            s / m.edges.len().max(1) as f64
+        };
+        let mut size = (2.0 * reach).max(mean_edge).max(1e-300);
+        // At most about 64 bins per triangle, 2^21 in all.
+        let limit = (64 * m.tris.len()).clamp(64, 1 << 21) as f64;
+        while (ext.x / size).ceil() * (ext.y / size).ceil() * (ext.z / size).ceil() > limit {
+            size *= 1.5;
+        }
+        let n = [0, 1, 2].map(|a| ((ext[a] / size).ceil() as usize).max(1));
+        let inv = 1.0 / size;
+        let cell =
+            |p: DVec3, a: usize| (((p[a] - lo[a]) * inv).floor().max(0.0) as usize).min(n[a] - 1);
+        let nb = n[0] * n[1] * n[2];
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); nb];
+        for (t, tri) in m.tris.iter().enumerate() {
+            let c = tri.map(|v| m.verts[v as usize]);
+            let tlo = c[0].min(c[1]).min(c[2]) - DVec3::splat(reach);
+            let thi = c[0].max(c[1]).max(c[2]) + DVec3::splat(reach);
+            for z in cell(tlo, 2)..=cell(thi, 2) {
+                for y in cell(tlo, 1)..=cell(thi, 1) {
+                    for x in cell(tlo, 0)..=cell(thi, 0) {
+                        lists[(z * n[1] + y) * n[0] + x].push(t as u32);
+                    }
+                }
+            }
+        }
+        let mut first = Vec::with_capacity(nb + 1);
+        let mut tris = Vec::new();
+        first.push(0);
+        for l in lists {
+            tris.extend_from_slice(&l);
+            first.push(tris.len() as u32);
+        }
+        Self {
+            lo,
+            inv,
+            n,
+            first,
+            tris,
+        }
+    }
+
+    /// Triangles whose grown bounding box may contain `x` (none outside the grid).
+    fn near(&self, x: DVec3) -> &[u32] {
+        let mut idx = [0usize; 3];
+        for a in 0..3 {
+            let c = (x[a] - self.lo[a]) * self.inv;
+            if c.is_nan() || c < 0.0 || c >= self.n[a] as f64 {
+                return &[];
+            }
+            idx[a] = c as usize;
+        }
+        let b = (idx[2] * self.n[1] + idx[1]) * self.n[0] + idx[0];
+        &self.tris[self.first[b] as usize..self.first[b + 1] as usize]
+    }
+}
+
+struct MeshPass<'a> {
+    wall: &'a MeshWall,
+    view: &'a View<'a>,
+    lo: usize,
+    f: &'a mut [DVec3],
+    torque: &'a mut [DVec3],
+    hist: &'a mut [f64],
+    dt: f64,
+    update: bool,
+}
+
+impl Visitor for MeshPass<'_> {
+    type Output = ();
+    fn visit<K: ContactKernel>(self) {
+        let MeshPass {
+            wall,
+            view: p,
+            lo,
+            f,
+            torque,
+            hist,
+            dt,
+            update,
+        } = self;
+        let hw = K::HIST;
+        let stride = 1 + hw;
+        let width = SLOTS * stride;
+        let flags = wall.model.flags;
+        // Fixed-size scratch: no allocation in the pass.
+        let none = Touch {
+            mesh: 0,
+            feature: Feature::Face(0),
+            n: DVec3::ZERO,
+            dist: 0.0,
+        };
+        let mut found = [none; MAX_TOUCH];
+        let mut keep = [true; MAX_TOUCH];
+        let mut old = [0.0f64; MAX_WIDTH];
+        for k in 0..f.len() {
+            let i = lo + k;
+            let cands = wall.candidates_of(i);
+            let h = &mut hist[k * width..(k + 1) * width];
+            if cands.is_empty() {
+                continue;
+            }
+            let (x, r) = (p.x[i], p.radius[i]);
+            let mut nt = 0;
+            for &(mi, t) in cands {
+                let mesh = &wall.meshes[mi as usize].mesh;
+                let (q, feature) = mesh.closest_point(t, x);
+                let (n, dist) = if let Feature::Face(t) = feature {
+                    // On the face: the plane distance (exact for axis-aligned planes).
+                    let nt = mesh.normals[t as usize];
+                    let s = (x - mesh.verts[mesh.tris[t as usize][0] as usize]).dot(nt);
+                    (if s >= 0.0 { nt } else { -nt }, s.abs())
+                } else {
+                    let d = x - q;
+                    let dist = d.length();
+                    (d / dist, dist)
+                };
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(dist < r) || dist == 0.0 {
+                    continue;
+                }
+                if nt < MAX_TOUCH {
+                    found[nt] = Touch {
+                        mesh: mi,
+                        feature,
+                        n,
+                        dist,
+                    };
+                    nt += 1;
+                }
+            }
+            // One contact per feature; edges and corners of touched faces (and corners of
+            // touched edges) do not count again.
+            let all = &mut found[..nt];
+            all.sort_unstable_by_key(|t| (t.mesh, t.feature));
+            let mut nd = 0;
+            for q in 0..all.len() {
+                if nd == 0
+                    || (all[nd - 1].mesh, all[nd - 1].feature) != (all[q].mesh, all[q].feature)
+                {
+                    all[nd] = all[q];
+                    nd += 1;
+                }
+            }
+            let all = &found[..nd];
+            for (q, c) in all.iter().enumerate() {
+                let mesh = &wall.meshes[c.mesh as usize].mesh;
+                keep[q] = match c.feature {
+                    Feature::Face(_) => true,
+                    Feature::Edge(e) => !all.iter().any(|o| {
+                        o.mesh == c.mesh
+                            && matches!(o.feature, Feature::Face(t) if mesh.tri_edges[t as usize].contains(&e))
+                    }),
+                    Feature::Vertex(v) => !all.iter().any(|o| {
+                        o.mesh == c.mesh
+                            && match o.feature {
+                                Feature::Face(t) => mesh.tris[t as usize].contains(&v),
+                                Feature::Edge(e) => mesh.edge_has_vertex(e, v),
+                                Feature::Vertex(_) => false,
+                            }
+                    }),
+                };
+            }
+            let mut nk = 0;
+            for q in 0..nd {
+                if keep[q] && nk < SLOTS {
+                    found[nk] = found[q];
+                    nk += 1;
+                }
+            }
+            let touches = &found[..nk];
+            // Match the contacts with the slots: same feature, else an ended neighbour.
+            old[..width].copy_from_slice(h);
+            let mut taken = [false; SLOTS];
+            let mut slot_of = [usize::MAX; SLOTS];
+            for (c, t) in touches.iter().enumerate() {
+                let kk = key(t.mesh, t.feature);
+                if let Some(s) = (0..SLOTS).find(|&s| !taken[s] && old[s * stride] == kk) {
+                    taken[s] = true;
+                    slot_of[c] = s;
+                }
+            }
+            for (c, t) in touches.iter().enumerate() {
+                if slot_of[c] != usize::MAX {
+                    continue;
+                }
+                let mesh = &wall.meshes[t.mesh as usize].mesh;
+                let near = (0..SLOTS).find(|&s| {
+                    !taken[s]
+                        && unkey(old[s * stride]).is_some_and(|(m, f)| {
+                            m == t.mesh
+                                && !touches
+                                    .iter()
+                                    .any(|o| key(o.mesh, o.feature) == old[s * stride])
+                                && adjacent(mesh, f, t.feature)
+                        })
+                });
+                if let Some(s) = near {
+                    taken[s] = true;
+                    slot_of[c] = s;
+                }
+            }
+            // Lay the slots out anew: contact c in slot c.
+            h.fill(0.0);
+            for (c, t) in touches.iter().enumerate() {
+                let hs = &mut h[c * stride..(c + 1) * stride];
+                hs[0] = key(t.mesh, t.feature);
+                if slot_of[c] != usize::MAX {
+                    let s = slot_of[c];
+                    hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
+                }
+                let surface = &wall.meshes[t.mesh as usize];
+                let delta = r - t.dist;
+                let m = p.rmass[i];
+                let g = Geom {
+                    n: t.n,
+                    delta,
+                    dist: t.dist,
+                    ri: r,
+                    rj: f64::INFINITY,
+                    r_star: r,
+                    m_star: m,
+                    ci: r - 0.5 * delta,
+                    cj: 0.0,
+                    vr: p.v[i] - surface.surface_vel,
+                    wi: p.omega[i],
+                    wj: DVec3::ZERO,
+                    roll_scale: (r - 0.5 * delta) / t.dist,
+                    inertia_i: (INERTIA_SPHERE + 1.0) * m * r * r,
+                    inertia_j: f64::INFINITY,
+                    dt,
+                    update,
+                };
+                let coeff = wall.table.get(p.ty[i], surface.wall_type);
+                let out = K::contact(&g, coeff, flags, &mut hs[1..]);
+                f[k] += out.f_i;
+                torque[k] += out.t_i;
+            }
+            if !update {
+                h.copy_from_slice(&old[..width]);
+            }
+        }
+    }
+}
