@@ -16,8 +16,9 @@ use crate::sim::{FixEntry, Property, Sim};
 use crate::variables::format_g;
 
 /// Fix styles rdem runs.
-pub const STYLES: [&str; 19] = [
+pub const STYLES: [&str; 20] = [
     "property/global",
+    "mesh/surface",
     "particletemplate/sphere",
     "particledistribution/discrete",
     "particledistribution/discrete/massbased",
@@ -39,8 +40,7 @@ pub const STYLES: [&str; 19] = [
 ];
 
 /// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
-const LATER: [(&str, &str); 8] = [
-    ("mesh/surface", "meshes"),
+const LATER: [(&str, &str); 7] = [
     ("mesh/surface/stress", "meshes"),
     ("mesh/surface/planar", "meshes"),
     ("move/mesh", "meshes"),
@@ -156,6 +156,8 @@ pub struct AveEuler {
 
 /// Front-end part of a fix.
 pub enum FrontFix {
+    /// `mesh/surface`: a mesh that `wall/gran ... mesh` walls use.
+    Mesh(Box<rdem::wall::MeshSurface>),
     /// The fix lives in `World::fixes` under the same ID.
     Engine,
     /// `property/global` (the values are in `Sim::properties`).
@@ -248,10 +250,15 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "particletemplate/sphere" => template(sim, a, &id)?,
         s if s.starts_with("particledistribution/discrete") => distribution(sim, a, &id, s)?,
         "insert/pack" | "insert/rate/region" => insert(sim, a, &id, groupbit, style)?,
-        "wall/gran" => {
-            let wall = wall_gran(a, &id)?;
-            engine_fix(sim, a, &id, groupbit, FixKind::WallGran(Box::new(wall)))?
-        }
+        "mesh/surface" => FrontFix::Mesh(Box::new(mesh_surface(sim, a, &id)?)),
+        "wall/gran" => match wall_gran(sim, a, &id)? {
+            Wall::Primitive(wall) => {
+                engine_fix(sim, a, &id, groupbit, FixKind::WallGran(Box::new(wall)))?
+            }
+            Wall::Mesh(wall) => {
+                engine_fix(sim, a, &id, groupbit, FixKind::MeshWall(Box::new(wall)))?
+            }
+        },
         "nve/sphere" => {
             if !a.is_done() {
                 let w = a.word("")?;
@@ -840,7 +847,133 @@ fn insert(
     })))
 }
 
-fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
+/// A `wall/gran` wall.
+enum Wall {
+    Primitive(PrimitiveWall),
+    Mesh(rdem::wall::MeshWall),
+}
+
+/// `fix ID group mesh/surface file F type T [keywords]`: the STL file's triangles with
+/// `scale`, `move` and `rotate` applied in the order given, vertices closer than
+/// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
+/// triangles, and `surface_vel` for a conveyor belt.
+fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::MeshSurface> {
+    a.keyword("mesh/surface keyword", &["file"])?;
+    let file_at = a.pos();
+    let file = a.word("STL file name")?.to_string();
+    let mut soup = rdem_io::stl::read_stl(std::path::Path::new(&file))
+        .map_err(|e| a.error_at(file_at, e.to_string(), None))?;
+    let mut wall_type = None;
+    let mut precision = 1e-8;
+    let mut heal = false;
+    let mut surface_vel = rdem::DVec3::ZERO;
+    const KEYS: [&str; 10] = [
+        "type",
+        "precision",
+        "heal",
+        "verbose",
+        "scale",
+        "move",
+        "rotate",
+        "surface_vel",
+        "curvature",
+        "curvature_tolerant",
+    ];
+    const LATER_KEYS: [&str; 7] = [
+        "surface_ang_vel",
+        "element_exclusion_list",
+        "min_feature_length",
+        "temperature",
+        "mass_temperature",
+        "extrude_planar",
+        "wear",
+    ];
+    while let Some(w) = a.peek() {
+        if LATER_KEYS.contains(&w) {
+            a.seek(a.pos() + 1);
+            return Err(a.error_prev(
+                format!("mesh/surface keyword '{w}' is not supported by this rdem release yet"),
+                Some(format!("supported: {}", KEYS.join(", "))),
+            ));
+        }
+        match a.keyword("mesh/surface keyword", &KEYS)? {
+            "type" => wall_type = Some(a.count("wall atom type")? as u32),
+            "precision" => precision = a.positive("precision")?,
+            "heal" => {
+                heal = a.keyword("heal", &["auto_remove_duplicates", "no"])? != "no";
+            }
+            "verbose" => {
+                a.yes_no("verbose")?;
+            }
+            // rdem needs no curvature threshold: an edge or corner counts once whatever
+            // the angle between its triangles.
+            "curvature" => {
+                a.positive("curvature")?;
+            }
+            "curvature_tolerant" => {
+                a.yes_no("curvature_tolerant")?;
+            }
+            "scale" => {
+                let f = a.positive("scale factor")?;
+                for t in &mut soup {
+                    *t = t.map(|p| p * f);
+                }
+            }
+            "move" => {
+                let d = rdem::DVec3::new(a.f64("mx")?, a.f64("my")?, a.f64("mz")?);
+                for t in &mut soup {
+                    *t = t.map(|p| p + d);
+                }
+            }
+            "rotate" => {
+                a.keyword("rotate keyword", &["axis"])?;
+                let axis_at = a.pos();
+                let axis = rdem::DVec3::new(a.f64("ax")?, a.f64("ay")?, a.f64("az")?);
+                a.keyword("rotate keyword", &["angle"])?;
+                let deg = a.f64("angle (degrees)")?;
+                if axis.length().is_nan() || axis.length() <= 0.0 || !axis.is_finite() {
+                    return Err(a.error_at(axis_at, "the rotation axis has no direction", None));
+                }
+                let q = glam::DQuat::from_axis_angle(axis.normalize(), deg.to_radians());
+                for t in &mut soup {
+                    *t = t.map(|p| q * p);
+                }
+            }
+            _ => {
+                surface_vel = rdem::DVec3::new(a.f64("vx")?, a.f64("vy")?, a.f64("vz")?);
+            }
+        }
+    }
+    let Some(wall_type) = wall_type else {
+        return Err(a.error_at(
+            STYLE_WORD,
+            "mesh/surface needs 'type T' (the wall's material type)",
+            None,
+        ));
+    };
+    let (mesh, report) = rdem::mesh::TriMesh::from_triangles(&soup, precision, heal)
+        .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), None))?;
+    if !report.degenerate.is_empty() || !report.duplicates.is_empty() {
+        sim.out.warning(&format!(
+            "mesh/surface {id}: dropped {} degenerate and {} repeated triangle(s) of {file}",
+            report.degenerate.len(),
+            report.duplicates.len()
+        ));
+    }
+    sim.out.line(&format!(
+        "  mesh {id}: {} triangles, {} vertices",
+        mesh.tris.len(),
+        mesh.verts.len()
+    ));
+    Ok(rdem::wall::MeshSurface {
+        id: id.to_string(),
+        mesh,
+        wall_type,
+        surface_vel,
+    })
+}
+
+fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
     let mut model = models::parse_types(a)?;
     models::parse_leading_switches(a, &mut model)?;
     let style_at = a.pos();
@@ -848,13 +981,40 @@ fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
         Some("primitive") => a.seek(a.pos() + 1),
         Some("mesh") => {
             a.seek(a.pos() + 1);
-            return Err(a.error_prev(
-                "mesh walls are not supported by this rdem release yet",
-                Some(
-                    "use 'primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ...'"
-                        .into(),
-                ),
-            ));
+            a.keyword("mesh keyword", &["n_meshes"])?;
+            let n = a.count("n_meshes")?;
+            a.keyword("mesh keyword", &["meshes"])?;
+            let mut meshes = Vec::with_capacity(n as usize);
+            for _ in 0..n {
+                let at = a.pos();
+                let mid = a.word("mesh ID (a fix mesh/surface)")?;
+                let found = sim.fixes.iter().find_map(|f| match &f.kind {
+                    FrontFix::Mesh(m) if f.id == mid => Some(m.as_ref().clone()),
+                    _ => None,
+                });
+                let Some(m) = found else {
+                    let ids: Vec<&str> = sim
+                        .fixes
+                        .iter()
+                        .filter(|f| matches!(f.kind, FrontFix::Mesh(_)))
+                        .map(|f| f.id.as_str())
+                        .collect();
+                    return Err(a.error_at(
+                        at,
+                        format!("no fix mesh/surface '{mid}'"),
+                        Some(crate::commands::id_help("fix mesh/surface", mid, &ids)),
+                    ));
+                };
+                meshes.push(m);
+            }
+            if models::at_switch(a) {
+                models::parse_switches(a, &mut model)?;
+            } else if !a.is_done() {
+                return Err(models::unknown(a, a.pos(), &[]));
+            }
+            let wall = rdem::wall::MeshWall::new(id, model, meshes)
+                .map_err(|e| a.error_cmd(e.to_string(), None))?;
+            return Ok(Wall::Mesh(wall));
         }
         Some(
             w @ ("type" | "xplane" | "yplane" | "zplane" | "xcylinder" | "ycylinder" | "zcylinder"),
@@ -923,7 +1083,7 @@ fn wall_gran(a: &mut Args, id: &str) -> CmdResult<PrimitiveWall> {
     let mut wall = PrimitiveWall::new(id, model, wall_type, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     wall.velocity = velocity;
-    Ok(wall)
+    Ok(Wall::Primitive(wall))
 }
 
 fn adapt(sim: &Sim, a: &mut Args) -> CmdResult<FrontFix> {

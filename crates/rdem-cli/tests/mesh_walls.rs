@@ -1,0 +1,167 @@
+//! `fix mesh/surface` and `fix wall/gran ... mesh`: an STL floor against the primitive
+//! plane, and the errors of bad mesh input.
+
+mod common;
+
+use common::{rdem_command, scratch_dir, thermo_rows};
+
+/// The floor z = 0 of the box −0.05..0.05 in x and y as an ASCII STL file of four
+/// triangles meeting at the centre, written in millimetres (read with `scale 0.001`).
+const FLOOR_MM: &str = "solid floor
+facet normal 0 0 1
+outer loop
+vertex -50 -50 0
+vertex 50 -50 0
+vertex 0 0 0
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex 50 -50 0
+vertex 50 50 0
+vertex 0 0 0
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex 50 50 0
+vertex -50 50 0
+vertex 0 0 0
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex -50 50 0
+vertex -50 -50 0
+vertex 0 0 0
+endloop
+endfacet
+endsolid floor
+";
+
+fn script(wall: &str) -> String {
+    format!(
+        "atom_style granular
+boundary f f f
+units si
+region box block -0.05 0.05 -0.05 0.05 -0.01 0.05 units box
+create_box 1 box
+neighbor 0.001 bin
+neigh_modify delay 0
+create_atoms 1 single -0.01 -0.008 0.0021 units box
+set atom 1 diameter 0.004 density 2500 vx 0.4 vy 0.3 vz -0.05 omega 0 0 -20
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-6
+fix nve all nve/sphere
+fix g all gravity 9.81 vector 0 0 -1
+{wall}
+variable px equal x[1]
+variable py equal y[1]
+variable pz equal z[1]
+variable pvx equal vx[1]
+variable pwz equal omegaz[1]
+variable pwy equal omegay[1]
+thermo_style custom step v_px v_py v_pz v_pvx v_pwz v_pwy
+thermo_modify format float %24.17g
+thermo 500
+run 15000
+"
+    )
+}
+
+/// Runs `script` with `floor.stl` beside it; returns (success, stdout + stderr).
+fn run(script: &str) -> (bool, String) {
+    let dir = scratch_dir("meshwall");
+    std::fs::write(dir.join("floor.stl"), FLOOR_MM).unwrap();
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = rdem_command(None)
+        .args(["-in", "in.test", "-log", "none"])
+        .env("RDEM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (
+        out.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    )
+}
+
+/// A sphere that lands, slides and rolls across the shared edges and the common corner
+/// of a four-triangle STL floor (`scale 0.001` from millimetres) moves as on the
+/// primitive plane z = 0: every printed position, velocity and spin agrees within 1e-9
+/// of its largest value.
+#[test]
+fn stl_floor_equals_the_primitive_plane() {
+    let (ok, plane) = run(&script(
+        "fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0",
+    ));
+    assert!(ok, "{plane}");
+    let (ok, mesh) = run(&script(
+        "fix cad all mesh/surface file floor.stl type 1 scale 0.001 heal auto_remove_duplicates\n\
+         fix floor all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
+    ));
+    assert!(ok, "{mesh}");
+    assert!(mesh.contains("mesh cad: 4 triangles, 5 vertices"), "{mesh}");
+    let (a, b) = (thermo_rows(&plane), thermo_rows(&mesh));
+    assert_eq!(a.len(), 31);
+    assert_eq!(a.len(), b.len());
+    for c in 1..a[0].len() {
+        let scale = a.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+        for (ra, rb) in a.iter().zip(&b) {
+            assert!(
+                (ra[c] - rb[c]).abs() <= 1e-9 * scale,
+                "step {} column {c}: plane {} mesh {}",
+                ra[0],
+                ra[c],
+                rb[c]
+            );
+        }
+    }
+    // The sphere started on the west triangle (|x| > |y|, x < 0) and ends on the south
+    // one (|y| > |x|, y < 0), next to the corner all four share: it crossed their edge.
+    let last = a.last().unwrap();
+    assert!(
+        last[2] < 0.0 && last[2].abs() > last[1].abs() && last[2].abs() < 0.002,
+        "{last:?}"
+    );
+}
+
+/// Bad mesh input stops with the line and the reason.
+#[test]
+fn bad_mesh_input_is_a_located_error() {
+    let cases = [
+        (
+            "fix cad all mesh/surface file nothere.stl type 1",
+            "cannot read STL file nothere.stl",
+        ),
+        (
+            "fix cad all mesh/surface file floor.stl scale 0.001",
+            "needs 'type T'",
+        ),
+        (
+            "fix cad all mesh/surface file floor.stl type 1 surface_ang_vel origin 0 0 0 axis 0 0 1 omega 1",
+            "surface_ang_vel' is not supported",
+        ),
+        (
+            "fix floor all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
+            "no fix mesh/surface 'cad'",
+        ),
+    ];
+    for (line, want) in cases {
+        let (ok, out) = run(&script(line));
+        assert!(!ok, "{line}: should fail\n{out}");
+        assert!(out.contains(want), "{line}: want '{want}' in\n{out}");
+        assert!(out.contains("in.test:"), "{line}: no location in\n{out}");
+        assert!(!out.contains("panicked"), "{out}");
+    }
+}
