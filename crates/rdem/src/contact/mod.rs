@@ -276,6 +276,46 @@ pub struct Geom {
     pub update: bool,
 }
 
+impl Geom {
+    /// The contact of a particle (radius `r`, mass `m`, velocity relative to the wall
+    /// surface `vr`, spin `wi`) with a wall at distance `dist` < r along the unit normal
+    /// `n` from the wall to the centre: j has infinite radius and mass, no spin and no
+    /// lever arm, and the rolling models see ω_i scaled by c_i/(r − δ) as in LIGGGHTS.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn wall(
+        n: DVec3,
+        dist: f64,
+        r: f64,
+        m: f64,
+        vr: DVec3,
+        wi: DVec3,
+        dt: f64,
+        update: bool,
+    ) -> Self {
+        let delta = r - dist;
+        Self {
+            n,
+            delta,
+            dist,
+            ri: r,
+            rj: f64::INFINITY,
+            r_star: r,
+            m_star: m,
+            ci: r - 0.5 * delta,
+            cj: 0.0,
+            vr,
+            wi,
+            wj: DVec3::ZERO,
+            roll_scale: (r - 0.5 * delta) / dist,
+            inertia_i: (crate::particles::INERTIA_SPHERE + 1.0) * m * r * r,
+            inertia_j: f64::INFINITY,
+            dt,
+            update,
+        }
+    }
+}
+
 /// Result of one contact: the force on i (j gets the opposite) and the torques on both.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactForce {

@@ -22,7 +22,7 @@ use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, V
 use crate::error::{Error, Result};
 use crate::mesh::{Feature, TriMesh};
 use crate::par::View;
-use crate::particles::{Particles, PropId, INERTIA_SPHERE};
+use crate::particles::{Particles, PropId};
 
 /// Contact slots per particle and mesh wall.
 pub const SLOTS: usize = 6;
@@ -480,27 +480,8 @@ impl Visitor for MeshPass<'_> {
                     hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
                 }
                 let surface = &wall.meshes[t.mesh as usize];
-                let delta = r - t.dist;
-                let m = p.rmass[i];
-                let g = Geom {
-                    n: t.n,
-                    delta,
-                    dist: t.dist,
-                    ri: r,
-                    rj: f64::INFINITY,
-                    r_star: r,
-                    m_star: m,
-                    ci: r - 0.5 * delta,
-                    cj: 0.0,
-                    vr: p.v[i] - surface.surface_vel,
-                    wi: p.omega[i],
-                    wj: DVec3::ZERO,
-                    roll_scale: (r - 0.5 * delta) / t.dist,
-                    inertia_i: (INERTIA_SPHERE + 1.0) * m * r * r,
-                    inertia_j: f64::INFINITY,
-                    dt,
-                    update,
-                };
+                let vr = p.v[i] - surface.surface_vel;
+                let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..]);
                 f[k] += out.f_i;

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::par::{parallel, View, CHUNK};
-use crate::particles::{Particles, PropId, INERTIA_SPHERE};
+use crate::particles::{Particles, PropId};
 
 /// Shape of a primitive wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -415,27 +415,16 @@ impl WallPass<'_> {
                 clear_history(hist);
                 continue;
             }
-            let delta = r - d;
-            let m = p.rmass[i];
-            let g = Geom {
+            let g = Geom::wall(
                 n,
-                delta,
-                dist: d,
-                ri: r,
-                rj: f64::INFINITY,
-                r_star: r,
-                m_star: m,
-                ci: r - 0.5 * delta,
-                cj: 0.0,
-                vr: p.v[i] - wall.velocity,
-                wi: p.omega[i],
-                wj: DVec3::ZERO,
-                roll_scale: (r - 0.5 * delta) / d,
-                inertia_i: (INERTIA_SPHERE + 1.0) * m * r * r,
-                inertia_j: f64::INFINITY,
+                d,
+                r,
+                p.rmass[i],
+                p.v[i] - wall.velocity,
+                p.omega[i],
                 dt,
                 update,
-            };
+            );
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
             f[k] += out.f_i;
