@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{rdem_command, scratch_dir, thermo_rows};
+use common::{run_with_files_raw, thermo_rows};
 
 /// The floor z = 0 of the box −0.05..0.05 in x and y as an ASCII STL file of four
 /// triangles meeting at the centre, written in millimetres (read with `scale 0.001`).
@@ -76,16 +76,7 @@ run 15000
 
 /// Runs `script` with `floor.stl` beside it; returns (success, stdout + stderr).
 fn run(script: &str) -> (bool, String) {
-    let dir = scratch_dir("meshwall");
-    std::fs::write(dir.join("floor.stl"), FLOOR_MM).unwrap();
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(None)
-        .args(["-in", "in.test", "-log", "none"])
-        .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
+    let out = run_with_files_raw(script, &[("floor.stl", FLOOR_MM)], None);
     (
         out.status.success(),
         format!(

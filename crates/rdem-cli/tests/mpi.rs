@@ -7,7 +7,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{have_mpirun, rdem_command};
+use common::have_mpirun;
 
 /// Runs `script` in a fresh directory, serially (`ranks == 0`, no mpirun) or on `ranks`
 /// MPI ranks, with one thread per rank; returns the screen output.
@@ -222,16 +222,10 @@ fn an_error_is_reported_once_and_every_rank_stops() {
     if !have_mpirun() {
         return;
     }
-    let dir = common::scratch_dir("mpi");
     let script = format!(
         "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 omegaz 3\nrun 10\n"
     );
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(Some(2))
-        .args(["-in", "in.test", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let out = common::run_script_raw(&script, Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert_eq!(
@@ -240,7 +234,6 @@ fn an_error_is_reported_once_and_every_rank_stops() {
         "{err}"
     );
     assert!(err.contains("in.test:20:12"), "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Sphere 2 (x > 0.05, rank 1 of 2) slides down along sphere 1 (x < 0.05, rank 0, held by
@@ -298,18 +291,12 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
     if !have_mpirun() {
         return;
     }
-    let dir = common::scratch_dir("mpi");
     let script = format!(
         "{HEAD}create_atoms 1 single 0.02 0.01 0.01 units box\n\
          create_atoms 1 single 0.07 0.01 0.01 units box\n\
          set atom * diameter 0.004 density 2500\nset atom 2 vz 1e6\nrun 10\n"
     );
-    std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(Some(2))
-        .args(["-in", "in.test", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let out = common::run_script_raw(&script, Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert_eq!(
@@ -324,5 +311,4 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
         .collect::<Vec<_>>()
         .join(" ");
     assert!(words.contains("first lost tag 2"), "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
 }

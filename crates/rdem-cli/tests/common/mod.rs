@@ -64,7 +64,19 @@ pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {
 /// Runs `script` (written as `in.test` in a scratch directory) with `-log none` and one
 /// thread per process, serially (`ranks: None`) or on MPI ranks; the directory is removed.
 pub fn run_script_raw(script: &str, ranks: Option<usize>) -> std::process::Output {
+    run_with_files_raw(script, &[], ranks)
+}
+
+/// [`run_script_raw`] with `files` (name, contents) written beside the script.
+pub fn run_with_files_raw(
+    script: &str,
+    files: &[(&str, &str)],
+    ranks: Option<usize>,
+) -> std::process::Output {
     let dir = scratch_dir("script");
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
     std::fs::write(dir.join("in.test"), script).unwrap();
     let out = rdem_command(ranks)
         .args(["-in", "in.test", "-log", "none"])
