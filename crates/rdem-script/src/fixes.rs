@@ -156,8 +156,9 @@ pub struct AveEuler {
 
 /// Front-end part of a fix.
 pub enum FrontFix {
-    /// `mesh/surface`: a mesh that `wall/gran ... mesh` walls use.
-    Mesh(Box<rdem::wall::MeshSurface>),
+    /// `mesh/surface`: a mesh (in `World::meshes` under the fix ID) that `wall/gran ...
+    /// mesh` walls, mesh motions, insertion faces and mesh dumps use.
+    Mesh,
     /// The fix lives in `World::fixes` under the same ID.
     Engine,
     /// `property/global` (the values are in `Sim::properties`).
@@ -250,7 +251,11 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "particletemplate/sphere" => template(sim, a, &id)?,
         s if s.starts_with("particledistribution/discrete") => distribution(sim, a, &id, s)?,
         "insert/pack" | "insert/rate/region" => insert(sim, a, &id, groupbit, style)?,
-        "mesh/surface" => FrontFix::Mesh(Box::new(mesh_surface(sim, a, &id)?)),
+        "mesh/surface" => {
+            let mesh = mesh_surface(sim, a, &id)?;
+            sim.world_mut(a)?.add_mesh(mesh);
+            FrontFix::Mesh
+        }
         "wall/gran" => match wall_gran(sim, a, &id)? {
             Wall::Primitive(wall) => {
                 engine_fix(sim, a, &id, groupbit, FixKind::WallGran(Box::new(wall)))?
@@ -965,12 +970,9 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
         mesh.tris.len(),
         mesh.verts.len()
     ));
-    Ok(rdem::wall::MeshSurface {
-        id: id.to_string(),
-        mesh,
-        wall_type,
-        surface_vel,
-    })
+    let mut surface = rdem::wall::MeshSurface::new(id, mesh, wall_type);
+    surface.surface_vel = surface_vel;
+    Ok(surface)
 }
 
 fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
@@ -988,16 +990,12 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
             for _ in 0..n {
                 let at = a.pos();
                 let mid = a.word("mesh ID (a fix mesh/surface)")?;
-                let found = sim.fixes.iter().find_map(|f| match &f.kind {
-                    FrontFix::Mesh(m) if f.id == mid => Some(m.as_ref().clone()),
-                    _ => None,
-                });
+                let found = sim.world.as_ref().and_then(|w| w.mesh_index(mid));
                 let Some(m) = found else {
                     let ids: Vec<&str> = sim
-                        .fixes
+                        .world
                         .iter()
-                        .filter(|f| matches!(f.kind, FrontFix::Mesh(_)))
-                        .map(|f| f.id.as_str())
+                        .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
                         .collect();
                     return Err(a.error_at(
                         at,

@@ -149,7 +149,13 @@ impl World {
             self.virial_step = Some(self.step);
         }
         let t3 = self.timers.lap(Stage::Comm, t2);
-        let finite = crate::fix::post_force(&self.fixes, &mut self.particles, self.dt, update);
+        let finite = crate::fix::post_force(
+            &self.fixes,
+            &self.meshes,
+            &mut self.particles,
+            self.dt,
+            update,
+        );
         let t4 = self.timers.lap(Stage::Modify, t3);
         if !finite || self.comm.size() > 1 {
             let p = &self.particles;

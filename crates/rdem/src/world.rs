@@ -60,6 +60,9 @@ pub struct World {
     pub neighbor: Neighbor,
     /// Fixes, in definition order.
     pub fixes: Vec<Fix>,
+    /// Triangle meshes (`fix mesh/surface`), which mesh walls, mesh motions, insertion
+    /// faces and mesh dumps refer to by index.
+    pub meshes: Vec<crate::wall::MeshSurface>,
     /// Timestep size.
     pub dt: f64,
     /// Current timestep number.
@@ -103,6 +106,7 @@ impl World {
             pair: None,
             neighbor: Neighbor::new(NeighborSettings::default()),
             fixes: Vec::new(),
+            meshes: Vec::new(),
             dt: 1e-8,
             step: 0,
             comm: crate::comm::default_comm(),
@@ -117,6 +121,22 @@ impl World {
             next_sort: 0,
             needs_reneighbor: true,
         }
+    }
+
+    /// Adds a mesh, or replaces the mesh of the same ID; returns its index.
+    pub fn add_mesh(&mut self, mesh: crate::wall::MeshSurface) -> usize {
+        if let Some(k) = self.mesh_index(&mesh.id) {
+            self.meshes[k] = mesh;
+            k
+        } else {
+            self.meshes.push(mesh);
+            self.meshes.len() - 1
+        }
+    }
+
+    /// The index of mesh `id` in [`World::meshes`].
+    pub fn mesh_index(&self, id: &str) -> Option<usize> {
+        self.meshes.iter().position(|m| m.id == id)
     }
 
     /// Sets the timestep (must be finite and > 0).
@@ -284,7 +304,7 @@ impl World {
             } else if let FixKind::MeshWall(wall) = &mut fix.kind {
                 self.neighbor.save_history(&self.particles);
                 self.particles.clear_ghosts();
-                wall.setup(&self.materials, &mut self.particles)?;
+                wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
             }
         }
         self.reneighbor()?;
@@ -382,7 +402,7 @@ impl World {
             if let FixKind::WallGran(wall) = &mut fix.kind {
                 wall.build_candidates(&mut self.particles, fix.groupbit, skin);
             } else if let FixKind::MeshWall(wall) = &mut fix.kind {
-                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
+                wall.build_candidates(&self.meshes, &mut self.particles, fix.groupbit, skin);
             }
         }
         self.timers.lap(crate::timers::Stage::Neigh, t4);

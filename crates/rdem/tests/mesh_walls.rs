@@ -11,13 +11,8 @@ const R: f64 = 0.002;
 /// A mesh wall of `tris` (material type 1).
 fn add_mesh(w: &mut World, model: ContactModel, tris: &[[DVec3; 3]]) {
     let (mesh, _) = TriMesh::from_triangles(tris, 1e-12, false).unwrap();
-    let surface = MeshSurface {
-        id: "cad".into(),
-        mesh,
-        wall_type: 1,
-        surface_vel: DVec3::ZERO,
-    };
-    let wall = MeshWall::new("mw", model, vec![surface]).unwrap();
+    let k = w.add_mesh(MeshSurface::new("cad", mesh, 1));
+    let wall = MeshWall::new("mw", model, vec![k]).unwrap();
     w.add_fix(Fix::new("mw", 1, FixKind::MeshWall(Box::new(wall))).unwrap())
         .unwrap();
 }

@@ -199,7 +199,13 @@ impl Fix {
 /// caller finds which). Every fix acts on each particle alone, so the pass runs all fixes
 /// chunk by chunk in parallel (see [`crate::par`]): each particle sees the fixes in the
 /// same order whatever the thread count.
-pub(crate) fn post_force(fixes: &[Fix], p: &mut Particles, dt: f64, update: bool) -> bool {
+pub(crate) fn post_force(
+    fixes: &[Fix],
+    meshes: &[crate::wall::MeshSurface],
+    p: &mut Particles,
+    dt: f64,
+    update: bool,
+) -> bool {
     let n = p.nlocal();
     // The walls' history properties (ID, width), taken out of the particles meanwhile.
     let hist_ids: Vec<Option<(usize, usize)>> = fixes
@@ -220,7 +226,7 @@ pub(crate) fn post_force(fixes: &[Fix], p: &mut Particles, dt: f64, update: bool
             if let FixKind::WallGran(wall) = &fix.kind {
                 wall.apply_range(&view, lo, f, torque, h, dt, update);
             } else if let FixKind::MeshWall(wall) = &fix.kind {
-                wall.apply_range(&view, lo, f, torque, h, dt, update);
+                wall.apply_range(meshes, &view, lo, f, torque, h, dt, update);
             } else if fix.post_force() {
                 fix.post_force_range(&view, lo, f, torque);
             }

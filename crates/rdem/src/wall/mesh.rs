@@ -47,13 +47,25 @@ pub struct MeshSurface {
     pub surface_vel: DVec3,
 }
 
+impl MeshSurface {
+    /// Mesh `id` of material type `wall_type`, at rest.
+    pub fn new(id: &str, mesh: TriMesh, wall_type: u32) -> Self {
+        Self {
+            id: id.to_string(),
+            mesh,
+            wall_type,
+            surface_vel: DVec3::ZERO,
+        }
+    }
+}
+
 /// A granular wall made of meshes.
 #[derive(Debug, Clone)]
 pub struct MeshWall {
     /// Contact model.
     pub model: ContactModel,
-    /// The meshes.
-    pub meshes: Vec<MeshSurface>,
+    /// The meshes: indices into the world's meshes ([`crate::world::World::meshes`]).
+    pub meshes: Vec<usize>,
     /// Name of the per-particle history property.
     pub history_name: String,
     table: CoeffTable,
@@ -121,8 +133,8 @@ struct Touch {
 }
 
 impl MeshWall {
-    /// A wall called `id` (the fix ID) of `meshes`.
-    pub fn new(id: &str, model: ContactModel, meshes: Vec<MeshSurface>) -> Result<Self> {
+    /// A wall called `id` (the fix ID) of `meshes` (indices into the world's meshes).
+    pub fn new(id: &str, model: ContactModel, meshes: Vec<usize>) -> Result<Self> {
         if meshes.is_empty() {
             return Err(Error::Invalid {
                 what: "mesh wall",
@@ -148,9 +160,18 @@ impl MeshWall {
     }
 
     /// Mixes the material table and registers the history property; called before a run.
-    pub fn setup(&mut self, materials: &Materials, p: &mut Particles) -> Result<()> {
+    pub fn setup(
+        &mut self,
+        materials: &Materials,
+        all: &[MeshSurface],
+        p: &mut Particles,
+    ) -> Result<()> {
         self.table = CoeffTable::new(materials, self.model.needs())?;
-        for m in &self.meshes {
+        for &k in &self.meshes {
+            let m = all.get(k).ok_or(Error::Invalid {
+                what: "mesh wall",
+                reason: format!("no mesh {k}"),
+            })?;
             if m.wall_type == 0 || m.wall_type as usize > materials.ntypes {
                 return Err(Error::TypeOutOfRange {
                     ty: m.wall_type,
@@ -171,7 +192,13 @@ impl MeshWall {
 
     /// Lists, for each owned particle of group `groupbit`, the triangles within r + `skin`
     /// (call at every re-neighboring); particles with none get their history cleared.
-    pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
+    pub fn build_candidates(
+        &mut self,
+        all: &[MeshSurface],
+        p: &mut Particles,
+        groupbit: u32,
+        skin: f64,
+    ) {
         let n = p.nlocal();
         let rmax = p.radius[..n].iter().copied().fold(0.0, f64::max);
         let reach = rmax + skin;
@@ -183,7 +210,7 @@ impl MeshWall {
         let grids: Vec<Grid> = self
             .meshes
             .iter()
-            .map(|m| Grid::new(&m.mesh, reach))
+            .map(|&m| Grid::new(&all[m].mesh, reach))
             .collect();
         let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
         let mut found: Vec<(u32, u32)> = Vec::new();
@@ -192,9 +219,9 @@ impl MeshWall {
             if p.mask[i] & groupbit != 0 {
                 let x = p.x[i];
                 let lim = p.radius[i] + skin;
-                for (mi, (m, g)) in self.meshes.iter().zip(&grids).enumerate() {
+                for (mi, (&m, g)) in self.meshes.iter().zip(&grids).enumerate() {
                     for &t in g.near(x) {
-                        let (q, _) = m.mesh.closest_point(t, x);
+                        let (q, _) = all[m].mesh.closest_point(t, x);
                         if (x - q).length_squared() < lim * lim {
                             found.push((mi as u32, t));
                         }
@@ -222,6 +249,7 @@ impl MeshWall {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn apply_range(
         &self,
+        all: &[MeshSurface],
         view: &View,
         lo: usize,
         f: &mut [DVec3],
@@ -236,6 +264,7 @@ impl MeshWall {
         let model = self.model;
         model.dispatch(MeshPass {
             wall: self,
+            all,
             view,
             lo,
             f,
@@ -327,6 +356,7 @@ impl Grid {
 
 struct MeshPass<'a> {
     wall: &'a MeshWall,
+    all: &'a [MeshSurface],
     view: &'a View<'a>,
     lo: usize,
     f: &'a mut [DVec3],
@@ -341,6 +371,7 @@ impl Visitor for MeshPass<'_> {
     fn visit<K: ContactKernel>(self) {
         let MeshPass {
             wall,
+            all: surfaces,
             view: p,
             lo,
             f,
@@ -373,7 +404,7 @@ impl Visitor for MeshPass<'_> {
             let (x, r) = (p.x[i], p.radius[i]);
             let mut nt = 0;
             for &(mi, t) in cands {
-                let mesh = &wall.meshes[mi as usize].mesh;
+                let mesh = &surfaces[wall.meshes[mi as usize]].mesh;
                 let (q, feature) = mesh.closest_point(t, x);
                 let (n, dist) = if let Feature::Face(t) = feature {
                     // On the face: the plane distance (exact for axis-aligned planes).
@@ -414,7 +445,7 @@ impl Visitor for MeshPass<'_> {
             }
             let all = &found[..nd];
             for (q, c) in all.iter().enumerate() {
-                let mesh = &wall.meshes[c.mesh as usize].mesh;
+                let mesh = &surfaces[wall.meshes[c.mesh as usize]].mesh;
                 keep[q] = match c.feature {
                     Feature::Face(_) => true,
                     Feature::Edge(e) => !all.iter().any(|o| {
@@ -454,7 +485,7 @@ impl Visitor for MeshPass<'_> {
                 if slot_of[c] != usize::MAX {
                     continue;
                 }
-                let mesh = &wall.meshes[t.mesh as usize].mesh;
+                let mesh = &surfaces[wall.meshes[t.mesh as usize]].mesh;
                 let near = (0..SLOTS).find(|&s| {
                     !taken[s]
                         && unkey(old[s * stride]).is_some_and(|(m, f)| {
@@ -479,7 +510,7 @@ impl Visitor for MeshPass<'_> {
                     let s = slot_of[c];
                     hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
                 }
-                let surface = &wall.meshes[t.mesh as usize];
+                let surface = &surfaces[wall.meshes[t.mesh as usize]];
                 let vr = p.v[i] - surface.surface_vel;
                 let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
