@@ -13,7 +13,7 @@ use crate::sim::Sim;
 use crate::{dump, fixes, models, run, thermo};
 
 /// Commands handled here.
-pub const SIM_COMMANDS: [&str; 39] = [
+pub const SIM_COMMANDS: [&str; 41] = [
     "atom_style",
     "atom_modify",
     "boundary",
@@ -50,15 +50,15 @@ pub const SIM_COMMANDS: [&str; 39] = [
     "undump",
     "write_dump",
     "write_data",
+    "write_restart",
+    "read_restart",
     "soft_particles",
     "modify_timing",
     "atom_modify_sort",
 ];
 
 /// LIGGGHTS commands outside this release.
-const LATER: [(&str, &str); 8] = [
-    ("read_restart", "restart files"),
-    ("write_restart", "restart files"),
+const LATER: [(&str, &str); 6] = [
     ("bond_style", "bonds"),
     ("bond_coeff", "bonds"),
     ("create_bonds", "bonds"),
@@ -159,7 +159,7 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
         "lattice" => lattice_cmd(sim, a)?,
         "create_box" => create_box(sim, a)?,
         "create_atoms" => create_atoms(sim, a)?,
-        "read_data" => read_data(sim, a)?,
+        "read_data" | "read_restart" => read_data(sim, a)?,
         "delete_atoms" => delete_atoms(sim, a)?,
         "set" => set(sim, a)?,
         "velocity" => velocity(sim, a)?,
@@ -253,10 +253,17 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
         "dump_modify" => dump::dump_modify(sim, a)?,
         "undump" => dump::undump(sim, a)?,
         "write_dump" => dump::write_dump(sim, a)?,
-        "write_data" => {
+        // rdem's restart files are portable data files (particles, box, step); the
+        // LIGGGHTS binary restart format is not written or read.
+        "write_data" | "write_restart" => {
+            let restart = a.name() == "write_restart";
             let f = a.word("file name")?;
             while !a.is_done() {
-                a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
+                if restart {
+                    a.keyword("write_restart keyword", &[])?;
+                } else {
+                    a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
+                }
             }
             let ntypes = sim.ntypes as u32;
             let w = sim.world_ref(a)?;
@@ -807,6 +814,20 @@ fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         w.particles.image[i] = image;
     }
     sim.out.line(&format!("  {} atoms", data.atoms.len()));
+    if a.name() == "read_restart" {
+        // The step written by write_restart (or write_data) into the title line.
+        w.step = data
+            .title
+            .rsplit_once("timestep = ")
+            .and_then(|(_, n)| n.trim().parse().ok())
+            .ok_or_else(|| {
+                a.error_at(
+                    1,
+                    format!("{file}: not an rdem restart file (no 'timestep = N' in its title)"),
+                    None,
+                )
+            })?;
+    }
     sim.ntypes = data.ntypes as usize;
     sim.world = Some(w);
     Ok(())

@@ -16,7 +16,7 @@ use crate::sim::{FixEntry, Property, Sim};
 use crate::variables::format_g;
 
 /// Fix styles rdem runs.
-pub const STYLES: [&str; 20] = [
+pub const STYLES: [&str; 22] = [
     "property/global",
     "mesh/surface",
     "particletemplate/sphere",
@@ -25,6 +25,8 @@ pub const STYLES: [&str; 20] = [
     "particledistribution/discrete/numberbased",
     "insert/pack",
     "insert/rate/region",
+    "insert/stream",
+    "massflow/mesh",
     "nve/sphere",
     "gravity",
     "freeze",
@@ -40,11 +42,10 @@ pub const STYLES: [&str; 20] = [
 ];
 
 /// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
-const LATER: [(&str, &str); 7] = [
+const LATER: [(&str, &str); 6] = [
     ("mesh/surface/stress", "meshes"),
     ("mesh/surface/planar", "meshes"),
     ("move/mesh", "meshes"),
-    ("insert/stream", "stream insertion"),
     ("bond/gran", "bonds"),
     ("wall/gran/hooke/history", "old-style wall models"),
     ("particletemplate/multisphere", "multisphere particles"),
@@ -54,10 +55,28 @@ const LATER: [(&str, &str); 7] = [
 /// at it).
 const STYLE_WORD: usize = 3;
 
-/// Insertion bookkeeping shared by insert/pack and insert/rate/region.
+/// The engine part of an insertion fix.
+pub enum InsertEngine {
+    /// `insert/pack`, `insert/rate/region`.
+    Pack(InsertPack),
+    /// `insert/stream`.
+    Stream(rdem::insert::InsertStream),
+}
+
+impl InsertEngine {
+    /// True if an insertion is due at `step`.
+    pub fn due(&self, step: u64) -> bool {
+        match self {
+            Self::Pack(p) => p.due(step),
+            Self::Stream(s) => s.due(step),
+        }
+    }
+}
+
+/// Insertion bookkeeping shared by the insertion fixes.
 pub struct Inserter {
     /// Engine insertion (placement rules, generator, state).
-    pub pack: InsertPack,
+    pub pack: InsertEngine,
     /// Particles inserted so far.
     pub total: u64,
     /// Their mass.
@@ -154,8 +173,51 @@ pub struct AveEuler {
     pub step: u64,
 }
 
+/// `fix massflow/mesh`: the engine's counter and the output rates.
+pub struct MassFlowFix {
+    /// Totals and settings.
+    pub flow: rdem::massflow::MassFlow,
+    /// (step, mass, count) when the rates were last evaluated (`None`: the run start).
+    pub last: std::cell::Cell<Option<(u64, f64, u64)>>,
+    /// (step, mass rate, number rate) of the last evaluation.
+    pub rates: std::cell::Cell<(u64, f64, f64)>,
+}
+
+impl MassFlowFix {
+    /// `f_ID[1..6]`: mass, count, mass rate and number rate since the last evaluation
+    /// at an earlier step (the previous thermo output), deleted mass and count.
+    fn values(&self, step: u64, dt: f64) -> [f64; 6] {
+        let f = &self.flow;
+        let (s, mr, nr) = self.rates.get();
+        let (mr, nr) = if s == step {
+            (mr, nr)
+        } else {
+            let (s0, m0, c0) = self.last.get().unwrap_or((0, 0.0, 0));
+            let t = step.saturating_sub(s0) as f64 * dt;
+            let r = if t > 0.0 {
+                ((f.mass - m0) / t, (f.count - c0) as f64 / t)
+            } else {
+                (0.0, 0.0)
+            };
+            self.last.set(Some((step, f.mass, f.count)));
+            self.rates.set((step, r.0, r.1));
+            r
+        };
+        [
+            f.mass,
+            f.count as f64,
+            mr,
+            nr,
+            f.deleted_mass,
+            f.deleted as f64,
+        ]
+    }
+}
+
 /// Front-end part of a fix.
 pub enum FrontFix {
+    /// `massflow/mesh`.
+    MassFlow(Box<MassFlowFix>),
     /// `mesh/surface`: a mesh (in `World::meshes` under the fix ID) that `wall/gran ...
     /// mesh` walls, mesh motions, insertion faces and mesh dumps use.
     Mesh,
@@ -201,6 +263,10 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
         FrontFix::CheckTimestep(c) => pick(&c.values),
         FrontFix::AveTime(a) => pick(&a.values),
         FrontFix::Insert(ins) => pick(&[ins.total as f64, ins.total_mass]),
+        FrontFix::MassFlow(mf) => {
+            let w = sim.world.as_ref().ok_or("no simulation box")?;
+            pick(&mf.values(w.step, w.dt))
+        }
         FrontFix::Property(name) => {
             let p = &sim.properties[name];
             pick(&p.values)
@@ -250,7 +316,10 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
         "particletemplate/sphere" => template(sim, a, &id)?,
         s if s.starts_with("particledistribution/discrete") => distribution(sim, a, &id, s)?,
-        "insert/pack" | "insert/rate/region" => insert(sim, a, &id, groupbit, style)?,
+        "insert/pack" | "insert/rate/region" | "insert/stream" => {
+            insert(sim, a, &id, groupbit, style)?
+        }
+        "massflow/mesh" => massflow(sim, a, &id, groupbit)?,
         "mesh/surface" => {
             let mesh = mesh_surface(sim, a, &id)?;
             sim.world_mut(a)?.add_mesh(mesh);
@@ -612,9 +681,10 @@ fn insert(
     groupbit: u32,
     style: &str,
 ) -> CmdResult<FrontFix> {
-    let rate = style == "insert/rate/region";
-    // Keywords of both styles, then each style's own (in LIGGGHTS' manual order).
-    const COMMON: [&str; 11] = [
+    let stream = style == "insert/stream";
+    let rate = style == "insert/rate/region" || stream;
+    // Keywords of every style, then each style's own (in LIGGGHTS' manual order).
+    const COMMON: [&str; 10] = [
         "seed",
         "distributiontemplate",
         "verbose",
@@ -625,9 +695,21 @@ fn insert(
         "random_distribute",
         "vel",
         "omega",
-        "region",
     ];
-    let own: &[&'static str] = if rate {
+    let own: &[&'static str] = if stream {
+        &[
+            "nparticles",
+            "mass",
+            "particlerate",
+            "massrate",
+            "start",
+            "compress_tags",
+            "insertion_face",
+            "extrude_length",
+            "duration",
+            "parallel",
+        ]
+    } else if rate {
         &[
             "nparticles",
             "mass",
@@ -636,9 +718,11 @@ fn insert(
             "ntry_mc",
             "start",
             "compress_tags",
+            "region",
         ]
     } else {
         &[
+            "region",
             "volumefraction_region",
             "particles_in_region",
             "mass_in_region",
@@ -677,9 +761,25 @@ fn insert(
     let mut omega = DVec3::ZERO;
     let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
     let mut every_once = false;
+    let (mut face, mut extrude) = (None, None);
     while !a.is_done() {
         let k = a.keyword(&format!("{style} keyword"), valid)?;
         match k {
+            "insertion_face" => {
+                let at = a.pos();
+                face = Some((
+                    at,
+                    mesh_ref(sim, a, "insertion face (a fix mesh/surface ID)")?,
+                ));
+            }
+            "extrude_length" => extrude = Some(a.positive("extrude_length")?),
+            "duration" => return Err(a.error_prev(
+                "insert/stream 'duration' (pulsed streams) is not supported by this rdem release",
+                Some("leave it out for a continuous stream".into()),
+            )),
+            "parallel" => {
+                a.yes_no("parallel")?;
+            }
             "distributiontemplate" => {
                 let d = a.word("distribution template ID")?;
                 dist = Some(sim.distributions.get(d).cloned().ok_or_else(|| {
@@ -762,10 +862,39 @@ fn insert(
             None,
         )
     })?;
-    let region =
-        region.ok_or_else(|| a.error_at(STYLE_WORD, format!("{style} needs 'region ID'"), None))?;
     sim.world_ref(a)?;
     let dt = sim.pending.dt;
+    if stream {
+        return insert_stream(
+            sim,
+            a,
+            StreamArgs {
+                id,
+                seed,
+                groupbit,
+                dist,
+                face,
+                extrude,
+                every,
+                nparticles,
+                massmax,
+                prate,
+                mrate,
+                dt,
+            },
+            |s| {
+                s.overlap_check = overlap;
+                s.all_in = all_in;
+                s.max_attempt = maxattempt;
+                s.omega = omega;
+                s.start = start;
+            },
+            vel,
+            verbose,
+        );
+    }
+    let region =
+        region.ok_or_else(|| a.error_at(STYLE_WORD, format!("{style} needs 'region ID'"), None))?;
     let (target, rate_state) = if rate {
         let every = every.ok_or_else(|| {
             a.error_at(
@@ -844,11 +973,172 @@ fn insert(
     pack.omega = omega;
     pack.start = start;
     Ok(FrontFix::Insert(Box::new(Inserter {
-        pack,
+        pack: InsertEngine::Pack(pack),
         total: 0,
         total_mass: 0.0,
         rate: rate_state,
         verbose,
+    })))
+}
+
+/// What `fix insert/stream` was given (besides the settings every insertion has).
+struct StreamArgs<'a> {
+    id: &'a str,
+    seed: u64,
+    groupbit: u32,
+    dist: Distribution,
+    /// (word position, mesh index).
+    face: Option<(usize, usize)>,
+    extrude: Option<f64>,
+    every: Option<u64>,
+    nparticles: Option<Option<u64>>,
+    massmax: Option<f64>,
+    prate: Option<f64>,
+    mrate: Option<f64>,
+    dt: f64,
+}
+
+/// `fix insert/stream`: checks the keyword combinations LIGGGHTS requires and builds
+/// the engine's stream.
+fn insert_stream(
+    sim: &mut Sim,
+    a: &mut Args,
+    s: StreamArgs,
+    settings: impl FnOnce(&mut rdem::insert::InsertStream),
+    vel: VelocityLaw,
+    verbose: bool,
+) -> CmdResult<FrontFix> {
+    use rdem::insert::stream::Extrusion;
+    let err = |a: &Args, msg: &str| a.error_at(STYLE_WORD, msg.to_string(), None);
+    let Some((face_at, mesh)) = s.face else {
+        return Err(err(a, "insert/stream needs 'insertion_face MESH-ID'"));
+    };
+    let extrusion = match (s.extrude, s.every) {
+        (Some(l), None) => Extrusion::Length(l),
+        (None, Some(n)) => Extrusion::Every(n),
+        (Some(_), Some(_)) => {
+            return Err(err(
+                a,
+                "insert/stream takes 'extrude_length' or 'insert_every', not both",
+            ))
+        }
+        (None, None) => {
+            return Err(err(
+                a,
+                "insert/stream needs 'extrude_length L' or 'insert_every N'",
+            ))
+        }
+    };
+    let limit = match (s.nparticles, s.massmax) {
+        (Some(n), None) => n,
+        (None, Some(m)) => Some((m / s.dist.mean_particle_mass()).round() as u64),
+        (None, None) => {
+            return Err(err(
+                a,
+                "insert/stream needs 'nparticles N' (or INF) or 'mass M'",
+            ))
+        }
+        (Some(_), Some(_)) => return Err(err(a, "give either nparticles or mass, not both")),
+    };
+    let rate = match (s.prate, s.mrate) {
+        (Some(r), None) => r,
+        (None, Some(m)) => m / s.dist.mean_particle_mass(),
+        _ => {
+            return Err(err(
+                a,
+                "insert/stream needs exactly one of 'particlerate' or 'massrate'",
+            ))
+        }
+    };
+    let w = sim.world_ref(a)?;
+    let face = &w.meshes[mesh].mesh;
+    let mut st = rdem::insert::InsertStream::new(
+        s.id, s.seed, s.groupbit, s.dist, mesh, face, vel, rate, extrusion, s.dt,
+    )
+    .map_err(|e| a.error_at(face_at, e.to_string(), None))?;
+    st.limit = limit;
+    settings(&mut st);
+    if verbose {
+        sim.out.line(&format!(
+            "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}, (mass rate {:.6e})",
+            s.id,
+            st.per_insertion,
+            st.every,
+            rate,
+            rate * st.dist.mean_particle_mass()
+        ));
+    }
+    Ok(FrontFix::Insert(Box::new(Inserter {
+        pack: InsertEngine::Stream(st),
+        total: 0,
+        total_mass: 0.0,
+        rate: None,
+        verbose,
+    })))
+}
+
+/// Reads a mesh ID (a `fix mesh/surface`) and returns its index in the world's meshes.
+fn mesh_ref(sim: &Sim, a: &mut Args, what: &str) -> CmdResult<usize> {
+    let at = a.pos();
+    let mid = a.word(what)?;
+    let found = sim.world.as_ref().and_then(|w| w.mesh_index(mid));
+    found.ok_or_else(|| {
+        let ids: Vec<&str> = sim
+            .world
+            .iter()
+            .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+            .collect();
+        a.error_at(
+            at,
+            format!("no mesh '{mid}' (define it with fix mesh/surface first)"),
+            Some(suggest(mid, &ids)),
+        )
+    })
+}
+
+/// `fix ID group massflow/mesh mesh MESH vec_side x y z [count once|multiple]
+/// [delete_atoms yes|no] [screen yes|no]`.
+fn massflow(sim: &mut Sim, a: &mut Args, id: &str, groupbit: u32) -> CmdResult<FrontFix> {
+    a.keyword("massflow/mesh keyword", &["mesh"])?;
+    let mesh_at = a.pos();
+    let mesh = mesh_ref(sim, a, "mesh ID (a fix mesh/surface)")?;
+    const KEYS: [&str; 5] = ["vec_side", "count", "delete_atoms", "screen", "writeTime"];
+    const LATER_KEYS: [&str; 5] = ["point_at_outlet", "inside_out", "file", "append", "lambda"];
+    let (mut side, mut once, mut delete) = (None, false, false);
+    while let Some(w) = a.peek() {
+        if LATER_KEYS.contains(&w) {
+            a.seek(a.pos() + 1);
+            return Err(a.error_prev(
+                format!("massflow/mesh keyword '{w}' is not supported by this rdem release yet"),
+                Some(format!("supported: {}", KEYS.join(", "))),
+            ));
+        }
+        match a.keyword("massflow/mesh keyword", &KEYS)? {
+            "vec_side" => side = Some(a.vec3("vec_side")?),
+            "count" => once = a.keyword("count", &["once", "multiple"])? == "once",
+            "delete_atoms" => delete = a.yes_no("delete_atoms")?,
+            "screen" => {
+                a.yes_no("screen")?;
+            }
+            _ => {}
+        }
+    }
+    let Some(side) = side else {
+        return Err(a.error_at(
+            STYLE_WORD,
+            "massflow/mesh needs 'vec_side vx vy vz' (the outer side of the face)",
+            None,
+        ));
+    };
+    let w = sim.world_ref(a)?;
+    let mut mf = rdem::massflow::MassFlow::new(id, mesh, &w.meshes[mesh].mesh, groupbit, side)
+        .map_err(|e| a.error_at(mesh_at, e.to_string(), None))?;
+    mf.once = once;
+    mf.delete = delete;
+    Ok(FrontFix::MassFlow(Box::new(MassFlowFix {
+        flow: mf,
+        last: std::cell::Cell::new(None),
+        rates: std::cell::Cell::new((u64::MAX, 0.0, 0.0)),
     })))
 }
 

@@ -9,7 +9,7 @@ use rdem::Materials;
 
 use crate::args::{Args, CmdResult};
 use crate::context;
-use crate::fixes::{self, FrontFix};
+use crate::fixes::{self, FrontFix, InsertEngine};
 use crate::sim::Sim;
 use crate::thermo;
 
@@ -262,16 +262,17 @@ fn advance(sim: &mut Sim, step: u64) -> Result<(), String> {
     let result = w.advance_with(|w| {
         for (k, f) in taken.iter_mut() {
             let FrontFix::Insert(ins) = f else { continue };
-            let rep = match &mut ins.rate {
-                None => ins.pack.insert(w)?,
-                Some(r) => {
+            let rep = match (&mut ins.pack, &mut ins.rate) {
+                (InsertEngine::Stream(st), _) => st.insert(w)?,
+                (InsertEngine::Pack(pack), None) => pack.insert(w)?,
+                (InsertEngine::Pack(pack), Some(r)) => {
                     let want = r.per_insertion + r.carry;
                     let mut n = want.floor() as u64;
                     r.carry = want - n as f64;
                     if let Some(lim) = r.limit {
                         n = n.min(lim.saturating_sub(ins.total));
                     }
-                    ins.pack.insert_n(w, n)?
+                    pack.insert_n(w, n)?
                 }
             };
             ins.total += rep.inserted;
@@ -362,6 +363,11 @@ fn reset_adapt(sim: &mut Sim) -> Result<(), String> {
 fn end_of_step(sim: &mut Sim, step: u64) -> Result<(), String> {
     crate::euler::end_of_step(sim, step, false)?;
     for k in 0..sim.fixes.len() {
+        if let FrontFix::MassFlow(mf) = &mut sim.fixes[k].kind {
+            let w = sim.world.as_mut().expect("a run has a world");
+            mf.flow.update(w).map_err(|e| e.to_string())?;
+            continue;
+        }
         match &sim.fixes[k].kind {
             FrontFix::CheckTimestep(c) if step % c.every == 0 => {
                 let (fr, fh, vmax, warn, error) =

@@ -15,6 +15,7 @@ pub mod error;
 pub mod euler;
 pub mod fix;
 pub mod insert;
+pub mod massflow;
 pub mod mesh;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;

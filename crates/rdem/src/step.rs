@@ -156,6 +156,7 @@ impl World {
             self.dt,
             update,
         );
+        self.hold_streamed();
         let t4 = self.timers.lap(Stage::Modify, t3);
         if !finite || self.comm.size() > 1 {
             let p = &self.particles;
@@ -163,6 +164,24 @@ impl World {
         }
         self.timers.lap(Stage::Other, t4);
         Ok(())
+    }
+
+    /// Zeroes the force and torque of particles an `insert/stream` still holds (they fly
+    /// at their insertion velocity until they reach the insertion face).
+    fn hold_streamed(&mut self) {
+        let p = &mut self.particles;
+        let Some(id) = p.property(crate::insert::stream::HOLD_PROPERTY) else {
+            return;
+        };
+        let step = self.step as f64;
+        let n = p.nlocal();
+        let held = &p.props[id.0].data[..n];
+        for (i, &release) in held.iter().enumerate() {
+            if release > step {
+                p.f[i] = DVec3::ZERO;
+                p.torque[i] = DVec3::ZERO;
+            }
+        }
     }
 
     /// Stops with the first particle whose `a` or `b` (named `names`) is not finite. One

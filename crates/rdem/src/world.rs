@@ -160,6 +160,19 @@ impl World {
         Ok(i)
     }
 
+    /// Removes the owned particles whose `remove` entry is true (their contact history
+    /// goes with them); the next step re-neighbors.
+    pub fn remove_particles(&mut self, remove: &[bool]) -> usize {
+        if self.particles.nghost() > 0 {
+            self.neighbor.save_history(&self.particles);
+            self.particles.clear_ghosts();
+        }
+        let n = self.particles.remove_locals(remove);
+        self.needs_reneighbor = true;
+        self.virial_step = None;
+        n
+    }
+
     /// Adds a fix (its ID must be new).
     pub fn add_fix(&mut self, fix: Fix) -> Result<()> {
         if self.fixes.iter().any(|f| f.id == fix.id) {

@@ -6,10 +6,13 @@
 
 pub mod distribution;
 pub mod pack;
+mod place;
+pub mod stream;
 pub mod template;
 
 pub use distribution::{Distribution, Weighting};
 pub use pack::{InsertPack, InsertReport, PackTarget, VelocityLaw};
+pub use stream::{InsertStream, StreamFace};
 pub use template::{ParticleTemplate, RadiusDist};
 
 /// The generator used for insertion: PCG64, reproducible across platforms and crate

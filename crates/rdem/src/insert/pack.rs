@@ -6,8 +6,8 @@
 
 use glam::DVec3;
 use rand::Rng;
-use rand_distr::{Distribution as _, Normal};
 
+use super::place::{choose, OverlapGrid};
 use super::{Distribution, InsertRng};
 use crate::error::{check, Error, Result};
 use crate::particles::NewParticle;
@@ -145,29 +145,6 @@ impl InsertPack {
         }
     }
 
-    fn velocity(&mut self) -> DVec3 {
-        match self.velocity {
-            VelocityLaw::Constant(v) => v,
-            VelocityLaw::Uniform(m, d) => DVec3::new(
-                m.x + d.x * (self.rng.gen::<f64>() - 0.5) * 2.0,
-                m.y + d.y * (self.rng.gen::<f64>() - 0.5) * 2.0,
-                m.z + d.z * (self.rng.gen::<f64>() - 0.5) * 2.0,
-            ),
-            VelocityLaw::Gaussian(m, s) => {
-                let mut c = |mu: f64, sigma: f64| {
-                    if sigma > 0.0 {
-                        Normal::new(mu, sigma)
-                            .map(|n| n.sample(&mut self.rng))
-                            .unwrap_or(mu)
-                    } else {
-                        mu
-                    }
-                };
-                DVec3::new(c(m.x, s.x), c(m.y, s.y), c(m.z, s.z))
-            }
-        }
-    }
-
     /// Inserts into `world` at its current step (call when [`InsertPack::due`]).
     pub fn insert(&mut self, world: &mut World) -> Result<InsertReport> {
         self.last = Some(world.step);
@@ -228,19 +205,6 @@ impl InsertPack {
     /// Places up to `wanted` particles; returns how many and their mass.
     fn place(&mut self, world: &mut World, wanted: u64) -> Result<(u64, f64)> {
         let domain = (world.domain.boxlo, world.domain.boxhi);
-        let p = &world.particles;
-        let n = p.nlocal();
-        let counts = self.dist.counts_for(wanted as usize);
-        // Existing particles (of every rank) near the region, for the overlap check: each
-        // rank then places the same particles with the same random numbers, and keeps
-        // those in its extended subdomain (seed 000), so the result does not depend on
-        // the number of ranks.
-        let rmax = world.comm.max(
-            p.radius[..n]
-                .iter()
-                .copied()
-                .fold(self.dist.max_radius(), f64::max),
-        );
         // Seed 000: a subdomain thinner than 2.2 bounding radii along some axis makes the
         // insertion unreliable across its faces.
         let (ext, axis) = world.domain.min_subbox_extent();
@@ -253,100 +217,44 @@ impl InsertPack {
                 ["x", "y", "z"][axis]
             ));
         }
-        let near: Vec<f64> = if self.overlap_check {
-            let reach = DVec3::splat(2.0 * rmax);
-            let bb = self.region.bounding_box();
-            let mut mine = Vec::new();
-            for i in 0..n {
-                let x = p.x[i];
-                let inside = bb
-                    .is_none_or(|(lo, hi)| x.cmpge(lo - reach).all() && x.cmple(hi + reach).all());
-                if inside {
-                    mine.extend_from_slice(&[x.x, x.y, x.z, p.radius[i]]);
+        let mut grid = self
+            .overlap_check
+            .then(|| OverlapGrid::gather(world, self.region.bounding_box(), rbound));
+        let region = &self.region;
+        let all_in = self.all_in;
+        // A try is a position where the sphere fits the region (LIGGGHTS draws from the
+        // region shrunk by the radius), so positions too close to the boundary are drawn
+        // again without using up a try.
+        let placed = choose(
+            &mut self.dist,
+            &mut self.rng,
+            wanted,
+            self.max_attempt,
+            grid.as_mut(),
+            |rng, r| {
+                for _ in 0..1000 {
+                    match region.sample(domain, || rng.gen(), 1000) {
+                        Some(y) if !all_in || region.contains_sphere(y, r) => return Some(y),
+                        Some(_) => {}
+                        None => return None,
+                    }
                 }
-            }
-            world.comm.all_gather(&mine)
-        } else {
-            Vec::new()
-        };
-        // Existing particles on a grid for the overlap check.
-        let cell = 2.0 * rmax;
-        let mut grid: std::collections::HashMap<[i64; 3], Vec<(DVec3, f64)>> =
-            std::collections::HashMap::new();
-        let key = |x: DVec3| {
-            [
-                (x.x / cell).floor() as i64,
-                (x.y / cell).floor() as i64,
-                (x.z / cell).floor() as i64,
-            ]
-        };
-        for c in near.chunks_exact(4) {
-            let x = DVec3::new(c[0], c[1], c[2]);
-            grid.entry(key(x)).or_default().push((x, c[3]));
-        }
+                None
+            },
+            self.velocity,
+        );
         let (mut inserted, mut mass) = (0u64, 0.0);
-        // `maxattempt` tries per particle, pooled over the insertion as LIGGGHTS does: a
-        // particle that is hard to place may use the tries the easy ones did not need.
-        let mut budget = wanted.saturating_mul(self.max_attempt.max(1) as u64);
-        for (k, &count) in counts.iter().enumerate() {
-            for _ in 0..count {
-                let r = self.dist.templates[k].draw_radius();
-                let mut placed = None;
-                while budget > 0 {
-                    budget -= 1;
-                    // A try is a position where the sphere fits the region (LIGGGHTS
-                    // draws from the region shrunk by the radius), so positions too
-                    // close to the boundary are drawn again without using up a try.
-                    let rng = &mut self.rng;
-                    let region = &self.region;
-                    let all_in = self.all_in;
-                    let mut x = None;
-                    for _ in 0..1000 {
-                        match region.sample(domain, || rng.gen(), 1000) {
-                            Some(y) if !all_in || region.contains_sphere(y, r) => {
-                                x = Some(y);
-                                break;
-                            }
-                            Some(_) => {}
-                            None => break,
-                        }
-                    }
-                    let Some(x) = x else { break };
-                    let free = !self.overlap_check || {
-                        let c = key(x);
-                        !(-1..=1).any(|dz| {
-                            (-1..=1).any(|dy| {
-                                (-1..=1).any(|dx| {
-                                    grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz])
-                                        .is_some_and(|v| {
-                                            v.iter().any(|&(y, ry)| {
-                                                (x - y).length_squared() < (r + ry) * (r + ry)
-                                            })
-                                        })
-                                })
-                            })
-                        })
-                    };
-                    if free {
-                        placed = Some(x);
-                        break;
-                    }
-                }
-                let Some(x) = placed else { continue };
-                let t = &self.dist.templates[k];
-                let mut np = NewParticle::at(x, r, t.density)
-                    .with_type(t.ty)
-                    .with_omega(self.omega);
-                np.v = self.velocity();
-                np.mask = 1 | self.groupbit;
-                mass += crate::particles::sphere_mass(np.density, r);
-                inserted += 1;
-                if world.owns_inserted(x) {
-                    world.add_particle(&np)?;
-                }
-                if self.overlap_check {
-                    grid.entry(key(x)).or_default().push((x, r));
-                }
+        for pl in placed {
+            let t = &self.dist.templates[pl.template];
+            let mut np = NewParticle::at(pl.x, pl.radius, t.density)
+                .with_type(t.ty)
+                .with_omega(self.omega);
+            np.v = pl.v;
+            np.mask = 1 | self.groupbit;
+            mass += crate::particles::sphere_mass(np.density, pl.radius);
+            inserted += 1;
+            if world.owns_inserted(pl.x) {
+                world.add_particle(&np)?;
             }
         }
         world.extend_tags();

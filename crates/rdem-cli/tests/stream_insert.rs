@@ -1,0 +1,253 @@
+//! `fix insert/stream` (a packet of particles through a planar face every time the
+//! stream has crossed the extrusion), `fix massflow/mesh` (mass and count through a
+//! face) and the portable restart files (`write_restart` / `read_restart`).
+
+mod common;
+
+use common::{run_with_files_raw, thermo_rows};
+
+/// A 0.1 m square in the plane z = `z` (two triangles), ASCII STL.
+fn square(z: f64) -> String {
+    let v = |x: f64, y: f64| format!("vertex {x} {y} {z}\n");
+    format!(
+        "solid face\nfacet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\n\
+         facet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\nendsolid face\n",
+        v(-0.05, -0.05),
+        v(0.05, -0.05),
+        v(0.05, 0.05),
+        v(-0.05, -0.05),
+        v(0.05, 0.05),
+        v(-0.05, 0.05)
+    )
+}
+
+const HEAD: &str = "atom_style granular
+boundary f f f
+units si
+region box block -0.1 0.1 -0.1 0.1 -0.5 0.3 units box
+create_box 1 box
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-4
+fix g all gravity 9.81 vector 0 0 -1
+fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 10037 1 pts 1.0
+fix face all mesh/surface file face.stl type 1
+fix nve all nve/sphere
+compute vz all property/atom vz
+compute vmax all reduce max c_vz
+compute vmin all reduce min c_vz
+variable zlo equal bound(all,zmin)
+variable zhi equal bound(all,zmax)
+thermo_style custom step atoms c_vmax c_vmin v_zlo v_zhi
+thermo_modify norm no format float %.15g
+";
+
+fn run(script: &str) -> Vec<Vec<f64>> {
+    let stl = square(0.1);
+    let out = run_with_files_raw(script, &[("face.stl", &stl)], None);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    thermo_rows(&text)
+}
+
+/// Streaming down at 2 m/s through the face z = 0.1 from a 0.05 m extrusion with
+/// dt = 1e-4: a packet every floor(0.05 / (2 · 1e-4)) = 250 steps of
+/// 2000 /s · 250 · 1e-4 = 50 particles, until 120 are in (50, 50, 20 at steps 1, 251,
+/// 501). Packets are placed whole inside the extrusion (`all_in yes`: 0.104 ≤ z ≤ 0.146)
+/// and fly at exactly the insertion velocity, untouched by gravity, until they reach the
+/// face; below it gravity acts.
+#[test]
+fn packets_stream_through_the_face() {
+    let script = format!(
+        "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 120 \
+         particlerate 2000 vel constant 0 0 -2 overlapcheck yes all_in yes \
+         insertion_face face extrude_length 0.05
+thermo 50
+run 1
+run 699
+"
+    );
+    let rows = run(&script);
+    let at = |step: f64| {
+        rows.iter()
+            .rev()
+            .find(|r| r[0] == step)
+            .unwrap_or_else(|| panic!("no thermo row at step {step}: {rows:?}"))
+            .clone()
+    };
+    let r1 = at(1.0);
+    assert_eq!(r1[1], 50.0, "{r1:?}");
+    assert_eq!(r1[2], -2.0, "inserted at the stream velocity: {r1:?}");
+    assert_eq!(r1[3], -2.0, "{r1:?}");
+    assert!(r1[4] >= 0.104 - 1e-12 && r1[5] <= 0.146 + 1e-12, "{r1:?}");
+    // Step 201: the packet has moved 0.04 m; the particles not yet at the face still fly
+    // at exactly -2 m/s, those below it have gained at most g · 200 dt.
+    let r = at(200.0);
+    assert_eq!(r[1], 50.0);
+    assert_eq!(r[2], -2.0, "a held particle was accelerated: {r:?}");
+    assert!(r[3] < -2.05 && r[3] >= -2.0 - 9.81 * 0.02 - 1e-9, "{r:?}");
+    assert_eq!(at(250.0)[1], 50.0);
+    assert_eq!(at(300.0)[1], 100.0);
+    assert_eq!(at(500.0)[1], 100.0);
+    assert_eq!(at(550.0)[1], 120.0);
+    assert_eq!(at(700.0)[1], 120.0, "nparticles reached: no more packets");
+}
+
+/// A particle rate through `insert_every` (the extrusion follows: 100 steps · 1e-4 s ·
+/// 2 m/s = 0.02 m), and `mass` instead of a count: 30 particles' mass gives 30.
+#[test]
+fn insert_every_and_mass_limits() {
+    let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.004f64.powi(3);
+    let script = format!(
+        "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd mass {} \
+         particlerate 1000 insert_every 100 vel constant 0 0 -2 overlapcheck yes \
+         insertion_face face
+thermo 100
+run 400
+",
+        30.0 * m
+    );
+    let rows = run(&script);
+    let atoms: Vec<f64> = rows.iter().map(|r| r[1]).collect();
+    // 10 per packet at steps 1, 101, 201.
+    assert_eq!(atoms, [0.0, 10.0, 20.0, 30.0, 30.0], "{rows:?}");
+    let last = rows.last().unwrap();
+    assert!(last[4] >= -0.5, "{last:?}");
+}
+
+/// Bad combinations are refused with the line and the keyword to fix.
+#[test]
+fn stream_errors_are_located() {
+    let cases = [
+        (
+            "insertion_face nowhere extrude_length 0.05",
+            "no mesh 'nowhere'",
+        ),
+        (
+            "insertion_face face",
+            "needs 'extrude_length L' or 'insert_every N'",
+        ),
+        (
+            "insertion_face face extrude_length 0.05 insert_every 10",
+            "not both",
+        ),
+    ];
+    for (tail, want) in cases {
+        let script = format!(
+            "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 10 \
+             particlerate 1000 vel constant 0 0 -2 {tail}\nrun 1\n"
+        );
+        let out = run_with_files_raw(&script, &[("face.stl", &square(0.1))], None);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success());
+        assert!(err.contains(want), "{tail}: {err}");
+        assert!(err.contains("in.test:"), "{err}");
+    }
+    // A velocity along the face.
+    let script = format!(
+        "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 10 \
+         particlerate 1000 vel constant 1 0 0 insertion_face face extrude_length 0.05\n"
+    );
+    let out = run_with_files_raw(&script, &[("face.stl", &square(0.1))], None);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no component normal"), "{err}");
+}
+
+/// Four particles fall through the face, one beside it: massflow/mesh counts four and
+/// their mass, and with `delete_atoms yes` removes them.
+#[test]
+fn massflow_counts_what_crosses_the_face() {
+    let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.004f64.powi(3);
+    for delete in ["no", "yes"] {
+        let script = format!(
+            "{HEAD}create_atoms 1 single 0 0 0.12 units box
+create_atoms 1 single 0.02 0.03 0.13 units box
+create_atoms 1 single -0.04 0.04 0.14 units box
+create_atoms 1 single 0.03 -0.045 0.15 units box
+create_atoms 1 single 0.08 0 0.12 units box
+set group all diameter 0.008 density 2500
+fix mf all massflow/mesh mesh face vec_side 0 0 -1 count once delete_atoms {delete}
+variable m equal f_mf[1]
+variable n equal f_mf[2]
+thermo_style custom step atoms v_m v_n
+thermo_modify format float %.15g
+thermo 500
+run 2000
+"
+        );
+        let rows = run(&script);
+        let last = rows.last().unwrap();
+        assert_eq!(last[3], 4.0, "{rows:?}");
+        assert!((last[2] - 4.0 * m).abs() < 1e-12 * m, "{rows:?}");
+        assert_eq!(last[1], if delete == "yes" { 1.0 } else { 5.0 });
+    }
+}
+
+/// write_restart writes the particles, box and step; read_restart in a new script
+/// continues from them.
+#[test]
+fn restart_round_trip() {
+    let dir = common::scratch_dir("restart");
+    std::fs::write(dir.join("face.stl"), square(0.1)).unwrap();
+    let first = format!(
+        "{HEAD}create_atoms 1 single 0 0 0.12 units box
+create_atoms 1 single 0.02 0.03 0.13 units box
+set group all diameter 0.008 density 2500
+run 300
+write_restart post/state.restart
+"
+    );
+    std::fs::write(dir.join("in.first"), first).unwrap();
+    let out = common::rdem_command(None)
+        .args(["-in", "in.first", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let second = "atom_style granular
+boundary f f f
+units si
+read_restart post/state.restart
+variable z equal bound(all,zmin)
+thermo_style custom step atoms v_z
+thermo_modify format float %.15g
+run 0
+";
+    std::fs::write(dir.join("in.second"), second).unwrap();
+    let out = common::rdem_command(None)
+        .args(["-in", "in.second", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rows = thermo_rows(&text);
+    assert_eq!(rows[0][0], 300.0, "{text}");
+    assert_eq!(rows[0][1], 2.0);
+    // Free fall from 0.12 for 300 steps of 1e-4 s (velocity Verlet is exact for it).
+    let t: f64 = 0.03;
+    assert!(
+        (rows[0][2] - (0.12 - 0.5 * 9.81 * t * t)).abs() < 1e-12,
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,164 @@
+//! Placement shared by the insertion fixes: draw positions from a sampler until a sphere
+//! fits without overlapping what is there (`overlapcheck yes`), with `maxattempt` tries
+//! per particle pooled over one insertion as LIGGGHTS does, largest templates first.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use rand::Rng;
+use rand_distr::{Distribution as _, Normal};
+
+use super::{Distribution, InsertRng, VelocityLaw};
+use crate::world::World;
+
+/// Draws a velocity from `law`.
+pub(crate) fn draw_velocity(law: VelocityLaw, rng: &mut InsertRng) -> DVec3 {
+    match law {
+        VelocityLaw::Constant(v) => v,
+        VelocityLaw::Uniform(m, d) => DVec3::new(
+            m.x + d.x * (rng.gen::<f64>() - 0.5) * 2.0,
+            m.y + d.y * (rng.gen::<f64>() - 0.5) * 2.0,
+            m.z + d.z * (rng.gen::<f64>() - 0.5) * 2.0,
+        ),
+        VelocityLaw::Gaussian(m, s) => {
+            let mut c = |mu: f64, sigma: f64| {
+                if sigma > 0.0 {
+                    Normal::new(mu, sigma)
+                        .map(|n| n.sample(&mut *rng))
+                        .unwrap_or(mu)
+                } else {
+                    mu
+                }
+            };
+            DVec3::new(c(m.x, s.x), c(m.y, s.y), c(m.z, s.z))
+        }
+    }
+}
+
+/// One sphere to be inserted.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Placed {
+    /// Template index in the distribution.
+    pub template: usize,
+    /// Centre.
+    pub x: DVec3,
+    /// Radius.
+    pub radius: f64,
+    /// Velocity.
+    pub v: DVec3,
+}
+
+/// Existing particles (of every rank) near an insertion volume, on a grid of cells two
+/// largest radii wide, for the overlap check.
+pub(crate) struct OverlapGrid {
+    cell: f64,
+    cells: HashMap<[i64; 3], Vec<(DVec3, f64)>>,
+}
+
+impl OverlapGrid {
+    /// The particles of `world` within reach of the box `bb` (`None`: everywhere),
+    /// gathered from every rank so that each rank places the same particles with the
+    /// same random numbers (the result does not depend on the number of ranks).
+    pub fn gather(world: &World, bb: Option<(DVec3, DVec3)>, max_new_radius: f64) -> Self {
+        let p = &world.particles;
+        let n = p.nlocal();
+        let rmax = world
+            .comm
+            .max(p.radius[..n].iter().copied().fold(max_new_radius, f64::max));
+        let reach = DVec3::splat(2.0 * rmax);
+        let mut mine = Vec::new();
+        for i in 0..n {
+            let x = p.x[i];
+            let inside =
+                bb.is_none_or(|(lo, hi)| x.cmpge(lo - reach).all() && x.cmple(hi + reach).all());
+            if inside {
+                mine.extend_from_slice(&[x.x, x.y, x.z, p.radius[i]]);
+            }
+        }
+        let near = world.comm.all_gather(&mine);
+        let mut g = Self {
+            cell: 2.0 * rmax,
+            cells: HashMap::new(),
+        };
+        for c in near.chunks_exact(4) {
+            g.push(DVec3::new(c[0], c[1], c[2]), c[3]);
+        }
+        g
+    }
+
+    fn key(&self, x: DVec3) -> [i64; 3] {
+        [
+            (x.x / self.cell).floor() as i64,
+            (x.y / self.cell).floor() as i64,
+            (x.z / self.cell).floor() as i64,
+        ]
+    }
+
+    /// Adds a sphere.
+    pub fn push(&mut self, x: DVec3, r: f64) {
+        let k = self.key(x);
+        self.cells.entry(k).or_default().push((x, r));
+    }
+
+    /// True if a sphere at `x` of radius `r` overlaps none of the grid's.
+    pub fn is_free(&self, x: DVec3, r: f64) -> bool {
+        let c = self.key(x);
+        !(-1..=1).any(|dz| {
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    self.cells
+                        .get(&[c[0] + dx, c[1] + dy, c[2] + dz])
+                        .is_some_and(|v| {
+                            v.iter()
+                                .any(|&(y, ry)| (x - y).length_squared() < (r + ry) * (r + ry))
+                        })
+                })
+            })
+        })
+    }
+}
+
+/// Chooses positions for up to `wanted` spheres of `dist` (the per-template counts of
+/// [`Distribution::counts_for`], largest first). `sample(rng, r)` draws a centre where a
+/// sphere of radius `r` may go (`None`: the volume has no room at all); with `grid` given
+/// the spheres may not overlap its spheres or each other. `max_attempt` tries per
+/// particle are pooled over the insertion. Each placed sphere's velocity is drawn right
+/// after its position.
+pub(crate) fn choose(
+    dist: &mut Distribution,
+    rng: &mut InsertRng,
+    wanted: u64,
+    max_attempt: usize,
+    mut grid: Option<&mut OverlapGrid>,
+    mut sample: impl FnMut(&mut InsertRng, f64) -> Option<DVec3>,
+    velocity: VelocityLaw,
+) -> Vec<Placed> {
+    let counts = dist.counts_for(wanted as usize);
+    let mut out = Vec::with_capacity(wanted as usize);
+    let mut budget = wanted.saturating_mul(max_attempt.max(1) as u64);
+    for (k, &count) in counts.iter().enumerate() {
+        for _ in 0..count {
+            let r = dist.templates[k].draw_radius();
+            let mut placed = None;
+            while budget > 0 {
+                budget -= 1;
+                let Some(x) = sample(rng, r) else { break };
+                if grid.as_ref().is_none_or(|g| g.is_free(x, r)) {
+                    placed = Some(x);
+                    break;
+                }
+            }
+            let Some(x) = placed else { continue };
+            if let Some(g) = grid.as_mut() {
+                g.push(x, r);
+            }
+            out.push(Placed {
+                template: k,
+                x,
+                radius: r,
+                v: draw_velocity(velocity, rng),
+            });
+        }
+    }
+    out
+}

@@ -1,0 +1,355 @@
+//! `fix insert/stream`: particles poured through a planar face (a mesh of
+//! `fix mesh/surface`) at a given rate.
+//!
+//! The insertion volume is the face extruded upstream (against the insertion velocity)
+//! by `extrude_length`. Every `insert_every` steps — the time the stream needs to cross
+//! the extrusion, `extrude_length / (v·n dt)` steps when the length is given — a packet
+//! of `rate · insert_every · dt` particles (a fractional count rounded up with
+//! probability equal to its fraction, as LIGGGHTS does) is placed at random in the
+//! volume. Until a particle reaches the face it moves at its insertion velocity and spin,
+//! feeling no force (its force and torque are zeroed after all forces, see
+//! [`HOLD_PROPERTY`]), so it crosses the face exactly at the velocity asked for.
+
+use glam::DVec3;
+use rand::Rng;
+
+use super::place::{choose, OverlapGrid};
+use super::{Distribution, InsertReport, InsertRng, VelocityLaw};
+use crate::error::{Error, Result};
+use crate::mesh::TriMesh;
+use crate::particles::NewParticle;
+use crate::world::World;
+
+/// Per-particle property holding the step from which a streamed particle moves freely;
+/// before it, [`World`] zeroes its force and torque after all forces (so it flies
+/// ballistically through the insertion volume).
+pub const HOLD_PROPERTY: &str = "insert_stream_release";
+
+/// How the insertion volume's depth is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Extrusion {
+    /// `extrude_length L`: the packet interval follows from the normal velocity.
+    Length(f64),
+    /// `insert_every N`: the depth is what the stream crosses in N steps.
+    Every(u64),
+}
+
+/// The planar insertion face: its triangles, their areas and the unit normal pointing
+/// downstream (along the insertion velocity's normal component).
+#[derive(Debug, Clone)]
+pub struct StreamFace {
+    /// Triangles' corners.
+    pub tris: Vec<[DVec3; 3]>,
+    /// Cumulative areas (for drawing a triangle by area).
+    cum_area: Vec<f64>,
+    /// Unit normal, pointing downstream.
+    pub normal: DVec3,
+    /// Edges that belong to one triangle only (the face's outline).
+    outline: Vec<(DVec3, DVec3)>,
+}
+
+/// Relative tolerance of the planarity test (of the mesh's extent).
+const PLANAR_TOL: f64 = 1e-6;
+
+impl StreamFace {
+    /// The face of `mesh` for a stream of mean velocity `v`; errors if the mesh is not
+    /// planar or `v` runs along it.
+    pub fn new(mesh: &TriMesh, v: DVec3) -> Result<Self> {
+        let tris: Vec<[DVec3; 3]> = (0..mesh.tris.len() as u32)
+            .map(|t| mesh.corners(t))
+            .collect();
+        let Some(first) = tris.first() else {
+            return Err(Error::Invalid {
+                what: "insertion_face",
+                reason: "the mesh has no triangles".into(),
+            });
+        };
+        // The normal of the largest triangle, then every vertex must be in its plane.
+        let mut n = DVec3::ZERO;
+        for t in &tris {
+            let c = (t[1] - t[0]).cross(t[2] - t[0]);
+            if c.length() > n.length() {
+                n = c;
+            }
+        }
+        let n = n.normalize();
+        let (lo, hi) = mesh.bounds();
+        let size = (hi - lo).length();
+        let off = |p: DVec3| (p - first[0]).dot(n);
+        if tris
+            .iter()
+            .flatten()
+            .any(|&p| off(p).abs() > PLANAR_TOL * size)
+        {
+            return Err(Error::Invalid {
+                what: "insertion_face",
+                reason: "the mesh is not planar (use a fix mesh/surface/planar face)".into(),
+            });
+        }
+        let vn = v.dot(n);
+        if vn.abs() <= 1e-12 * v.length().max(1e-300) || vn == 0.0 {
+            return Err(Error::Invalid {
+                what: "vel",
+                reason: "the insertion velocity has no component normal to the insertion face"
+                    .into(),
+            });
+        }
+        let normal = if vn > 0.0 { n } else { -n };
+        let mut acc = 0.0;
+        let cum_area = tris
+            .iter()
+            .map(|t| {
+                acc += 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+                acc
+            })
+            .collect();
+        let outline = (0..mesh.edges.len() as u32)
+            .filter(|&e| mesh.triangles_of_edge(e).len() == 1)
+            .map(|e| {
+                let [a, b] = mesh.edges[e as usize];
+                (mesh.verts[a as usize], mesh.verts[b as usize])
+            })
+            .collect();
+        Ok(Self {
+            tris,
+            cum_area,
+            normal,
+            outline,
+        })
+    }
+
+    /// Area of the face.
+    pub fn area(&self) -> f64 {
+        self.cum_area.last().copied().unwrap_or(0.0)
+    }
+
+    /// A uniformly drawn point of the face.
+    fn sample(&self, rng: &mut InsertRng) -> DVec3 {
+        let a: f64 = rng.gen::<f64>() * self.area();
+        let k = self
+            .cum_area
+            .partition_point(|&c| c < a)
+            .min(self.tris.len() - 1);
+        let [p0, p1, p2] = self.tris[k];
+        let (u, w): (f64, f64) = (rng.gen(), rng.gen());
+        let s = u.sqrt();
+        p0 * (1.0 - s) + p1 * (s * (1.0 - w)) + p2 * (s * w)
+    }
+
+    /// Distance from the face point `p` to the face's outline.
+    fn outline_distance(&self, p: DVec3) -> f64 {
+        self.outline
+            .iter()
+            .map(|&(a, b)| {
+                let ab = b - a;
+                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+                (p - (a + ab * t)).length()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    fn bounding_box(&self, depth: f64) -> (DVec3, DVec3) {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for &p in self.tris.iter().flatten() {
+            for q in [p, p - self.normal * depth] {
+                lo = lo.min(q);
+                hi = hi.max(q);
+            }
+        }
+        (lo, hi)
+    }
+}
+
+/// Settings and state of one `fix insert/stream`.
+#[derive(Debug, Clone)]
+pub struct InsertStream {
+    /// Fix ID.
+    pub id: String,
+    /// Group bits given to inserted particles (besides `all`).
+    pub groupbit: u32,
+    /// Particle mix.
+    pub dist: Distribution,
+    /// The face's mesh: an index into [`World::meshes`].
+    pub mesh: usize,
+    /// Velocity law.
+    pub velocity: VelocityLaw,
+    /// Angular velocity (`omega constant wx wy wz`).
+    pub omega: DVec3,
+    /// `overlapcheck yes`.
+    pub overlap_check: bool,
+    /// `all_in yes`: whole spheres inside the insertion volume.
+    pub all_in: bool,
+    /// `maxattempt`.
+    pub max_attempt: usize,
+    /// First insertion step (`start`; default: the first step of the run).
+    pub start: Option<u64>,
+    /// Particles to insert in all (`None`: no end).
+    pub limit: Option<u64>,
+    /// Steps between packets.
+    pub every: u64,
+    /// Depth of the insertion volume.
+    pub extrude: f64,
+    /// Particles per packet (fractional).
+    pub per_insertion: f64,
+    /// Particles inserted so far.
+    pub inserted: u64,
+    rng: InsertRng,
+    last: Option<u64>,
+}
+
+impl InsertStream {
+    /// An insert/stream fix through the planar mesh `face` (the world's mesh number
+    /// `mesh`) at `rate` particles per time unit, `dt` the timestep.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        id: &str,
+        seed: u64,
+        groupbit: u32,
+        dist: Distribution,
+        mesh: usize,
+        face: &TriMesh,
+        velocity: VelocityLaw,
+        rate: f64,
+        extrusion: Extrusion,
+        dt: f64,
+    ) -> Result<Self> {
+        crate::error::check("particle rate", rate, rate > 0.0, "must be > 0")?;
+        crate::error::check("timestep", dt, dt > 0.0, "must be > 0")?;
+        let f = StreamFace::new(face, mean_velocity(velocity))?;
+        let vn = mean_velocity(velocity).dot(f.normal);
+        let (every, extrude) = match extrusion {
+            Extrusion::Length(l) => {
+                crate::error::check("extrude_length", l, l > 0.0, "must be > 0")?;
+                let every = (l / (vn * dt)).floor() as u64;
+                if every == 0 {
+                    return Err(Error::Invalid {
+                        what: "extrude_length",
+                        reason: format!(
+                            "the stream crosses {l} in less than one step (normal velocity {vn}): make it longer"
+                        ),
+                    });
+                }
+                (every, l)
+            }
+            Extrusion::Every(n) => {
+                if n == 0 {
+                    return Err(Error::Invalid {
+                        what: "insert_every",
+                        reason: "must be >= 1".into(),
+                    });
+                }
+                (n, n as f64 * dt * vn)
+            }
+        };
+        Ok(Self {
+            id: id.to_string(),
+            groupbit,
+            dist,
+            mesh,
+            velocity,
+            omega: DVec3::ZERO,
+            overlap_check: true,
+            all_in: false,
+            max_attempt: 50,
+            start: None,
+            limit: None,
+            every,
+            extrude,
+            per_insertion: rate * every as f64 * dt,
+            inserted: 0,
+            rng: super::rng(seed),
+            last: None,
+        })
+    }
+
+    /// True if a packet is due at `step`.
+    pub fn due(&self, step: u64) -> bool {
+        if self.limit.is_some_and(|l| self.inserted >= l) {
+            return false;
+        }
+        if step < self.start.unwrap_or(step) {
+            return false;
+        }
+        self.last.is_none_or(|last| step >= last + self.every)
+    }
+
+    /// Inserts one packet into `world` at its current step (call when
+    /// [`InsertStream::due`]).
+    pub fn insert(&mut self, world: &mut World) -> Result<InsertReport> {
+        self.last = Some(world.step);
+        let face = StreamFace::new(&world.meshes[self.mesh].mesh, mean_velocity(self.velocity))?;
+        let u: f64 = self.rng.gen();
+        let mut wanted = (self.per_insertion + u).floor() as u64;
+        if let Some(l) = self.limit {
+            wanted = wanted.min(l.saturating_sub(self.inserted));
+        }
+        let rbound = self.dist.max_radius();
+        let depth = self.extrude;
+        let mut grid = self
+            .overlap_check
+            .then(|| OverlapGrid::gather(world, Some(face.bounding_box(depth)), rbound));
+        let all_in = self.all_in;
+        let n = face.normal;
+        let placed = choose(
+            &mut self.dist,
+            &mut self.rng,
+            wanted,
+            self.max_attempt,
+            grid.as_mut(),
+            |rng, r| {
+                for _ in 0..1000 {
+                    let p = face.sample(rng);
+                    let d: f64 = rng.gen::<f64>() * depth;
+                    if all_in && (d < r || d > depth - r || face.outline_distance(p) < r) {
+                        continue;
+                    }
+                    return Some(p - n * d);
+                }
+                None
+            },
+            self.velocity,
+        );
+        let hold = world.particles.add_property(HOLD_PROPERTY, 1, &[0.0])?;
+        let p0 = face.tris[0][0];
+        let (mut inserted, mut mass) = (0u64, 0.0);
+        let step = world.step;
+        let dt = world.dt;
+        for pl in placed {
+            let t = &self.dist.templates[pl.template];
+            let mut np = NewParticle::at(pl.x, pl.radius, t.density)
+                .with_type(t.ty)
+                .with_omega(self.omega);
+            np.v = pl.v;
+            np.mask = 1 | self.groupbit;
+            mass += crate::particles::sphere_mass(np.density, pl.radius);
+            inserted += 1;
+            if world.owns_inserted(pl.x) {
+                let i = world.add_particle(&np)?;
+                // Steps until the centre reaches the face.
+                let depth = (p0 - pl.x).dot(n).max(0.0);
+                let vn = pl.v.dot(n);
+                let steps = if vn > 0.0 {
+                    (depth / (vn * dt)).ceil()
+                } else {
+                    0.0
+                };
+                world.particles.props[hold.0].data[i] = step as f64 + steps;
+            }
+        }
+        world.extend_tags();
+        self.inserted += inserted;
+        Ok(InsertReport {
+            wanted,
+            inserted,
+            mass,
+        })
+    }
+}
+
+/// The mean of a velocity law.
+fn mean_velocity(v: VelocityLaw) -> DVec3 {
+    match v {
+        VelocityLaw::Constant(m) | VelocityLaw::Uniform(m, _) | VelocityLaw::Gaussian(m, _) => m,
+    }
+}
