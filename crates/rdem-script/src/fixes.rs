@@ -1060,12 +1060,12 @@ fn insert_stream(
     settings(&mut st);
     if verbose {
         sim.out.line(&format!(
-            "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}, (mass rate {:.6e})",
+            "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
             s.id,
             st.per_insertion,
             st.every,
             rate,
-            rate * st.dist.mean_particle_mass()
+            format_e(rate * st.dist.mean_particle_mass())
         ));
     }
     Ok(FrontFix::Insert(Box::new(Inserter {

@@ -221,7 +221,8 @@ impl InsertStream {
         let (every, extrude) = match extrusion {
             Extrusion::Length(l) => {
                 crate::error::check("extrude_length", l, l > 0.0, "must be > 0")?;
-                let every = (l / (vn * dt)).floor() as u64;
+                // Rounded: 0.6 / (2 · 1e-5) is 29999.999... in floating point, 30000 steps.
+                let every = (l / (vn * dt)).round() as u64;
                 if every == 0 {
                     return Err(Error::Invalid {
                         what: "extrude_length",
