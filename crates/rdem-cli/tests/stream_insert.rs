@@ -251,3 +251,27 @@ run 0
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `duration`: a pulsed stream pours each packet (insert_every's worth of particles) in
+/// that many steps, so the packet starts in a volume 50 steps · 1e-4 s · 2 m/s = 0.01 m
+/// deep, and arrives at the face within 50 steps.
+#[test]
+fn pulsed_stream_pours_in_its_duration() {
+    let script = format!(
+        "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 40 \
+         particlerate 1000 insert_every 200 duration 50 vel constant 0 0 -2 \
+         overlapcheck yes insertion_face face
+thermo 50
+run 1
+run 399
+"
+    );
+    let rows = run(&script);
+    let r1 = rows.iter().find(|r| r[0] == 1.0).unwrap();
+    assert_eq!(r1[1], 20.0, "{rows:?}");
+    assert!(r1[4] >= 0.1 && r1[5] <= 0.11 + 1e-12, "{r1:?}");
+    // All below the face and accelerating after 50 steps.
+    let r = rows.iter().find(|r| r[0] == 100.0).unwrap();
+    assert!(r[5] < 0.1 && r[2] < -2.0, "{r:?}");
+    assert_eq!(rows.last().unwrap()[1], 40.0);
+}

@@ -761,7 +761,7 @@ fn insert(
     let mut omega = DVec3::ZERO;
     let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
     let mut every_once = false;
-    let (mut face, mut extrude) = (None, None);
+    let (mut face, mut extrude, mut duration) = (None, None, None);
     while !a.is_done() {
         let k = a.keyword(&format!("{style} keyword"), valid)?;
         match k {
@@ -773,10 +773,7 @@ fn insert(
                 ));
             }
             "extrude_length" => extrude = Some(a.positive("extrude_length")?),
-            "duration" => return Err(a.error_prev(
-                "insert/stream 'duration' (pulsed streams) is not supported by this rdem release",
-                Some("leave it out for a continuous stream".into()),
-            )),
+            "duration" => duration = Some((a.pos(), a.count("duration (steps)")?)),
             "parallel" => {
                 a.yes_no("parallel")?;
             }
@@ -876,6 +873,7 @@ fn insert(
                 face,
                 extrude,
                 every,
+                duration,
                 nparticles,
                 massmax,
                 prate,
@@ -991,6 +989,8 @@ struct StreamArgs<'a> {
     face: Option<(usize, usize)>,
     extrude: Option<f64>,
     every: Option<u64>,
+    /// (word position, steps).
+    duration: Option<(usize, u64)>,
     nparticles: Option<Option<u64>>,
     massmax: Option<f64>,
     prate: Option<f64>,
@@ -1014,8 +1014,28 @@ fn insert_stream(
         return Err(err(a, "insert/stream needs 'insertion_face MESH-ID'"));
     };
     let extrusion = match (s.extrude, s.every) {
+        (Some(_), _) if s.duration.is_some() => {
+            return Err(a.error_at(
+                s.duration.map(|d| d.0 - 1).unwrap_or(STYLE_WORD),
+                "insert/stream: 'duration' goes with 'insert_every', not 'extrude_length'",
+                None,
+            ))
+        }
         (Some(l), None) => Extrusion::Length(l),
-        (None, Some(n)) => Extrusion::Every(n),
+        (None, Some(n)) => match s.duration {
+            Some((at, d)) if d > n => {
+                return Err(a.error_at(
+                    at,
+                    format!("duration {d} is longer than insert_every {n}"),
+                    None,
+                ))
+            }
+            Some((_, d)) => Extrusion::Pulsed {
+                every: n,
+                duration: d,
+            },
+            None => Extrusion::Every(n),
+        },
         (Some(_), Some(_)) => {
             return Err(err(
                 a,

@@ -32,6 +32,14 @@ pub enum Extrusion {
     Length(f64),
     /// `insert_every N`: the depth is what the stream crosses in N steps.
     Every(u64),
+    /// `insert_every N duration D`: a pulsed stream, each packet (N steps' worth of
+    /// particles) poured in D steps, then a pause.
+    Pulsed {
+        /// Steps between packets.
+        every: u64,
+        /// Steps a packet takes to pour.
+        duration: u64,
+    },
 }
 
 /// The planar insertion face: its triangles, their areas and the unit normal pointing
@@ -241,6 +249,15 @@ impl InsertStream {
                     });
                 }
                 (n, n as f64 * dt * vn)
+            }
+            Extrusion::Pulsed { every, duration } => {
+                if duration == 0 || duration > every {
+                    return Err(Error::Invalid {
+                        what: "duration",
+                        reason: format!("must be in 1..={every} (insert_every)"),
+                    });
+                }
+                (every, duration as f64 * dt * vn)
             }
         };
         Ok(Self {
