@@ -168,6 +168,35 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
     Ok(out)
 }
 
+/// ASCII STL text of `tris` (with their unit normals `normals`) as one solid named
+/// `LIGGGHTS_STL_EXPORT`, numbers in C's `%g`, laid out as LIGGGHTS' `dump mesh/stl`
+/// writes it.
+pub fn format_ascii_stl(tris: &[Triangle], normals: &[DVec3]) -> String {
+    use std::fmt::Write as _;
+    let g = crate::Printf::default_float();
+    let f = |v: f64| g.format(crate::Value::Float(v));
+    let mut s = String::from("solid LIGGGHTS_STL_EXPORT\n");
+    for (t, n) in tris.iter().zip(normals) {
+        let _ = writeln!(s, "  facet normal {} {} {}", f(n.x), f(n.y), f(n.z));
+        s.push_str("    outer loop\n");
+        for p in t {
+            let _ = writeln!(s, "      vertex {} {} {}", f(p.x), f(p.y), f(p.z));
+        }
+        s.push_str("    endloop\n  endfacet\n");
+    }
+    s.push_str("endsolid LIGGGHTS_STL_EXPORT\n");
+    s
+}
+
+/// Writes [`format_ascii_stl`] to `path` atomically (creating parent directories).
+pub fn write_ascii_stl(
+    path: &Path,
+    tris: &[Triangle],
+    normals: &[DVec3],
+) -> Result<(), crate::IoError> {
+    crate::write_atomic(path, format_ascii_stl(tris, normals).as_bytes())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -224,5 +253,27 @@ endsolid test
         let e = parse_stl(quad.as_bytes(), "t.stl").unwrap_err().to_string();
         assert!(e.contains("4 vertices"), "{e}");
         assert!(parse_stl(b"\xff\xfe", "x.stl").is_err());
+    }
+
+    /// What dump mesh/stl writes reads back as the same triangles (to %g's 6 digits).
+    #[test]
+    fn ascii_export_reads_back() {
+        let tris = vec![
+            [
+                DVec3::ZERO,
+                DVec3::new(0.1, 0.0, 0.0),
+                DVec3::new(0.0, 0.2, 0.0),
+            ],
+            [
+                DVec3::new(0.1, 0.0, 0.0),
+                DVec3::new(0.1, 0.2, 0.0),
+                DVec3::new(0.0, 0.2, 1e-3),
+            ],
+        ];
+        let normals = vec![DVec3::Z, DVec3::Z];
+        let text = format_ascii_stl(&tris, &normals);
+        assert!(text.starts_with("solid LIGGGHTS_STL_EXPORT\n  facet normal 0 0 1\n"));
+        let back = parse_stl(text.as_bytes(), "export").unwrap();
+        assert_eq!(back, tris);
     }
 }

@@ -15,10 +15,16 @@ use crate::thermo::split_reference;
 use crate::variables::Variable;
 
 /// Dump styles rdem writes.
-pub const STYLES: [&str; 4] = ["custom", "custom/vtk", "atom/vtk", "euler/vtk"];
+pub const STYLES: [&str; 5] = ["custom", "custom/vtk", "atom/vtk", "euler/vtk", "mesh/stl"];
 
 /// LIGGGHTS dump styles of later releases.
-const LATER: [&str; 4] = ["mesh/stl", "mesh/gran/VTK", "local/gran/vtk", "atom"];
+const LATER: [&str; 5] = [
+    "mesh/vtk",
+    "mesh/gran/VTK",
+    "mesh/vtm",
+    "local/gran/vtk",
+    "atom",
+];
 
 /// The writer of a dump.
 pub enum Writer {
@@ -31,6 +37,9 @@ pub enum Writer {
     /// `dump euler/vtk`: the cells of the `fix ave/euler` (the dump's group and sort do
     /// not apply, as in LIGGGHTS).
     Euler(DumpFileName),
+    /// `dump mesh/stl`: the triangles of the meshes named in the columns (all meshes
+    /// without any) at their current positions, in one ASCII STL file per snapshot.
+    MeshStl(DumpFileName),
 }
 
 /// One dump.
@@ -268,6 +277,34 @@ fn write_one(sim: &mut Sim, k: usize, step: u64) -> Result<(), String> {
         sim.dumps[k].last = Some(step);
         return Ok(());
     }
+    if let Writer::MeshStl(name) = &sim.dumps[k].writer {
+        let Some(w) = &sim.world else {
+            return Err("dump before the simulation box is defined".into());
+        };
+        // Every rank holds every mesh: rank 0 writes.
+        let path = name.path(step, 0);
+        let d = &sim.dumps[k];
+        let outcome = if w.comm.rank() == 0 {
+            let (mut tris, mut normals) = (Vec::new(), Vec::new());
+            for m in w
+                .meshes
+                .iter()
+                .filter(|m| d.columns.is_empty() || d.columns.contains(&m.id))
+            {
+                for t in 0..m.mesh.tris.len() {
+                    tris.push(m.mesh.corners(t as u32));
+                    normals.push(m.mesh.normals[t]);
+                }
+            }
+            rdem_io::stl::write_ascii_stl(&path, &tris, &normals)
+                .map_err(|e| format!("dump {}: {e}", d.id))
+        } else {
+            Ok(())
+        };
+        agree(&*w.comm, &format!("dump {}", d.id), outcome)?;
+        sim.dumps[k].last = Some(step);
+        return Ok(());
+    }
     let cols = columns(sim, &sim.dumps[k].columns)?;
     let Some(w) = &sim.world else {
         return Err("dump before the simulation box is defined".into());
@@ -327,7 +364,9 @@ fn write_gathered(
             .map(|[main, _]| vec![(time, main)]),
         Writer::AtomVtk(v) if background => v.start(step, time, p, &sel, procs),
         Writer::AtomVtk(v) => v.write(step, p, &sel, procs).map(|path| vec![(time, path)]),
-        Writer::Euler(_) => unreachable!("euler/vtk is written by write_one"),
+        Writer::Euler(_) | Writer::MeshStl(_) => {
+            unreachable!("euler/vtk and mesh/stl are written by write_one")
+        }
     }
     .map_err(|e| format!("dump {}: {e}", d.id))?;
     record(d, done)
@@ -405,13 +444,14 @@ fn writer(style: &str, file: &str) -> Writer {
         "custom" => Writer::Text(TextDump::new(name, TextOptions::default())),
         "atom/vtk" => Writer::AtomVtk(AtomVtkDump::new(name)),
         "euler/vtk" => Writer::Euler(name),
+        "mesh/stl" => Writer::MeshStl(name),
         _ => Writer::Vtk(VtkDump::new(name)),
     }
 }
 
 /// The `.pvd` collection of a VTK dump series (a name with `*`).
 fn collection(style: &str, file: &str) -> Option<PvdSeries> {
-    if style == "custom" {
+    if style == "custom" || style == "mesh/stl" {
         return None;
     }
     PvdSeries::for_pattern(file, 0)
@@ -434,6 +474,35 @@ fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>>
             }
         }
         return Ok(Vec::new());
+    }
+    if style == "mesh/stl" {
+        // Mesh IDs (none: every mesh); LIGGGHTS' parallel selectors mean the whole mesh
+        // with one process, which is what rdem writes.
+        let mut ids = Vec::new();
+        while let Some(w) = a.peek() {
+            if w == "modify" {
+                break;
+            }
+            if matches!(w, "local" | "ghost" | "all") {
+                a.seek(a.pos() + 1);
+                continue;
+            }
+            let known: Vec<&str> = sim
+                .world
+                .iter()
+                .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+                .collect();
+            if !known.contains(&w) {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("dump mesh/stl: no mesh '{w}' (a fix mesh/surface ID)"),
+                    Some(suggest(w, &known)),
+                ));
+            }
+            ids.push(w.to_string());
+            a.seek(a.pos() + 1);
+        }
+        return Ok(ids);
     }
     if style == "atom/vtk" {
         if let Some(w) = a.peek() {
@@ -538,6 +607,12 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                             a.error_prev("dump euler/vtk writes cells: sort does not apply", None)
                         )
                     }
+                    Writer::MeshStl(_) => {
+                        return Err(a.error_prev(
+                            "dump mesh/stl writes triangles: sort does not apply",
+                            None,
+                        ))
+                    }
                 }
             }
             "pad" => {
@@ -546,7 +621,7 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                     Writer::Text(t) => t.name_mut().set_pad(n),
                     Writer::Vtk(v) => v.name_mut().set_pad(n),
                     Writer::AtomVtk(v) => v.name_mut().set_pad(n),
-                    Writer::Euler(name) => name.set_pad(n),
+                    Writer::Euler(name) | Writer::MeshStl(name) => name.set_pad(n),
                 }
             }
             "binary" => {
@@ -554,7 +629,7 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                 match &mut d.writer {
                     Writer::Vtk(v) => v.binary = yes,
                     Writer::AtomVtk(v) => v.binary = yes,
-                    Writer::Text(_) | Writer::Euler(_) => {
+                    Writer::Text(_) | Writer::Euler(_) | Writer::MeshStl(_) => {
                         return Err(a.error_prev(
                             "binary applies to the particle VTK dump styles (custom/vtk, atom/vtk)",
                             None,
