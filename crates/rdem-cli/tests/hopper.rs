@@ -4,8 +4,9 @@
 //!
 //! ρ_b is the bulk density the script prints after settling, d = 5 mm the mean bead
 //! diameter, W the mass through the orifice (fix massflow/mesh) between 0.05 s and
-//! 0.6 s after opening (steps 11000 to 22000), one thread (the result is the same for
-//! any thread count).
+//! 0.6 s after opening (steps 11000 to 22000), averaged over three packings (insertion
+//! seeds); one thread (the result is the same for any thread count). One packing's rate
+//! scatters by about ±6 % around the mean.
 //!
 //! LIGGGHTS 3.8 on the same script (`liggghts -in in.hopper -var D 25|35`, the insert/pack
 //! seed 10039 and, for D = 25, also 20011 and 30011) gave W = 0.1019, 0.1070, 0.1069 kg/s
@@ -20,9 +21,10 @@ mod common;
 use common::{copy_dir, thermo_rows};
 
 /// (bulk density, discharge rate) of the example with orifice `d_mm`.
-fn discharge(d_mm: u32) -> (f64, f64) {
+fn discharge(d_mm: u32, seed: u64) -> (f64, f64) {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/hopper");
-    let tmp = std::env::temp_dir().join(format!("rdem-hopper-{d_mm}-{}", std::process::id()));
+    let tmp =
+        std::env::temp_dir().join(format!("rdem-hopper-{d_mm}-{seed}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     copy_dir(&src, &tmp);
     let _ = std::fs::remove_dir_all(tmp.join("post"));
@@ -35,6 +37,9 @@ fn discharge(d_mm: u32) -> (f64, f64) {
             "-var",
             "D",
             &d_mm.to_string(),
+            "-var",
+            "seed",
+            &seed.to_string(),
         ])
         .env("RDEM_THREADS", "1")
         .current_dir(&tmp)
@@ -69,22 +74,30 @@ fn beverloo(rhob: f64, d_orifice: f64) -> f64 {
     0.58 * rhob * 9.81f64.sqrt() * (d_orifice - 1.5 * 0.005).powf(2.5)
 }
 
+/// Insertion seeds of the three packings each orifice drains.
+const SEEDS: [u64; 3] = [10039, 20011, 30011];
+
 #[test]
 fn discharge_follows_beverloo() {
     for d_mm in [25, 35] {
-        let (rhob, w) = discharge(d_mm);
-        let b = beverloo(rhob, d_mm as f64 / 1000.0);
-        eprintln!(
-            "D = {d_mm} mm: bulk density {rhob:.1} kg/m3, W = {w:.5} kg/s, Beverloo {b:.5} kg/s ({:+.1} %)",
-            100.0 * (w / b - 1.0)
-        );
+        let mut ratios = Vec::new();
+        for seed in SEEDS {
+            let (rhob, w) = discharge(d_mm, seed);
+            let b = beverloo(rhob, d_mm as f64 / 1000.0);
+            eprintln!(
+                "D = {d_mm} mm, seed {seed}: bulk density {rhob:.1} kg/m3, W = {w:.5} kg/s, Beverloo {b:.5} kg/s ({:+.1} %)",
+                100.0 * (w / b - 1.0)
+            );
+            assert!(
+                (rhob - 1450.0).abs() < 100.0,
+                "bulk density {rhob} (random packing of glass beads ~0.58-0.62 of 2500)"
+            );
+            ratios.push(w / b);
+        }
+        let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
         assert!(
-            (rhob - 1450.0).abs() < 100.0,
-            "bulk density {rhob} (random packing of glass beads ~0.58-0.62 of 2500)"
-        );
-        assert!(
-            (w / b - 1.0).abs() < 0.15,
-            "D = {d_mm} mm: W = {w} kg/s, Beverloo {b} kg/s"
+            (mean - 1.0).abs() < 0.15,
+            "D = {d_mm} mm: W / Beverloo over three packings {ratios:?}, mean {mean}"
         );
     }
 }
