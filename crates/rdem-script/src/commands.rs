@@ -216,6 +216,7 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
         "unfix" => {
             let id = a.word("fix ID")?;
             a.done()?;
+            fixes::check_unfix(sim, id).map_err(|m| a.error_prev(m, None))?;
             if !fixes::unfix_id(sim, id) {
                 let names: Vec<&str> = sim.fixes.iter().map(|f| f.id.as_str()).collect();
                 return Err(a.error_prev(format!("no fix '{id}'"), Some(suggest(id, &names))));

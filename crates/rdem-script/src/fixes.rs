@@ -16,7 +16,7 @@ use crate::sim::{FixEntry, Property, Sim};
 use crate::variables::format_g;
 
 /// Fix styles rdem runs.
-pub const STYLES: [&str; 22] = [
+pub const STYLES: [&str; 23] = [
     "property/global",
     "mesh/surface",
     "particletemplate/sphere",
@@ -27,6 +27,7 @@ pub const STYLES: [&str; 22] = [
     "insert/rate/region",
     "insert/stream",
     "massflow/mesh",
+    "move/mesh",
     "nve/sphere",
     "gravity",
     "freeze",
@@ -42,10 +43,9 @@ pub const STYLES: [&str; 22] = [
 ];
 
 /// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
-const LATER: [(&str, &str); 6] = [
+const LATER: [(&str, &str); 5] = [
     ("mesh/surface/stress", "meshes"),
     ("mesh/surface/planar", "meshes"),
-    ("move/mesh", "meshes"),
     ("bond/gran", "bonds"),
     ("wall/gran/hooke/history", "old-style wall models"),
     ("particletemplate/multisphere", "multisphere particles"),
@@ -216,6 +216,8 @@ impl MassFlowFix {
 
 /// Front-end part of a fix.
 pub enum FrontFix {
+    /// `move/mesh` on the world's mesh of this index (the motion lives in the mesh).
+    MeshMove(usize),
     /// `massflow/mesh`.
     MassFlow(Box<MassFlowFix>),
     /// `mesh/surface`: a mesh (in `World::meshes` under the fix ID) that `wall/gran ...
@@ -320,6 +322,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
             insert(sim, a, &id, groupbit, style)?
         }
         "massflow/mesh" => massflow(sim, a, &id, groupbit)?,
+        "move/mesh" => move_mesh(sim, a, &id)?,
         "mesh/surface" => {
             let mesh = mesh_surface(sim, a, &id)?;
             sim.world_mut(a)?.add_mesh(mesh);
@@ -407,6 +410,26 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// Refuses to remove a `move/mesh` fix that is not the last one of its mesh (LIGGGHTS'
+/// rule: superposed motions go in reverse order).
+pub fn check_unfix(sim: &Sim, id: &str) -> Result<(), String> {
+    let Some(k) = sim.fix_index(id) else {
+        return Ok(());
+    };
+    if let (FrontFix::MeshMove(m), Some(w)) = (&sim.fixes[k].kind, &sim.world) {
+        let movers = &w.meshes[*m].motion.movers;
+        if let Some(last) = movers.last() {
+            if last.0 != id && movers.iter().any(|x| x.0 == id) {
+                return Err(format!(
+                    "move/mesh fixes of mesh {} must be removed in reverse order: unfix {} first",
+                    w.meshes[*m].id, last.0
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Removes fix `id` (front end and engine); false if there was none.
 pub fn unfix_id(sim: &mut Sim, id: &str) -> bool {
     let Some(k) = sim.fix_index(id) else {
@@ -414,6 +437,13 @@ pub fn unfix_id(sim: &mut Sim, id: &str) -> bool {
     };
     let f = sim.fixes.remove(k);
     match f.kind {
+        FrontFix::MeshMove(m) => {
+            if let Some(w) = &mut sim.world {
+                let t = w.step as f64 * w.dt;
+                // The order was checked (check_unfix); a redefinition removes the last.
+                let _ = w.meshes[m].motion.remove(id, t);
+            }
+        }
         FrontFix::Engine => {
             if let Some(w) = &mut sim.world {
                 w.remove_fix(id);
@@ -1162,6 +1192,115 @@ fn massflow(sim: &mut Sim, a: &mut Args, id: &str, groupbit: u32) -> CmdResult<F
     })))
 }
 
+/// `fix ID group move/mesh mesh MESH style args`: linear, wiggle, rotate, riggle,
+/// viblin, vibrot ([`rdem::mesh_motion::Motion`]), from the current time on.
+fn move_mesh(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
+    use rdem::mesh_motion::Motion;
+    a.keyword("move/mesh keyword", &["mesh"])?;
+    let mesh = mesh_ref(sim, a, "mesh ID (a fix mesh/surface)")?;
+    const STYLES: [&str; 6] = ["linear", "wiggle", "rotate", "riggle", "viblin", "vibrot"];
+    const LATER_STYLES: [&str; 3] = ["linear/variable", "rotate/variable", "file"];
+    if let Some(w) = a.peek() {
+        if LATER_STYLES.contains(&w) {
+            a.seek(a.pos() + 1);
+            return Err(a.error_prev(
+                format!("move/mesh style '{w}' is not supported by this rdem release yet"),
+                Some(format!("supported: {}", STYLES.join(", "))),
+            ));
+        }
+    }
+    let style_at = a.pos();
+    let style = a.keyword("move/mesh style", &STYLES)?;
+    let axis = |a: &mut Args| -> CmdResult<rdem::DVec3> {
+        a.keyword(&format!("{style} keyword"), &["axis"])?;
+        let at = a.pos();
+        let v = a.vec3("axis")?;
+        if !(v.length() > 0.0) || !v.is_finite() {
+            return Err(a.error_at(at, "the axis has no direction", None));
+        }
+        Ok(v.normalize())
+    };
+    let origin = |a: &mut Args| -> CmdResult<rdem::DVec3> {
+        a.keyword(&format!("{style} keyword"), &["origin"])?;
+        a.vec3("origin")
+    };
+    let period = |a: &mut Args| -> CmdResult<f64> {
+        a.keyword(&format!("{style} keyword"), &["period"])?;
+        a.positive("period")
+    };
+    // order n amplitude C1..Cn phase p1..pn period T1..Tn
+    let series = |a: &mut Args| -> CmdResult<Vec<[f64; 3]>> {
+        a.keyword(&format!("{style} keyword"), &["order"])?;
+        let n = a.count("order (1 to 30)")? as usize;
+        if n > 30 {
+            return Err(a.error_prev("order must be 1 to 30", None));
+        }
+        let mut terms = vec![[0.0; 3]; n];
+        for (k, what) in ["amplitude", "phase", "period"].iter().enumerate() {
+            a.keyword(&format!("{style} keyword"), &[what])?;
+            for t in terms.iter_mut() {
+                t[k] = if k == 2 {
+                    a.positive("period")?
+                } else {
+                    a.f64(what)?
+                };
+            }
+        }
+        Ok(terms)
+    };
+    let motion = match style {
+        "linear" => Motion::Linear(a.vec3("velocity")?),
+        "wiggle" => {
+            a.keyword("wiggle keyword", &["amplitude"])?;
+            let amplitude = a.vec3("amplitude")?;
+            Motion::Wiggle {
+                amplitude,
+                period: period(a)?,
+            }
+        }
+        "rotate" => Motion::Rotate {
+            origin: origin(a)?,
+            axis: axis(a)?,
+            period: period(a)?,
+        },
+        "riggle" => {
+            let (origin, axis, period) = (origin(a)?, axis(a)?, period(a)?);
+            a.keyword("riggle keyword", &["amplitude"])?;
+            let deg = a.f64("amplitude (degrees)")?;
+            Motion::Riggle {
+                origin,
+                axis,
+                period,
+                amplitude: deg.to_radians(),
+            }
+        }
+        "viblin" => {
+            let axis = axis(a)?;
+            Motion::Viblin {
+                axis,
+                terms: series(a)?,
+            }
+        }
+        _ => {
+            let (origin, axis) = (origin(a)?, axis(a)?);
+            Motion::Vibrot {
+                origin,
+                axis,
+                terms: series(a)?,
+            }
+        }
+    };
+    a.done()?;
+    let w = sim.world_mut(a)?;
+    let t = w.step as f64 * w.dt;
+    let m = &mut w.meshes[mesh];
+    let verts = m.mesh.verts.clone();
+    m.motion
+        .add(id, motion, t, &verts)
+        .map_err(|e| a.error_at(style_at, e.to_string(), None))?;
+    Ok(FrontFix::MeshMove(mesh))
+}
+
 /// A `wall/gran` wall.
 enum Wall {
     Primitive(PrimitiveWall),
@@ -1182,7 +1321,9 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
     let mut precision = 1e-8;
     let mut heal = false;
     let mut surface_vel = rdem::DVec3::ZERO;
-    const KEYS: [&str; 10] = [
+    let mut surface_ang_vel = None;
+    const KEYS: [&str; 11] = [
+        "surface_ang_vel",
         "type",
         "precision",
         "heal",
@@ -1194,8 +1335,7 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
         "curvature",
         "curvature_tolerant",
     ];
-    const LATER_KEYS: [&str; 7] = [
-        "surface_ang_vel",
+    const LATER_KEYS: [&str; 6] = [
         "element_exclusion_list",
         "min_feature_length",
         "temperature",
@@ -1213,6 +1353,19 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
         }
         match a.keyword("mesh/surface keyword", &KEYS)? {
             "type" => wall_type = Some(a.count("wall atom type")? as u32),
+            "surface_ang_vel" => {
+                a.keyword("surface_ang_vel keyword", &["origin"])?;
+                let o = a.vec3("origin")?;
+                a.keyword("surface_ang_vel keyword", &["axis"])?;
+                let at = a.pos();
+                let ax = a.vec3("axis")?;
+                if !(ax.length() > 0.0) || !ax.is_finite() {
+                    return Err(a.error_at(at, "the axis has no direction", None));
+                }
+                a.keyword("surface_ang_vel keyword", &["omega"])?;
+                let w = a.f64("omega (rad per time unit)")?;
+                surface_ang_vel = Some((o, ax.normalize() * w));
+            }
             "precision" => precision = a.positive("precision")?,
             "heal" => {
                 heal = a.keyword("heal", &["auto_remove_duplicates", "no"])? != "no";
@@ -1282,6 +1435,7 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
     ));
     let mut surface = rdem::wall::MeshSurface::new(id, mesh, wall_type);
     surface.surface_vel = surface_vel;
+    surface.surface_ang_vel = surface_ang_vel;
     Ok(surface)
 }
 

@@ -17,6 +17,7 @@ pub mod fix;
 pub mod insert;
 pub mod massflow;
 pub mod mesh;
+pub mod mesh_motion;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;
 pub mod neighbor;

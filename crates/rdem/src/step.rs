@@ -64,6 +64,7 @@ impl World {
                 integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
             }
         }
+        self.move_meshes();
         pre_exchange(self)?;
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
@@ -72,10 +73,18 @@ impl World {
         // far on any rank.
         let comm = &self.comm;
         let added = comm.any(added);
+        // A mesh that moved half a skin since the candidate lists were built needs new
+        // ones (every rank moves every mesh alike: no communication).
+        let skin = self.neighbor.settings.skin;
+        let mesh_far = self
+            .meshes
+            .iter()
+            .any(|m| m.motion.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
         if added
             || self
                 .neighbor
                 .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
+            || mesh_far
         {
             self.timers.lap(Stage::Neigh, t1);
             if added {
@@ -164,6 +173,14 @@ impl World {
         }
         self.timers.lap(Stage::Other, t4);
         Ok(())
+    }
+
+    /// Moves the meshes with `fix move/mesh` motions to the current time.
+    pub(crate) fn move_meshes(&mut self) {
+        let t = self.step as f64 * self.dt;
+        for m in &mut self.meshes {
+            m.move_to(t);
+        }
     }
 
     /// Zeroes the force and torque of particles an `insert/stream` still holds (they fly

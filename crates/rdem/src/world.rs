@@ -320,6 +320,7 @@ impl World {
                 wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
             }
         }
+        self.move_meshes();
         self.reneighbor()?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
@@ -411,6 +412,11 @@ impl World {
         let t4 = self.timers.lap(crate::timers::Stage::Comm, t3);
         self.neighbor.build(&self.particles, self.step);
         let skin = self.neighbor.settings.skin;
+        for m in &mut self.meshes {
+            if m.motion.is_moving() {
+                m.motion.built.clone_from(&m.mesh.verts);
+            }
+        }
         for fix in &mut self.fixes {
             if let FixKind::WallGran(wall) = &mut fix.kind {
                 wall.build_candidates(&mut self.particles, fix.groupbit, skin);

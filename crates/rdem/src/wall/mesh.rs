@@ -45,9 +45,43 @@ pub struct MeshSurface {
     pub wall_type: u32,
     /// Velocity of the surface material.
     pub surface_vel: DVec3,
+    /// `surface_ang_vel`: (a point of the axis, angular velocity vector) of a surface
+    /// turning about a fixed axis (a drum) without moving its triangles.
+    pub surface_ang_vel: Option<(DVec3, DVec3)>,
+    /// `fix move/mesh` motions and the vertex velocities they give.
+    pub motion: crate::mesh_motion::MeshMotion,
 }
 
 impl MeshSurface {
+    /// Velocity of the wall at the point `q` of triangle `t`: the surface velocity
+    /// (`surface_vel`, `surface_ang_vel`) plus the mesh's own motion, interpolated
+    /// from its corners' velocities (exact for rigid motions).
+    #[inline]
+    pub fn wall_velocity(&self, t: u32, q: DVec3) -> DVec3 {
+        let mut v = self.surface_vel;
+        if let Some((o, w)) = self.surface_ang_vel {
+            v += w.cross(q - o);
+        }
+        if !self.motion.vel.is_empty() {
+            let tri = self.mesh.tris[t as usize];
+            let [a, b, c] = tri.map(|k| self.mesh.verts[k as usize]);
+            let [l0, l1, l2] = barycentric(a, b, c, q);
+            let vel = &self.motion.vel;
+            v += vel[tri[0] as usize] * l0 + vel[tri[1] as usize] * l1 + vel[tri[2] as usize] * l2;
+        }
+        v
+    }
+
+    /// Moves the mesh to time `t` of its motions (nothing for a mesh at rest).
+    pub fn move_to(&mut self, t: f64) {
+        if self.motion.is_moving() {
+            let mut verts = std::mem::take(&mut self.mesh.verts);
+            self.motion.update(t, &mut verts);
+            self.mesh.verts = verts;
+            self.mesh.transform(|p| p);
+        }
+    }
+
     /// Mesh `id` of material type `wall_type`, at rest.
     pub fn new(id: &str, mesh: TriMesh, wall_type: u32) -> Self {
         Self {
@@ -55,6 +89,8 @@ impl MeshSurface {
             mesh,
             wall_type,
             surface_vel: DVec3::ZERO,
+            surface_ang_vel: None,
+            motion: Default::default(),
         }
     }
 }
@@ -126,6 +162,9 @@ fn adjacent(m: &TriMesh, a: Feature, b: Feature) -> bool {
 struct Touch {
     mesh: u32,
     feature: Feature,
+    /// A triangle the feature belongs to, and the closest point on it.
+    tri: u32,
+    q: DVec3,
     /// Unit normal from the wall to the centre.
     n: DVec3,
     /// Distance from the closest point to the centre.
@@ -277,6 +316,21 @@ impl MeshWall {
 }
 
 /// A uniform grid of bins over a mesh's triangles (by bounding box grown by the reach).
+/// Barycentric coordinates of `q` (in the plane of the triangle `a b c`).
+#[inline]
+fn barycentric(a: DVec3, b: DVec3, c: DVec3, q: DVec3) -> [f64; 3] {
+    let (e0, e1, e2) = (b - a, c - a, q - a);
+    let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
+    let (d20, d21) = (e2.dot(e0), e2.dot(e1));
+    let den = d00 * d11 - d01 * d01;
+    if den <= 0.0 {
+        return [1.0 / 3.0; 3];
+    }
+    let v = (d11 * d20 - d01 * d21) / den;
+    let w = (d00 * d21 - d01 * d20) / den;
+    [1.0 - v - w, v, w]
+}
+
 struct Grid {
     lo: DVec3,
     inv: f64,
@@ -388,6 +442,8 @@ impl Visitor for MeshPass<'_> {
         let none = Touch {
             mesh: 0,
             feature: Feature::Face(0),
+            tri: 0,
+            q: DVec3::ZERO,
             n: DVec3::ZERO,
             dist: 0.0,
         };
@@ -424,6 +480,8 @@ impl Visitor for MeshPass<'_> {
                     found[nt] = Touch {
                         mesh: mi,
                         feature,
+                        tri: t,
+                        q,
                         n,
                         dist,
                     };
@@ -511,7 +569,7 @@ impl Visitor for MeshPass<'_> {
                     hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
                 }
                 let surface = &surfaces[wall.meshes[t.mesh as usize]];
-                let vr = p.v[i] - surface.surface_vel;
+                let vr = p.v[i] - surface.wall_velocity(t.tri, t.q);
                 let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..]);
