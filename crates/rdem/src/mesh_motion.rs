@@ -135,7 +135,7 @@ impl Motion {
             Motion::Wiggle { period, .. }
             | Motion::Rotate { period, .. }
             | Motion::Riggle { period, .. }
-                if !(*period > 0.0) =>
+                if period.is_nan() || *period <= 0.0 =>
             {
                 bad("period", "must be > 0")
             }
@@ -148,7 +148,7 @@ impl Motion {
                 bad("axis", "must be a unit vector (give a non-zero direction)")
             }
             Motion::Viblin { terms, .. } | Motion::Vibrot { terms, .. }
-                if terms.is_empty() || terms.iter().any(|t| !(t[2] > 0.0)) =>
+                if terms.is_empty() || terms.iter().any(|t| t[2].is_nan() || t[2] <= 0.0) =>
             {
                 bad("period", "each term needs a period > 0 (order >= 1)")
             }
