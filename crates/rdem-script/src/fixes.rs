@@ -1215,7 +1215,7 @@ fn move_mesh(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<FrontFix> {
         a.keyword(&format!("{style} keyword"), &["axis"])?;
         let at = a.pos();
         let v = a.vec3("axis")?;
-        if !(v.length() > 0.0) || !v.is_finite() {
+        if !v.is_finite() || v.length() <= 0.0 {
             return Err(a.error_at(at, "the axis has no direction", None));
         }
         Ok(v.normalize())
@@ -1359,7 +1359,7 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
                 a.keyword("surface_ang_vel keyword", &["axis"])?;
                 let at = a.pos();
                 let ax = a.vec3("axis")?;
-                if !(ax.length() > 0.0) || !ax.is_finite() {
+                if !ax.is_finite() || ax.length() <= 0.0 {
                     return Err(a.error_at(at, "the axis has no direction", None));
                 }
                 a.keyword("surface_ang_vel keyword", &["omega"])?;
