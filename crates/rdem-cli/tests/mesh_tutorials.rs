@@ -37,8 +37,8 @@ fn stats_row(out: &str) -> (u64, u64, f64) {
 }
 
 /// Runs the tutorial `case` (file `in.<case>`) and returns its screen output and the
-/// files it wrote under `post/`.
-fn run(case: &str) -> (String, Vec<String>) {
+/// files it wrote under `post/` (name and, for `keep`, contents).
+fn run(case: &str, keep: &str) -> (String, Vec<(String, String)>) {
     let src = Path::new(TUTORIALS).join(case);
     let file = format!("in.{case}");
     assert!(
@@ -69,9 +69,17 @@ fn run(case: &str) -> (String, Vec<String>) {
         "{case} failed:\n{}\n{stdout}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let mut files: Vec<String> = std::fs::read_dir(tmp.join("post"))
+    let mut files: Vec<(String, String)> = std::fs::read_dir(tmp.join("post"))
         .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .map(|e| {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            let text = if name == keep {
+                std::fs::read_to_string(tmp.join("post").join(&name)).unwrap()
+            } else {
+                String::new()
+            };
+            (name, text)
+        })
         .collect();
     files.sort();
     let _ = std::fs::remove_dir_all(&tmp);
@@ -79,10 +87,10 @@ fn run(case: &str) -> (String, Vec<String>) {
 }
 
 /// Runs `case` and checks its final step and particle count against LIGGGHTS'.
-fn check(case: &str) -> (String, Vec<String>) {
+fn check(case: &str, keep: &str) -> (String, Vec<(String, String)>) {
     let lig = std::fs::read_to_string(data().join(format!("{case}.log"))).unwrap();
     let (lig_step, lig_atoms, lig_z) = stats_row(&lig);
-    let (out, files) = run(case);
+    let (out, files) = run(case, keep);
     let (step, atoms, z) = stats_row(&out);
     assert_eq!(step, lig_step, "{case}: final step");
     let rel = (atoms as f64 - lig_atoms as f64).abs() / lig_atoms as f64;
@@ -99,12 +107,12 @@ fn check(case: &str) -> (String, Vec<String>) {
 
 #[test]
 fn conveyor() {
-    check("conveyor");
+    check("conveyor", "");
 }
 
 #[test]
 fn insert_stream() {
-    let (out, _) = check("insert_stream");
+    let (out, _) = check("insert_stream", "");
     // Packets of 300 at steps 1, 30001, 60001 and 90001, as LIGGGHTS inserts them.
     let packets: Vec<&str> = out
         .lines()
@@ -119,17 +127,95 @@ fn insert_stream() {
 
 #[test]
 fn mesh_gran() {
-    let (_, files) = check("meshGran");
-    assert!(files.iter().any(|f| f.ends_with(".stl")), "{files:?}");
+    let (_, files) = check("meshGran", "");
+    assert!(files.iter().any(|f| f.0.ends_with(".stl")), "{files:?}");
 }
 
 #[test]
 fn moving_mesh_gran() {
-    let (_, files) = check("movingMeshGran");
-    assert!(files.iter().any(|f| f.ends_with(".stl")), "{files:?}");
+    let (_, files) = check("movingMeshGran", "");
+    assert!(files.iter().any(|f| f.0.ends_with(".stl")), "{files:?}");
 }
 
+/// Triangle centroids and one cell array of a legacy VTK mesh file (as dump mesh/vtk
+/// and LIGGGHTS write it: three points per triangle).
+fn mesh_field(text: &str, name: &str) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let lines: Vec<&str> = text.lines().collect();
+    let numbers = |from: usize, count: usize| -> Vec<f64> {
+        lines[from..]
+            .iter()
+            .flat_map(|l| l.split_whitespace().map(|w| w.parse::<f64>().unwrap()))
+            .take(count)
+            .collect()
+    };
+    let p = lines.iter().position(|l| l.starts_with("POINTS")).unwrap();
+    let np: usize = lines[p].split_whitespace().nth(1).unwrap().parse().unwrap();
+    let pts = numbers(p + 1, 3 * np);
+    let cent = pts
+        .chunks(9)
+        .map(|c| [0, 1, 2].map(|a| (c[a] + c[3 + a] + c[6 + a]) / 3.0))
+        .collect();
+    let f = lines
+        .iter()
+        .position(|l| l.starts_with(&format!("{name} ")))
+        .unwrap_or_else(|| panic!("no array {name}"));
+    (cent, numbers(f + 1, np / 3))
+}
+
+/// The wear-weighted centroid and the mean centroid of the ten most worn triangles.
+fn wear_figures(cent: &[[f64; 3]], wear: &[f64]) -> (f64, [f64; 3], [f64; 3]) {
+    let total: f64 = wear.iter().sum();
+    let centroid =
+        [0, 1, 2].map(|a| cent.iter().zip(wear).map(|(c, w)| c[a] * w).sum::<f64>() / total);
+    let mut order: Vec<usize> = (0..wear.len()).collect();
+    order.sort_by(|&a, &b| wear[b].total_cmp(&wear[a]));
+    let top = [0, 1, 2].map(|a| order[..10].iter().map(|&t| cent[t][a]).sum::<f64>() / 10.0);
+    (total, centroid, top)
+}
+
+/// chute_wear: the particle count, and the wear where LIGGGHTS puts it. LIGGGHTS' last
+/// wear dump (`data/mesh_tutorials/chute_wear_wear.txt`) has its wear-weighted centroid
+/// at (-0.0645, 0.0021, -0.1334) and its ten most worn triangles around
+/// (-0.018, -0.004, -0.115): the stream's impact zone. rdem's must be within 1 cm and
+/// 2 cm of those, and the total wear within 10 %.
 #[test]
 fn chute_wear() {
-    check("chute_wear");
+    let (_, files) = check("chute_wear", "mesh_100000.vtk");
+    let text = &files
+        .iter()
+        .find(|f| f.0 == "mesh_100000.vtk")
+        .expect("the last wear dump")
+        .1;
+    let (cent, wear) = mesh_field(text, "wear");
+    assert_eq!(cent.len(), 1616);
+    let (total, centroid, top) = wear_figures(&cent, &wear);
+    let reference = std::fs::read_to_string(data().join("chute_wear_wear.txt")).unwrap();
+    let nums = |prefix: &str| -> Vec<Vec<f64>> {
+        reference
+            .lines()
+            .filter_map(|l| l.strip_prefix(prefix))
+            .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+            .collect()
+    };
+    let lig_total = nums("total ")[0][0];
+    let lig_centroid = &nums("centroid ")[0];
+    let lig_top: Vec<f64> = (0..3)
+        .map(|a| nums("top ").iter().map(|r| r[2 + a]).sum::<f64>() / 10.0)
+        .collect();
+    let dist = |a: &[f64], b: &[f64]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    eprintln!(
+        "chute_wear: total wear {total:.1} (LIGGGHTS {lig_total:.1}), centroid {centroid:?} \
+         (LIGGGHTS {lig_centroid:?}), ten most worn around {top:?} (LIGGGHTS {lig_top:?})"
+    );
+    assert!(
+        (total / lig_total - 1.0).abs() < 0.10,
+        "total wear {total} vs {lig_total}"
+    );
+    assert!(
+        dist(&centroid, lig_centroid) < 0.01,
+        "{centroid:?} vs {lig_centroid:?}"
+    );
+    assert!(dist(&top, &lig_top) < 0.02, "{top:?} vs {lig_top:?}");
 }

@@ -28,6 +28,7 @@ pub mod dump_text;
 pub mod euler_vtk;
 pub mod fields;
 pub mod filename;
+pub mod mesh_vtk;
 pub mod printf;
 pub mod pvd;
 pub mod stl;

@@ -175,7 +175,7 @@ pub fn vtk_layout(columns: &[Column]) -> Vec<VtkArray> {
 
 /// Writes values separated by spaces, breaking the line after every 9th value and after
 /// the last (VTK's legacy ASCII layout).
-fn write_values<I: Iterator<Item = Value>>(out: &mut String, values: I, f: &Printf) {
+pub(crate) fn write_values<I: Iterator<Item = Value>>(out: &mut String, values: I, f: &Printf) {
     for (k, v) in values.enumerate() {
         f.write(out, v);
         out.push(' ');

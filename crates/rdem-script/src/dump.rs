@@ -15,7 +15,15 @@ use crate::thermo::split_reference;
 use crate::variables::Variable;
 
 /// Dump styles rdem writes.
-pub const STYLES: [&str; 5] = ["custom", "custom/vtk", "atom/vtk", "euler/vtk", "mesh/stl"];
+pub const STYLES: [&str; 7] = [
+    "custom",
+    "custom/vtk",
+    "atom/vtk",
+    "euler/vtk",
+    "mesh/stl",
+    "mesh/vtk",
+    "mesh/gran/VTK",
+];
 
 /// LIGGGHTS dump styles of later releases.
 const LATER: [&str; 5] = [
@@ -40,6 +48,14 @@ pub enum Writer {
     /// `dump mesh/stl`: the triangles of the meshes named in the columns (all meshes
     /// without any) at their current positions, in one ASCII STL file per snapshot.
     MeshStl(DumpFileName),
+    /// `dump mesh/vtk` (and its old name `mesh/gran/VTK`): the meshes named in `meshes`
+    /// (all without any) as legacy VTK with the per-triangle values the columns name.
+    MeshVtk {
+        /// File name pattern.
+        name: DumpFileName,
+        /// Mesh IDs.
+        meshes: Vec<String>,
+    },
 }
 
 /// One dump.
@@ -277,6 +293,32 @@ fn write_one(sim: &mut Sim, k: usize, step: u64) -> Result<(), String> {
         sim.dumps[k].last = Some(step);
         return Ok(());
     }
+    if let Writer::MeshVtk { name, meshes } = &sim.dumps[k].writer {
+        let Some(w) = &sim.world else {
+            return Err("dump before the simulation box is defined".into());
+        };
+        let path = name.path(step, 0);
+        let d = &sim.dumps[k];
+        let outcome = if w.comm.rank() == 0 {
+            let (tris, arrays) = mesh_arrays(w, meshes, &d.columns);
+            rdem_io::mesh_vtk::write_mesh_vtk(&path, &tris, &arrays)
+                .map_err(|e| format!("dump {}: {e}", d.id))
+        } else {
+            Ok(())
+        };
+        let outcome = outcome.and_then(|_| {
+            if w.comm.rank() == 0 {
+                record(&mut sim.dumps[k], vec![(time, path)])
+            } else {
+                Ok(())
+            }
+        });
+        if let Some(w) = &sim.world {
+            agree(&*w.comm, &format!("dump {}", sim.dumps[k].id), outcome)?;
+        }
+        sim.dumps[k].last = Some(step);
+        return Ok(());
+    }
     if let Writer::MeshStl(name) = &sim.dumps[k].writer {
         let Some(w) = &sim.world else {
             return Err("dump before the simulation box is defined".into());
@@ -331,6 +373,82 @@ fn write_one(sim: &mut Sim, k: usize, step: u64) -> Result<(), String> {
     Ok(())
 }
 
+/// The triangles of the meshes `ids` (all without any) of `w` and the cell arrays
+/// `fields` asks for (`stress`: normal_stress_average and shear_stress_average, `wear`,
+/// `vel`: the velocity of each triangle's centroid, `id`, `area`).
+fn mesh_arrays(
+    w: &rdem::World,
+    ids: &[String],
+    fields: &[String],
+) -> (Vec<[DVec3; 3]>, Vec<rdem_io::mesh_vtk::CellArray>) {
+    use rdem_io::mesh_vtk::CellArray;
+    let mut tris = Vec::new();
+    let mut arrays: Vec<CellArray> = Vec::new();
+    let mut push = |name: &str, components: usize, values: &[f64]| match arrays
+        .iter_mut()
+        .find(|a| a.name == name)
+    {
+        Some(a) => a.values.extend_from_slice(values),
+        None => arrays.push(CellArray {
+            name: name.to_string(),
+            components,
+            values: values.to_vec(),
+        }),
+    };
+    for m in w
+        .meshes
+        .iter()
+        .filter(|m| ids.is_empty() || ids.contains(&m.id))
+    {
+        let n = m.mesh.tris.len();
+        for t in 0..n {
+            tris.push(m.mesh.corners(t as u32));
+        }
+        for f in fields {
+            match f.as_str() {
+                "stress" => {
+                    let (mut sn, mut ss) = rdem::wall::mesh_stress::stresses(m);
+                    sn.resize(n, 0.0);
+                    ss.resize(n, 0.0);
+                    push("normal_stress_average", 1, &sn);
+                    push("shear_stress_average", 1, &ss);
+                }
+                "wear" => {
+                    let wear = m
+                        .stress
+                        .as_ref()
+                        .map(|s| s.wear.clone())
+                        .unwrap_or_else(|| vec![0.0; n]);
+                    push("wear", 1, &wear);
+                }
+                "vel" => {
+                    let v: Vec<f64> = (0..n as u32)
+                        .flat_map(|t| {
+                            let [a, b, c] = m.mesh.corners(t);
+                            m.wall_velocity(t, (a + b + c) / 3.0).to_array()
+                        })
+                        .collect();
+                    push("v", 3, &v);
+                }
+                "id" => {
+                    let ids: Vec<f64> = (0..n).map(|t| t as f64).collect();
+                    push("id", 1, &ids);
+                }
+                _ => {
+                    let area: Vec<f64> = (0..n as u32)
+                        .map(|t| {
+                            let [a, b, c] = m.mesh.corners(t);
+                            0.5 * (b - a).cross(c - a).length()
+                        })
+                        .collect();
+                    push("area", 1, &area);
+                }
+            }
+        }
+    }
+    (tris, arrays)
+}
+
 /// Rank 0's part of [`write_one`]: writes the gathered particles `g` with the columns
 /// `cols` (whose custom values are replaced by the gathered ones) and lists the files in
 /// the dump's `.pvd`.
@@ -364,8 +482,8 @@ fn write_gathered(
             .map(|[main, _]| vec![(time, main)]),
         Writer::AtomVtk(v) if background => v.start(step, time, p, &sel, procs),
         Writer::AtomVtk(v) => v.write(step, p, &sel, procs).map(|path| vec![(time, path)]),
-        Writer::Euler(_) | Writer::MeshStl(_) => {
-            unreachable!("euler/vtk and mesh/stl are written by write_one")
+        Writer::Euler(_) | Writer::MeshStl(_) | Writer::MeshVtk { .. } => {
+            unreachable!("euler/vtk and the mesh dumps are written by write_one")
         }
     }
     .map_err(|e| format!("dump {}: {e}", d.id))?;
@@ -445,6 +563,10 @@ fn writer(style: &str, file: &str) -> Writer {
         "atom/vtk" => Writer::AtomVtk(AtomVtkDump::new(name)),
         "euler/vtk" => Writer::Euler(name),
         "mesh/stl" => Writer::MeshStl(name),
+        "mesh/vtk" | "mesh/gran/VTK" => Writer::MeshVtk {
+            name,
+            meshes: Vec::new(),
+        },
         _ => Writer::Vtk(VtkDump::new(name)),
     }
 }
@@ -474,6 +596,55 @@ fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>>
             }
         }
         return Ok(Vec::new());
+    }
+    if style == "mesh/vtk" || style == "mesh/gran/VTK" {
+        // [output face|interpolate|original] fields... mesh IDs...; the mesh IDs are
+        // kept after a "|" marker in the columns.
+        const FIELDS: [&str; 5] = ["stress", "wear", "vel", "id", "area"];
+        const LATER_FIELDS: [&str; 5] =
+            ["stresscomponents", "owner", "aedges", "acorners", "nneighs"];
+        let mut cols = Vec::new();
+        let mut ids = Vec::new();
+        while let Some(w) = a.peek() {
+            if w == "modify" {
+                break;
+            }
+            if w == "output" {
+                a.seek(a.pos() + 1);
+                a.keyword("output", &["face", "interpolate", "original"])?;
+                continue;
+            }
+            if FIELDS.contains(&w) {
+                cols.push(w.to_string());
+            } else if LATER_FIELDS.contains(&w) {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("dump {style} value '{w}' is not supported by this rdem release yet"),
+                    Some(format!("supported: {}", FIELDS.join(", "))),
+                ));
+            } else {
+                let known: Vec<&str> = sim
+                    .world
+                    .iter()
+                    .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+                    .collect();
+                if !known.contains(&w) {
+                    return Err(a.error_at(
+                        a.pos(),
+                        format!(
+                            "dump {style}: '{w}' is neither a value ({}) nor a mesh ID",
+                            FIELDS.join(", ")
+                        ),
+                        Some(suggest(w, &known)),
+                    ));
+                }
+                ids.push(w.to_string());
+            }
+            a.seek(a.pos() + 1);
+        }
+        cols.push("|".into());
+        cols.extend(ids);
+        return Ok(cols);
     }
     if style == "mesh/stl" {
         // Mesh IDs (none: every mesh); LIGGGHTS' parallel selectors mean the whole mesh
@@ -540,12 +711,20 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let cols = style_columns(sim, a, style)?;
     a.done()?;
     sim.world_ref(a)?;
+    let mut writer = writer(style, &file);
+    let mut cols = cols;
+    if let Writer::MeshVtk { meshes, .. } = &mut writer {
+        if let Some(k) = cols.iter().position(|c| c == "|") {
+            *meshes = cols.split_off(k + 1);
+            cols.pop();
+        }
+    }
     sim.dumps.push(Dump {
         id,
         groupbit,
         every,
         columns: cols,
-        writer: writer(style, &file),
+        writer,
         last: None,
         pvd: collection(style, &file),
     });
@@ -607,11 +786,10 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                             a.error_prev("dump euler/vtk writes cells: sort does not apply", None)
                         )
                     }
-                    Writer::MeshStl(_) => {
-                        return Err(a.error_prev(
-                            "dump mesh/stl writes triangles: sort does not apply",
-                            None,
-                        ))
+                    Writer::MeshStl(_) | Writer::MeshVtk { .. } => {
+                        return Err(
+                            a.error_prev("mesh dumps write triangles: sort does not apply", None)
+                        )
                     }
                 }
             }
@@ -621,7 +799,9 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                     Writer::Text(t) => t.name_mut().set_pad(n),
                     Writer::Vtk(v) => v.name_mut().set_pad(n),
                     Writer::AtomVtk(v) => v.name_mut().set_pad(n),
-                    Writer::Euler(name) | Writer::MeshStl(name) => name.set_pad(n),
+                    Writer::Euler(name) | Writer::MeshStl(name) | Writer::MeshVtk { name, .. } => {
+                        name.set_pad(n)
+                    }
                 }
             }
             "binary" => {
@@ -629,7 +809,10 @@ fn modify(sim: &mut Sim, a: &mut Args, k: usize, valid: &[&'static str]) -> CmdR
                 match &mut d.writer {
                     Writer::Vtk(v) => v.binary = yes,
                     Writer::AtomVtk(v) => v.binary = yes,
-                    Writer::Text(_) | Writer::Euler(_) | Writer::MeshStl(_) => {
+                    Writer::Text(_)
+                    | Writer::Euler(_)
+                    | Writer::MeshStl(_)
+                    | Writer::MeshVtk { .. } => {
                         return Err(a.error_prev(
                             "binary applies to the particle VTK dump styles (custom/vtk, atom/vtk)",
                             None,

@@ -16,9 +16,11 @@ use crate::sim::{FixEntry, Property, Sim};
 use crate::variables::format_g;
 
 /// Fix styles rdem runs.
-pub const STYLES: [&str; 23] = [
+pub const STYLES: [&str; 25] = [
     "property/global",
     "mesh/surface",
+    "mesh/surface/stress",
+    "mesh/surface/planar",
     "particletemplate/sphere",
     "particledistribution/discrete",
     "particledistribution/discrete/massbased",
@@ -43,9 +45,7 @@ pub const STYLES: [&str; 23] = [
 ];
 
 /// LIGGGHTS fix styles that are part of rdem's scope but not of this release.
-const LATER: [(&str, &str); 5] = [
-    ("mesh/surface/stress", "meshes"),
-    ("mesh/surface/planar", "meshes"),
+const LATER: [(&str, &str); 3] = [
     ("bond/gran", "bonds"),
     ("wall/gran/hooke/history", "old-style wall models"),
     ("particletemplate/multisphere", "multisphere particles"),
@@ -265,6 +265,15 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
         FrontFix::CheckTimestep(c) => pick(&c.values),
         FrontFix::AveTime(a) => pick(&a.values),
         FrontFix::Insert(ins) => pick(&[ins.total as f64, ins.total_mass]),
+        FrontFix::Mesh => {
+            let w = sim.world.as_ref().ok_or("no simulation box")?;
+            let st = w
+                .mesh_index(id)
+                .and_then(|k| w.meshes[k].stress.as_ref())
+                .ok_or_else(|| format!("fix {id} ({}) computes no global values", f.style))?;
+            let (fo, to, r) = (st.total_force, st.total_torque, st.reference_point);
+            pick(&[fo.x, fo.y, fo.z, to.x, to.y, to.z, r.x, r.y, r.z])
+        }
         FrontFix::MassFlow(mf) => {
             let w = sim.world.as_ref().ok_or("no simulation box")?;
             pick(&mf.values(w.step, w.dt))
@@ -323,8 +332,8 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
         "massflow/mesh" => massflow(sim, a, &id, groupbit)?,
         "move/mesh" => move_mesh(sim, a, &id)?,
-        "mesh/surface" => {
-            let mesh = mesh_surface(sim, a, &id)?;
+        "mesh/surface" | "mesh/surface/stress" | "mesh/surface/planar" => {
+            let mesh = mesh_surface(sim, a, &id, style)?;
             sim.world_mut(a)?.add_mesh(mesh);
             FrontFix::Mesh
         }
@@ -1311,7 +1320,14 @@ enum Wall {
 /// `scale`, `move` and `rotate` applied in the order given, vertices closer than
 /// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
 /// triangles, and `surface_vel` for a conveyor belt.
-fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::MeshSurface> {
+fn mesh_surface(
+    sim: &mut Sim,
+    a: &mut Args,
+    id: &str,
+    style: &str,
+) -> CmdResult<rdem::wall::MeshSurface> {
+    let stress_style = style == "mesh/surface/stress";
+    let (mut stress_on, mut finnie, mut reference_point) = (true, false, rdem::DVec3::ZERO);
     a.keyword("mesh/surface keyword", &["file"])?;
     let file_at = a.pos();
     let file = a.word("STL file name")?.to_string();
@@ -1335,14 +1351,14 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
         "curvature",
         "curvature_tolerant",
     ];
-    const LATER_KEYS: [&str; 6] = [
+    const LATER_KEYS: [&str; 5] = [
         "element_exclusion_list",
         "min_feature_length",
         "temperature",
         "mass_temperature",
         "extrude_planar",
-        "wear",
     ];
+    const STRESS_KEYS: [&str; 3] = ["stress", "wear", "reference_point"];
     while let Some(w) = a.peek() {
         if LATER_KEYS.contains(&w) {
             a.seek(a.pos() + 1);
@@ -1350,6 +1366,22 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
                 format!("mesh/surface keyword '{w}' is not supported by this rdem release yet"),
                 Some(format!("supported: {}", KEYS.join(", "))),
             ));
+        }
+        if STRESS_KEYS.contains(&w) {
+            if !stress_style {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("'{w}' is a keyword of fix mesh/surface/stress"),
+                    Some(format!("use fix {id} all mesh/surface/stress ... {w} ...")),
+                ));
+            }
+            a.seek(a.pos() + 1);
+            match w {
+                "stress" => stress_on = a.keyword("stress", &["on", "off"])? == "on",
+                "wear" => finnie = a.keyword("wear", &["finnie", "off", "none"])? == "finnie",
+                _ => reference_point = a.vec3("reference point")?,
+            }
+            continue;
         }
         match a.keyword("mesh/surface keyword", &KEYS)? {
             "type" => wall_type = Some(a.count("wall atom type")? as u32),
@@ -1433,7 +1465,26 @@ fn mesh_surface(sim: &mut Sim, a: &mut Args, id: &str) -> CmdResult<rdem::wall::
         mesh.tris.len(),
         mesh.verts.len()
     ));
+    if style == "mesh/surface/planar" {
+        let n = mesh.normals.first().copied().unwrap_or(rdem::DVec3::Z);
+        let p0 = mesh.verts.first().copied().unwrap_or_default();
+        let (lo, hi) = mesh.bounds();
+        let tol = 1e-6 * (hi - lo).length();
+        if mesh.verts.iter().any(|&v| (v - p0).dot(n).abs() > tol) {
+            return Err(a.error_at(
+                file_at,
+                format!("{file}: mesh/surface/planar needs a planar mesh, and this one is not"),
+                Some("use fix mesh/surface".into()),
+            ));
+        }
+    }
+    let ntri = mesh.tris.len();
     let mut surface = rdem::wall::MeshSurface::new(id, mesh, wall_type);
+    if stress_style && (stress_on || finnie) {
+        let mut st = rdem::wall::mesh_stress::MeshStress::new(ntri, finnie);
+        st.reference_point = reference_point;
+        surface.stress = Some(st);
+    }
     surface.surface_vel = surface_vel;
     surface.surface_ang_vel = surface_ang_vel;
     Ok(surface)

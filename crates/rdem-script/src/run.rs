@@ -139,6 +139,29 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
             return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
         }
         w.materials = m;
+        // k_finnie for the meshes that wear.
+        let ntypes = sim.ntypes;
+        for mesh in &mut w.meshes {
+            let Some(st) = &mut mesh.stress else { continue };
+            if !st.finnie {
+                continue;
+            }
+            let p = sim.properties.get("k_finnie").ok_or_else(|| {
+                format!(
+                    "mesh {} wears (wear finnie): define fix ID all property/global k_finnie peratomtypepair {ntypes} ...",
+                    mesh.id
+                )
+            })?;
+            if p.style != "peratomtypepair" || p.values.len() != ntypes * ntypes {
+                return Err(format!(
+                    "property k_finnie (fix {}) must be peratomtypepair with {} value(s)",
+                    p.fix_id,
+                    ntypes * ntypes
+                ));
+            }
+            st.k_finnie = p.values.clone();
+            st.ntypes = ntypes;
+        }
         w.neighbor.settings = sim.pending.neighbor;
         w.sort = sim.pending.sort;
         w.lost_policy = sim.pending.lost;

@@ -166,6 +166,14 @@ impl World {
             update,
         );
         self.hold_streamed();
+        if self.meshes.iter().any(|m| m.stress.is_some()) {
+            crate::wall::mesh_stress::accumulate(
+                &self.fixes,
+                &mut self.meshes,
+                &self.particles,
+                update,
+            );
+        }
         let t4 = self.timers.lap(Stage::Modify, t3);
         if !finite || self.comm.size() > 1 {
             let p = &self.particles;

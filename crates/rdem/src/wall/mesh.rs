@@ -50,6 +50,8 @@ pub struct MeshSurface {
     pub surface_ang_vel: Option<(DVec3, DVec3)>,
     /// `fix move/mesh` motions and the vertex velocities they give.
     pub motion: crate::mesh_motion::MeshMotion,
+    /// `fix mesh/surface/stress`: per-triangle forces and wear.
+    pub stress: Option<crate::wall::mesh_stress::MeshStress>,
 }
 
 impl MeshSurface {
@@ -91,6 +93,7 @@ impl MeshSurface {
             surface_vel: DVec3::ZERO,
             surface_ang_vel: None,
             motion: Default::default(),
+            stress: None,
         }
     }
 }
@@ -106,6 +109,9 @@ pub struct MeshWall {
     pub history_name: String,
     table: CoeffTable,
     hist: Option<PropId>,
+    /// Per-slot values after the contact history when a mesh records stress
+    /// ([`crate::wall::mesh_stress::EXTRA`]), else 0.
+    pub(crate) extra: usize,
     /// Candidate triangles of each owned particle: `cand[cand_first[i]..cand_first[i+1]]`
     /// as (mesh, triangle).
     cand_first: Vec<u32>,
@@ -122,7 +128,7 @@ fn key(mesh: u32, f: Feature) -> f64 {
     (((mesh as u64) << 34) | (kind << 32) | id as u64) as f64
 }
 
-fn unkey(k: f64) -> Option<(u32, Feature)> {
+pub(crate) fn unkey(k: f64) -> Option<(u32, Feature)> {
     if k == 0.0 {
         return None;
     }
@@ -193,6 +199,7 @@ impl MeshWall {
             history_name: format!("wallhist_{id}"),
             table: CoeffTable::default(),
             hist: None,
+            extra: 0,
             cand_first: Vec::new(),
             cand: Vec::new(),
         })
@@ -218,7 +225,12 @@ impl MeshWall {
                 });
             }
         }
-        let w = SLOTS * (1 + self.model.history_width());
+        self.extra = if self.meshes.iter().any(|&k| all[k].stress.is_some()) {
+            crate::wall::mesh_stress::EXTRA
+        } else {
+            0
+        };
+        let w = SLOTS * (1 + self.model.history_width() + self.extra);
         assert!(w <= MAX_WIDTH, "mesh wall history too wide");
         self.hist = Some(p.add_property(&self.history_name, w, &vec![0.0; w])?);
         Ok(())
@@ -435,7 +447,8 @@ impl Visitor for MeshPass<'_> {
             update,
         } = self;
         let hw = K::HIST;
-        let stride = 1 + hw;
+        let extra = wall.extra;
+        let stride = 1 + hw + extra;
         let width = SLOTS * stride;
         let flags = wall.model.flags;
         // Fixed-size scratch: no allocation in the pass.
@@ -572,9 +585,23 @@ impl Visitor for MeshPass<'_> {
                 let vr = p.v[i] - surface.wall_velocity(t.tri, t.q);
                 let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
-                let out = K::contact(&g, coeff, flags, &mut hs[1..]);
+                let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
                 f[k] += out.f_i;
                 torque[k] += out.t_i;
+                if extra > 0 {
+                    if let Some(st) = &surface.stress {
+                        crate::wall::mesh_stress::record(
+                            &mut hs[1 + hw..],
+                            st,
+                            t.tri,
+                            t.q,
+                            t.n,
+                            out.f_i,
+                            vr,
+                            dt,
+                        );
+                    }
+                }
             }
             if !update {
                 h.copy_from_slice(&old[..width]);

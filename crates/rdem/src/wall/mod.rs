@@ -2,6 +2,7 @@
 //! the contact kernel's [`crate::contact::Geom`].
 
 pub mod mesh;
+pub mod mesh_stress;
 pub mod primitive;
 
 pub use mesh::{MeshSurface, MeshWall};
