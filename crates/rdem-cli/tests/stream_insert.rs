@@ -254,7 +254,8 @@ run 0
 
 /// `duration`: a pulsed stream pours each packet (insert_every's worth of particles) in
 /// that many steps, so the packet starts in a volume 50 steps · 1e-4 s · 2 m/s = 0.01 m
-/// deep, and arrives at the face within 50 steps.
+/// deep (plus a radius: the spheres start wholly behind the face), and is through the
+/// face within 100 steps.
 #[test]
 fn pulsed_stream_pours_in_its_duration() {
     let script = format!(
@@ -269,7 +270,8 @@ run 399
     let rows = run(&script);
     let r1 = rows.iter().find(|r| r[0] == 1.0).unwrap();
     assert_eq!(r1[1], 20.0, "{rows:?}");
-    assert!(r1[4] >= 0.1 && r1[5] <= 0.11 + 1e-12, "{r1:?}");
+    // Whole spheres behind the face: centres from one radius (4 mm) to 0.01 m beyond.
+    assert!(r1[4] >= 0.104 - 1e-12 && r1[5] <= 0.114 + 1e-12, "{r1:?}");
     // All below the face and accelerating after 50 steps.
     let r = rows.iter().find(|r| r[0] == 100.0).unwrap();
     assert!(r[5] < 0.1 && r[2] < -2.0, "{r:?}");

@@ -2,7 +2,8 @@
 //! `fix mesh/surface`) at a given rate.
 //!
 //! The insertion volume is the face extruded upstream (against the insertion velocity)
-//! by `extrude_length`. Every `insert_every` steps — the time the stream needs to cross
+//! by `extrude_length` (without `all_in` the centres lie one radius further upstream,
+//! so each sphere starts wholly behind the face, as in LIGGGHTS). Every `insert_every` steps — the time the stream needs to cross
 //! the extrusion, `extrude_length / (v·n dt)` steps when the length is given — a packet
 //! of `rate · insert_every · dt` particles (a fractional count rounded up with
 //! probability equal to its fraction, as LIGGGHTS does) is placed at random in the
@@ -306,7 +307,7 @@ impl InsertStream {
         let depth = self.extrude;
         let mut grid = self
             .overlap_check
-            .then(|| OverlapGrid::gather(world, Some(face.bounding_box(depth)), rbound));
+            .then(|| OverlapGrid::gather(world, Some(face.bounding_box(depth + rbound)), rbound));
         let all_in = self.all_in;
         let n = face.normal;
         let placed = choose(
@@ -322,6 +323,9 @@ impl InsertStream {
                     if all_in && (d < r || d > depth - r || face.outline_distance(p) < r) {
                         continue;
                     }
+                    // Without all_in the sphere starts wholly upstream of the face (its
+                    // centre one radius further back), as LIGGGHTS places it.
+                    let d = if all_in { d } else { d + r };
                     return Some(p - n * d);
                 }
                 None
