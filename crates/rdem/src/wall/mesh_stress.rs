@@ -201,3 +201,47 @@ pub fn stresses(m: &MeshSurface) -> (Vec<f64>, Vec<f64>) {
     }
     (normal, shear)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Finnie's function is continuous at tan γ = 1/3 (both branches give 0.3), zero for
+    /// a grazing and for a normal impact, cos²45°/3 at 45°.
+    #[test]
+    fn finnie_function() {
+        let g0 = (1.0f64 / 3.0).atan();
+        assert!((finnie_f(g0 - 1e-12) - 0.3).abs() < 1e-9);
+        assert!((finnie_f(g0 + 1e-12) - 0.3).abs() < 1e-9);
+        assert_eq!(finnie_f(0.0), 0.0);
+        assert!(finnie_f(std::f64::consts::FRAC_PI_2).abs() < 1e-16);
+        assert!((finnie_f(std::f64::consts::FRAC_PI_4) - 0.5 / 3.0).abs() < 1e-15);
+    }
+
+    /// One contact's record: the force on the wall, the pressing force, and while the
+    /// particle approaches the wall the wear increment 2 |v| f(γ) |F| dt (k = 1); none
+    /// while it moves away.
+    #[test]
+    fn a_contact_records_its_share() {
+        let st = MeshStress::new(4, true);
+        let mut out = [0.0; EXTRA];
+        let n = DVec3::Z;
+        let f = DVec3::new(0.3, 0.0, 4.0);
+        // 30° below the surface: v = (cos 30°, 0, −sin 30°) · 2.
+        let v = DVec3::new(3f64.sqrt(), 0.0, -1.0);
+        record(&mut out, &st, 2, DVec3::new(0.1, 0.2, 0.0), n, f, v, 1e-5);
+        assert_eq!(out[0], 3.0);
+        assert_eq!(&out[1..4], &[-0.3, 0.0, -4.0]);
+        let gamma = std::f64::consts::FRAC_PI_6;
+        let want = 2.0 * 2.0 * finnie_f(gamma) * f.length() * 1e-5;
+        assert!(
+            (out[4] - want).abs() < 1e-15 * want.max(1.0),
+            "{} {want}",
+            out[4]
+        );
+        assert_eq!(&out[5..8], &[0.1, 0.2, 0.0]);
+        assert_eq!(out[8], 4.0);
+        record(&mut out, &st, 2, DVec3::ZERO, n, f, -v, 1e-5);
+        assert_eq!(out[4], 0.0);
+    }
+}
