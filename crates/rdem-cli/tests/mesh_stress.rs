@@ -226,5 +226,8 @@ run 0
         .split_whitespace()
         .map(|w| w.parse().unwrap())
         .collect();
-    assert!(values.iter().all(|&v| v > 0.0), "the pile presses on every triangle: {values:?}");
+    assert!(
+        values.iter().all(|&v| v > 0.0),
+        "the pile presses on every triangle: {values:?}"
+    );
 }

@@ -127,6 +127,46 @@ fn stl_floor_equals_the_primitive_plane() {
     );
 }
 
+/// The force on the sphere step by step while it crosses the shared edges: the mesh's
+/// force follows the plane's at every one of the 15000 steps within 1e-6 of the largest
+/// force, so crossing an edge makes no jump.
+#[test]
+fn force_is_smooth_across_shared_edges() {
+    let every_step = |s: String| {
+        s.replace(
+            "thermo_style custom step v_px v_py v_pz v_pvx v_pwz v_pwy",
+            "variable pfx equal fx[1]\nvariable pfy equal fy[1]\nvariable pfz equal fz[1]\n\
+             thermo_style custom step v_pfx v_pfy v_pfz",
+        )
+        .replace("thermo 500", "thermo 1")
+    };
+    let (ok, plane) = run(&every_step(script(
+        "fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0",
+    )));
+    assert!(ok, "{plane}");
+    let (ok, mesh) = run(&every_step(script(
+        "fix cad all mesh/surface file floor.stl type 1 scale 0.001 heal auto_remove_duplicates\n\
+         fix floor all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
+    )));
+    assert!(ok, "{mesh}");
+    let (a, b) = (thermo_rows(&plane), thermo_rows(&mesh));
+    assert_eq!(a.len(), 15001);
+    assert_eq!(a.len(), b.len());
+    let scale = a
+        .iter()
+        .map(|r| (r[1] * r[1] + r[2] * r[2] + r[3] * r[3]).sqrt())
+        .fold(0.0, f64::max);
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(ra, rb)| (1..4).map(|c| (ra[c] - rb[c]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= 1e-6 * scale,
+        "largest difference {worst} of {scale}"
+    );
+}
+
 /// Bad mesh input stops with the line and the reason.
 #[test]
 fn bad_mesh_input_is_a_located_error() {
@@ -140,8 +180,16 @@ fn bad_mesh_input_is_a_located_error() {
             "needs 'type T'",
         ),
         (
-            "fix cad all mesh/surface file floor.stl type 1 surface_ang_vel origin 0 0 0 axis 0 0 1 omega 1",
-            "surface_ang_vel' is not supported",
+            "fix cad all mesh/surface file floor.stl type 1 temperature 300",
+            "temperature' is not supported",
+        ),
+        (
+            "fix cad all mesh/surface file floor.stl type 1 wear finnie",
+            "'wear' is a keyword of fix mesh/surface/stress",
+        ),
+        (
+            "fix cad all mesh/surface file floor.stl type 1\nfix mv all move/mesh mesh cad rotate origin 0 0 0 axis 0 0 0 period 1",
+            "the axis has no direction",
         ),
         (
             "fix floor all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
