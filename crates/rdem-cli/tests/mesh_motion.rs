@@ -8,25 +8,6 @@ mod common;
 
 use common::{run_with_files_raw, thermo_rows};
 
-/// A flat floor z = 0, −0.1..0.1 in x and y, as four ASCII STL triangles.
-fn floor() -> String {
-    let v = |x: f64, y: f64| format!("vertex {x} {y} 0\n");
-    let tri = |a: (f64, f64), b: (f64, f64)| {
-        format!(
-            "facet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\n",
-            v(a.0, a.1),
-            v(b.0, b.1),
-            v(0.0, 0.0)
-        )
-    };
-    let c = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)];
-    let mut s = String::from("solid floor\n");
-    for k in 0..4 {
-        s += &tri(c[k], c[(k + 1) % 4]);
-    }
-    s + "endsolid floor\n"
-}
-
 /// A drum: a 48-sided cylinder of radius `r` about the y axis, 0.02 long.
 fn drum(r: f64) -> String {
     let n = 48;
@@ -107,7 +88,7 @@ set atom 1 diameter 0.004 density 2500
 run 10000
 "
         );
-        let r = last_row(&script, &[("floor.stl", &floor())]);
+        let r = last_row(&script, &[("floor.stl", &common::floor_stl())]);
         let (vx, wy) = (r[3], r[5]);
         let contact = vx - 0.002 * wy;
         assert!(

@@ -10,24 +10,6 @@ use std::process::Command;
 
 use common::{scratch_dir, thermo_rows};
 
-/// The floor z = 0, −0.1..0.1 in x and y: four triangles meeting at the centre, each of
-/// area 0.01 m².
-fn floor() -> String {
-    let v = |x: f64, y: f64| format!("vertex {x} {y} 0\n");
-    let c = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)];
-    let mut s = String::from("solid floor\n");
-    for k in 0..4 {
-        let (a, b) = (c[k], c[(k + 1) % 4]);
-        s += &format!(
-            "facet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\n",
-            v(a.0, a.1),
-            v(b.0, b.1),
-            v(0.0, 0.0)
-        );
-    }
-    s + "endsolid floor\n"
-}
-
 const HEAD: &str = "atom_style granular
 boundary f f f
 units si
@@ -51,7 +33,7 @@ fix nve all nve/sphere
 
 /// Runs `script` in `dir` (with floor.stl) on `threads` threads; returns the screen output.
 fn run_in(dir: &Path, script: &str, threads: usize) -> String {
-    std::fs::write(dir.join("floor.stl"), floor()).unwrap();
+    std::fs::write(dir.join("floor.stl"), common::floor_stl()).unwrap();
     std::fs::write(dir.join("in.test"), script).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
         .args(["-in", "in.test", "-log", "none"])

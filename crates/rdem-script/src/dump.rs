@@ -579,6 +579,14 @@ fn collection(style: &str, file: &str) -> Option<PvdSeries> {
     PvdSeries::for_pattern(file, 0)
 }
 
+/// The IDs of the meshes (`fix mesh/surface`).
+fn mesh_ids(sim: &Sim) -> Vec<&str> {
+    sim.world
+        .iter()
+        .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+        .collect()
+}
+
 /// The columns of a style: atom/vtk has none.
 fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>> {
     if style == "euler/vtk" {
@@ -623,11 +631,7 @@ fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>>
                     Some(format!("supported: {}", FIELDS.join(", "))),
                 ));
             } else {
-                let known: Vec<&str> = sim
-                    .world
-                    .iter()
-                    .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
-                    .collect();
+                let known = mesh_ids(sim);
                 if !known.contains(&w) {
                     return Err(a.error_at(
                         a.pos(),
@@ -658,11 +662,7 @@ fn style_columns(sim: &Sim, a: &mut Args, style: &str) -> CmdResult<Vec<String>>
                 a.seek(a.pos() + 1);
                 continue;
             }
-            let known: Vec<&str> = sim
-                .world
-                .iter()
-                .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
-                .collect();
+            let known = mesh_ids(sim);
             if !known.contains(&w) {
                 return Err(a.error_at(
                     a.pos(),

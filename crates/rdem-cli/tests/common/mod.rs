@@ -120,3 +120,21 @@ pub fn thermo_rows(out: &str) -> Vec<Vec<f64>> {
     }
     all
 }
+
+/// The floor z = 0, −0.1..0.1 in x and y, as four ASCII STL triangles meeting at the
+/// centre (each of area 0.01 m²).
+pub fn floor_stl() -> String {
+    let v = |x: f64, y: f64| format!("vertex {x} {y} 0\n");
+    let c = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)];
+    let mut s = String::from("solid floor\n");
+    for k in 0..4 {
+        let (a, b) = (c[k], c[(k + 1) % 4]);
+        s += &format!(
+            "facet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\n",
+            v(a.0, a.1),
+            v(b.0, b.1),
+            v(0.0, 0.0)
+        );
+    }
+    s + "endsolid floor\n"
+}

@@ -7,10 +7,9 @@
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{choose, OverlapGrid};
+use super::place::{add_placed, choose, OverlapGrid};
 use super::{Distribution, InsertRng};
 use crate::error::{check, Error, Result};
-use crate::particles::NewParticle;
 use crate::region::Region;
 use crate::world::World;
 
@@ -244,18 +243,9 @@ impl InsertPack {
             self.velocity,
         );
         let (mut inserted, mut mass) = (0u64, 0.0);
-        for pl in placed {
-            let t = &self.dist.templates[pl.template];
-            let mut np = NewParticle::at(pl.x, pl.radius, t.density)
-                .with_type(t.ty)
-                .with_omega(self.omega);
-            np.v = pl.v;
-            np.mask = 1 | self.groupbit;
-            mass += crate::particles::sphere_mass(np.density, pl.radius);
+        for pl in &placed {
+            mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit)?.0;
             inserted += 1;
-            if world.owns_inserted(pl.x) {
-                world.add_particle(&np)?;
-            }
         }
         world.extend_tags();
         Ok((inserted, mass))

@@ -9,6 +9,8 @@ use rand::Rng;
 use rand_distr::{Distribution as _, Normal};
 
 use super::{Distribution, InsertRng, VelocityLaw};
+use crate::error::Result;
+use crate::particles::NewParticle;
 use crate::world::World;
 
 /// Draws a velocity from `law`.
@@ -161,4 +163,29 @@ pub(crate) fn choose(
         }
     }
     out
+}
+
+/// Adds the placed sphere `pl` (of a template of `dist`, spinning at `omega`, in the
+/// groups `groupbit` and `all`) to `world` if this rank owns its position; returns its
+/// mass and, when added, its index.
+pub(crate) fn add_placed(
+    world: &mut World,
+    dist: &Distribution,
+    pl: &Placed,
+    omega: DVec3,
+    groupbit: u32,
+) -> Result<(f64, Option<usize>)> {
+    let t = &dist.templates[pl.template];
+    let mut np = NewParticle::at(pl.x, pl.radius, t.density)
+        .with_type(t.ty)
+        .with_omega(omega);
+    np.v = pl.v;
+    np.mask = 1 | groupbit;
+    let mass = crate::particles::sphere_mass(np.density, pl.radius);
+    let index = if world.owns_inserted(pl.x) {
+        Some(world.add_particle(&np)?)
+    } else {
+        None
+    };
+    Ok((mass, index))
 }

@@ -14,11 +14,10 @@
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{choose, OverlapGrid};
+use super::place::{add_placed, choose, OverlapGrid};
 use super::{Distribution, InsertReport, InsertRng, VelocityLaw};
 use crate::error::{Error, Result};
 use crate::mesh::TriMesh;
-use crate::particles::NewParticle;
 use crate::world::World;
 
 /// Per-particle property holding the step from which a streamed particle moves freely;
@@ -337,17 +336,11 @@ impl InsertStream {
         let (mut inserted, mut mass) = (0u64, 0.0);
         let step = world.step;
         let dt = world.dt;
-        for pl in placed {
-            let t = &self.dist.templates[pl.template];
-            let mut np = NewParticle::at(pl.x, pl.radius, t.density)
-                .with_type(t.ty)
-                .with_omega(self.omega);
-            np.v = pl.v;
-            np.mask = 1 | self.groupbit;
-            mass += crate::particles::sphere_mass(np.density, pl.radius);
+        for pl in &placed {
+            let (m, added) = add_placed(world, &self.dist, pl, self.omega, self.groupbit)?;
+            mass += m;
             inserted += 1;
-            if world.owns_inserted(pl.x) {
-                let i = world.add_particle(&np)?;
+            if let Some(i) = added {
                 // Steps until the centre reaches the face.
                 let depth = (p0 - pl.x).dot(n).max(0.0);
                 let vn = pl.v.dot(n);
