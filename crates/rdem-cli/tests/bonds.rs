@@ -684,3 +684,125 @@ fn a_twisted_pair_oscillates_and_breaks_at_max_tau() {
     assert_eq!(last[4], 0.0, "{broke:?}");
     assert_eq!(broke.iter().map(|r| r[3]).sum::<f64>(), 1.0, "{broke:?}");
 }
+
+/// Runs `script` beside `floor.stl` ([`common::floor_stl`], the square z = 0 of four
+/// triangles meeting at the origin); returns the screen output.
+fn run_on_floor(script: &str) -> String {
+    let out = common::run_with_files_raw(script, &[("floor.stl", &common::floor_stl())], None);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
+/// A wall-bond script of [`head`] with the primitive plane z = 0 replaced by the STL
+/// floor (`fix mesh/surface ... {mesh_keys}` and `wall/gran ... mesh`).
+fn on_floor(script: &str, mesh_keys: &str) -> String {
+    let s = script
+        .replace(
+            "primitive type 1 zplane 0.0\n",
+            "mesh n_meshes 1 meshes floor\n",
+        )
+        .replace(
+            "fix wall all wall/gran",
+            &format!("fix floor all mesh/surface file floor.stl type 1{mesh_keys}\nfix wall all wall/gran"),
+        );
+    assert!(s.contains("meshes floor"));
+    s
+}
+
+/// Wall bonds work on mesh walls: the tension test of
+/// [`a_wall_bond_stretches_by_force_over_kn_area`] on the STL floor (the sphere off the
+/// triangles' shared edges) gives the plane's run: every thermo row (bond counters,
+/// position) equal within 1e-9 relative, and the elongation F/(k_n A) within 1 %.
+#[test]
+fn a_wall_bond_on_a_mesh_floor_holds_as_on_the_plane() {
+    let f = 0.1;
+    let mut s = head(&[[0.013, 0.007, R]], &by_distance(0.0025), true);
+    s += "group tip id 1\nfix visc tip viscous 1.0\nvariable dz equal z[1]\n\
+          variable dx equal x[1]\nvariable dy equal y[1]\n";
+    s += &thermo("v_dz v_dx v_dy", 500);
+    s += &format!("run 10\nfix pull tip addforce 0 0 {f}\nrun 5000\n");
+    let plane = rows(&run(&s));
+    let mesh = rows(&run_on_floor(&on_floor(&s, "")));
+    assert_eq!(plane.len(), mesh.len());
+    for (a, b) in plane.iter().zip(&mesh) {
+        for (x, y) in a.iter().zip(b) {
+            assert!(
+                (x - y).abs() <= 1e-9 * x.abs().max(1e-12),
+                "plane {a:?}\nmesh  {b:?}"
+            );
+        }
+    }
+    let last = mesh.last().unwrap();
+    let want = f / (KN * AREA);
+    let got = last[8] - R;
+    eprintln!("mesh wall tension: elongation {got:e}, expected {want:e}");
+    assert!(
+        rel(got, want) < 0.01,
+        "elongation {got:e}, expected {want:e}"
+    );
+    assert_eq!(last[7], 1.0, "one wall bond");
+    let created: f64 = mesh.iter().map(|r| r[5]).sum();
+    assert_eq!(created, 1.0, "one wall bond created");
+}
+
+/// A mesh wall bond's anchor goes with the wall: on a conveyor floor (`surface_vel`
+/// 0.1 0 0) and on a floor moved by `fix move/mesh linear 0.1 0 0`, a sphere bonded to
+/// it (motion damped by `fix viscous`) is dragged along at v_x = 0.1 m/s within 0.5 %
+/// after 20 ms, at x = x₀ + v t within 1 % of v t, the bond intact.
+#[test]
+fn a_mesh_wall_bond_follows_a_belt_and_a_moving_mesh() {
+    let v = 0.1;
+    let x0 = 0.013;
+    let mut s = head(&[[x0, 0.007, R]], &by_distance(0.0025), true);
+    s += "group tip id 1\nfix visc tip viscous 1.0\nvariable px equal x[1]\n\
+          variable pv equal vx[1]\n";
+    s += &thermo("v_px v_pv", 1000);
+    s += "run 20000\n";
+    let belt = on_floor(&s, &format!(" surface_vel {v} 0 0"));
+    let moving = on_floor(&s, "").replace(
+        "timestep 1e-6\n",
+        &format!("timestep 1e-6\nfix mv all move/mesh mesh floor linear {v} 0 0\n"),
+    );
+    assert!(moving.contains("move/mesh"));
+    let t = 20000.0 * 1e-6;
+    for (name, script) in [("belt", belt), ("moving mesh", moving)] {
+        let last = rows(&run_on_floor(&script)).last().unwrap().clone();
+        eprintln!("{name}: x - x0 = {:e}, vx = {}", last[8] - x0, last[9]);
+        assert!(
+            rel(last[9], v) < 5e-3,
+            "{name}: velocity {} (want {v})",
+            last[9]
+        );
+        assert!(
+            rel(last[8] - x0, v * t) < 1e-2,
+            "{name}: x - x0 = {} (want {})",
+            last[8] - x0,
+            v * t
+        );
+        assert_eq!(last[7], 1.0, "{name}: the wall bond holds");
+    }
+}
+
+/// Breakage of a mesh wall bond by distance, as
+/// [`a_wall_bond_breaks_beyond_max_distance`] on the plane: the first load above
+/// k_n A (1.1 mm − r) breaks it, and the counters show it.
+#[test]
+fn a_mesh_wall_bond_breaks_beyond_max_distance() {
+    let max_d = 0.0011;
+    let fb = KN * AREA * (max_d - R);
+    let mut s = head(&[[0.013, 0.007, R]], &by_distance(max_d), true);
+    s += "group tip id 1\nfix visc tip viscous 1.0\nvariable dz equal z[1]\n\
+          variable load equal 0\n";
+    s += &thermo("v_dz v_load", 200);
+    s += "run 10\n";
+    s += &staircase(&loads_around(fb), [0.0, 0.0, 1.0], 200);
+    let out = run_on_floor(&on_floor(&s, ""));
+    let got = breaking_load(&out, 9, true);
+    eprintln!("mesh wall distance break: load {got}, expected {fb}");
+    assert_first_above(got, fb);
+}

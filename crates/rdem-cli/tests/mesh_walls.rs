@@ -195,6 +195,10 @@ fn bad_mesh_input_is_a_located_error() {
             "fix floor all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
             "no fix mesh/surface 'cad'",
         ),
+        (
+            "fix cad all mesh/surface file floor.stl type 1 curvature 95",
+            "curvature is the largest angle",
+        ),
     ];
     for (line, want) in cases {
         let (ok, out) = run(&script(line));

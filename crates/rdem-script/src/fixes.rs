@@ -1338,6 +1338,7 @@ fn mesh_surface(
     let mut heal = false;
     let mut surface_vel = rdem::DVec3::ZERO;
     let mut surface_ang_vel = None;
+    let mut coplanar_cos = rdem::wall::mesh::COPLANAR_COS;
     const KEYS: [&str; 11] = [
         "surface_ang_vel",
         "type",
@@ -1405,10 +1406,17 @@ fn mesh_surface(
             "verbose" => {
                 a.yes_no("verbose")?;
             }
-            // rdem needs no curvature threshold: an edge or corner counts once whatever
-            // the angle between its triangles.
             "curvature" => {
-                a.positive("curvature")?;
+                let at = a.pos();
+                let deg = a.positive("curvature (degrees)")?;
+                if deg >= 90.0 {
+                    return Err(a.error_at(
+                        at,
+                        "curvature is the largest angle (degrees) between two triangles of one flat surface: below 90",
+                        None,
+                    ));
+                }
+                coplanar_cos = deg.to_radians().cos();
             }
             "curvature_tolerant" => {
                 a.yes_no("curvature_tolerant")?;
@@ -1487,6 +1495,7 @@ fn mesh_surface(
     }
     surface.surface_vel = surface_vel;
     surface.surface_ang_vel = surface_ang_vel;
+    surface.coplanar_cos = coplanar_cos;
     Ok(surface)
 }
 

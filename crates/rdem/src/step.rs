@@ -117,8 +117,10 @@ impl World {
         crate::par::zero(&mut p.f, &mut p.torque);
         // Bonds are created at a given step.
         for fix in &mut self.fixes {
-            if let crate::fix::FixKind::WallGran(wall) = &mut fix.kind {
-                wall.step = self.step;
+            match &mut fix.kind {
+                crate::fix::FixKind::WallGran(wall) => wall.step = self.step,
+                crate::fix::FixKind::MeshWall(wall) => wall.step = self.step,
+                _ => {}
             }
         }
         let t1 = self.timers.lap(Stage::Other, t0);

@@ -475,12 +475,15 @@ impl World {
             t[2] = pair.count_bonds(&self.neighbor.list);
         }
         for fix in &self.fixes {
-            if let FixKind::WallGran(wall) = &fix.kind {
-                let (c, b) = wall.bond_events.totals();
-                t[3] += c;
-                t[4] += b;
-                t[5] += wall.count_bonds(&self.particles);
-            }
+            let (events, intact) = match &fix.kind {
+                FixKind::WallGran(wall) => (&wall.bond_events, wall.count_bonds(&self.particles)),
+                FixKind::MeshWall(wall) => (&wall.bond_events, wall.count_bonds(&self.particles)),
+                _ => continue,
+            };
+            let (c, b) = events.totals();
+            t[3] += c;
+            t[4] += b;
+            t[5] += intact;
         }
         t
     }
@@ -513,14 +516,17 @@ impl World {
         self.comm.reverse_scalar(p, &mut c);
         c.truncate(nlocal);
         for fix in &self.fixes {
-            if let FixKind::WallGran(wall) = &fix.kind {
-                if let (Some(id), true) = (wall.history_prop(), wall.model.has_bonds()) {
-                    let prop = &p.props[id.0];
-                    let w = prop.width;
-                    for (i, h) in prop.data[..nlocal * w].chunks_exact(w).enumerate() {
-                        if crate::bond::is_bonded(&h[w - crate::bond::WALL_TAIL..]) {
-                            c[i] += 1.0;
-                        }
+            let (id, flag) = match &fix.kind {
+                FixKind::WallGran(wall) => (wall.history_prop(), wall.bond_flag_at()),
+                FixKind::MeshWall(wall) => (wall.history_prop(), wall.bond_flag_at()),
+                _ => continue,
+            };
+            if let (Some(id), Some(flag)) = (id, flag) {
+                let prop = &p.props[id.0];
+                let w = prop.width;
+                for (i, h) in prop.data[..nlocal * w].chunks_exact(w).enumerate() {
+                    if crate::bond::is_bonded(&h[flag..]) {
+                        c[i] += 1.0;
                     }
                 }
             }

@@ -177,3 +177,72 @@ fn corner_and_edge_give_one_hertz_contact() {
 fn e_star_wall() -> f64 {
     1.0 / (2.0 * (1.0 - NU * NU) / E)
 }
+
+/// One contact per flat surface: a sphere over the corner (h, h) of a square hole in the
+/// floor z = 0 (|x|, |y| < h cut out; eight triangles) overlaps both rim edges that meet
+/// there, edges of two different but coplanar triangles. It feels only the deeper one —
+/// the sphere–line Hertz force 4/3 E* √(r δ) δ along the line from that edge to its
+/// centre, within 1e-9 — as LIGGGHTS counts one contact per coplanar neighbourhood. With
+/// the floor folded up by 1° along the diagonal y = x through that corner, the folded
+/// side (which the sphere now touches on a face) and the edge x = h both count; with
+/// `curvature 2` (degrees) the two sides are one surface again and the deeper counts.
+#[test]
+fn a_flat_surface_touches_a_sphere_once() {
+    let model = ContactModel::hertz_history();
+    let h = 0.004;
+    let l = 0.02;
+    // Triangles on the side y <= x stay at z = 0; the side y >= x rises by tan(fold).
+    let floor = |fold: f64| {
+        let p = |x: f64, y: f64| DVec3::new(x, y, (y - x).max(0.0) * fold.tan());
+        vec![
+            [p(-l, -l), p(l, -l), p(h, -h)],
+            [p(-l, -l), p(h, -h), p(-h, -h)],
+            [p(l, -l), p(l, l), p(h, h)],
+            [p(l, -l), p(h, h), p(h, -h)],
+            [p(l, l), p(-l, l), p(-h, h)],
+            [p(l, l), p(-h, h), p(h, h)],
+            [p(-l, l), p(-l, -l), p(-h, -h)],
+            [p(-l, l), p(-h, -h), p(-h, h)],
+        ]
+    };
+    // Over the hole near its corner: 60 µm from the edge x = h, 30 µm from y = h.
+    let x = DVec3::new(h - 6e-5, h - 3e-5, R - 4e-5);
+    let force = |tris: &[[DVec3; 3]], curvature: Option<f64>| {
+        let lo = DVec3::splat(-0.05);
+        let hi = DVec3::splat(0.05);
+        let mut w = world(lo, hi, [Boundary::Fixed; 3], model, 0.5, 0.4);
+        add_mesh(&mut w, model, tris);
+        if let Some(deg) = curvature {
+            w.meshes[0].coplanar_cos = f64::to_radians(deg).cos();
+        }
+        w.add_particle(&NewParticle::at(x, R, RHO)).unwrap();
+        w.set_timestep(1e-7).unwrap();
+        w.setup().unwrap();
+        w.particles.f[0]
+    };
+    let hertz = |q: DVec3| {
+        let d = x - q;
+        let delta = R - d.length();
+        4.0 / 3.0 * e_star_wall() * (R * delta).sqrt() * delta * d.normalize()
+    };
+    let close = |f: DVec3, want: DVec3| {
+        assert!((f - want).length() < 1e-9 * want.length(), "{f} vs {want}");
+    };
+    let on_x = DVec3::new(h, x.y, 0.0);
+    // Flat: the closer edge y = h alone.
+    close(force(&floor(0.0), None), hertz(DVec3::new(x.x, h, 0.0)));
+    // Folded by 1° (more than the default 0.26°): both sides.
+    let fold = 1f64.to_radians();
+    // On the folded side the sphere's closest point is inside the face of the triangle
+    // (l, l), (−h, h), (h, h): the foot of the perpendicular on its plane.
+    let n = DVec3::new(fold.tan(), -fold.tan(), 1.0).normalize();
+    let on_y = x - (x - DVec3::new(h, h, 0.0)).dot(n) * n;
+    close(force(&floor(fold), None), hertz(on_y) + hertz(on_x));
+    // Folded, with curvature 2: one surface, the deeper contact.
+    let deeper = if (x - on_y).length() < (x - on_x).length() {
+        on_y
+    } else {
+        on_x
+    };
+    close(force(&floor(fold), Some(2.0)), hertz(deeper));
+}

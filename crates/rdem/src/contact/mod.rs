@@ -152,6 +152,11 @@ impl ContactModel {
         }
     }
 
+    /// Number of f64 history values of the contact law alone (no bond).
+    pub fn contact_history_width(&self) -> usize {
+        self.dispatch(HistoryWidth)
+    }
+
     /// Number of f64 history values per particle for a wall (as [`Self::history_width`],
     /// the bond's tail also holding the anchor point).
     pub fn wall_history_width(&self) -> usize {

@@ -10,14 +10,29 @@
 //! History: each particle has [`SLOTS`] contact slots (a per-particle property, so it
 //! travels with the particle through sorting and migration), each a feature key and the
 //! contact model's history. A contact keeps the slot of its feature; a new contact takes
-//! over the slot of an ended contact whose feature shares a vertex with its own (the
-//! sphere rolled from one triangle to its neighbour), else starts from zero.
+//! over the slot of an ended contact on the same flat surface whose feature shares a
+//! vertex with its own (the sphere rolled from a face to its edge, or from one triangle
+//! to its coplanar neighbour), else starts from zero — as LIGGGHTS copies history only
+//! between coplanar neighbours.
 //!
-//! Candidates: at each re-neighboring, the triangles within r + skin of each particle,
-//! found through a grid of bins over the triangles' bounding boxes.
+//! Flat surfaces: triangles sharing a corner whose normals are within the `curvature`
+//! angle ([`MeshSurface::coplanar_cos`]) make one surface, which touches a sphere once:
+//! of two contacts on it (a sphere over the corner of a polygonal hole touches both rim
+//! edges) the deeper counts, as in LIGGGHTS.
+//!
+//! Candidates: at each re-neighboring, the triangles within r + skin of each particle
+//! (with bonds, within the bond reach + skin), found through a grid of bins over the
+//! triangles' bounding boxes.
+//!
+//! Wall bonds (`cohesion bond`, [`crate::bond`]): a particle bonds to the nearest point
+//! of the wall's meshes when twice its distance is below `createDistanceBond`, one bond
+//! per particle and wall as on a primitive wall. The anchor is held as a triangle and
+//! barycentric coordinates, so it moves with the mesh (`fix move/mesh`), plus an offset
+//! that the surface velocity (`surface_vel`, `surface_ang_vel`) carries along.
 
 use glam::DVec3;
 
+use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
 use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
 use crate::error::{Error, Result};
 use crate::mesh::{Feature, TriMesh};
@@ -26,6 +41,11 @@ use crate::particles::{Particles, PropId};
 
 /// Contact slots per particle and mesh wall.
 pub const SLOTS: usize = 6;
+
+/// Values of a wall bond after the slots: the bond's vectors and tail (flag, d₀, anchor
+/// offset), then the anchor's mesh (index in the wall), triangle and barycentric
+/// coordinates (2).
+const BOND_BLOCK: usize = bond::VEC + bond::WALL_TAIL + 4;
 
 /// Largest history of one particle (all slots).
 const MAX_WIDTH: usize = 128;
@@ -52,7 +72,13 @@ pub struct MeshSurface {
     pub motion: crate::mesh_motion::MeshMotion,
     /// `fix mesh/surface/stress`: per-triangle forces and wear.
     pub stress: Option<crate::wall::mesh_stress::MeshStress>,
+    /// Cosine of the `curvature` angle: two triangles sharing a corner whose normals
+    /// are closer than this belong to one flat surface, which touches a sphere once.
+    pub coplanar_cos: f64,
 }
+
+/// Default [`MeshSurface::coplanar_cos`]: normals within about 0.26° (LIGGGHTS' default).
+pub const COPLANAR_COS: f64 = 1.0 - 1e-5;
 
 impl MeshSurface {
     /// Velocity of the wall at the point `q` of triangle `t`: the surface velocity
@@ -60,10 +86,7 @@ impl MeshSurface {
     /// from its corners' velocities (exact for rigid motions).
     #[inline]
     pub fn wall_velocity(&self, t: u32, q: DVec3) -> DVec3 {
-        let mut v = self.surface_vel;
-        if let Some((o, w)) = self.surface_ang_vel {
-            v += w.cross(q - o);
-        }
+        let mut v = self.surface_velocity(q);
         if !self.motion.vel.is_empty() {
             let tri = self.mesh.tris[t as usize];
             let [a, b, c] = tri.map(|k| self.mesh.verts[k as usize]);
@@ -72,6 +95,24 @@ impl MeshSurface {
             v += vel[tri[0] as usize] * l0 + vel[tri[1] as usize] * l1 + vel[tri[2] as usize] * l2;
         }
         v
+    }
+
+    /// Velocity of the surface material at `q` over the triangles (`surface_vel`,
+    /// `surface_ang_vel`), without the mesh's own motion.
+    #[inline]
+    pub fn surface_velocity(&self, q: DVec3) -> DVec3 {
+        let mut v = self.surface_vel;
+        if let Some((o, w)) = self.surface_ang_vel {
+            v += w.cross(q - o);
+        }
+        v
+    }
+
+    /// The point of triangle `t` at barycentric coordinates (1 − u − v, u, v).
+    #[inline]
+    pub fn point_at(&self, t: u32, u: f64, v: f64) -> DVec3 {
+        let [a, b, c] = self.mesh.corners(t);
+        a + (b - a) * u + (c - a) * v
     }
 
     /// Moves the mesh to time `t` of its motions (nothing for a mesh at rest).
@@ -94,6 +135,7 @@ impl MeshSurface {
             surface_ang_vel: None,
             motion: Default::default(),
             stress: None,
+            coplanar_cos: COPLANAR_COS,
         }
     }
 }
@@ -112,6 +154,14 @@ pub struct MeshWall {
     /// Per-slot values after the contact history when a mesh records stress
     /// ([`crate::wall::mesh_stress::EXTRA`]), else 0.
     pub(crate) extra: usize,
+    /// Values per contact slot: key, contact history, `extra`.
+    pub(crate) stride: usize,
+    /// With `cohesion bond`: the bond parameters (particle type × wall type).
+    bond: Option<BondTable>,
+    /// Wall bonds created and broken on this rank so far.
+    pub bond_events: BondEvents,
+    /// The current step (bonds are created at `tsCreateBond`).
+    pub step: u64,
     /// Candidate triangles of each owned particle: `cand[cand_first[i]..cand_first[i+1]]`
     /// as (mesh, triangle).
     cand_first: Vec<u32>,
@@ -163,6 +213,16 @@ fn adjacent(m: &TriMesh, a: Feature, b: Feature) -> bool {
     va[..na].iter().any(|v| vb[..nb].contains(v))
 }
 
+/// True when triangles `a` and `b` share a corner and lie in one plane (normals closer
+/// than `cos`): the same flat surface.
+fn same_surface(m: &TriMesh, a: u32, b: u32, cos: f64) -> bool {
+    a == b
+        || (m.normals[a as usize].dot(m.normals[b as usize]).abs() >= cos
+            && m.tris[a as usize]
+                .iter()
+                .any(|v| m.tris[b as usize].contains(v)))
+}
+
 /// One contact of a particle with a mesh.
 #[derive(Debug, Clone, Copy)]
 struct Touch {
@@ -186,13 +246,6 @@ impl MeshWall {
                 reason: "needs at least one mesh".into(),
             });
         }
-        if model.has_bonds() {
-            return Err(Error::Invalid {
-                what: "mesh wall",
-                reason: "cohesion bond on mesh walls is not supported yet (primitive walls only)"
-                    .into(),
-            });
-        }
         Ok(Self {
             model,
             meshes,
@@ -200,6 +253,10 @@ impl MeshWall {
             table: CoeffTable::default(),
             hist: None,
             extra: 0,
+            stride: 0,
+            bond: None,
+            bond_events: BondEvents::default(),
+            step: 0,
             cand_first: Vec::new(),
             cand: Vec::new(),
         })
@@ -230,8 +287,13 @@ impl MeshWall {
         } else {
             0
         };
-        let w = SLOTS * (1 + self.model.history_width() + self.extra);
-        assert!(w <= MAX_WIDTH, "mesh wall history too wide");
+        self.bond = BondTable::for_model(&self.model, materials)?;
+        self.stride = 1 + self.model.contact_history_width() + self.extra;
+        let w = SLOTS * self.stride + if self.bond.is_some() { BOND_BLOCK } else { 0 };
+        assert!(
+            SLOTS * self.stride <= MAX_WIDTH,
+            "mesh wall history too wide"
+        );
         self.hist = Some(p.add_property(&self.history_name, w, &vec![0.0; w])?);
         Ok(())
     }
@@ -239,6 +301,24 @@ impl MeshWall {
     /// The history property's ID.
     pub(crate) fn history_prop(&self) -> Option<PropId> {
         self.hist
+    }
+
+    /// Where a particle's wall bond flag sits in its history (with `cohesion bond`).
+    pub(crate) fn bond_flag_at(&self) -> Option<usize> {
+        self.bond.as_ref().map(|_| SLOTS * self.stride + bond::VEC)
+    }
+
+    /// Intact bonds of owned particles with this wall.
+    pub fn count_bonds(&self, p: &Particles) -> u64 {
+        let (Some(id), Some(flag)) = (self.hist, self.bond_flag_at()) else {
+            return 0;
+        };
+        let prop = &p.props[id.0];
+        let w = prop.width;
+        prop.data[..p.nlocal() * w]
+            .chunks_exact(w)
+            .filter(|h| bond::is_bonded(&h[flag..]))
+            .count() as u64
     }
 
     /// Lists, for each owned particle of group `groupbit`, the triangles within r + `skin`
@@ -251,8 +331,9 @@ impl MeshWall {
         skin: f64,
     ) {
         let n = p.nlocal();
+        let bond_reach = self.bond.as_ref().map_or(0.0, |b| b.wall_reach);
         let rmax = p.radius[..n].iter().copied().fold(0.0, f64::max);
-        let reach = rmax + skin;
+        let reach = rmax.max(bond_reach) + skin;
         // One grid per mesh over its bounds grown by the reach; cells of about the reach
         // (at least the mean triangle size, so a triangle spans few cells).
         self.cand_first.clear();
@@ -269,7 +350,7 @@ impl MeshWall {
             found.clear();
             if p.mask[i] & groupbit != 0 {
                 let x = p.x[i];
-                let lim = p.radius[i] + skin;
+                let lim = p.radius[i].max(bond_reach) + skin;
                 for (mi, (&m, g)) in self.meshes.iter().zip(&grids).enumerate() {
                     for &t in g.near(x) {
                         let (q, _) = all[m].mesh.closest_point(t, x);
@@ -283,7 +364,15 @@ impl MeshWall {
             }
             if found.is_empty() && w > 0 {
                 let id = self.hist.unwrap().0;
-                p.props[id].data[i * w..(i + 1) * w].fill(0.0);
+                let h = &mut p.props[id].data[i * w..(i + 1) * w];
+                // Beyond the reach of every triangle: a bond there is broken.
+                if self
+                    .bond_flag_at()
+                    .is_some_and(|at| bond::is_bonded(&h[at..]))
+                {
+                    self.bond_events.count(Event::Broken);
+                }
+                h.fill(0.0);
             }
             self.cand.extend_from_slice(&found);
             self.cand_first.push(self.cand.len() as u32);
@@ -435,6 +524,91 @@ struct MeshPass<'a> {
 impl Visitor for MeshPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
+        if self.wall.bond.is_some() {
+            self.run::<K, true>()
+        } else {
+            self.run::<K, false>()
+        }
+    }
+}
+
+/// The wall bond of owned particle `i` (history `bh`, [`BOND_BLOCK`] values): created
+/// to the nearest point of its candidate triangles `cands` when `create_now` and close
+/// enough, then loaded; returns its force and torque on the particle.
+#[allow(clippy::too_many_arguments)]
+fn wall_bond(
+    wall: &MeshWall,
+    surfaces: &[MeshSurface],
+    p: &View,
+    i: usize,
+    cands: &[(u32, u32)],
+    bh: &mut [f64],
+    dt: f64,
+    update: bool,
+    create_now: bool,
+) -> (DVec3, DVec3) {
+    let table = wall.bond.as_ref().expect("bond table");
+    let (vecs, rest) = bh.split_at_mut(bond::VEC);
+    let (tail, link) = rest.split_at_mut(bond::WALL_TAIL);
+    let x = p.x[i];
+    if !bond::is_bonded(tail) && create_now {
+        // The nearest point of the wall (first of equals, in candidate order).
+        let mut best: Option<(f64, u32, u32, DVec3)> = None;
+        for &(mi, t) in cands {
+            let mesh = &surfaces[wall.meshes[mi as usize]].mesh;
+            let (q, _) = mesh.closest_point(t, x);
+            let d = (x - q).length();
+            if best.is_none_or(|b| d < b.0) {
+                best = Some((d, mi, t, q));
+            }
+        }
+        if let Some((d, mi, t, q)) = best {
+            let surface = &surfaces[wall.meshes[mi as usize]];
+            let c = table.get(p.ty[i], surface.wall_type);
+            if bond::creates(c, true, 2.0 * d) {
+                bond::create(vecs, tail, d);
+                tail[2..5].fill(0.0);
+                let [a, b, cc] = surface.mesh.corners(t);
+                let [_, u, v] = barycentric(a, b, cc, q);
+                link.copy_from_slice(&[mi as f64, t as f64, u, v]);
+                wall.bond_events.count(Event::Created);
+            }
+        }
+    }
+    if !bond::is_bonded(tail) {
+        return (DVec3::ZERO, DVec3::ZERO);
+    }
+    let (mi, t) = (link[0] as usize, link[1] as u32);
+    let surface = &surfaces[wall.meshes[mi]];
+    let mut offset = DVec3::from_slice(&tail[2..5]);
+    let mut anchor = surface.point_at(t, link[2], link[3]) + offset;
+    if update {
+        // The surface material carries the anchor over the triangles.
+        offset += surface.surface_velocity(anchor) * dt;
+        tail[2..5].copy_from_slice(&offset.to_array());
+        anchor = surface.point_at(t, link[2], link[3]) + offset;
+    }
+    let c = table.get(p.ty[i], surface.wall_type);
+    let g = BondGeom {
+        d: x - anchor,
+        ri: p.radius[i],
+        rj: f64::INFINITY,
+        vr: p.v[i] - surface.wall_velocity(t, anchor),
+        wi: p.omega[i],
+        wj: DVec3::ZERO,
+        dt,
+        update,
+        reach: table.wall_reach,
+    };
+    let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
+    wall.bond_events.count(e);
+    (b.f_i, b.t_i)
+}
+
+impl MeshPass<'_> {
+    /// The pass with kernel `K`, and with `BOND` the wall bonds.
+    #[inline(always)]
+    fn run<K: ContactKernel, const BOND: bool>(self) {
         let MeshPass {
             wall,
             all: surfaces,
@@ -450,6 +624,9 @@ impl Visitor for MeshPass<'_> {
         let extra = wall.extra;
         let stride = 1 + hw + extra;
         let width = SLOTS * stride;
+        let pw = width + if BOND { BOND_BLOCK } else { 0 };
+        let create_now =
+            BOND && update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
         let flags = wall.model.flags;
         // Fixed-size scratch: no allocation in the pass.
         let none = Touch {
@@ -466,9 +643,14 @@ impl Visitor for MeshPass<'_> {
         for k in 0..f.len() {
             let i = lo + k;
             let cands = wall.candidates_of(i);
-            let h = &mut hist[k * width..(k + 1) * width];
+            let (h, bh) = hist[k * pw..(k + 1) * pw].split_at_mut(width);
             if cands.is_empty() {
                 continue;
+            }
+            if BOND {
+                let (bf, bt) = wall_bond(wall, surfaces, p, i, cands, bh, dt, update, create_now);
+                f[k] += bf;
+                torque[k] += bt;
             }
             let (x, r) = (p.x[i], p.radius[i]);
             let mut nt = 0;
@@ -533,9 +715,30 @@ impl Visitor for MeshPass<'_> {
                     }),
                 };
             }
+            // One contact per flat surface: of two contacts on neighbouring triangles of
+            // one plane (a sphere over the corner of a hole touches its two rim edges),
+            // the deeper counts.
+            let mut shadowed = [false; MAX_TOUCH];
+            for q in 0..nd {
+                if !keep[q] {
+                    continue;
+                }
+                let c = &all[q];
+                let surface = &surfaces[wall.meshes[c.mesh as usize]];
+                let deeper = |o: &Touch, oq: usize| o.dist < c.dist || (o.dist == c.dist && oq < q);
+                if all.iter().enumerate().any(|(oq, o)| {
+                    oq != q
+                        && keep[oq]
+                        && o.mesh == c.mesh
+                        && deeper(o, oq)
+                        && same_surface(&surface.mesh, o.tri, c.tri, surface.coplanar_cos)
+                }) {
+                    shadowed[q] = true;
+                }
+            }
             let mut nk = 0;
             for q in 0..nd {
-                if keep[q] && nk < SLOTS {
+                if keep[q] && !shadowed[q] && nk < SLOTS {
                     found[nk] = found[q];
                     nk += 1;
                 }
@@ -556,7 +759,15 @@ impl Visitor for MeshPass<'_> {
                 if slot_of[c] != usize::MAX {
                     continue;
                 }
-                let mesh = &surfaces[wall.meshes[t.mesh as usize]].mesh;
+                let surface = &surfaces[wall.meshes[t.mesh as usize]];
+                let mesh = &surface.mesh;
+                // Triangles among the candidates that have feature `f`.
+                let tris_of = |f: Feature| {
+                    cands
+                        .iter()
+                        .filter(move |&&(m, u)| m == t.mesh && mesh.feature_of_triangle(f, u))
+                        .map(|&(_, u)| u)
+                };
                 let near = (0..SLOTS).find(|&s| {
                     !taken[s]
                         && unkey(old[s * stride]).is_some_and(|(m, f)| {
@@ -565,6 +776,10 @@ impl Visitor for MeshPass<'_> {
                                     .iter()
                                     .any(|o| key(o.mesh, o.feature) == old[s * stride])
                                 && adjacent(mesh, f, t.feature)
+                                && tris_of(f).any(|a| {
+                                    tris_of(t.feature)
+                                        .any(|b| same_surface(mesh, a, b, surface.coplanar_cos))
+                                })
                         })
                 });
                 if let Some(s) = near {

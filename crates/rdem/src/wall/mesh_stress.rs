@@ -140,7 +140,7 @@ pub fn accumulate(
         };
         let data = &p.props[id.0].data;
         let width = p.props[id.0].width;
-        let stride = width / super::mesh::SLOTS;
+        let stride = wall.stride;
         let hw = stride - 1 - wall.extra;
         for i in 0..n {
             let h = &data[i * width..(i + 1) * width];

@@ -234,6 +234,13 @@ impl PrimitiveWall {
         }
     }
 
+    /// Where a particle's wall bond flag sits in its history (with `cohesion bond`).
+    pub(crate) fn bond_flag_at(&self) -> Option<usize> {
+        self.bond
+            .as_ref()
+            .map(|_| self.model.wall_history_width() - bond::WALL_TAIL)
+    }
+
     /// Intact bonds of owned particles with this wall.
     pub fn count_bonds(&self, p: &Particles) -> u64 {
         let (Some(id), Some(_)) = (self.hist, &self.bond) else {
