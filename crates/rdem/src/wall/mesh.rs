@@ -10,10 +10,10 @@
 //! History: each particle has [`SLOTS`] contact slots (a per-particle property, so it
 //! travels with the particle through sorting and migration), each a feature key and the
 //! contact model's history. A contact keeps the slot of its feature; a new contact takes
-//! over the slot of an ended contact on the same flat surface whose feature shares a
-//! vertex with its own (the sphere rolled from a face to its edge, or from one triangle
-//! to its coplanar neighbour), else starts from zero — as LIGGGHTS copies history only
-//! between coplanar neighbours.
+//! over the slot of an ended contact whose feature shares a vertex with its own (the
+//! sphere rolled from a face to its edge, or from one triangle to its neighbour), else
+//! starts from zero. (LIGGGHTS copies history only between coplanar neighbours; doing so
+//! here slowed the hopper discharge by 4 % at D = 35 mm, away from LIGGGHTS' rate.)
 //!
 //! Flat surfaces: triangles sharing a corner whose normals are within the `curvature`
 //! angle ([`MeshSurface::coplanar_cos`]) make one surface, which touches a sphere once:
@@ -759,15 +759,7 @@ impl MeshPass<'_> {
                 if slot_of[c] != usize::MAX {
                     continue;
                 }
-                let surface = &surfaces[wall.meshes[t.mesh as usize]];
-                let mesh = &surface.mesh;
-                // Triangles among the candidates that have feature `f`.
-                let tris_of = |f: Feature| {
-                    cands
-                        .iter()
-                        .filter(move |&&(m, u)| m == t.mesh && mesh.feature_of_triangle(f, u))
-                        .map(|&(_, u)| u)
-                };
+                let mesh = &surfaces[wall.meshes[t.mesh as usize]].mesh;
                 let near = (0..SLOTS).find(|&s| {
                     !taken[s]
                         && unkey(old[s * stride]).is_some_and(|(m, f)| {
@@ -776,10 +768,6 @@ impl MeshPass<'_> {
                                     .iter()
                                     .any(|o| key(o.mesh, o.feature) == old[s * stride])
                                 && adjacent(mesh, f, t.feature)
-                                && tris_of(f).any(|a| {
-                                    tris_of(t.feature)
-                                        .any(|b| same_surface(mesh, a, b, surface.coplanar_cos))
-                                })
                         })
                 });
                 if let Some(s) = near {
