@@ -8,12 +8,12 @@
 //! seeds); one thread (the result is the same for any thread count). One packing's rate
 //! scatters by about ±6 % around the mean.
 //!
-//! LIGGGHTS 3.8 on the same script (`liggghts -in in.hopper -var D 25|35 -var seed N`)
-//! gave, for D = 25 mm over nine seeds (10039, 20011, 30011, 40009, 50021, 60013, 70001,
-//! 80021, 90001), W = 0.1008 kg/s on average (0.085–0.107, standard error 0.0022), and
-//! 0.3016 kg/s for D = 35 mm (seed 10039). rdem: these three seeds give 0.0981 (D = 25)
-//! and 0.2857 kg/s (D = 35); over eight seeds about 5 % below LIGGGHTS at D = 25 with a
-//! standard error of 2 % on each side: see the issue notes.
+//! LIGGGHTS 3.8 on the same script (`liggghts -in in.hopper -var D 25|35 -var seed N`):
+//! D = 25 mm over nine seeds (10039, 20011, 30011, 40009, 50021, 60013, 70001, 80021,
+//! 90001) W = 0.1008 kg/s on average (0.085–0.107, standard error 0.0022); D = 35 mm over
+//! the first five 0.3032 kg/s (0.301–0.309). rdem over the same seeds: 0.0960 (−4.8 %)
+//! and 0.2853 kg/s (−5.9 %); these three seeds give 0.0981 and 0.2857 kg/s. Where the
+//! two codes part is in the issue notes.
 
 use std::path::Path;
 use std::process::Command;

@@ -90,7 +90,12 @@ pub fn run_with_files_raw(
 
 /// [`run_script_raw`] for a script that must succeed; returns the screen output.
 pub fn run_script(script: &str, ranks: Option<usize>) -> String {
-    let out = run_script_raw(script, ranks);
+    run_with_files(script, &[], ranks)
+}
+
+/// [`run_with_files_raw`] for a script that must succeed; returns the screen output.
+pub fn run_with_files(script: &str, files: &[(&str, &str)], ranks: Option<usize>) -> String {
+    let out = run_with_files_raw(script, files, ranks);
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(
         out.status.success(),
