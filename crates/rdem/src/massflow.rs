@@ -5,7 +5,8 @@
 //! previous step (a per-particle property, so it travels with the particle). A particle
 //! that was inside and is now outside, and whose centre now projects onto one of the
 //! face's triangles, has crossed the face; with `count once` it is then marked and never
-//! counted again.
+//! counted again. With `delete_atoms yes` it is removed at the next re-neighboring (as
+//! in LIGGGHTS), acting on its neighbours until then.
 
 use glam::DVec3;
 
@@ -130,8 +131,7 @@ impl MassFlow {
         let p = &mut world.particles;
         let nlocal = p.nlocal();
         let (mut mass, mut count) = (0.0, 0u64);
-        let mut remove = vec![false; if self.delete { nlocal } else { 0 }];
-        let mut any_removed = false;
+        let mut remove = Vec::new();
         for i in 0..nlocal {
             if p.mask[i] & self.groupbit == 0 {
                 continue;
@@ -139,7 +139,9 @@ impl MassFlow {
             let d = (p.x[i] - p0).dot(n);
             let side = if d > 0.0 { 1.0 } else { -1.0 };
             let h = &mut p.props[id.0].data[2 * i..2 * i + 2];
-            let crossed = h[0] == -1.0 && side == 1.0 && !(self.once && h[1] != 0.0);
+            // A particle awaiting deletion is not counted again.
+            let crossed =
+                h[0] == -1.0 && side == 1.0 && !((self.once || self.delete) && h[1] != 0.0);
             h[0] = side;
             if !crossed {
                 continue;
@@ -152,19 +154,21 @@ impl MassFlow {
             h[1] = 1.0;
             mass += p.rmass[i];
             count += 1;
-            if let Some(r) = remove.get_mut(i) {
-                *r = true;
-                any_removed = true;
+            if self.delete {
+                remove.push(i);
             }
         }
         let mass = world.comm.sum(mass);
         let count = world.comm.sum_count(count);
         self.mass += mass;
         self.count += count;
-        if world.comm.any(any_removed) {
+        if self.delete {
+            // Removed at the next re-neighboring, as LIGGGHTS does.
             self.deleted_mass += mass;
             self.deleted += count;
-            world.remove_particles(&remove);
+            for i in remove {
+                world.remove_at_reneighbor(i)?;
+            }
         }
         Ok(())
     }
@@ -216,6 +220,9 @@ mod tests {
             let m = crate::particles::sphere_mass(1000.0, 0.01);
             assert_eq!(mf.count, 3);
             assert!((mf.mass - 3.0 * m).abs() < 1e-15);
+            // Deleted at the next re-neighboring.
+            assert_eq!(w.particles.nlocal(), 4);
+            w.reneighbor().unwrap();
             assert_eq!(w.particles.nlocal(), if delete { 1 } else { 4 });
             // Back up and down again: counted again (count multiple).
             if !delete {

@@ -68,11 +68,13 @@ impl World {
         pre_exchange(self)?;
         let t1 = self.timers.lap(Stage::Modify, t0);
         let nlocal = self.particles.nlocal();
+        let removed = std::mem::take(&mut self.rebuild_next);
         let added = std::mem::take(&mut self.needs_reneighbor);
         // Every rank takes the same decision: particles added on any rank, or moved too
         // far on any rank.
         let comm = &self.comm;
         let added = comm.any(added);
+        let removed = comm.any(removed);
         // A mesh that moved half a skin since the candidate lists were built needs new
         // ones (every rank moves every mesh alike: no communication).
         let skin = self.neighbor.settings.skin;
@@ -81,6 +83,7 @@ impl World {
             .iter()
             .any(|m| m.motion.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
         if added
+            || removed
             || self
                 .neighbor
                 .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))

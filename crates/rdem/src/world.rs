@@ -45,6 +45,9 @@ impl Default for SortSettings {
     }
 }
 
+/// Per-particle flag of [`World::remove_at_reneighbor`].
+const REMOVAL_PROP: &str = "remove_at_reneighbor";
+
 /// The whole simulation state.
 #[derive(Debug)]
 pub struct World {
@@ -94,6 +97,8 @@ pub struct World {
     pub virial_step: Option<u64>,
     pub(crate) next_sort: u64,
     pub(crate) needs_reneighbor: bool,
+    /// Particles were removed: the next step re-neighbors (no set-up needed).
+    pub(crate) rebuild_next: bool,
 }
 
 impl World {
@@ -120,6 +125,7 @@ impl World {
             virial_step: None,
             next_sort: 0,
             needs_reneighbor: true,
+            rebuild_next: false,
         }
     }
 
@@ -161,16 +167,46 @@ impl World {
     }
 
     /// Removes the owned particles whose `remove` entry is true (their contact history
-    /// goes with them); the next step re-neighbors.
+    /// goes with them); the next step re-neighbors (without a new set-up: the others
+    /// carry on as if nothing happened).
     pub fn remove_particles(&mut self, remove: &[bool]) -> usize {
         if self.particles.nghost() > 0 {
             self.neighbor.save_history(&self.particles);
             self.particles.clear_ghosts();
         }
         let n = self.particles.remove_locals(remove);
-        self.needs_reneighbor = true;
+        self.rebuild_next = true;
         self.virial_step = None;
         n
+    }
+
+    /// Marks owned particle `i` for removal at the next re-neighboring (as LIGGGHTS
+    /// deletes particles in its pre-exchange stage): it keeps acting until then, and no
+    /// re-neighboring is forced.
+    pub fn remove_at_reneighbor(&mut self, i: usize) -> Result<()> {
+        let id = match self.particles.property(REMOVAL_PROP) {
+            Some(id) => id,
+            None => self.particles.add_property(REMOVAL_PROP, 1, &[0.0])?,
+        };
+        self.particles.props[id.0].data[i] = 1.0;
+        Ok(())
+    }
+
+    /// Removes the owned particles marked by [`World::remove_at_reneighbor`] (call with
+    /// the ghosts cleared and the history saved).
+    fn remove_marked(&mut self) {
+        let Some(id) = self.particles.property(REMOVAL_PROP) else {
+            return;
+        };
+        let n = self.particles.nlocal();
+        let marked: Vec<bool> = self.particles.props[id.0].data[..n]
+            .iter()
+            .map(|&v| v != 0.0)
+            .collect();
+        if marked.contains(&true) {
+            self.particles.remove_locals(&marked);
+            self.virial_step = None;
+        }
     }
 
     /// Adds a fix (its ID must be new).
@@ -325,6 +361,7 @@ impl World {
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
         self.needs_reneighbor = false;
+        self.rebuild_next = false;
         Ok(())
     }
 
@@ -341,6 +378,7 @@ impl World {
             self.neighbor.append_history(&got);
         }
         self.particles.clear_ghosts();
+        self.remove_marked();
         let nlocal = self.particles.nlocal();
         {
             let p = &mut self.particles;

@@ -1,0 +1,85 @@
+//! Removing particles in the middle of a run (`World::remove_particles`, and the
+//! deferred `World::remove_at_reneighbor` of `fix massflow/mesh delete_atoms`) leaves the
+//! others exactly where they would be without the removed one.
+
+mod common;
+use common::*;
+use rdem::{Boundary, ContactModel, DVec3, NewParticle, WallShape, World};
+
+const R: f64 = 0.002;
+
+/// A pile of spheres settling on a floor with friction (contact and wall history), plus
+/// one far away (the last, index `n`); `remove` (if any) takes it out at step 200 by
+/// `how`. Returns the states (x, v, ω) of the pile every step from 150 to 400.
+fn run(remove: Option<fn(&mut World, usize)>) -> Vec<Vec<[DVec3; 3]>> {
+    let model = ContactModel::hertz_history();
+    let lo = DVec3::new(-0.05, -0.05, -0.01);
+    let hi = DVec3::new(0.05, 0.05, 0.1);
+    let mut w = world(lo, hi, [Boundary::Fixed; 3], model, 0.5, 0.4);
+    add_wall(
+        &mut w,
+        "floor",
+        model,
+        WallShape::Plane { axis: 2, pos: 0.0 },
+    );
+    add_gravity(&mut w, 9.81);
+    let mut n = 0;
+    for k in 0..4 {
+        for j in 0..3 {
+            for i in 0..3 {
+                let x = DVec3::new(
+                    (i as f64 - 1.0) * 2.1 * R + 1e-4 * k as f64,
+                    (j as f64 - 1.0) * 2.1 * R,
+                    R + k as f64 * 2.05 * R,
+                );
+                w.add_particle(&NewParticle::at(x, R, RHO)).unwrap();
+                n += 1;
+            }
+        }
+    }
+    w.add_particle(&NewParticle::at(DVec3::new(0.04, 0.04, 0.05), R, RHO))
+        .unwrap();
+    w.set_timestep(2e-5).unwrap();
+    w.setup().unwrap();
+    let mut out = Vec::new();
+    for step in 1..=400 {
+        if step == 200 {
+            if let Some(f) = remove {
+                f(&mut w, n);
+            }
+        }
+        w.advance().unwrap();
+        if step >= 150 {
+            let p = &w.particles;
+            // The pile by tag (indices shift when the far one goes).
+            let mut s: Vec<(u64, [DVec3; 3])> = (0..p.nlocal())
+                .filter(|&i| (p.tag[i] as usize) <= n)
+                .map(|i| (p.tag[i], [p.x[i], p.v[i], p.omega[i]]))
+                .collect();
+            s.sort_by_key(|e| e.0);
+            out.push(s.into_iter().map(|e| e.1).collect());
+        }
+    }
+    out
+}
+
+#[test]
+fn removing_a_particle_leaves_the_others_alone() {
+    let keep = run(None);
+    let now: fn(&mut World, usize) = |w, i| {
+        let mut r = vec![false; w.particles.nlocal()];
+        r[i] = true;
+        assert_eq!(w.remove_particles(&r), 1);
+    };
+    let later: fn(&mut World, usize) = |w, i| w.remove_at_reneighbor(i).unwrap();
+    for (name, how) in [("remove_particles", now), ("remove_at_reneighbor", later)] {
+        let gone = run(Some(how));
+        assert_eq!(keep.len(), gone.len());
+        for (step, (a, b)) in keep.iter().zip(&gone).enumerate() {
+            assert_eq!(a.len(), b.len());
+            for (s, t) in a.iter().zip(b) {
+                assert!(s == t, "{name}: step {}: {s:?} vs {t:?}", step + 150);
+            }
+        }
+    }
+}
