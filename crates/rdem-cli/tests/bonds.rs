@@ -323,20 +323,25 @@ fn a_wall_bond_stretches_by_force_over_kn_area() {
     s += "group tip id 1\nfix visc tip viscous 1.0\nvariable dz equal z[1]\n";
     s += &thermo("v_dz", 1000);
     s += &format!("run 10\nfix pull tip addforce 0 0 {f}\nrun 5000\n");
-    let out = run(&s);
-    let rows = rows(&out);
+    let rows = rows(&run(&s));
+    assert_wall_tension("wall tension", &rows, f);
+    assert_eq!(rows.last().unwrap()[4], 0.0, "no pair bond");
+}
+
+/// The rows of a wall tension run (load `f`, z − r in column 8) end at the elongation
+/// F/(k_n A) within 1 %, with one wall bond created and intact.
+fn assert_wall_tension(name: &str, rows: &[Vec<f64>], f: f64) {
     let last = rows.last().unwrap();
     let want = f / (KN * AREA);
     let got = last[8] - R;
-    eprintln!("wall tension: elongation {got:e}, expected {want:e}");
+    eprintln!("{name}: elongation {got:e}, expected {want:e}");
     assert!(
         rel(got, want) < 0.01,
-        "elongation {got:e}, expected {want:e}"
+        "{name}: elongation {got:e}, expected {want:e}"
     );
-    assert_eq!(last[4], 0.0, "no pair bond");
-    assert_eq!(last[7], 1.0, "one wall bond");
+    assert_eq!(last[7], 1.0, "{name}: one wall bond");
     let created: f64 = rows.iter().map(|r| r[5]).sum();
-    assert_eq!(created, 1.0, "one wall bond created");
+    assert_eq!(created, 1.0, "{name}: one wall bond created");
 }
 
 /// A wall bond's anchor moves with the wall surface (`shear x 0.1`): a sphere bonded to
@@ -730,17 +735,7 @@ fn a_wall_bond_on_a_mesh_floor_holds_as_on_the_plane() {
             );
         }
     }
-    let last = mesh.last().unwrap();
-    let want = f / (KN * AREA);
-    let got = last[8] - R;
-    eprintln!("mesh wall tension: elongation {got:e}, expected {want:e}");
-    assert!(
-        rel(got, want) < 0.01,
-        "elongation {got:e}, expected {want:e}"
-    );
-    assert_eq!(last[7], 1.0, "one wall bond");
-    let created: f64 = mesh.iter().map(|r| r[5]).sum();
-    assert_eq!(created, 1.0, "one wall bond created");
+    assert_wall_tension("mesh wall tension", &mesh, f);
 }
 
 /// A mesh wall bond's anchor goes with the wall: on a conveyor floor (`surface_vel`

@@ -456,6 +456,34 @@ pub struct BondGeom {
     pub reach: f64,
 }
 
+impl BondGeom {
+    /// A particle of radius `ri` at `d` from its anchor on a wall, moving at `vr`
+    /// relative to the wall and spinning at `wi`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn wall(
+        d: DVec3,
+        ri: f64,
+        vr: DVec3,
+        wi: DVec3,
+        dt: f64,
+        update: bool,
+        reach: f64,
+    ) -> Self {
+        Self {
+            d,
+            ri,
+            rj: f64::INFINITY,
+            vr,
+            wi,
+            wj: DVec3::ZERO,
+            dt,
+            update,
+            reach,
+        }
+    }
+}
+
 /// Force and torques of one bond.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BondForce {

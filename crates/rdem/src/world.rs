@@ -198,15 +198,13 @@ impl World {
         let Some(id) = self.particles.property(REMOVAL_PROP) else {
             return;
         };
-        let n = self.particles.nlocal();
-        let marked: Vec<bool> = self.particles.props[id.0].data[..n]
-            .iter()
-            .map(|&v| v != 0.0)
-            .collect();
-        if marked.contains(&true) {
-            self.particles.remove_locals(&marked);
-            self.virial_step = None;
+        let flags = &self.particles.props[id.0].data[..self.particles.nlocal()];
+        if flags.iter().all(|&v| v == 0.0) {
+            return;
         }
+        let marked: Vec<bool> = flags.iter().map(|&v| v != 0.0).collect();
+        self.particles.remove_locals(&marked);
+        self.virial_step = None;
     }
 
     /// Adds a fix (its ID must be new).
@@ -559,13 +557,9 @@ impl World {
                 FixKind::MeshWall(wall) => (wall.history_prop(), wall.bond_flag_at()),
                 _ => continue,
             };
-            if let (Some(id), Some(flag)) = (id, flag) {
-                let prop = &p.props[id.0];
-                let w = prop.width;
-                for (i, h) in prop.data[..nlocal * w].chunks_exact(w).enumerate() {
-                    if crate::bond::is_bonded(&h[flag..]) {
-                        c[i] += 1.0;
-                    }
+            for (ci, b) in c.iter_mut().zip(crate::wall::bonded(p, id, flag)) {
+                if b {
+                    *ci += 1.0;
                 }
             }
         }

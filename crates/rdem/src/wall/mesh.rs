@@ -310,15 +310,7 @@ impl MeshWall {
 
     /// Intact bonds of owned particles with this wall.
     pub fn count_bonds(&self, p: &Particles) -> u64 {
-        let (Some(id), Some(flag)) = (self.hist, self.bond_flag_at()) else {
-            return 0;
-        };
-        let prop = &p.props[id.0];
-        let w = prop.width;
-        prop.data[..p.nlocal() * w]
-            .chunks_exact(w)
-            .filter(|h| bond::is_bonded(&h[flag..]))
-            .count() as u64
+        super::count_bonded(p, self.hist, self.bond_flag_at())
     }
 
     /// Lists, for each owned particle of group `groupbit`, the triangles within r + `skin`
@@ -589,17 +581,15 @@ fn wall_bond(
         anchor = surface.point_at(t, link[2], link[3]) + offset;
     }
     let c = table.get(p.ty[i], surface.wall_type);
-    let g = BondGeom {
-        d: x - anchor,
-        ri: p.radius[i],
-        rj: f64::INFINITY,
-        vr: p.v[i] - surface.wall_velocity(t, anchor),
-        wi: p.omega[i],
-        wj: DVec3::ZERO,
+    let g = BondGeom::wall(
+        x - anchor,
+        p.radius[i],
+        p.v[i] - surface.wall_velocity(t, anchor),
+        p.omega[i],
         dt,
         update,
-        reach: table.wall_reach,
-    };
+        table.wall_reach,
+    );
     let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
     wall.bond_events.count(e);
     (b.f_i, b.t_i)
@@ -622,7 +612,8 @@ impl MeshPass<'_> {
         } = self;
         let hw = K::HIST;
         let extra = wall.extra;
-        let stride = 1 + hw + extra;
+        let stride = wall.stride;
+        debug_assert_eq!(stride, 1 + hw + extra);
         let width = SLOTS * stride;
         let pw = width + if BOND { BOND_BLOCK } else { 0 };
         let create_now =

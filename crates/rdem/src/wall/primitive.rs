@@ -243,16 +243,7 @@ impl PrimitiveWall {
 
     /// Intact bonds of owned particles with this wall.
     pub fn count_bonds(&self, p: &Particles) -> u64 {
-        let (Some(id), Some(_)) = (self.hist, &self.bond) else {
-            return 0;
-        };
-        let prop = &p.props[id.0];
-        let w = prop.width;
-        let flag = w - bond::WALL_TAIL;
-        prop.data[..p.nlocal() * w]
-            .chunks_exact(w)
-            .filter(|h| bond::is_bonded(&h[flag..]))
-            .count() as u64
+        super::count_bonded(p, self.hist, self.bond_flag_at())
     }
 
     /// The particles listed by the last [`PrimitiveWall::build_candidates`].
@@ -401,17 +392,15 @@ impl WallPass<'_> {
                         anchor += wall.velocity * dt;
                         tail[2..5].copy_from_slice(&anchor.to_array());
                     }
-                    let g = BondGeom {
-                        d: p.x[i] - anchor,
-                        ri: r,
-                        rj: f64::INFINITY,
-                        vr: p.v[i] - wall.velocity,
-                        wi: p.omega[i],
-                        wj: DVec3::ZERO,
+                    let g = BondGeom::wall(
+                        p.x[i] - anchor,
+                        r,
+                        p.v[i] - wall.velocity,
+                        p.omega[i],
                         dt,
                         update,
-                        reach: table.wall_reach,
-                    };
+                        table.wall_reach,
+                    );
                     let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
                     wall.bond_events.count(e);
                     f[k] += b.f_i;
