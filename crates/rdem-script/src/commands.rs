@@ -213,15 +213,7 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
             }
         }
         "fix" => fixes::fix(sim, a)?,
-        "unfix" => {
-            let id = a.word("fix ID")?;
-            a.done()?;
-            fixes::check_unfix(sim, id).map_err(|m| a.error_prev(m, None))?;
-            if !fixes::unfix_id(sim, id) {
-                let names: Vec<&str> = sim.fixes.iter().map(|f| f.id.as_str()).collect();
-                return Err(a.error_prev(format!("no fix '{id}'"), Some(suggest(id, &names))));
-            }
-        }
+        "unfix" => fixes::unfix(sim, a)?,
         "compute" => compute(sim, a)?,
         "uncompute" => {
             let id = a.word("compute ID")?;
@@ -632,9 +624,9 @@ fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     sim.out.line(&format!(
         "Lattice spacing in x,y,z = {} {} {}",
-        fixes::g(scale),
-        fixes::g(scale),
-        fixes::g(scale)
+        crate::variables::g(scale),
+        crate::variables::g(scale),
+        crate::variables::g(scale)
     ));
     sim.lattice = Some(l);
     Ok(())
@@ -675,12 +667,12 @@ fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
         .map_err(|e| a.error_at(2, e.to_string(), None))?;
     sim.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
-        fixes::g(lo.x),
-        fixes::g(lo.y),
-        fixes::g(lo.z),
-        fixes::g(hi.x),
-        fixes::g(hi.y),
-        fixes::g(hi.z)
+        crate::variables::g(lo.x),
+        crate::variables::g(lo.y),
+        crate::variables::g(lo.z),
+        crate::variables::g(hi.x),
+        crate::variables::g(hi.y),
+        crate::variables::g(hi.z)
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 0)?;
@@ -794,12 +786,12 @@ fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
     sim.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
-        fixes::g(data.lo.x),
-        fixes::g(data.lo.y),
-        fixes::g(data.lo.z),
-        fixes::g(data.hi.x),
-        fixes::g(data.hi.y),
-        fixes::g(data.hi.z)
+        crate::variables::g(data.lo.x),
+        crate::variables::g(data.lo.y),
+        crate::variables::g(data.lo.z),
+        crate::variables::g(data.hi.x),
+        crate::variables::g(data.hi.y),
+        crate::variables::g(data.hi.z)
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 1)?;
@@ -1556,7 +1548,7 @@ fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
                         let ids: Vec<&str> = if kind == 'c' {
                             sim.computes.iter().map(|c| c.id.as_str()).collect()
                         } else {
-                            sim.fixes.iter().map(|f| f.id.as_str()).collect()
+                            sim.fixes.iter().map(|f| f.id()).collect()
                         };
                         return Err(a.error_at(
                             a.pos(),

@@ -22,6 +22,7 @@ pub mod lattice;
 pub mod lexer;
 pub mod models;
 pub mod output;
+pub mod registry;
 pub mod run;
 pub mod sim;
 pub mod thermo;

@@ -8,8 +8,7 @@ use rdem::timers::Stage;
 use rdem::Materials;
 
 use crate::args::{Args, CmdResult};
-use crate::context;
-use crate::fixes::{self, FrontFix, InsertEngine};
+use crate::fixes::{self, FixEntry, Notes, Stages};
 use crate::sim::Sim;
 use crate::thermo;
 
@@ -178,18 +177,19 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         .as_ref()
         .map(|w| (w.neighbor.nbuilds, w.neighbor.ndangerous))
         .unwrap_or((0, 0));
+    let stages = RunStages::of(sim);
     // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
-    adapt_all(sim, start_step, true)?;
+    stages.pre_step(sim, start_step, true)?;
     // As LIGGGHTS: only when there is no fix at all.
     if sim.fixes.is_empty() {
         sim.warn_once("No fixes defined, atoms won't move");
     }
     sim.out.line("Setting up run ...");
-    let want = crate::euler::wants_virial(sim, start_step, true);
+    let want = stages.wants_virial(sim, start_step, true);
     let w = sim.world.as_mut().expect("checked");
     w.want_virial = want;
     w.setup().map_err(|e| e.to_string())?;
-    crate::euler::end_of_step(sim, start_step, true)?;
+    stages.end_of_step(sim, start_step, true)?;
     flush_world_warnings(sim);
     let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
     sim.out.line(&format!(
@@ -208,14 +208,14 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     let mut last_progress = Instant::now();
     for k in 0..nsteps {
         let step = start_step + k + 1;
-        adapt_all(sim, step, false)?;
-        let want = crate::euler::wants_virial(sim, step, false);
+        stages.pre_step(sim, step, false)?;
+        let want = stages.wants_virial(sim, step, false);
         if let Some(w) = &mut sim.world {
             w.want_virial = want;
         }
-        advance(sim, step)?;
+        stages.advance(sim, step)?;
         flush_world_warnings(sim);
-        end_of_step(sim, step)?;
+        stages.end_of_step(sim, step, false)?;
         let t_out = Instant::now();
         let every = sim.thermo.every;
         if (every > 0 && step % every == 0) || step == sim.run_last {
@@ -237,8 +237,97 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     }
     let loop_time = t0.elapsed().as_secs_f64();
     report(sim, loop_time, nsteps, builds0);
-    reset_adapt(sim)?;
+    stages.end_of_run(sim)?;
     Ok(())
+}
+
+/// The fixes of each stage, listed once when a run starts (no fix is added or removed
+/// during a run): a stage no fix uses costs nothing.
+struct RunStages {
+    pre_step: Vec<usize>,
+    pre_exchange: Vec<usize>,
+    end_of_step: Vec<usize>,
+    end_of_run: Vec<usize>,
+    /// A `compute stress/atom` with a pair term wants the virial at every step.
+    virial_always: bool,
+}
+
+impl RunStages {
+    fn of(sim: &Sim) -> Self {
+        Self {
+            pre_step: fixes::with_stage(sim, Stages::PRE_STEP),
+            pre_exchange: fixes::with_stage(sim, Stages::PRE_EXCHANGE),
+            end_of_step: fixes::with_stage(sim, Stages::END_OF_STEP),
+            end_of_run: fixes::with_stage(sim, Stages::END_OF_RUN),
+            virial_always: sim.computes.iter().any(crate::computes::needs_virial),
+        }
+    }
+
+    /// Whether the force pass of `step` (or of the set-up at `step`) must compute the
+    /// contact virial.
+    fn wants_virial(&self, sim: &Sim, step: u64, setup: bool) -> bool {
+        self.virial_always
+            || self
+                .end_of_step
+                .iter()
+                .any(|&k| sim.fixes[k].imp.wants_virial(step, setup))
+    }
+
+    fn pre_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+        for &k in &self.pre_step {
+            fixes::with_fix(sim, k, |f, sim, head| f.pre_step(sim, head, step, setup))?;
+        }
+        Ok(())
+    }
+
+    fn end_of_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+        for &k in &self.end_of_step {
+            fixes::with_fix(sim, k, |f, sim, head| f.end_of_step(sim, head, step, setup))?;
+        }
+        Ok(())
+    }
+
+    fn end_of_run(&self, sim: &mut Sim) -> Result<(), String> {
+        for &k in &self.end_of_run {
+            fixes::with_fix(sim, k, |f, sim, head| f.end_of_run(sim, head))?;
+        }
+        Ok(())
+    }
+
+    /// One step of the engine, with the fixes due at `step` acting in its pre-exchange
+    /// stage as in LIGGGHTS (after the initial integration: new particles are not moved
+    /// in the step they appear, get their forces and the final half kick).
+    fn advance(&self, sim: &mut Sim, step: u64) -> Result<(), String> {
+        let mut due: Vec<(usize, FixEntry)> = Vec::new();
+        for &k in &self.pre_exchange {
+            if sim.fixes[k].imp.due(step) {
+                due.push((k, fixes::take(sim, k)));
+            }
+        }
+        let w = sim.world.as_mut().expect("a run has a world");
+        if due.is_empty() {
+            return w.advance().map_err(|e| e.to_string());
+        }
+        let mut notes = Notes::default();
+        let result = w.advance_with(|w| {
+            for (_, f) in due.iter_mut() {
+                f.imp.pre_exchange(&f.head, w, &mut notes)?;
+            }
+            Ok(())
+        });
+        for (k, f) in due {
+            sim.fixes[k] = f;
+        }
+        result.map_err(|e| e.to_string())?;
+        for (warning, text) in notes.0 {
+            if warning {
+                sim.out.warning(&text);
+            } else {
+                sim.out.line(&text);
+            }
+        }
+        Ok(())
+    }
 }
 
 fn flush_world_warnings(sim: &mut Sim) {
@@ -258,217 +347,6 @@ fn thermo_row(sim: &mut Sim) -> Result<(), String> {
     let r = thermo::row(sim)?;
     sim.out.line(&r);
     sim.thermo.last_printed = step;
-    Ok(())
-}
-
-/// One step of the engine, with the insertion fixes due at `step` acting inside it as in
-/// LIGGGHTS (after the initial integration: new particles are not moved in the step they
-/// appear, get their forces and the final half kick).
-fn advance(sim: &mut Sim, step: u64) -> Result<(), String> {
-    let due: Vec<usize> = (0..sim.fixes.len())
-        .filter(|&k| matches!(&sim.fixes[k].kind, FrontFix::Insert(ins) if ins.pack.due(step)))
-        .collect();
-    let w = sim.world.as_mut().expect("a run has a world");
-    if due.is_empty() {
-        return w.advance().map_err(|e| e.to_string());
-    }
-    let mut taken: Vec<(usize, FrontFix)> = due
-        .iter()
-        .map(|&k| {
-            (
-                k,
-                std::mem::replace(&mut sim.fixes[k].kind, FrontFix::Engine),
-            )
-        })
-        .collect();
-    let mut reports = Vec::new();
-    let result = w.advance_with(|w| {
-        for (k, f) in taken.iter_mut() {
-            let FrontFix::Insert(ins) = f else { continue };
-            let rep = match (&mut ins.pack, &mut ins.rate) {
-                (InsertEngine::Stream(st), _) => st.insert(w)?,
-                (InsertEngine::Pack(pack), None) => pack.insert(w)?,
-                (InsertEngine::Pack(pack), Some(r)) => {
-                    let want = r.per_insertion + r.carry;
-                    let mut n = want.floor() as u64;
-                    r.carry = want - n as f64;
-                    if let Some(lim) = r.limit {
-                        n = n.min(lim.saturating_sub(ins.total));
-                    }
-                    pack.insert_n(w, n)?
-                }
-            };
-            ins.total += rep.inserted;
-            ins.total_mass += rep.mass;
-            reports.push((*k, rep, ins.total, ins.total_mass, ins.verbose));
-        }
-        Ok(())
-    });
-    for (k, f) in taken {
-        sim.fixes[k].kind = f;
-    }
-    result.map_err(|e| e.to_string())?;
-    for (k, rep, total, total_mass, verbose) in reports {
-        let id = &sim.fixes[k].id;
-        // An event that had nothing to insert prints nothing (as LIGGGHTS).
-        if verbose && rep.wanted > 0 {
-            let line = fixes::insertion_report(id, rep.inserted, rep.mass, step, total, total_mass);
-            sim.out.line(&line);
-        }
-        if rep.inserted < rep.wanted {
-            let msg = format!(
-                "Particle insertion {id}: less insertions than requested ({} of {}): the region is too full or maxattempt too small",
-                rep.inserted, rep.wanted
-            );
-            sim.out.warning(&msg);
-        }
-    }
-    Ok(())
-}
-
-fn adapt_all(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
-    for k in 0..sim.fixes.len() {
-        let (every, var) = match &sim.fixes[k].kind {
-            FrontFix::Adapt(ad) => (ad.every, ad.var.clone()),
-            _ => continue,
-        };
-        if !setup && step % every != 0 {
-            continue;
-        }
-        let groupbit = sim.fixes[k].groupbit;
-        let formula = match sim.vars.get(&var) {
-            Some(crate::variables::Variable::Atom(f)) => f.clone(),
-            Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style")),
-            None => return Err(format!("fix adapt: no variable '{var}'")),
-        };
-        let d = context::eval_atom(sim, &formula)?;
-        let w = sim.world.as_mut().expect("run has a world");
-        if let FrontFix::Adapt(ad) = &mut sim.fixes[k].kind {
-            if ad.reset && ad.saved.is_none() {
-                let p = &w.particles;
-                ad.saved = Some((0..p.nlocal()).map(|i| (p.tag[i], p.radius[i])).collect());
-            }
-        }
-        let p = &w.particles;
-        let radii: Vec<f64> = (0..p.nlocal())
-            .map(|i| {
-                if p.mask[i] & groupbit != 0 {
-                    0.5 * d[i]
-                } else {
-                    p.radius[i]
-                }
-            })
-            .collect();
-        w.set_radii(&radii)
-            .map_err(|e| format!("fix {}: {e}", sim.fixes[k].id))?;
-    }
-    Ok(())
-}
-
-fn reset_adapt(sim: &mut Sim) -> Result<(), String> {
-    for f in &mut sim.fixes {
-        if let FrontFix::Adapt(ad) = &mut f.kind {
-            if let (Some(saved), Some(w)) = (ad.saved.take(), &mut sim.world) {
-                let p = &w.particles;
-                let mut r: Vec<f64> = p.radius[..p.nlocal()].to_vec();
-                for (i, ri) in r.iter_mut().enumerate() {
-                    if let Some(&(_, r0)) = saved.iter().find(|(t, _)| *t == p.tag[i]) {
-                        *ri = r0;
-                    }
-                }
-                w.set_radii(&r).map_err(|e| e.to_string())?;
-            }
-        }
-    }
-    Ok(())
-}
-
-fn end_of_step(sim: &mut Sim, step: u64) -> Result<(), String> {
-    crate::euler::end_of_step(sim, step, false)?;
-    for k in 0..sim.fixes.len() {
-        if let FrontFix::MassFlow(mf) = &mut sim.fixes[k].kind {
-            let w = sim.world.as_mut().expect("a run has a world");
-            mf.flow.update(w).map_err(|e| e.to_string())?;
-            continue;
-        }
-        match &sim.fixes[k].kind {
-            FrontFix::CheckTimestep(c) if step % c.every == 0 => {
-                let (fr, fh, vmax, warn, error) =
-                    (c.fraction_r, c.fraction_h, c.vmax, c.warn, c.error);
-                let Some((tr, th)) = fixes::timestep_limits(sim, vmax) else {
-                    continue;
-                };
-                let dt = sim.world.as_ref().map(|w| w.dt).unwrap_or(0.0);
-                let vals = [dt / tr, if th < f64::MAX { dt / th } else { 0.0 }];
-                let id = sim.fixes[k].id.clone();
-                if let FrontFix::CheckTimestep(c) = &mut sim.fixes[k].kind {
-                    c.values = vals;
-                }
-                for (v, f, what) in [(vals[0], fr, "Rayleigh"), (vals[1], fh, "Hertz")] {
-                    if v > f {
-                        let msg = format!(
-                            "time-step is {:.2} % of {what} time (fix {id}: limit {:.2} %)",
-                            100.0 * v,
-                            100.0 * f
-                        );
-                        if error {
-                            return Err(msg);
-                        }
-                        if warn {
-                            sim.warn_once(&msg);
-                        }
-                    }
-                }
-            }
-            FrontFix::AveTime(ave) => {
-                let in_window = {
-                    let next = step.div_ceil(ave.nfreq) * ave.nfreq;
-                    let first = next.saturating_sub((ave.nrepeat - 1) * ave.nevery);
-                    step >= first && (next - step) % ave.nevery == 0
-                };
-                if !in_window {
-                    continue;
-                }
-                let inputs = ave.inputs.clone();
-                let mut vals = Vec::with_capacity(inputs.len());
-                for i in &inputs {
-                    vals.push(thermo::column_value(sim, i)?.0);
-                }
-                let FrontFix::AveTime(ave) = &mut sim.fixes[k].kind else {
-                    unreachable!()
-                };
-                for (s, v) in ave.sum.iter_mut().zip(&vals) {
-                    *s += v;
-                }
-                ave.count += 1;
-                if step % ave.nfreq == 0 {
-                    ave.windows += 1;
-                    for j in 0..ave.values.len() {
-                        let mean = ave.sum[j] / ave.count as f64;
-                        ave.running_sum[j] += mean;
-                        ave.values[j] = if ave.running {
-                            ave.running_sum[j] / ave.windows as f64
-                        } else {
-                            mean
-                        };
-                    }
-                    ave.sum.iter_mut().for_each(|s| *s = 0.0);
-                    ave.count = 0;
-                    if let Some(f) = &mut ave.file {
-                        use std::io::Write;
-                        let row: Vec<String> = ave
-                            .values
-                            .iter()
-                            .map(|v| crate::variables::format_g(*v, 6))
-                            .collect();
-                        writeln!(f, "{step} {}", row.join(" ")).map_err(|e| e.to_string())?;
-                        f.flush().map_err(|e| e.to_string())?;
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
     Ok(())
 }
 

@@ -13,7 +13,7 @@ use rdem::{Boundary, NeighborSettings, World};
 use crate::args::{suggest, Args, CmdResult};
 use crate::computes::Compute;
 use crate::dump::Dump;
-use crate::fixes::FrontFix;
+use crate::fixes::FixEntry;
 use crate::lattice::Lattice;
 use crate::output::Output;
 use crate::thermo::Thermo;
@@ -75,18 +75,6 @@ pub struct Property {
     pub values: Vec<f64>,
     /// Fix ID that defined it.
     pub fix_id: String,
-}
-
-/// One fix as the script defined it.
-pub struct FixEntry {
-    /// Fix ID.
-    pub id: String,
-    /// Style word as written (`wall/gran`, `insert/pack`, ...).
-    pub style: String,
-    /// Group bit mask.
-    pub groupbit: u32,
-    /// Front-end part (engine fixes: [`FrontFix::Engine`]).
-    pub kind: FrontFix,
 }
 
 /// Settings given before the box exists, applied when it is created.
@@ -262,7 +250,7 @@ impl Sim {
 
     /// Index of fix `id`.
     pub fn fix_index(&self, id: &str) -> Option<usize> {
-        self.fixes.iter().position(|f| f.id == id)
+        self.fixes.iter().position(|f| f.id() == id)
     }
 
     /// Index of compute `id`.

@@ -269,10 +269,7 @@ fn header_label(c: &str) -> String {
 fn extensive_reference(sim: &Sim, col: &str) -> bool {
     match split_reference(col) {
         Some(('c', id, _)) => sim.computes.iter().any(|c| c.id == id && c.is_extensive()),
-        Some(('f', id, _)) => sim
-            .fixes
-            .iter()
-            .any(|f| f.id == id && matches!(f.kind, crate::fixes::FrontFix::CheckTimestep(_))),
+        Some(('f', id, _)) => crate::fixes::is_extensive(sim, id),
         _ => false,
     }
 }

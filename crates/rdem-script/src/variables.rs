@@ -295,6 +295,27 @@ pub fn format_g(v: f64, prec: usize) -> String {
     }
 }
 
+/// `%e` as C prints it (`1.500000e-01`).
+pub fn format_e(v: f64) -> String {
+    let s = format!("{v:.6e}");
+    // Rust writes 1.5e-1; C writes 1.500000e-01.
+    match s.split_once('e') {
+        Some((m, e)) => {
+            let (sign, digits) = match e.strip_prefix('-') {
+                Some(d) => ('-', d),
+                None => ('+', e),
+            };
+            format!("{m}e{sign}{digits:0>2}")
+        }
+        None => s,
+    }
+}
+
+/// A number in a message, as `%g` prints it.
+pub fn g(v: f64) -> String {
+    format_g(v, 6)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

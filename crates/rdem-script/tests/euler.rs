@@ -229,12 +229,12 @@ for k in range(pd.GetNumberOfArrays()):
             .sim
             .fixes
             .iter()
-            .find(|f| f.id == "euler")
+            .find(|f| f.id() == "euler")
             .expect("fix euler");
-        match &f.kind {
-            rdem_script::fixes::FrontFix::AveEuler(e) => e.cells.clone().unwrap(),
-            _ => unreachable!(),
-        }
+        let e = f
+            .downcast::<rdem_script::fixes::ave_euler::AveEuler>()
+            .expect("an ave/euler fix");
+        e.cells.clone().unwrap()
     };
     let close = |got: &[f64], want: &[f64], what: &str| {
         assert_eq!(got.len(), want.len(), "{what}");

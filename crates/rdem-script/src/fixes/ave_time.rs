@@ -1,0 +1,188 @@
+//! `fix ave/time Nevery Nrepeat Nfreq value ...` (scalar mode): averages of global values
+//! (`c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`) over `Nrepeat` samples every `Nfreq` steps,
+//! one row per average in an optional file; `f_ID[i]` is the last average.
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+use crate::thermo;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "ave/time",
+    parse,
+    Stages::END_OF_STEP.and(Stages::VALUES),
+    "scalar mode: `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`; `ave one\\|running`; `file`",
+);
+
+/// `fix ave/time` (scalar mode).
+pub struct AveTime {
+    /// Sample every.
+    pub nevery: u64,
+    /// Samples per average.
+    pub nrepeat: u64,
+    /// Output every.
+    pub nfreq: u64,
+    /// Inputs (`c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`).
+    pub inputs: Vec<String>,
+    /// `ave running`.
+    pub running: bool,
+    /// Output file.
+    pub file: Option<std::io::BufWriter<std::fs::File>>,
+    /// Sums of the current window.
+    pub sum: Vec<f64>,
+    /// Samples in the window.
+    pub count: u64,
+    /// Last finished averages.
+    pub values: Vec<f64>,
+    /// Running totals (for `ave running`).
+    pub running_sum: Vec<f64>,
+    /// Number of finished windows.
+    pub windows: u64,
+}
+
+fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let nevery = a.count("Nevery")?;
+    let nrepeat = a.count("Nrepeat")?;
+    let nfreq = a.count("Nfreq")?;
+    if nfreq % nevery != 0 || (nrepeat - 1) * nevery >= nfreq + nevery {
+        return Err(a.error_at(
+            a.pos() - 1,
+            format!("Nfreq must be a multiple of Nevery and Nrepeat*Nevery <= Nfreq (got {nevery} {nrepeat} {nfreq})"),
+            None,
+        ));
+    }
+    let mut inputs = Vec::new();
+    while let Some(w) = a.peek() {
+        if !(w.starts_with("c_") || w.starts_with("f_") || w.starts_with("v_")) {
+            break;
+        }
+        let Some((kind, id, _)) = crate::thermo::split_reference(w) else {
+            return Err(a.error_at(a.pos(), format!("bad value '{w}'"), None));
+        };
+        let known = match kind {
+            'c' => sim.compute_index(id).is_some(),
+            'f' => sim.fix_index(id).is_some(),
+            _ => sim.vars.get(id).is_some(),
+        };
+        if !known {
+            let (what, ids): (&str, Vec<&str>) = match kind {
+                'c' => (
+                    "compute",
+                    sim.computes.iter().map(|c| c.id.as_str()).collect(),
+                ),
+                'f' => ("fix", sim.fixes.iter().map(|f| f.id()).collect()),
+                _ => ("variable", sim.vars.names()),
+            };
+            return Err(a.error_at(
+                a.pos(),
+                format!("'{w}': no {what} '{id}'"),
+                Some(crate::commands::id_help(what, id, &ids)),
+            ));
+        }
+        inputs.push(w.to_string());
+        a.seek(a.pos() + 1);
+    }
+    if inputs.is_empty() {
+        return Err(a.error_at(
+            a.pos(),
+            "ave/time needs at least one value (c_ID, c_ID[i], f_ID[i], v_name)",
+            None,
+        ));
+    }
+    let (mut running, mut file) = (false, None);
+    while !a.is_done() {
+        match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
+            "file" => {
+                let f = a.word("file name")?;
+                rdem_io::atomic::create_parent_dir(std::path::Path::new(f))
+                    .map_err(|e| a.error_prev(e.to_string(), None))?;
+                file = Some(std::io::BufWriter::new(std::fs::File::create(f).map_err(
+                    |e| a.error_prev(format!("cannot create '{f}': {e}"), None),
+                )?));
+            }
+            "ave" => running = a.keyword("ave", &["one", "running"])? == "running",
+            _ => {
+                a.keyword("mode", &["scalar"])?;
+            }
+        }
+    }
+    let n = inputs.len();
+    let mut ave = AveTime {
+        nevery,
+        nrepeat,
+        nfreq,
+        inputs,
+        running,
+        file,
+        sum: vec![0.0; n],
+        count: 0,
+        values: vec![0.0; n],
+        running_sum: vec![0.0; n],
+        windows: 0,
+    };
+    if let Some(f) = &mut ave.file {
+        use std::io::Write;
+        let id = a.words()[1].text.clone();
+        let _ = writeln!(f, "# Time-averaged data for fix {id}");
+        let _ = writeln!(f, "# TimeStep {}", ave.inputs.join(" "));
+    }
+    Ok(Box::new(ave))
+}
+
+impl ScriptFix for AveTime {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+        Ok(self.values.clone())
+    }
+
+    fn end_of_step(
+        &mut self,
+        sim: &mut Sim,
+        _head: &FixHead,
+        step: u64,
+        setup: bool,
+    ) -> Result<(), String> {
+        if setup {
+            return Ok(());
+        }
+        let in_window = {
+            let next = step.div_ceil(self.nfreq) * self.nfreq;
+            let first = next.saturating_sub((self.nrepeat - 1) * self.nevery);
+            step >= first && (next - step) % self.nevery == 0
+        };
+        if !in_window {
+            return Ok(());
+        }
+        for (j, i) in self.inputs.iter().enumerate() {
+            self.sum[j] += thermo::column_value(sim, i)?.0;
+        }
+        self.count += 1;
+        if step % self.nfreq == 0 {
+            self.windows += 1;
+            for j in 0..self.values.len() {
+                let mean = self.sum[j] / self.count as f64;
+                self.running_sum[j] += mean;
+                self.values[j] = if self.running {
+                    self.running_sum[j] / self.windows as f64
+                } else {
+                    mean
+                };
+            }
+            self.sum.iter_mut().for_each(|s| *s = 0.0);
+            self.count = 0;
+            if let Some(f) = &mut self.file {
+                use std::io::Write;
+                let row: Vec<String> = self
+                    .values
+                    .iter()
+                    .map(|v| crate::variables::format_g(*v, 6))
+                    .collect();
+                writeln!(f, "{step} {}", row.join(" ")).map_err(|e| e.to_string())?;
+                f.flush().map_err(|e| e.to_string())?;
+            }
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
+}

@@ -1,0 +1,141 @@
+//! The fixes the engine runs every step, which the script only parses: `nve/sphere`
+//! (integration), `gravity`, `freeze`, `viscous`, `addforce`, `setforce` (post-force).
+//! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
+//! script's fix list (`unfix` removes it from the world).
+
+use glam::DVec3;
+use rdem::{Fix, FixKind};
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row of `nve/sphere`.
+pub(super) const ROW_NVE: FixRow = style(
+    "nve/sphere",
+    nve_sphere,
+    Stages::ENGINE,
+    "velocity Verlet for spheres (translation and rotation)",
+);
+/// The registry row of `gravity`.
+pub(super) const ROW_GRAVITY: FixRow =
+    style("gravity", gravity, Stages::ENGINE, "`G vector x y z`");
+/// The registry row of `freeze`.
+pub(super) const ROW_FREEZE: FixRow = style(
+    "freeze",
+    freeze,
+    Stages::ENGINE,
+    "force, torque and velocity held at zero",
+);
+/// The registry row of `viscous`.
+pub(super) const ROW_VISCOUS: FixRow = style(
+    "viscous",
+    viscous,
+    Stages::ENGINE,
+    "`gamma`: a drag force −γ v",
+);
+/// The registry row of `addforce`.
+pub(super) const ROW_ADDFORCE: FixRow =
+    style("addforce", addforce, Stages::ENGINE, "`fx fy fz` (numbers)");
+/// The registry row of `setforce`.
+pub(super) const ROW_SETFORCE: FixRow = style(
+    "setforce",
+    setforce,
+    Stages::ENGINE,
+    "`fx fy fz` (numbers or NULL)",
+);
+
+/// A fix that lives in `World::fixes` under the same ID.
+pub struct InEngine;
+
+impl ScriptFix for InEngine {
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        if let Some(w) = &mut sim.world {
+            w.remove_fix(&head.id);
+        }
+    }
+}
+
+/// Hands an engine fix of `kind` to the world.
+pub(super) fn engine_fix(
+    sim: &mut Sim,
+    a: &Args,
+    head: &FixHead,
+    kind: FixKind,
+) -> CmdResult<Box<dyn ScriptFix>> {
+    let fix =
+        Fix::new(&head.id, head.groupbit, kind).map_err(|e| a.error_cmd(e.to_string(), None))?;
+    add_engine(sim, a, fix)
+}
+
+fn add_engine(sim: &mut Sim, a: &Args, fix: Fix) -> CmdResult<Box<dyn ScriptFix>> {
+    let w = sim.world_mut(a)?;
+    w.add_fix(fix)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(Box::new(InEngine))
+}
+
+fn nve_sphere(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    if !a.is_done() {
+        let w = a.word("")?;
+        return Err(a.error_prev(
+            format!("nve/sphere: unexpected argument '{w}'"),
+            Some("rdem's nve/sphere takes no options".into()),
+        ));
+    }
+    engine_fix(sim, a, head, FixKind::NveSphere)
+}
+
+fn gravity(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let g = a.f64("gravity magnitude")?;
+    let how = a.keyword("gravity direction style", &["vector"])?;
+    debug_assert_eq!(how, "vector");
+    let d = a.vec3("gravity vector")?;
+    a.done()?;
+    let fix = Fix::gravity(&head.id, head.groupbit, g, d)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    add_engine(sim, a, fix)
+}
+
+fn freeze(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::Freeze)
+}
+
+fn viscous(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let gamma = a.non_negative("damping coefficient gamma")?;
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::Viscous { gamma })
+}
+
+fn addforce(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let mut v = [0.0; 3];
+    for (k, c) in v.iter_mut().enumerate() {
+        let w = a.word(["fx", "fy", "fz"][k])?;
+        if w.starts_with("v_") {
+            return Err(a.error_prev(
+                "addforce with variables is not supported yet; give numbers",
+                None,
+            ));
+        }
+        a.seek(a.pos() - 1);
+        *c = a.f64(["fx", "fy", "fz"][k])?;
+    }
+    a.done()?;
+    let force = DVec3::from_array(v);
+    engine_fix(sim, a, head, FixKind::AddForce { force })
+}
+
+fn setforce(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let mut v = [None; 3];
+    for (k, c) in v.iter_mut().enumerate() {
+        let what = ["fx", "fy", "fz"][k];
+        if a.peek() == Some("NULL") {
+            a.seek(a.pos() + 1);
+        } else {
+            *c = Some(a.f64(&format!("{what} (a number or NULL)"))?);
+        }
+    }
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::SetForce { force: v })
+}

@@ -1,0 +1,445 @@
+//! `fix insert/pack` and `fix insert/rate/region` (and the keyword parsing that
+//! `insert/stream` shares): particles from a distribution placed in a region, once, every
+//! N steps or at a rate. They act in the step's pre-exchange stage, after the initial
+//! integration, as LIGGGHTS' insertion fixes do.
+
+use rdem::insert::{InsertPack, PackTarget, VelocityLaw};
+use rdem::World;
+
+use glam::DVec3;
+
+use super::{mesh_ref, style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{suggest, Args, CmdResult};
+use crate::diagnostic::one_of;
+use crate::sim::Sim;
+use crate::variables::format_e;
+
+/// The registry row of `insert/pack`.
+pub(super) const ROW_PACK: FixRow = style(
+    "insert/pack",
+    parse,
+    Stages::PRE_EXCHANGE.and(Stages::VALUES),
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `verbose`; `start`",
+);
+
+/// The registry row of `insert/rate/region`.
+pub(super) const ROW_RATE: FixRow = style(
+    "insert/rate/region",
+    parse,
+    Stages::PRE_EXCHANGE.and(Stages::VALUES),
+    "`nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `insert_every`, the placement keywords of insert/pack",
+);
+
+/// The engine part of an insertion fix.
+pub enum InsertEngine {
+    /// `insert/pack`, `insert/rate/region`.
+    Pack(InsertPack),
+    /// `insert/stream`.
+    Stream(rdem::insert::InsertStream),
+}
+
+impl InsertEngine {
+    /// True if an insertion is due at `step`.
+    pub fn due(&self, step: u64) -> bool {
+        match self {
+            Self::Pack(p) => p.due(step),
+            Self::Stream(s) => s.due(step),
+        }
+    }
+}
+
+/// Insertion bookkeeping shared by the insertion fixes.
+pub struct Inserter {
+    /// Engine insertion (placement rules, generator, state).
+    pub pack: InsertEngine,
+    /// Particles inserted so far.
+    pub total: u64,
+    /// Their mass.
+    pub total_mass: f64,
+    /// `insert/rate/region`: particles per insertion (fractional, accumulated).
+    pub rate: Option<RateState>,
+    /// `verbose yes`.
+    pub verbose: bool,
+}
+
+/// State of `insert/rate/region`.
+pub struct RateState {
+    /// Particles to insert in all (`None`: no limit).
+    pub limit: Option<u64>,
+    /// Particles per insertion (may be fractional).
+    pub per_insertion: f64,
+    /// Fractional carry.
+    pub carry: f64,
+}
+
+/// The parser of all three insertion styles (their keywords overlap).
+pub(super) fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let (id, groupbit, style) = (head.id.as_str(), head.groupbit, head.style);
+    let stream = style == "insert/stream";
+    let rate = style == "insert/rate/region" || stream;
+    // Keywords of every style, then each style's own (in LIGGGHTS' manual order).
+    const COMMON: [&str; 10] = [
+        "seed",
+        "distributiontemplate",
+        "verbose",
+        "maxattempt",
+        "insert_every",
+        "overlapcheck",
+        "all_in",
+        "random_distribute",
+        "vel",
+        "omega",
+    ];
+    let own: &[&'static str] = if stream {
+        &[
+            "nparticles",
+            "mass",
+            "particlerate",
+            "massrate",
+            "start",
+            "compress_tags",
+            "insertion_face",
+            "extrude_length",
+            "duration",
+            "parallel",
+        ]
+    } else if rate {
+        &[
+            "nparticles",
+            "mass",
+            "particlerate",
+            "massrate",
+            "ntry_mc",
+            "start",
+            "compress_tags",
+            "region",
+        ]
+    } else {
+        &[
+            "region",
+            "volumefraction_region",
+            "particles_in_region",
+            "mass_in_region",
+            "ntry_mc",
+            "start",
+        ]
+    };
+    let valid: Vec<&'static str> = COMMON.iter().chain(own).copied().collect();
+    let valid = valid.as_slice();
+    match a.peek() {
+        Some("seed") => a.seek(a.pos() + 1),
+        Some(w) => {
+            return Err(a.error_at(
+                a.pos(),
+                format!("{style}: the first keyword must be 'seed', not '{w}'"),
+                Some(format!(
+                    "LIGGGHTS requires the seed first: 'fix ID group {style} seed 32452867 {w} ...'"
+                )),
+            ))
+        }
+        None => {
+            return Err(a.error_at(
+                a.pos(),
+                format!("{style}: missing 'seed N'"),
+                Some(format!(
+                    "e.g. 'fix ID group {style} seed 32452867 distributiontemplate ID ...'"
+                )),
+            ))
+        }
+    }
+    let seed = a.u64("seed")?;
+    let mut dist = None;
+    let (mut region, mut target, mut every, mut start) = (None, None, None, None);
+    let (mut overlap, mut all_in, mut maxattempt, mut verbose) = (true, false, 50usize, true);
+    let mut vel = VelocityLaw::Constant(DVec3::ZERO);
+    let mut omega = DVec3::ZERO;
+    let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
+    let mut every_once = false;
+    let (mut face, mut extrude, mut duration) = (None, None, None);
+    while !a.is_done() {
+        let k = a.keyword(&format!("{style} keyword"), valid)?;
+        match k {
+            "insertion_face" => {
+                let at = a.pos();
+                face = Some((
+                    at,
+                    mesh_ref(sim, a, "insertion face (a fix mesh/surface ID)")?,
+                ));
+            }
+            "extrude_length" => extrude = Some(a.positive("extrude_length")?),
+            "duration" => duration = Some((a.pos(), a.count("duration (steps)")?)),
+            "parallel" => {
+                a.yes_no("parallel")?;
+            }
+            "distributiontemplate" => {
+                let d = a.word("distribution template ID")?;
+                dist = Some(sim.distributions.get(d).cloned().ok_or_else(|| {
+                    let names: Vec<&str> = sim.distributions.keys().map(|s| s.as_str()).collect();
+                    a.error_prev(
+                        format!("no particle distribution '{d}'"),
+                        Some(suggest(d, &names)),
+                    )
+                })?);
+            }
+            "verbose" => verbose = a.yes_no("verbose")?,
+            "maxattempt" => maxattempt = a.count("maxattempt")? as usize,
+            "insert_every" => {
+                if a.peek() == Some("once") && !rate {
+                    a.seek(a.pos() + 1);
+                    every = None;
+                    every_once = true;
+                } else {
+                    every = Some(a.count("insert_every (steps, or 'once')")?);
+                }
+            }
+            "overlapcheck" => overlap = a.yes_no("overlapcheck")?,
+            "all_in" => all_in = a.yes_no("all_in")?,
+            "random_distribute" => {
+                a.keyword("random_distribute", &["exact", "uncorrelated"])?;
+            }
+            "compress_tags" => {
+                a.yes_no("compress_tags")?;
+            }
+            "vel" => {
+                vel = match a.keyword(
+                    "velocity distribution",
+                    &["constant", "uniform", "gaussian"],
+                )? {
+                    "constant" => VelocityLaw::Constant(a.vec3("velocity")?),
+                    "uniform" => {
+                        VelocityLaw::Uniform(a.vec3("mean velocity")?, a.vec3("velocity spread")?)
+                    }
+                    _ => VelocityLaw::Gaussian(a.vec3("mean velocity")?, a.vec3("velocity sigma")?),
+                }
+            }
+            "omega" => {
+                a.keyword("omega distribution", &["constant"])?;
+                omega = a.vec3("omega")?;
+            }
+            "region" => region = Some(sim.region(a)?),
+            "volumefraction_region" => {
+                let f = a.f64("volume fraction")?;
+                if !(f > 0.0 && f < 1.0) {
+                    return Err(
+                        a.error_prev(format!("volume fraction must be in (0, 1), got {f}"), None)
+                    );
+                }
+                target = Some(PackTarget::VolumeFraction(f));
+            }
+            "particles_in_region" => target = Some(PackTarget::Count(a.u64("particle count")?)),
+            "mass_in_region" => target = Some(PackTarget::Mass(a.positive("mass")?)),
+            "ntry_mc" => {
+                a.count("ntry_mc")?;
+            }
+            "start" => start = Some(a.u64("start step")?),
+            "nparticles" => {
+                if a.peek() == Some("INF") {
+                    a.seek(a.pos() + 1);
+                    nparticles = Some(None);
+                } else {
+                    nparticles = Some(Some(a.count("nparticles")?));
+                }
+            }
+            "mass" => massmax = Some(a.positive("mass to insert")?),
+            "particlerate" => prate = Some(a.positive("particle rate")?),
+            "massrate" => mrate = Some(a.positive("mass rate")?),
+            _ => unreachable!(),
+        }
+    }
+    let dist = dist.ok_or_else(|| {
+        a.error_at(
+            STYLE_WORD,
+            format!("{style} needs 'distributiontemplate ID'"),
+            None,
+        )
+    })?;
+    sim.world_ref(a)?;
+    let dt = sim.pending.dt;
+    if stream {
+        return super::insert_stream::build(
+            sim,
+            a,
+            super::insert_stream::StreamArgs {
+                id,
+                seed,
+                groupbit,
+                dist,
+                face,
+                extrude,
+                every,
+                duration,
+                nparticles,
+                massmax,
+                prate,
+                mrate,
+                dt,
+            },
+            |s| {
+                s.overlap_check = overlap;
+                s.all_in = all_in;
+                s.max_attempt = maxattempt;
+                s.omega = omega;
+                s.start = start;
+            },
+            vel,
+            verbose,
+        );
+    }
+    let region =
+        region.ok_or_else(|| a.error_at(STYLE_WORD, format!("{style} needs 'region ID'"), None))?;
+    let (target, rate_state) = if rate {
+        let every = every.ok_or_else(|| {
+            a.error_at(
+                STYLE_WORD,
+                "insert/rate/region needs 'insert_every N'",
+                None,
+            )
+        })?;
+        let limit = match (nparticles, massmax) {
+            (Some(n), None) => n,
+            (None, Some(m)) => Some((m / dist.mean_particle_mass()).round() as u64),
+            (None, None) => {
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    "insert/rate/region needs 'nparticles N' (or INF) or 'mass M'",
+                    None,
+                ))
+            }
+            (Some(_), Some(_)) => {
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    "give either nparticles or mass, not both",
+                    None,
+                ))
+            }
+        };
+        let per_step = match (prate, mrate) {
+            (Some(r), None) => r * dt,
+            (None, Some(m)) => m * dt / dist.mean_particle_mass(),
+            _ => {
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    "insert/rate/region needs exactly one of 'particlerate' or 'massrate'",
+                    None,
+                ))
+            }
+        };
+        (
+            PackTarget::Count(0),
+            Some(RateState {
+                limit,
+                per_insertion: per_step * every as f64,
+                carry: 0.0,
+            }),
+        )
+    } else {
+        let t = target.ok_or_else(|| {
+            a.error_at(
+                STYLE_WORD,
+                "insert/pack needs a target",
+                Some(format!(
+                    "add {}",
+                    one_of(&[
+                        "volumefraction_region f",
+                        "particles_in_region N",
+                        "mass_in_region m"
+                    ])
+                )),
+            )
+        })?;
+        if every.is_none() && !every_once {
+            return Err(a.error_at(
+                STYLE_WORD,
+                "insert/pack needs 'insert_every once' or 'insert_every N'",
+                None,
+            ));
+        }
+        (t, None)
+    };
+    let mut pack = InsertPack::new(id, seed, groupbit, region, dist, target, every)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    pack.overlap_check = overlap;
+    pack.all_in = all_in;
+    pack.max_attempt = maxattempt;
+    pack.velocity = vel;
+    pack.omega = omega;
+    pack.start = start;
+    Ok(Box::new(Inserter {
+        pack: InsertEngine::Pack(pack),
+        total: 0,
+        total_mass: 0.0,
+        rate: rate_state,
+        verbose,
+    }))
+}
+
+/// The LIGGGHTS report line of an insertion.
+pub fn insertion_report(
+    id: &str,
+    n: u64,
+    mass: f64,
+    step: u64,
+    total: u64,
+    total_mass: f64,
+) -> String {
+    format!(
+        "INFO: Particle insertion {id}: inserted {n} particle templates (mass {}) at step {step}\n - a total of {total} particle templates (mass {}) inserted so far.",
+        format_e(mass),
+        format_e(total_mass)
+    )
+}
+
+impl ScriptFix for Inserter {
+    /// `f_ID[1]`, `f_ID[2]`: particles inserted so far and their mass.
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+        Ok(vec![self.total as f64, self.total_mass])
+    }
+
+    fn due(&self, step: u64) -> bool {
+        self.pack.due(step)
+    }
+
+    fn pre_exchange(
+        &mut self,
+        head: &FixHead,
+        w: &mut World,
+        notes: &mut Notes,
+    ) -> rdem::Result<()> {
+        let rep = match (&mut self.pack, &mut self.rate) {
+            (InsertEngine::Stream(st), _) => st.insert(w)?,
+            (InsertEngine::Pack(pack), None) => pack.insert(w)?,
+            (InsertEngine::Pack(pack), Some(r)) => {
+                let want = r.per_insertion + r.carry;
+                let mut n = want.floor() as u64;
+                r.carry = want - n as f64;
+                if let Some(lim) = r.limit {
+                    n = n.min(lim.saturating_sub(self.total));
+                }
+                pack.insert_n(w, n)?
+            }
+        };
+        self.total += rep.inserted;
+        self.total_mass += rep.mass;
+        let id = &head.id;
+        // An event that had nothing to insert prints nothing (as LIGGGHTS).
+        if self.verbose && rep.wanted > 0 {
+            notes.line(insertion_report(
+                id,
+                rep.inserted,
+                rep.mass,
+                w.step,
+                self.total,
+                self.total_mass,
+            ));
+        }
+        if rep.inserted < rep.wanted {
+            notes.warning(format!(
+                "Particle insertion {id}: less insertions than requested ({} of {}): the region is too full or maxattempt too small",
+                rep.inserted, rep.wanted
+            ));
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
+}

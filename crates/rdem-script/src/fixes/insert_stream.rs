@@ -1,0 +1,138 @@
+//! `fix insert/stream`: packets of particles poured through a planar mesh face
+//! (`insertion_face`), held at the insertion velocity until they have crossed it. Its
+//! keywords are read with the other insertion styles' ([`super::insert`]); this file checks
+//! the combinations LIGGGHTS requires and builds the engine's stream.
+
+use rdem::insert::{Distribution, VelocityLaw};
+
+use super::insert::{InsertEngine, Inserter};
+use super::{style, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+use crate::variables::format_e;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "insert/stream",
+    super::insert::parse,
+    Stages::PRE_EXCHANGE.and(Stages::VALUES),
+    "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `duration`",
+);
+
+/// What `fix insert/stream` was given (besides the settings every insertion has).
+pub(super) struct StreamArgs<'a> {
+    pub(super) id: &'a str,
+    pub(super) seed: u64,
+    pub(super) groupbit: u32,
+    pub(super) dist: Distribution,
+    /// (word position, mesh index).
+    pub(super) face: Option<(usize, usize)>,
+    pub(super) extrude: Option<f64>,
+    pub(super) every: Option<u64>,
+    /// (word position, steps).
+    pub(super) duration: Option<(usize, u64)>,
+    pub(super) nparticles: Option<Option<u64>>,
+    pub(super) massmax: Option<f64>,
+    pub(super) prate: Option<f64>,
+    pub(super) mrate: Option<f64>,
+    pub(super) dt: f64,
+}
+
+/// `fix insert/stream`: checks the keyword combinations LIGGGHTS requires and builds
+/// the engine's stream.
+pub(super) fn build(
+    sim: &mut Sim,
+    a: &mut Args,
+    s: StreamArgs,
+    settings: impl FnOnce(&mut rdem::insert::InsertStream),
+    vel: VelocityLaw,
+    verbose: bool,
+) -> CmdResult<Box<dyn ScriptFix>> {
+    use rdem::insert::stream::Extrusion;
+    let err = |a: &Args, msg: &str| a.error_at(STYLE_WORD, msg.to_string(), None);
+    let Some((face_at, mesh)) = s.face else {
+        return Err(err(a, "insert/stream needs 'insertion_face MESH-ID'"));
+    };
+    let extrusion = match (s.extrude, s.every) {
+        (Some(_), _) if s.duration.is_some() => {
+            return Err(a.error_at(
+                s.duration.map(|d| d.0 - 1).unwrap_or(STYLE_WORD),
+                "insert/stream: 'duration' goes with 'insert_every', not 'extrude_length'",
+                None,
+            ))
+        }
+        (Some(l), None) => Extrusion::Length(l),
+        (None, Some(n)) => match s.duration {
+            Some((at, d)) if d > n => {
+                return Err(a.error_at(
+                    at,
+                    format!("duration {d} is longer than insert_every {n}"),
+                    None,
+                ))
+            }
+            Some((_, d)) => Extrusion::Pulsed {
+                every: n,
+                duration: d,
+            },
+            None => Extrusion::Every(n),
+        },
+        (Some(_), Some(_)) => {
+            return Err(err(
+                a,
+                "insert/stream takes 'extrude_length' or 'insert_every', not both",
+            ))
+        }
+        (None, None) => {
+            return Err(err(
+                a,
+                "insert/stream needs 'extrude_length L' or 'insert_every N'",
+            ))
+        }
+    };
+    let limit = match (s.nparticles, s.massmax) {
+        (Some(n), None) => n,
+        (None, Some(m)) => Some((m / s.dist.mean_particle_mass()).round() as u64),
+        (None, None) => {
+            return Err(err(
+                a,
+                "insert/stream needs 'nparticles N' (or INF) or 'mass M'",
+            ))
+        }
+        (Some(_), Some(_)) => return Err(err(a, "give either nparticles or mass, not both")),
+    };
+    let rate = match (s.prate, s.mrate) {
+        (Some(r), None) => r,
+        (None, Some(m)) => m / s.dist.mean_particle_mass(),
+        _ => {
+            return Err(err(
+                a,
+                "insert/stream needs exactly one of 'particlerate' or 'massrate'",
+            ))
+        }
+    };
+    let w = sim.world_ref(a)?;
+    let face = &w.meshes[mesh].mesh;
+    let mut st = rdem::insert::InsertStream::new(
+        s.id, s.seed, s.groupbit, s.dist, mesh, face, vel, rate, extrusion, s.dt,
+    )
+    .map_err(|e| a.error_at(face_at, e.to_string(), None))?;
+    st.limit = limit;
+    settings(&mut st);
+    if verbose {
+        sim.out.line(&format!(
+            "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
+            s.id,
+            st.per_insertion,
+            st.every,
+            rate,
+            format_e(rate * st.dist.mean_particle_mass())
+        ));
+    }
+    Ok(Box::new(Inserter {
+        pack: InsertEngine::Stream(st),
+        total: 0,
+        total_mass: 0.0,
+        rate: None,
+        verbose,
+    }))
+}

@@ -1,0 +1,241 @@
+//! `fix mesh/surface`, `mesh/surface/planar` and `mesh/surface/stress`: a triangle mesh
+//! from an STL file, kept in the engine's `World::meshes` under the fix ID, which walls
+//! (`wall/gran ... mesh`), motions, insertion faces and mesh dumps use. The `/stress`
+//! form sums the force on each triangle (and wears it): `f_ID[1..9]`.
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row of `mesh/surface`.
+pub(super) const ROW: FixRow = style(
+    "mesh/surface",
+    parse,
+    Stages::NONE,
+    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate`, `surface_vel`, `surface_ang_vel`, `precision`, `heal auto_remove_duplicates`",
+);
+
+/// The registry row of `mesh/surface/planar`.
+pub(super) const ROW_PLANAR: FixRow = style(
+    "mesh/surface/planar",
+    parse,
+    Stages::NONE,
+    "as `mesh/surface`, for a planar mesh",
+);
+
+/// The registry row of `mesh/surface/stress`.
+pub(super) const ROW_STRESS: FixRow = style(
+    "mesh/surface/stress",
+    parse,
+    Stages::VALUES,
+    "as `mesh/surface`, and `stress on\\|off`, `wear finnie\\|off`, `reference_point`",
+);
+
+fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let mesh = mesh_surface(sim, a, &head.id, head.style)?;
+    sim.world_mut(a)?.add_mesh(mesh);
+    Ok(Box::new(Mesh))
+}
+
+/// A mesh in `World::meshes` under the fix ID.
+pub struct Mesh;
+
+impl ScriptFix for Mesh {
+    /// `f_ID[1..9]` of a `/stress` mesh: total force, torque about the reference point,
+    /// the point.
+    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, String> {
+        let w = sim.world.as_ref().ok_or("needs a simulation box")?;
+        let st = w
+            .mesh_index(&head.id)
+            .and_then(|k| w.meshes[k].stress.as_ref())
+            .ok_or("computes no global values")?;
+        let (fo, to, r) = (st.total_force, st.total_torque, st.reference_point);
+        Ok(vec![fo.x, fo.y, fo.z, to.x, to.y, to.z, r.x, r.y, r.z])
+    }
+
+    // The mesh stays in the world (LIGGGHTS keeps a mesh that walls may still use).
+    fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
+}
+
+/// `fix ID group mesh/surface file F type T [keywords]`: the STL file's triangles with
+/// `scale`, `move` and `rotate` applied in the order given, vertices closer than
+/// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
+/// triangles, and `surface_vel` for a conveyor belt.
+fn mesh_surface(
+    sim: &mut Sim,
+    a: &mut Args,
+    id: &str,
+    style: &str,
+) -> CmdResult<rdem::wall::MeshSurface> {
+    let stress_style = style == "mesh/surface/stress";
+    let (mut stress_on, mut finnie, mut reference_point) = (true, false, rdem::DVec3::ZERO);
+    a.keyword("mesh/surface keyword", &["file"])?;
+    let file_at = a.pos();
+    let file = a.word("STL file name")?.to_string();
+    let mut soup = rdem_io::stl::read_stl(std::path::Path::new(&file))
+        .map_err(|e| a.error_at(file_at, e.to_string(), None))?;
+    let mut wall_type = None;
+    let mut precision = 1e-8;
+    let mut heal = false;
+    let mut surface_vel = rdem::DVec3::ZERO;
+    let mut surface_ang_vel = None;
+    let mut coplanar_cos = rdem::wall::mesh::COPLANAR_COS;
+    const KEYS: [&str; 11] = [
+        "surface_ang_vel",
+        "type",
+        "precision",
+        "heal",
+        "verbose",
+        "scale",
+        "move",
+        "rotate",
+        "surface_vel",
+        "curvature",
+        "curvature_tolerant",
+    ];
+    const LATER_KEYS: [&str; 5] = [
+        "element_exclusion_list",
+        "min_feature_length",
+        "temperature",
+        "mass_temperature",
+        "extrude_planar",
+    ];
+    const STRESS_KEYS: [&str; 3] = ["stress", "wear", "reference_point"];
+    while let Some(w) = a.peek() {
+        if LATER_KEYS.contains(&w) {
+            a.seek(a.pos() + 1);
+            return Err(a.error_prev(
+                format!("mesh/surface keyword '{w}' is not supported by this rdem release yet"),
+                Some(format!("supported: {}", KEYS.join(", "))),
+            ));
+        }
+        if STRESS_KEYS.contains(&w) {
+            if !stress_style {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("'{w}' is a keyword of fix mesh/surface/stress"),
+                    Some(format!("use fix {id} all mesh/surface/stress ... {w} ...")),
+                ));
+            }
+            a.seek(a.pos() + 1);
+            match w {
+                "stress" => stress_on = a.keyword("stress", &["on", "off"])? == "on",
+                "wear" => finnie = a.keyword("wear", &["finnie", "off", "none"])? == "finnie",
+                _ => reference_point = a.vec3("reference point")?,
+            }
+            continue;
+        }
+        match a.keyword("mesh/surface keyword", &KEYS)? {
+            "type" => wall_type = Some(a.count("wall atom type")? as u32),
+            "surface_ang_vel" => {
+                a.keyword("surface_ang_vel keyword", &["origin"])?;
+                let o = a.vec3("origin")?;
+                a.keyword("surface_ang_vel keyword", &["axis"])?;
+                let at = a.pos();
+                let ax = a.vec3("axis")?;
+                if !ax.is_finite() || ax.length() <= 0.0 {
+                    return Err(a.error_at(at, "the axis has no direction", None));
+                }
+                a.keyword("surface_ang_vel keyword", &["omega"])?;
+                let w = a.f64("omega (rad per time unit)")?;
+                surface_ang_vel = Some((o, ax.normalize() * w));
+            }
+            "precision" => precision = a.positive("precision")?,
+            "heal" => {
+                heal = a.keyword("heal", &["auto_remove_duplicates", "no"])? != "no";
+            }
+            "verbose" => {
+                a.yes_no("verbose")?;
+            }
+            "curvature" => {
+                let at = a.pos();
+                let deg = a.positive("curvature (degrees)")?;
+                if deg >= 90.0 {
+                    return Err(a.error_at(
+                        at,
+                        "curvature is the largest angle (degrees) between two triangles of one flat surface: below 90",
+                        None,
+                    ));
+                }
+                coplanar_cos = deg.to_radians().cos();
+            }
+            "curvature_tolerant" => {
+                a.yes_no("curvature_tolerant")?;
+            }
+            "scale" => {
+                let f = a.positive("scale factor")?;
+                for t in &mut soup {
+                    *t = t.map(|p| p * f);
+                }
+            }
+            "move" => {
+                let d = rdem::DVec3::new(a.f64("mx")?, a.f64("my")?, a.f64("mz")?);
+                for t in &mut soup {
+                    *t = t.map(|p| p + d);
+                }
+            }
+            "rotate" => {
+                a.keyword("rotate keyword", &["axis"])?;
+                let axis_at = a.pos();
+                let axis = rdem::DVec3::new(a.f64("ax")?, a.f64("ay")?, a.f64("az")?);
+                a.keyword("rotate keyword", &["angle"])?;
+                let deg = a.f64("angle (degrees)")?;
+                if axis.length().is_nan() || axis.length() <= 0.0 || !axis.is_finite() {
+                    return Err(a.error_at(axis_at, "the rotation axis has no direction", None));
+                }
+                let q = glam::DQuat::from_axis_angle(axis.normalize(), deg.to_radians());
+                for t in &mut soup {
+                    *t = t.map(|p| q * p);
+                }
+            }
+            _ => {
+                surface_vel = rdem::DVec3::new(a.f64("vx")?, a.f64("vy")?, a.f64("vz")?);
+            }
+        }
+    }
+    let Some(wall_type) = wall_type else {
+        return Err(a.error_at(
+            STYLE_WORD,
+            "mesh/surface needs 'type T' (the wall's material type)",
+            None,
+        ));
+    };
+    let (mesh, report) = rdem::mesh::TriMesh::from_triangles(&soup, precision, heal)
+        .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), None))?;
+    if !report.degenerate.is_empty() || !report.duplicates.is_empty() {
+        sim.out.warning(&format!(
+            "mesh/surface {id}: dropped {} degenerate and {} repeated triangle(s) of {file}",
+            report.degenerate.len(),
+            report.duplicates.len()
+        ));
+    }
+    sim.out.line(&format!(
+        "  mesh {id}: {} triangles, {} vertices",
+        mesh.tris.len(),
+        mesh.verts.len()
+    ));
+    if style == "mesh/surface/planar" {
+        let n = mesh.normals.first().copied().unwrap_or(rdem::DVec3::Z);
+        let p0 = mesh.verts.first().copied().unwrap_or_default();
+        let (lo, hi) = mesh.bounds();
+        let tol = 1e-6 * (hi - lo).length();
+        if mesh.verts.iter().any(|&v| (v - p0).dot(n).abs() > tol) {
+            return Err(a.error_at(
+                file_at,
+                format!("{file}: mesh/surface/planar needs a planar mesh, and this one is not"),
+                Some("use fix mesh/surface".into()),
+            ));
+        }
+    }
+    let ntri = mesh.tris.len();
+    let mut surface = rdem::wall::MeshSurface::new(id, mesh, wall_type);
+    if stress_style && (stress_on || finnie) {
+        let mut st = rdem::wall::mesh_stress::MeshStress::new(ntri, finnie);
+        st.reference_point = reference_point;
+        surface.stress = Some(st);
+    }
+    surface.surface_vel = surface_vel;
+    surface.surface_ang_vel = surface_ang_vel;
+    surface.coplanar_cos = coplanar_cos;
+    Ok(surface)
+}

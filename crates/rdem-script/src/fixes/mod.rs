@@ -1,0 +1,475 @@
+//! The `fix` command and every fix style of the front end, one file per style (or small
+//! family) in this folder, all listed in one registry ([`REGISTRY`]).
+//!
+//! A style's file holds its parser (script words → a typed value that implements
+//! [`ScriptFix`]), and its registry row: the name, the parser, the [`Stages`] it takes part
+//! in (as LAMMPS' `setmask`), one line of help and the README notes. Adding a style is
+//! that file and one row in [`REGISTRY`]; the unknown-style error, the "did you mean", the
+//! list of valid styles, `rdem -check` and the README's command table read the registry.
+//!
+//! Fixes the engine runs every step (integration, walls, forces) are parsed here and
+//! handed to `World::fixes` (stage [`Stages::ENGINE`]); the script keeps their ID, style
+//! and group so that `unfix`, `f_ID` and redefinitions find them.
+
+mod adapt;
+pub mod ave_euler;
+mod ave_time;
+mod check_timestep_gran;
+mod engine;
+pub mod insert;
+mod insert_stream;
+mod massflow_mesh;
+mod mesh_surface;
+mod move_mesh;
+mod particledistribution_discrete;
+mod particletemplate_sphere;
+mod property_global;
+mod wall_gran;
+
+use std::any::Any;
+
+use rdem::World;
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::registry::{Registry, Row};
+use crate::sim::Sim;
+
+pub use check_timestep_gran::timestep_limits;
+pub use insert::insertion_report;
+
+/// The stages a fix takes part in (LAMMPS' `setmask`): the run loop calls each stage only
+/// on the fixes that declare it, so a stage nobody uses costs nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Stages(u8);
+
+impl Stages {
+    /// No stage: a definition other fixes read (`property/global`, templates).
+    pub const NONE: Self = Self(0);
+    /// The engine runs it every step (`World::fixes`: integration, post-force, walls).
+    pub const ENGINE: Self = Self(1);
+    /// Before each step and before a run's set-up forces ([`ScriptFix::pre_step`]).
+    pub const PRE_STEP: Self = Self(2);
+    /// Inside the step after the initial integration ([`ScriptFix::pre_exchange`]).
+    pub const PRE_EXCHANGE: Self = Self(4);
+    /// After the final integration, and at a run's set-up ([`ScriptFix::end_of_step`]).
+    pub const END_OF_STEP: Self = Self(8);
+    /// When a run ends ([`ScriptFix::end_of_run`]).
+    pub const END_OF_RUN: Self = Self(16);
+    /// Global values for `f_ID`, `f_ID[i]` ([`ScriptFix::values`]).
+    pub const VALUES: Self = Self(32);
+
+    /// Both sets.
+    pub const fn and(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+
+    /// True if every stage of `other` is in `self`.
+    pub const fn has(self, other: Self) -> bool {
+        self.0 & other.0 == other.0 && other.0 != 0
+    }
+
+    /// The stage names (for help and the README).
+    pub fn names(self) -> Vec<&'static str> {
+        [
+            (Self::ENGINE, "engine"),
+            (Self::PRE_STEP, "pre-step"),
+            (Self::PRE_EXCHANGE, "pre-exchange"),
+            (Self::END_OF_STEP, "end-of-step"),
+            (Self::END_OF_RUN, "end-of-run"),
+            (Self::VALUES, "f_ID values"),
+        ]
+        .into_iter()
+        .filter(|(s, _)| self.has(*s))
+        .map(|(_, n)| n)
+        .collect()
+    }
+}
+
+/// The words every fix starts with: `fix ID group style`.
+#[derive(Debug, Clone, Default)]
+pub struct FixHead {
+    /// Fix ID.
+    pub id: String,
+    /// Style, as in the registry.
+    pub style: &'static str,
+    /// Group bit mask.
+    pub groupbit: u32,
+}
+
+/// Lines a fix prints while the engine holds the world (insertion reports), in order:
+/// `(true, text)` for a warning, `(false, text)` for a plain line.
+#[derive(Debug, Default)]
+pub struct Notes(pub Vec<(bool, String)>);
+
+impl Notes {
+    /// A line for the screen and log.
+    pub fn line(&mut self, text: String) {
+        self.0.push((false, text));
+    }
+
+    /// A warning.
+    pub fn warning(&mut self, text: String) {
+        self.0.push((true, text));
+    }
+}
+
+/// `Any` for every fix, so that the few readers of one style's state (dumps of
+/// `ave/euler`, tests) can reach it.
+pub trait AsAny: Any {
+    /// `self` as `Any`.
+    fn as_any(&self) -> &dyn Any;
+}
+
+impl<T: Any> AsAny for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+/// A fix as the script defined it. Each method is one stage; a fix implements those its
+/// registry row declares (the others are never called). Methods that take the whole
+/// [`Sim`] are called with the fix itself out of `Sim::fixes` (see [`with_fix`]).
+pub trait ScriptFix: AsAny {
+    /// [`Stages::VALUES`]: the global values `f_ID[1..]` at the current step.
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+        Err("computes no global values".into())
+    }
+
+    /// True if `thermo_modify norm yes` divides this fix's values by the atom count.
+    fn extensive(&self) -> bool {
+        false
+    }
+
+    /// [`Stages::PRE_STEP`]: before step `step` (with `setup`, before a run's set-up).
+    fn pre_step(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        _step: u64,
+        _setup: bool,
+    ) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// [`Stages::PRE_EXCHANGE`]: whether the fix acts in step `step`.
+    fn due(&self, _step: u64) -> bool {
+        false
+    }
+
+    /// [`Stages::PRE_EXCHANGE`]: acts on the world inside the step, after the initial
+    /// integration (new particles are not moved this step).
+    fn pre_exchange(
+        &mut self,
+        _head: &FixHead,
+        _world: &mut World,
+        _notes: &mut Notes,
+    ) -> rdem::Result<()> {
+        Ok(())
+    }
+
+    /// [`Stages::END_OF_STEP`]: after step `step` (with `setup`, after a run's set-up
+    /// forces): whether the force pass of that step must compute the contact virial.
+    fn wants_virial(&self, _step: u64, _setup: bool) -> bool {
+        false
+    }
+
+    /// [`Stages::END_OF_STEP`]: after step `step`'s final integration, or after a run's
+    /// set-up (`setup`).
+    fn end_of_step(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        _step: u64,
+        _setup: bool,
+    ) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// [`Stages::END_OF_RUN`]: when a run ends.
+    fn end_of_run(&mut self, _sim: &mut Sim, _head: &FixHead) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Whether `unfix` may remove the fix now.
+    fn check_unfix(&self, _sim: &Sim, _head: &FixHead) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Undoes what the fix's definition did outside itself (engine fixes, meshes,
+    /// property tables).
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead);
+}
+
+/// A fix's parser: reads the words after `fix ID group style`.
+pub type Parse = fn(&mut Sim, &mut Args, &FixHead) -> CmdResult<Box<dyn ScriptFix>>;
+
+/// What the registry knows of a fix style rdem runs.
+#[derive(Clone, Copy)]
+pub struct FixStyle {
+    /// The parser.
+    pub parse: Parse,
+    /// The stages its fixes take part in.
+    pub stages: Stages,
+}
+
+/// A row of the fix registry.
+pub type FixRow = Row<FixStyle>;
+
+/// A fix style rdem runs.
+pub(crate) const fn style(
+    name: &'static str,
+    parse: Parse,
+    stages: Stages,
+    help: &'static str,
+) -> FixRow {
+    Row::runs(name, FixStyle { parse, stages }, help)
+}
+
+/// Every fix style: those rdem runs, then LIGGGHTS styles it does not run yet.
+pub static REGISTRY: Registry<FixStyle> = Registry {
+    family: "fix style",
+    readme_prefix: "fix ",
+    rows: &[
+        property_global::ROW,
+        property_atom_row(),
+        mesh_surface::ROW,
+        mesh_surface::ROW_PLANAR,
+        mesh_surface::ROW_STRESS,
+        move_mesh::ROW,
+        wall_gran::ROW,
+        particletemplate_sphere::ROW,
+        particledistribution_discrete::ROW,
+        particledistribution_discrete::ROW_MASS,
+        particledistribution_discrete::ROW_NUMBER,
+        insert::ROW_PACK,
+        insert::ROW_RATE,
+        insert_stream::ROW,
+        massflow_mesh::ROW,
+        engine::ROW_NVE,
+        engine::ROW_GRAVITY,
+        engine::ROW_FREEZE,
+        engine::ROW_VISCOUS,
+        engine::ROW_ADDFORCE,
+        engine::ROW_SETFORCE,
+        adapt::ROW,
+        check_timestep_gran::ROW,
+        ave_time::ROW,
+        ave_euler::ROW,
+        Row::not_yet("bond/gran", "bonds"),
+        Row::not_yet("wall/gran/hooke/history", "old-style wall models"),
+        Row::not_yet("particletemplate/multisphere", "multisphere particles"),
+    ],
+};
+
+const fn property_atom_row() -> FixRow {
+    Row::not_yet("property/atom", "")
+}
+
+/// Index of the style word in `fix ID group style ...` (errors about the whole fix point
+/// at it).
+pub(crate) const STYLE_WORD: usize = 3;
+
+/// One fix as the script defined it.
+pub struct FixEntry {
+    /// ID, style and group.
+    pub head: FixHead,
+    /// The stages it takes part in (from its registry row).
+    pub stages: Stages,
+    /// The fix.
+    pub imp: Box<dyn ScriptFix>,
+}
+
+impl FixEntry {
+    /// Fix ID.
+    pub fn id(&self) -> &str {
+        &self.head.id
+    }
+
+    /// The fix as its own type, if it is one.
+    pub fn downcast<T: ScriptFix>(&self) -> Option<&T> {
+        // Through the trait object: `self.imp.as_any()` would give the Box itself.
+        (*self.imp).as_any().downcast_ref::<T>()
+    }
+}
+
+/// The placeholder of a fix that is out of `Sim::fixes` while one of its stages runs.
+struct Vacant;
+
+impl ScriptFix for Vacant {
+    fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
+}
+
+/// Calls `f` with fix `k` taken out of `sim.fixes` (a vacant entry stands in for it), so
+/// that the fix can read and change the rest of the script state; puts it back after.
+/// `f` must not add or remove fixes.
+pub(crate) fn with_fix<R>(
+    sim: &mut Sim,
+    k: usize,
+    f: impl FnOnce(&mut dyn ScriptFix, &mut Sim, &FixHead) -> R,
+) -> R {
+    let mut e = take(sim, k);
+    let r = f(&mut *e.imp, sim, &e.head);
+    sim.fixes[k] = e;
+    r
+}
+
+/// Takes fix `k` out of `sim.fixes`, leaving a vacant entry (no allocation) that the
+/// caller replaces with it again.
+pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
+    std::mem::replace(
+        &mut sim.fixes[k],
+        FixEntry {
+            head: FixHead::default(),
+            stages: Stages::NONE,
+            imp: Box::new(Vacant),
+        },
+    )
+}
+
+/// Indices of the fixes that take part in `stage`, in definition order.
+pub fn with_stage(sim: &Sim, stage: Stages) -> Vec<usize> {
+    (0..sim.fixes.len())
+        .filter(|&k| sim.fixes[k].stages.has(stage))
+        .collect()
+}
+
+/// Value `f_ID` / `f_ID[i]` (1-based).
+pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
+    let f = sim
+        .fixes
+        .iter()
+        .find(|f| f.head.id == id)
+        .ok_or_else(|| format!("no fix '{id}'"))?;
+    if !f.stages.has(Stages::VALUES) {
+        return Err(format!(
+            "fix {id} ({}) computes no global values",
+            f.head.style
+        ));
+    }
+    let v = f
+        .imp
+        .values(sim, &f.head)
+        .map_err(|m| format!("fix {id} ({}) {m}", f.head.style))?;
+    match idx {
+        Some(k) if k >= 1 && k <= v.len() => Ok(v[k - 1]),
+        None if v.len() == 1 => Ok(v[0]),
+        _ => Err(format!(
+            "fix {id} gives {} value(s): use f_{id}[1..{}]",
+            v.len(),
+            v.len()
+        )),
+    }
+}
+
+/// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.
+pub fn is_extensive(sim: &Sim, id: &str) -> bool {
+    sim.fixes
+        .iter()
+        .any(|f| f.head.id == id && f.imp.extensive())
+}
+
+/// `fix ID group style args...`.
+pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("fix ID")?.to_string();
+    if let Some(k) = sim.fix_index(&id) {
+        // LIGGGHTS replaces a fix of the same ID and style; a different style is an error.
+        let style = a.words().get(3).map(|w| w.text.as_str()).unwrap_or("");
+        if sim.fixes[k].head.style != style {
+            return Err(a.error_prev(
+                format!(
+                    "fix ID '{id}' is already used by a {} fix",
+                    sim.fixes[k].head.style
+                ),
+                Some("unfix it first or pick another ID".into()),
+            ));
+        }
+        unfix_id(sim, &id);
+    }
+    let groupbit = sim.group_bit(a, "group ID")?;
+    let style_word = a.word("fix style")?;
+    let (style, row) = REGISTRY.lookup(a, style_word)?;
+    let head = FixHead {
+        id,
+        style,
+        groupbit,
+    };
+    let imp = (row.parse)(sim, a, &head)?;
+    sim.fixes.push(FixEntry {
+        head,
+        stages: row.stages,
+        imp,
+    });
+    Ok(())
+}
+
+/// `unfix ID`.
+pub fn unfix(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("fix ID")?;
+    a.done()?;
+    let Some(k) = sim.fix_index(id) else {
+        let names: Vec<&str> = sim.fixes.iter().map(|f| f.id()).collect();
+        return Err(a.error_prev(format!("no fix '{id}'"), Some(suggest(id, &names))));
+    };
+    let f = &sim.fixes[k];
+    f.imp
+        .check_unfix(sim, &f.head)
+        .map_err(|m| a.error_prev(m, None))?;
+    unfix_id(sim, id);
+    Ok(())
+}
+
+/// Removes fix `id` (front end and engine); false if there was none.
+pub fn unfix_id(sim: &mut Sim, id: &str) -> bool {
+    let Some(k) = sim.fix_index(id) else {
+        return false;
+    };
+    let mut f = sim.fixes.remove(k);
+    f.imp.unfix(sim, &f.head);
+    true
+}
+
+/// "1 value", "2 values".
+pub(crate) fn plural(n: usize, what: &str) -> String {
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
+    }
+}
+
+/// A wrong number of values starting at word `start`: the error points at the first
+/// value too many, or just past the last word when values are missing.
+pub(crate) fn count_error(
+    a: &Args,
+    start: usize,
+    want: usize,
+    got: usize,
+    message: String,
+    help: String,
+) -> crate::diagnostic::ScriptError {
+    let at = if got > want {
+        start + want
+    } else {
+        a.words().len()
+    };
+    a.error_at(at, message, Some(help))
+}
+
+/// Reads a mesh ID (a `fix mesh/surface`) and returns its index in the world's meshes.
+pub(crate) fn mesh_ref(sim: &Sim, a: &mut Args, what: &str) -> CmdResult<usize> {
+    let at = a.pos();
+    let mid = a.word(what)?;
+    let found = sim.world.as_ref().and_then(|w| w.mesh_index(mid));
+    found.ok_or_else(|| {
+        let ids: Vec<&str> = sim
+            .world
+            .iter()
+            .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+            .collect();
+        a.error_at(
+            at,
+            format!("no mesh '{mid}' (define it with fix mesh/surface first)"),
+            Some(suggest(mid, &ids)),
+        )
+    })
+}

@@ -1,0 +1,74 @@
+//! `fix ID all particledistribution/discrete seed N template1 weight1 ...` (and its
+//! `/massbased`, `/numberbased` forms): a weighted choice of particle templates.
+
+use rdem::insert::{Distribution, Weighting};
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{suggest, Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "particledistribution/discrete",
+    parse,
+    Stages::NONE,
+    "mass fractions",
+)
+.notes("weights are normalised with a warning");
+
+/// The registry row of the mass-based form (the same as the plain one).
+pub(super) const ROW_MASS: FixRow = style(
+    "particledistribution/discrete/massbased",
+    parse,
+    Stages::NONE,
+    "mass fractions",
+);
+
+/// The registry row of the number-based form.
+pub(super) const ROW_NUMBER: FixRow = style(
+    "particledistribution/discrete/numberbased",
+    parse,
+    Stages::NONE,
+    "number fractions",
+);
+
+/// A defined distribution: it lives in `Sim::distributions` under the fix ID.
+pub struct DistributionFix;
+
+impl ScriptFix for DistributionFix {
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        sim.distributions.remove(&head.id);
+    }
+}
+
+fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let (id, style) = (head.id.as_str(), head.style);
+    let seed = a.u64("seed")?;
+    let n = a.count("number of templates")?;
+    let mut parts = Vec::new();
+    for _ in 0..n {
+        let tid = a.word("template ID")?;
+        let t = sim.templates.get(tid).cloned().ok_or_else(|| {
+            let names: Vec<&str> = sim.templates.keys().map(|s| s.as_str()).collect();
+            a.error_prev(
+                format!("no particle template '{tid}'"),
+                Some(suggest(tid, &names)),
+            )
+        })?;
+        let w = a.positive("template weight")?;
+        parts.push((t, w));
+    }
+    a.done()?;
+    let weighting = if style.ends_with("numberbased") {
+        Weighting::Number
+    } else {
+        Weighting::Mass
+    };
+    let d = Distribution::new(id, seed, weighting, parts)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    if let Some(wm) = &d.warning {
+        sim.out.warning(wm);
+    }
+    sim.distributions.insert(id.to_string(), d);
+    Ok(Box::new(DistributionFix))
+}

@@ -1,0 +1,96 @@
+//! `fix ID all particletemplate/sphere seed atom_type T density constant RHO radius ...`:
+//! a particle template that distributions and insertion fixes draw from.
+
+use rdem::insert::{ParticleTemplate, RadiusDist};
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "particletemplate/sphere",
+    parse,
+    Stages::NONE,
+    "`atom_type`, `density constant`, `radius constant\\|uniform\\|gaussian`",
+);
+
+/// A defined template: it lives in `Sim::templates` under the fix ID.
+pub struct Template;
+
+impl ScriptFix for Template {
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        sim.templates.remove(&head.id);
+    }
+}
+
+fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let id = head.id.as_str();
+    let seed = a.u64("seed")?;
+    let (mut ty, mut density, mut radius) = (1u32, None, None);
+    while !a.is_done() {
+        match a.keyword(
+            "particletemplate/sphere keyword",
+            &["atom_type", "density", "radius", "volume_limit", "relative"],
+        )? {
+            "atom_type" => {
+                let t = a.count("atom type")?;
+                if sim.ntypes > 0 && t as usize > sim.ntypes {
+                    return Err(a.error_prev(
+                        format!(
+                            "atom type {t} is larger than the box's {} type(s)",
+                            sim.ntypes
+                        ),
+                        None,
+                    ));
+                }
+                ty = t as u32;
+            }
+            "density" => {
+                a.keyword("density distribution", &["constant"])?;
+                density = Some(a.positive("density")?);
+            }
+            "radius" => {
+                radius = Some(
+                    match a.keyword("radius distribution", &["constant", "uniform", "gaussian"])? {
+                        "constant" => RadiusDist::Constant(a.positive("radius")?),
+                        "uniform" => RadiusDist::Uniform(
+                            a.positive("smallest radius")?,
+                            a.positive("largest radius")?,
+                        ),
+                        _ => RadiusDist::Gaussian(
+                            a.positive("mean radius")?,
+                            a.non_negative("radius standard deviation")?,
+                        ),
+                    },
+                );
+            }
+            "volume_limit" => {
+                a.positive("volume limit")?;
+            }
+            _ => {
+                if a.yes_no("relative")? {
+                    return Err(a.error_prev("relative radii are not supported", None));
+                }
+            }
+        }
+    }
+    let density = density.ok_or_else(|| {
+        a.error_at(
+            STYLE_WORD,
+            "particletemplate/sphere needs a density",
+            Some("add 'density constant RHO' (kg/m^3)".into()),
+        )
+    })?;
+    let radius = radius.ok_or_else(|| {
+        a.error_at(
+            STYLE_WORD,
+            "particletemplate/sphere needs a radius",
+            Some("add 'radius constant R' (m), or 'radius uniform RMIN RMAX'".into()),
+        )
+    })?;
+    let t = ParticleTemplate::new(id, seed, ty, density, radius)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    sim.templates.insert(id.to_string(), t);
+    Ok(Box::new(Template))
+}

@@ -1,0 +1,143 @@
+//! `fix wall/gran`: a primitive wall (plane, cylinder) or the meshes named after `mesh`,
+//! with the contact model words of `pair_style gran`. The wall lives in the engine's
+//! `World::fixes`, which computes its contacts in the post-force stage.
+
+use glam::DVec3;
+use rdem::{FixKind, PrimitiveWall, WallShape};
+
+use super::engine::engine_fix;
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{Args, CmdResult};
+use crate::models;
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "wall/gran",
+    parse,
+    Stages::ENGINE,
+    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `mesh n_meshes k meshes ID...`; the model words of `pair_style gran`",
+);
+
+fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let kind = match wall_gran(sim, a, &head.id)? {
+        Wall::Primitive(wall) => FixKind::WallGran(Box::new(wall)),
+        Wall::Mesh(wall) => FixKind::MeshWall(Box::new(wall)),
+    };
+    engine_fix(sim, a, head, kind)
+}
+
+/// A `wall/gran` wall.
+enum Wall {
+    Primitive(PrimitiveWall),
+    Mesh(rdem::wall::MeshWall),
+}
+
+fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
+    let mut model = models::parse_types(a)?;
+    models::parse_leading_switches(a, &mut model)?;
+    let style_at = a.pos();
+    match a.peek() {
+        Some("primitive") => a.seek(a.pos() + 1),
+        Some("mesh") => {
+            a.seek(a.pos() + 1);
+            a.keyword("mesh keyword", &["n_meshes"])?;
+            let n = a.count("n_meshes")?;
+            a.keyword("mesh keyword", &["meshes"])?;
+            let mut meshes = Vec::with_capacity(n as usize);
+            for _ in 0..n {
+                let at = a.pos();
+                let mid = a.word("mesh ID (a fix mesh/surface)")?;
+                let found = sim.world.as_ref().and_then(|w| w.mesh_index(mid));
+                let Some(m) = found else {
+                    let ids: Vec<&str> = sim
+                        .world
+                        .iter()
+                        .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+                        .collect();
+                    return Err(a.error_at(
+                        at,
+                        format!("no fix mesh/surface '{mid}'"),
+                        Some(crate::commands::id_help("fix mesh/surface", mid, &ids)),
+                    ));
+                };
+                meshes.push(m);
+            }
+            if models::at_switch(a) {
+                models::parse_switches(a, &mut model)?;
+            } else if !a.is_done() {
+                return Err(models::unknown(a, a.pos(), &[]));
+            }
+            let wall = rdem::wall::MeshWall::new(id, model, meshes)
+                .map_err(|e| a.error_cmd(e.to_string(), None))?;
+            return Ok(Wall::Mesh(wall));
+        }
+        Some(
+            w @ ("type" | "xplane" | "yplane" | "zplane" | "xcylinder" | "ycylinder" | "zcylinder"),
+        ) => {
+            return Err(a.error_at(
+                style_at,
+                format!("wall/gran: missing 'primitive' before '{w}'"),
+                Some("write 'primitive type T zplane POS' (or another primitive)".into()),
+            ))
+        }
+        Some(_) => return Err(models::unknown(a, style_at, &["primitive", "mesh"])),
+        None => {
+            return Err(a.error_at(
+                a.pos(),
+                "wall/gran: missing wall style",
+                Some("add 'primitive type T zplane POS' (or another primitive)".into()),
+            ))
+        }
+    }
+    a.keyword("primitive keyword", &["type"])?;
+    let wall_type = a.count("wall atom type")? as u32;
+    let shape = match a.keyword(
+        "primitive wall",
+        &[
+            "xplane",
+            "yplane",
+            "zplane",
+            "xcylinder",
+            "ycylinder",
+            "zcylinder",
+        ],
+    )? {
+        p @ ("xplane" | "yplane" | "zplane") => WallShape::Plane {
+            axis: (p.as_bytes()[0] - b'x') as usize,
+            pos: a.f64("plane position")?,
+        },
+        c => WallShape::Cylinder {
+            axis: (c.as_bytes()[0] - b'x') as usize,
+            radius: a.positive("cylinder radius")?,
+            c1: a.f64("axis coordinate c1")?,
+            c2: a.f64("axis coordinate c2")?,
+        },
+    };
+    let mut velocity = DVec3::ZERO;
+    while let Some(w) = a.peek() {
+        if models::at_switch(a) {
+            models::parse_switches(a, &mut model)?;
+            break;
+        }
+        match w {
+            "shear" => {
+                a.seek(a.pos() + 1);
+                let d = a.keyword("shear direction", &["x", "y", "z"])?;
+                let v = a.f64("shear velocity")?;
+                velocity[(d.as_bytes()[0] - b'x') as usize] = v;
+            }
+            "store_force" | "store_force_contact" => {
+                a.seek(a.pos() + 1);
+                if a.yes_no(w)? {
+                    return Err(a.error_prev(format!("{w} yes is not supported yet"), None));
+                }
+            }
+            _ => return Err(models::unknown(a, a.pos(), &["shear", "store_force"])),
+        }
+    }
+    let mut wall = PrimitiveWall::new(id, model, wall_type, shape)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    wall.velocity = velocity;
+    Ok(Wall::Primitive(wall))
+}
