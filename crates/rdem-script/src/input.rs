@@ -13,12 +13,6 @@ use crate::lexer::{self, Command, Reference};
 use crate::output::Echo;
 use crate::sim::Sim;
 
-/// Commands handled by the driver.
-pub const FLOW_COMMANDS: [&str; 12] = [
-    "include", "label", "jump", "next", "if", "variable", "print", "log", "echo", "clear", "quit",
-    "shell",
-];
-
 /// A `jump` searching for its label, and the error to report if the file ends first.
 struct SkipTo {
     label: String,
@@ -50,9 +44,7 @@ pub struct Interpreter {
 
 /// Every command name rdem knows (for suggestions).
 pub fn all_commands() -> Vec<&'static str> {
-    let mut v: Vec<&str> = commands::SIM_COMMANDS.to_vec();
-    v.extend_from_slice(&FLOW_COMMANDS);
-    v
+    commands::REGISTRY.names()
 }
 
 const IF_USAGE: &str =
@@ -365,17 +357,14 @@ impl Interpreter {
             }
             "if" => self.if_command(&mut a, &cmd)?,
             "quit" => self.quit = true,
-            "clear" | "shell" => {
-                return Err(a.error_cmd(format!("{} is not supported by rdem", a.name()), None))
-            }
             name => {
-                let name = name.to_string();
-                if !commands::execute(&mut self.sim, &mut a)? {
+                if commands::REGISTRY.row(name).is_none() {
                     return Err(a.error_cmd(
                         format!("unknown command '{name}'"),
-                        Some(commands::unknown_command_help(&name, &all_commands())),
+                        Some(commands::unknown_command_help(name, &all_commands())),
                     ));
                 }
+                commands::execute(&mut self.sim, &mut a)?;
             }
         }
         Ok(())

@@ -16,7 +16,7 @@ pub enum Support<H: 'static> {
     /// It runs, with this handler.
     Runs(H),
     /// A LIGGGHTS name that rdem does not run (yet): what it is, for the error
-    /// ("fix heat/gran (heat conduction) is not supported by this rdem release yet").
+    /// ("fix heat/gran (heat conduction) is not supported by rdem yet").
     Not(&'static str),
 }
 
@@ -123,13 +123,13 @@ impl<H> Registry<H> {
         }
     }
 
-    /// "fix heat/gran (heat conduction) is not supported by this rdem release yet".
+    /// "fix heat/gran (heat conduction) is not supported by rdem yet".
     pub fn not_supported(&self, name: &str, what: &str) -> String {
         let prefix = self.readme_prefix;
         if what.is_empty() {
-            format!("{prefix}{name} is not supported by this rdem release yet")
+            format!("{prefix}{name} is not supported by rdem yet")
         } else {
-            format!("{prefix}{name} ({what}) is not supported by this rdem release yet")
+            format!("{prefix}{name} ({what}) is not supported by rdem yet")
         }
     }
 

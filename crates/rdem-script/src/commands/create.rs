@@ -1,0 +1,146 @@
+//! `create_box` and `create_atoms`: the simulation box (and its processor grid) and
+//! particles on a lattice or at a point.
+
+use glam::DVec3;
+use rdem::{Domain, NewParticle, World};
+
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+use super::region::scale_of;
+
+pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    if sim.world.is_some() {
+        return Err(a.error_cmd("create_box: the simulation box is already defined", None));
+    }
+    let n = a.count("number of atom types")?;
+    if a.is_done() {
+        let names: Vec<&str> = sim.regions.keys().map(|s| s.as_str()).collect();
+        return Err(a.error_at(
+            a.pos(),
+            "create_box: missing region ID",
+            Some(if names.is_empty() {
+                "create_box N REGION-ID: define the box region first, e.g. 'region reg block -1 1 -1 1 0 2 units box'".into()
+            } else {
+                format!("create_box N REGION-ID with a defined region: {}", crate::diagnostic::one_of(&names))
+            }),
+        ));
+    }
+    let r = sim.region(a)?;
+    if !a.is_done() {
+        return Err(a.error_at(
+            a.pos(),
+            "create_box: bonds and extra keywords are not supported",
+            None,
+        ));
+    }
+    let (lo, hi) = r
+        .bounding_box()
+        .ok_or_else(|| a.error_at(2, "create_box needs a bounded region (e.g. a block)", None))?;
+    if (0..3).any(|d| lo[d] <= -1e299 || hi[d] >= 1e299) {
+        return Err(a.error_at(2, "create_box needs a region with finite bounds", None));
+    }
+    let domain = Domain::with_faces(lo, hi, sim.pending.boundary)
+        .map_err(|e| a.error_at(2, e.to_string(), None))?;
+    sim.out.line(&format!(
+        "Created orthogonal box = ({} {} {}) to ({} {} {})",
+        crate::variables::g(lo.x),
+        crate::variables::g(lo.y),
+        crate::variables::g(lo.z),
+        crate::variables::g(hi.x),
+        crate::variables::g(hi.y),
+        crate::variables::g(hi.z)
+    ));
+    let mut w = World::new(domain);
+    decompose(sim, &mut w, a, 0)?;
+    w.dt = sim.pending.dt;
+    sim.ntypes = n as usize;
+    sim.world = Some(w);
+    Ok(())
+}
+
+/// Splits the new box between the ranks (`processors`) and reports the grid as LIGGGHTS.
+pub(super) fn decompose(sim: &mut Sim, w: &mut World, a: &Args, word: usize) -> CmdResult {
+    w.decompose(sim.pending.procs)
+        .map_err(|e| a.error_at(word, e.to_string(), None))?;
+    let g = w.domain.procgrid;
+    sim.out.line(&format!(
+        "  {} by {} by {} MPI processor grid",
+        g[0], g[1], g[2]
+    ));
+    Ok(())
+}
+
+pub(super) fn new_default(x: DVec3, ty: u32) -> NewParticle {
+    // LIGGGHTS' granular defaults for created atoms: diameter 1, density 1.
+    NewParticle::at(x, 0.5, 1.0).with_type(ty)
+}
+
+pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let ty = a.count("atom type")? as u32;
+    if ty as usize > sim.ntypes {
+        return Err(a.error_prev(
+            format!("atom type {ty} > the box's {} type(s)", sim.ntypes),
+            None,
+        ));
+    }
+    let style = a.keyword("create_atoms style", &["single", "region", "box", "random"])?;
+    let mut points = Vec::new();
+    let mut reg = None;
+    let mut single = None;
+    match style {
+        "single" => single = Some(a.vec3("position")?),
+        "region" => reg = Some(sim.region(a)?),
+        "box" => {}
+        _ => {
+            return Err(a.error_prev(
+                "create_atoms random is not supported; use fix insert/pack",
+                None,
+            ))
+        }
+    }
+    let mut lattice_units = true;
+    while !a.is_done() {
+        a.keyword("create_atoms keyword", &["units"])?;
+        lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice";
+    }
+    let w = sim
+        .world
+        .as_ref()
+        .ok_or_else(|| a.error_cmd("create_atoms before the simulation box is defined", None))?;
+    let (lo, hi) = (w.domain.boxlo, w.domain.boxhi);
+    if let Some(x) = single {
+        let s = scale_of(sim, a, lattice_units)?;
+        points.push(x * s);
+    } else {
+        let l = sim.lattice.as_ref().ok_or_else(|| {
+            a.error_cmd(
+                "create_atoms box/region needs a lattice",
+                Some("define one with 'lattice sc|bcc|fcc a'".into()),
+            )
+        })?;
+        points = l.points(lo, hi);
+        if let Some(r) = &reg {
+            points.retain(|x| r.contains(*x));
+        }
+    }
+    let w = sim.world.as_mut().expect("checked");
+    let mut n = 0;
+    for x in points {
+        let mut p = new_default(x, ty);
+        p.mask = 1;
+        // Every rank sees every point; the one whose subdomain holds it creates it.
+        w.domain
+            .check_inside_fixed(x)
+            .map_err(|e| a.error_cmd(e.to_string(), None))?;
+        n += 1;
+        if !w.owns_point(x) {
+            continue;
+        }
+        w.add_particle(&p)
+            .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    }
+    w.extend_tags();
+    sim.out.line(&format!("Created {n} atoms"));
+    Ok(())
+}

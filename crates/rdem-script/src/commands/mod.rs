@@ -1,0 +1,151 @@
+//! The command registry ([`REGISTRY`]): every command rdem runs, with its handler and the
+//! help the README's command table shows, and the LIGGGHTS commands it does not run. The
+//! handlers live in the files of this folder, grouped by what they act on. Flow-control
+//! commands (`include`, `label`, `jump`, `next`, `if`, `print`, `variable`, `log`, `echo`,
+//! `quit`) are rows too; [`crate::input`], which owns the file stack, runs them.
+
+mod atoms;
+mod compute;
+mod create;
+mod data_files;
+mod group;
+mod pair;
+mod region;
+mod settings;
+mod thermo;
+
+use crate::args::{nearest, suggest, Args, CmdResult};
+use crate::registry::{Registry, Row};
+use crate::sim::Sim;
+use crate::{dump, fixes, run};
+
+/// A command's handler.
+pub type Handler = fn(&mut Sim, &mut Args) -> CmdResult;
+
+/// How a command runs.
+#[derive(Clone, Copy)]
+pub enum Command {
+    /// On the simulation state.
+    Sim(Handler),
+    /// By the interpreter (flow control, variables, output): see [`crate::input`].
+    Flow,
+}
+
+const fn sim(name: &'static str, h: Handler, help: &'static str) -> Row<Command> {
+    Row::runs(name, Command::Sim(h), help)
+}
+
+const fn flow(name: &'static str, help: &'static str) -> Row<Command> {
+    Row::runs(name, Command::Flow, help)
+}
+
+/// Every command, in the README's order, then the LIGGGHTS commands rdem does not run.
+pub static REGISTRY: Registry<Command> = Registry {
+    family: "command",
+    readme_prefix: "",
+    rows: &[
+        sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same)"),
+        sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
+        sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box"),
+        sim("units", settings::units, "`si`").notes("other unit systems: an error"),
+        sim("newton", settings::newton, "accepted").notes("tuning only"),
+        sim("communicate", settings::communicate, "accepted").notes("tuning only"),
+        sim("hard_particles", settings::hard_particles, "accepted").notes("tuning only"),
+        sim("soft_particles", settings::hard_particles, "accepted").notes("tuning only"),
+        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each)")
+            .notes("the keywords `grid`, `map`, `part`, `file` are not supported"),
+        sim("region", region::region, "`block`, `sphere`, `cylinder`, `cone`, `plane`, `union`, `intersect`; `side in\\|out`; `units box\\|lattice`; `INF`, `EDGE` bounds")
+            .notes("no `move`/`rotate`"),
+        sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `origin`")
+            .notes("no `orient`/`spacing`"),
+        sim("create_box", create::create_box, "`N region`"),
+        sim("create_atoms", create::create_atoms, "`single`, `region`, `box`")
+            .notes("new atoms have diameter 1 and density 1, as in LIGGGHTS; use `set`"),
+        sim("read_data", data_files::read_data, "granular `Atoms` lines (`id type diameter density x y z [ix iy iz]`), `Velocities`")
+            .notes("no `add`/`offset`"),
+        sim("write_data", data_files::write_data, "the particles and the box as a LAMMPS data file (`nocoeff`, `nofix` accepted)"),
+        sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
+        sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `vx vy vz`, `omega`, `property/atom`")
+            .notes("the mass follows diameter and density"),
+        sim("velocity", atoms::velocity, "`set` (NULL allowed), `zero linear\\|angular`, `ramp`, `create`; `sum`")
+            .notes("`units box` only"),
+        sim("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
+        sim("neighbor", settings::neighbor, "`skin bin\\|nsq`"),
+        sim("neigh_modify", settings::neigh_modify, "`delay`, `every`, `check` (`one`, `page`, `binsize`, `contact_distance_factor` accepted)"),
+        sim("pair_style", pair::pair_style, "`gran` with `model hertz\\|hooke\\|hooke/hysteresis`, `tangential history\\|no_history`, `cohesion off\\|sjkr\\|sjkr2\\|bond`, `rolling_friction off\\|cdt\\|epsd\\|epsd2`, `surface default`, then `tangential_damping`, `limitForce`, `torsionTorque`, `tangential_reduce`, and with `cohesion bond` its switches (see [Bonded particles](#bonded-particles))")
+            .notes("the model types must come in LIGGGHTS' order; a misplaced one gets an error stating it"),
+        sim("pair_coeff", pair::pair_coeff, "`* *`"),
+        sim("timestep", settings::timestep, "the time step (s)"),
+        sim("fix", fixes::fix, "the fix styles below"),
+        sim("unfix", fixes::unfix, "`ID`"),
+        sim("compute", compute::compute, "the compute styles below"),
+        sim("uncompute", compute::uncompute, "`ID`"),
+        sim("thermo", thermo::thermo, "`N`"),
+        sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`")
+            .notes("`pe` is 0 (granular contacts store no potential energy)"),
+        sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
+            .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
+        sim("run", run::run, "`N`, `N upto`"),
+        sim("reset_timestep", settings::reset_timestep, "`N`"),
+        sim("dump", dump::dump, "the dump styles below"),
+        sim("dump_modify", dump::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `binary`, `compressor`"),
+        sim("undump", dump::undump, "`ID`"),
+        sim("write_dump", dump::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
+        sim("write_restart", data_files::write_data, "file name")
+            .notes("rdem's restart file is a portable LAMMPS data file (box, particles with velocities and spins, the step in its title line): `read_restart` continues from it in a new script. Contact histories and fix states are not saved"),
+        sim("read_restart", data_files::read_data, "file name")
+            .notes("reads rdem's restart files; LIGGGHTS' binary restart files cannot be read"),
+        flow("variable", "`equal`, `atom`, `index`, `loop` (`pad`), `string`, `getenv`, `delete`")
+            .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `x[ID]`, `vx[ID]`, ..."),
+        flow("print", "text with `$x`, `${name}`, `$(formula)`; `file`, `append`, `screen`"),
+        flow("include", "a script file, run in place"),
+        flow("label", "`ID`"),
+        flow("jump", "`FILE\\|SELF [label]`"),
+        flow("next", "variables of `index` and `loop` styles"),
+        flow("if", "`\"condition\" then \"command\" ... [elif ...] [else ...]`"),
+        flow("log", "`FILE [append]`, `none`"),
+        flow("echo", "`none\\|screen\\|log\\|both`"),
+        flow("quit", "stops the script"),
+        Row::not_yet("clear", ""),
+        Row::not_yet("shell", ""),
+        Row::not_yet("bond_style", "bonds"),
+        Row::not_yet("bond_coeff", "bonds"),
+        Row::not_yet("create_bonds", "bonds"),
+        Row::not_yet("run_style", "run styles other than verlet"),
+        Row::not_yet("minimize", "energy minimisation"),
+        Row::not_yet("displace_atoms", "displace_atoms"),
+        Row::not_yet("modify_timing", "per-fix timing"),
+    ],
+};
+
+/// Runs a simulation command: the name must be in [`REGISTRY`] (the interpreter looks it
+/// up first and runs the flow-control rows itself).
+pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let name = a.name();
+    match REGISTRY.lookup_at(a, 0, name)? {
+        (_, Command::Sim(h)) => h(sim, a),
+        (name, Command::Flow) => Err(a.error_cmd(
+            format!("internal error: {name} is run by the interpreter"),
+            None,
+        )),
+    }
+}
+
+/// Help for an unknown command: the nearest known command.
+pub fn unknown_command_help(name: &str, all: &[&str]) -> String {
+    match nearest(name, all) {
+        Some(n) => {
+            format!("did you mean '{n}'? (rdem runs the LIGGGHTS commands listed in its README)")
+        }
+        None => "rdem runs the LIGGGHTS commands listed in its README".into(),
+    }
+}
+
+/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
+pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
+    if ids.is_empty() {
+        format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
+    } else {
+        suggest(id, ids)
+    }
+}

@@ -1,0 +1,239 @@
+//! `region` and `lattice`: the geometric regions insertion, groups and walls use, and the
+//! lattice that `units lattice` and `create_atoms` refer to.
+
+use glam::DVec3;
+use rdem::region::{Region, Shape};
+
+use crate::args::{Args, CmdResult};
+use crate::lattice::{self, Lattice};
+use crate::sim::Sim;
+
+pub(super) fn scale_of(sim: &Sim, a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
+    if !units_lattice {
+        return Ok(DVec3::ONE);
+    }
+    sim.lattice.as_ref().map(|l| l.spacing()).ok_or_else(|| {
+        a.error_cmd(
+            "units lattice (the default) needs a lattice",
+            Some("add 'units box' to use box coordinates, or define a 'lattice' first".into()),
+        )
+    })
+}
+
+/// "region block takes xlo xhi ylo yhi zlo zhi ..." for help texts.
+fn region_usage(style: &str, names: &[&str]) -> String {
+    format!(
+        "region ID {style} {} [side in|out] [units box|lattice]",
+        names.join(" ")
+    )
+}
+
+pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("region ID")?.to_string();
+    if sim.regions.contains_key(&id) {
+        return Err(a.error_prev(format!("region ID '{id}' is already used"), None));
+    }
+    const STYLES: [&str; 7] = [
+        "block",
+        "sphere",
+        "cylinder",
+        "cone",
+        "plane",
+        "union",
+        "intersect",
+    ];
+    let style = a.keyword("region style", &STYLES)?;
+    let args_start = a.pos();
+    let arg_names: &[&str] = match style {
+        "block" => &["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"],
+        "sphere" => &["x", "y", "z", "radius"],
+        "cylinder" => &["dim", "c1", "c2", "radius", "lo", "hi"],
+        "cone" => &["dim", "c1", "c2", "radlo", "radhi", "lo", "hi"],
+        "plane" => &["px", "py", "pz", "nx", "ny", "nz"],
+        _ => &[],
+    };
+    // Geometry words first (numbers may be INF/EDGE); keywords after.
+    let mut geo: Vec<String> = Vec::new();
+    let mut parts: Vec<Region> = Vec::new();
+    match style {
+        "union" | "intersect" => {
+            let n = a.count("number of regions")?;
+            for _ in 0..n {
+                parts.push(sim.region(a)?);
+            }
+        }
+        _ => {
+            for name in arg_names {
+                let w = a.word(name).map_err(|mut e| {
+                    e.help = Some(region_usage(style, arg_names));
+                    e
+                })?;
+                geo.push(w.to_string());
+            }
+        }
+    }
+    let (mut outside, mut lattice_units) = (false, true);
+    while !a.is_done() {
+        match a.keyword(
+            "region keyword",
+            &["side", "units", "move", "rotate", "open"],
+        )? {
+            "side" => outside = a.keyword("side", &["in", "out"])? == "out",
+            "units" => lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice",
+            k => {
+                return Err(a.error_prev(format!("region keyword '{k}' is not supported yet"), None))
+            }
+        }
+    }
+    let needs_scale = !matches!(style, "union" | "intersect");
+    let s = if needs_scale {
+        scale_of(sim, a, lattice_units)?
+    } else {
+        DVec3::ONE
+    };
+    let bounds = sim.world.as_ref().map(|w| (w.domain.boxlo, w.domain.boxhi));
+    let axis0 = match geo.first().map(|s| s.as_str()) {
+        Some("x") => 0,
+        Some("y") => 1,
+        _ => 2,
+    };
+    // Which bounds may be INF, -INF or EDGE: (axis, lower bound?).
+    let bound = |k: usize| -> Option<(usize, bool)> {
+        match style {
+            "block" => Some((k / 2, k % 2 == 0)),
+            "cylinder" if k >= 4 => Some((axis0, k == 4)),
+            "cone" if k >= 5 => Some((axis0, k == 5)),
+            _ => None,
+        }
+    };
+    let num = |k: usize, scale: f64| -> CmdResult<f64> {
+        let w = &geo[k];
+        let word = args_start + k;
+        if matches!(w.as_str(), "INF" | "-INF" | "EDGE") {
+            let Some((axis, lo)) = bound(k) else {
+                return Err(a.error_at(
+                    word,
+                    format!("'{w}' is only valid for the bounds of block, cylinder and cone"),
+                    None,
+                ));
+            };
+            return match (w.as_str(), bounds) {
+                ("EDGE", Some((blo, bhi))) => Ok(if lo { blo[axis] } else { bhi[axis] }),
+                ("EDGE", None) => Err(a.error_at(word, "EDGE needs the simulation box", None)),
+                ("-INF", _) => Ok(-1e300),
+                _ => Ok(if lo { -1e300 } else { 1e300 }),
+            };
+        }
+        crate::args::parse_f64(w).map(|v| v * scale).ok_or_else(|| {
+            a.error_at(
+                word,
+                format!(
+                    "region {style}: {} must be a number, not '{w}'",
+                    arg_names[k]
+                ),
+                Some(region_usage(style, arg_names)),
+            )
+        })
+    };
+    let axis_of = |k: usize| -> CmdResult<usize> {
+        match geo[k].as_str() {
+            "x" => Ok(0),
+            "y" => Ok(1),
+            "z" => Ok(2),
+            w => Err(a.error_at(
+                args_start + k,
+                format!("region {style}: axis must be x, y or z, not '{w}'"),
+                Some(region_usage(style, arg_names)),
+            )),
+        }
+    };
+    let shape = match style {
+        "block" => Shape::Block {
+            lo: DVec3::new(num(0, s.x)?, num(2, s.y)?, num(4, s.z)?),
+            hi: DVec3::new(num(1, s.x)?, num(3, s.y)?, num(5, s.z)?),
+        },
+        "sphere" => Shape::Sphere {
+            centre: DVec3::new(num(0, s.x)?, num(1, s.y)?, num(2, s.z)?),
+            radius: num(3, s.x)?,
+        },
+        "cylinder" | "cone" => {
+            let axis = axis_of(0)?;
+            let (o1, o2) = match axis {
+                0 => (1, 2),
+                1 => (0, 2),
+                _ => (0, 1),
+            };
+            let c1 = num(1, s[o1])?;
+            let c2 = num(2, s[o2])?;
+            if style == "cylinder" {
+                Shape::Cylinder {
+                    axis,
+                    c1,
+                    c2,
+                    radius: num(3, s[o1])?,
+                    lo: num(4, s[axis])?,
+                    hi: num(5, s[axis])?,
+                }
+            } else {
+                Shape::Cone {
+                    axis,
+                    c1,
+                    c2,
+                    rlo: num(3, s[o1])?,
+                    rhi: num(4, s[o1])?,
+                    lo: num(5, s[axis])?,
+                    hi: num(6, s[axis])?,
+                }
+            }
+        }
+        "plane" => Shape::Plane {
+            point: DVec3::new(num(0, s.x)?, num(1, s.y)?, num(2, s.z)?),
+            normal: DVec3::new(num(3, 1.0)?, num(4, 1.0)?, num(5, 1.0)?),
+        },
+        "union" => Shape::Union(parts),
+        _ => Shape::Intersect(parts),
+    };
+    let mut r = Region::new(shape).map_err(|e| a.error_at(args_start, e.to_string(), None))?;
+    if outside {
+        r = r.side_out();
+    }
+    sim.regions.insert(id, r);
+    Ok(())
+}
+
+pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let style = a.keyword("lattice style", &lattice::STYLES)?;
+    if style == "none" {
+        a.f64("scale")?;
+        a.done()?;
+        sim.lattice = None;
+        return Ok(());
+    }
+    let scale = a.positive("lattice constant (m)")?;
+    let mut l = Lattice::new(style, scale).expect("valid style");
+    while !a.is_done() {
+        match a.keyword("lattice keyword", &["origin", "orient", "spacing"])? {
+            "origin" => {
+                let o = a.vec3("origin")?;
+                if (0..3).any(|d| !(0.0..1.0).contains(&o[d])) {
+                    return Err(a.error_prev("origin values must be in [0, 1)", None));
+                }
+                l.origin = o;
+            }
+            k => {
+                return Err(a.error_prev(
+                    format!("lattice {k} is not supported yet (only unrotated cubic lattices)"),
+                    None,
+                ))
+            }
+        }
+    }
+    sim.out.line(&format!(
+        "Lattice spacing in x,y,z = {} {} {}",
+        crate::variables::g(scale),
+        crate::variables::g(scale),
+        crate::variables::g(scale)
+    ));
+    sim.lattice = Some(l);
+    Ok(())
+}

@@ -1,0 +1,158 @@
+//! `thermo`, `thermo_style`, `thermo_modify`: what the thermo table prints and when.
+
+use rdem::LostPolicy;
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::sim::Sim;
+use crate::thermo;
+
+use super::id_help;
+
+/// `thermo N`.
+pub(super) fn thermo(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    sim.thermo.every = a.u64("thermo output interval")?;
+    a.done()?;
+    Ok(())
+}
+
+pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let style = a.keyword("thermo style", &["custom", "one", "multi"])?;
+    let cols: Vec<String> = match style {
+        "custom" => {
+            let mut c = Vec::new();
+            while let Some(w) = a.peek() {
+                if !thermo::valid_column(w) {
+                    return Err(a.error_at(
+                        a.pos(),
+                        format!("unknown thermo keyword '{w}'"),
+                        Some(suggest(w, &thermo::KEYWORDS)),
+                    ));
+                }
+                if let Some((kind, id, _)) = thermo::split_reference(w) {
+                    let ok = match kind {
+                        'c' => sim.compute_index(id).is_some(),
+                        'f' => sim.fix_index(id).is_some(),
+                        _ => true,
+                    };
+                    if !ok {
+                        let what = if kind == 'c' { "compute" } else { "fix" };
+                        let ids: Vec<&str> = if kind == 'c' {
+                            sim.computes.iter().map(|c| c.id.as_str()).collect()
+                        } else {
+                            sim.fixes.iter().map(|f| f.id()).collect()
+                        };
+                        return Err(a.error_at(
+                            a.pos(),
+                            format!("'{w}': no {what} '{id}'"),
+                            Some(id_help(what, id, &ids)),
+                        ));
+                    }
+                }
+                c.push(w.to_string());
+                a.seek(a.pos() + 1);
+            }
+            if c.is_empty() {
+                return Err(a.error_at(
+                    a.pos(),
+                    "thermo_style custom needs at least one keyword",
+                    Some(format!(
+                        "e.g. step atoms ke; valid: {}",
+                        thermo::KEYWORDS.join(" ")
+                    )),
+                ));
+            }
+            c
+        }
+        "one" => ["step", "atoms", "ke", "cpu"].map(String::from).to_vec(),
+        _ => return Err(a.error_prev("thermo_style multi is not supported; use custom", None)),
+    };
+    if sim.thermo.norm
+        || !sim.thermo.col_format.is_empty()
+        || sim.thermo.float_format.is_some()
+        || sim.thermo.int_format.is_some()
+    {
+        sim.out
+            .warning("New thermo_style command, previous thermo_modify settings will be lost");
+    }
+    sim.thermo.columns = cols;
+    sim.thermo.norm = false;
+    sim.thermo.col_format.clear();
+    sim.thermo.int_format = None;
+    sim.thermo.float_format = None;
+    sim.thermo.line_format = None;
+    Ok(())
+}
+
+pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    if a.is_done() {
+        return Err(a.error_at(
+            a.pos(),
+            "thermo_modify: missing keyword",
+            Some("lost, norm, format, flush".into()),
+        ));
+    }
+    while !a.is_done() {
+        match a.keyword(
+            "thermo_modify keyword",
+            &["lost", "norm", "format", "flush", "every"],
+        )? {
+            "lost" => {
+                let p = match a.keyword("lost setting", &["error", "warn", "ignore"])? {
+                    "error" => LostPolicy::Error,
+                    "warn" => LostPolicy::Warn,
+                    _ => LostPolicy::Ignore,
+                };
+                sim.pending.lost = p;
+                if let Some(w) = &mut sim.world {
+                    w.lost_policy = p;
+                }
+            }
+            "norm" => sim.thermo.norm = a.yes_no("norm")?,
+            "flush" => {
+                a.yes_no("flush")?;
+            }
+            "every" => sim.thermo.every = a.u64("every")?,
+            _ => {
+                let which = a.word("format target (int, float, line or a column number)")?;
+                let f = a.word("format string")?.to_string();
+                let check = |s: &str| rdem_io::Printf::parse(s).map(|_| ());
+                match which {
+                    "int" => {
+                        check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
+                        sim.thermo.int_format = Some(f);
+                    }
+                    "float" => {
+                        check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
+                        sim.thermo.float_format = Some(f);
+                    }
+                    "line" => {
+                        let parts: Vec<String> = f.split_whitespace().map(String::from).collect();
+                        for p in &parts {
+                            check(p).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
+                        }
+                        sim.thermo.line_format = Some(parts);
+                    }
+                    n => {
+                        let k: usize = n
+                            .parse()
+                            .ok()
+                            .filter(|&k| k >= 1 && k <= sim.thermo.columns.len())
+                            .ok_or_else(|| {
+                                a.error_at(
+                                    a.pos() - 2,
+                                    format!(
+                                        "'{n}' is not int, float, line or a column number 1..{}",
+                                        sim.thermo.columns.len()
+                                    ),
+                                    None,
+                                )
+                            })?;
+                        check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
+                        sim.thermo.col_format.push((k, f));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
