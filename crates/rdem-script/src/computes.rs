@@ -11,18 +11,6 @@ use crate::atom_fields;
 /// `compute reduce` modes.
 pub const REDUCE_MODES: [&str; 6] = ["sum", "min", "max", "ave", "sumsq", "avesq"];
 
-/// Valid compute styles.
-pub const STYLES: [&str; 8] = [
-    "erotate/sphere",
-    "ke",
-    "reduce",
-    "property/atom",
-    "contact/atom",
-    "stress/atom",
-    "bond/counter",
-    "nbond/atom",
-];
-
 /// Keywords of `compute stress/atom`. Only `ke`, `pair` and `virial` have terms in rdem
 /// (no bonds, angles, ... or kspace; fixes add no virial, as LIGGGHTS' `wall/gran` adds
 /// none), so the others select nothing.

@@ -10,29 +10,35 @@ use rdem::{DVec3, Particles};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::context;
+use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 use crate::thermo::split_reference;
 use crate::variables::Variable;
 
-/// Dump styles rdem writes.
-pub const STYLES: [&str; 7] = [
-    "custom",
-    "custom/vtk",
-    "atom/vtk",
-    "euler/vtk",
-    "mesh/stl",
-    "mesh/vtk",
-    "mesh/gran/VTK",
-];
-
-/// LIGGGHTS dump styles of later releases.
-const LATER: [&str; 5] = [
-    "mesh/vtk",
-    "mesh/gran/VTK",
-    "mesh/vtm",
-    "local/gran/vtk",
-    "atom",
-];
+/// Every dump style: those rdem writes (their writers are chosen in [`writer`] and their
+/// columns read in `style_columns`), then LIGGGHTS styles it does not write yet.
+pub static STYLES: Registry<()> = Registry {
+    family: "dump style",
+    readme_prefix: "dump ",
+    rows: &[
+        Row::runs("custom", (), "text in LAMMPS' layout (OVITO reads it); `*` in the name: one file per step"),
+        Row::runs("custom/vtk", (), "legacy VTK polydata laid out as LIGGGHTS writes it (`.vtk`; `binary yes`: big-endian binary), plus its `_boundingBox` file; `.vtp` XML PolyData and `.vtu` XML UnstructuredGrid")
+            .notes("XML variants default to zlib-compressed binary (`compressor none`, `binary no` for LIGGGHTS' ASCII)"),
+        Row::runs("atom/vtk", (), "VTK XML UnstructuredGrid: radii, id, type, proc, mass, velocity_lin, velocity_ang, force, sorted by id; ASCII, `binary yes` (base64), `compressor zlib\\|lz4`")
+            .notes("written on a background thread; a name without `*` overwrites one file (LIGGGHTS crashes)"),
+        Row::runs("euler/vtk", (), "the cells of `fix ave/euler`, legacy VTK exactly as LIGGGHTS writes it")
+            .notes("the name must contain `*`"),
+        Row::runs("mesh/stl", (), "mesh IDs (none: all meshes)")
+            .notes("one ASCII STL solid of the current triangles per snapshot, as LIGGGHTS writes it"),
+        Row::runs("mesh/vtk", (), "`stress` (normal_stress_average, shear_stress_average), `wear`, `vel`, `id`, `area`, then mesh IDs; `output` accepted")
+            .notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays), with a `.pvd` series; `stresscomponents`, `owner`, `aedges`, `acorners`, `nneighs` stop with an error"),
+        Row::runs("mesh/gran/VTK", (), "the old name of `mesh/vtk`"),
+        Row::not_yet("mesh/vtm", ""),
+        Row::not_yet("local/gran/vtk", "contact output"),
+        Row::not_yet("local", "contact output"),
+        Row::not_yet("atom", ""),
+    ],
+};
 
 /// The writer of a dump.
 pub enum Writer {
@@ -495,17 +501,7 @@ const WRITE_DUMP: &str = "__write_dump";
 
 fn dump_style(a: &mut Args) -> CmdResult<&'static str> {
     let style_word = a.word("dump style")?;
-    match STYLES.iter().copied().find(|s| *s == style_word) {
-        Some(s) => Ok(s),
-        None if LATER.contains(&style_word) => Err(a.error_prev(
-            format!("dump {style_word} is not supported by this rdem release yet"),
-            Some(format!("supported: {}", STYLES.join(", "))),
-        )),
-        None => Err(a.error_prev(
-            format!("unknown dump style '{style_word}'"),
-            Some(suggest(style_word, &STYLES)),
-        )),
-    }
+    Ok(STYLES.lookup(a, style_word)?.0)
 }
 
 fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {

@@ -5,7 +5,7 @@
 //! `quit`) are rows too; [`crate::input`], which owns the file stack, runs them.
 
 mod atoms;
-mod compute;
+pub mod compute;
 mod create;
 mod data_files;
 mod group;
@@ -148,4 +148,30 @@ pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
     } else {
         suggest(id, ids)
     }
+}
+
+/// The README's command tables, made from the registries: commands, then the fix,
+/// compute and dump styles (`tests/readme_registry.rs` checks the README holds exactly
+/// this).
+pub fn readme_tables() -> String {
+    let mut out = String::new();
+    let mut table = |title: &str, head: &str, rows: Vec<String>| {
+        out.push_str(&format!(
+            "#### {title}\n\n| {head} | rdem supports | notes |\n|---|---|---|\n"
+        ));
+        for r in rows {
+            out.push_str(&r);
+            out.push('\n');
+        }
+        out.push('\n');
+    };
+    table("Commands", "command", REGISTRY.readme_rows());
+    table("Fix styles", "fix style", fixes::REGISTRY.readme_rows());
+    table(
+        "Compute styles",
+        "compute style",
+        compute::STYLES.readme_rows(),
+    );
+    table("Dump styles", "dump style", dump::STYLES.readme_rows());
+    out
 }

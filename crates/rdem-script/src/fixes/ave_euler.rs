@@ -15,7 +15,8 @@ pub(super) const ROW: FixRow = style(
     parse,
     Stages::END_OF_STEP,
     "`nevery N cell_size_relative c parallel yes\\|no [basevolume_region R]`",
-);
+)
+.notes("per cell: mass-weighted velocity, mean radius, volume fraction, pressure (kinetic fluctuation + contact virial); one per script, as LIGGGHTS; `basevolume_region` volumes from a 20³ point grid per cell");
 
 fn due(nevery: u64, step: u64, setup: bool) -> bool {
     setup || step % nevery == 0

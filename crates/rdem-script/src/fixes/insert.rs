@@ -19,8 +19,9 @@ pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
-    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `verbose`; `start`",
-);
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `start`; `ntry_mc`, `verbose`",
+)
+.notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not");
 
 /// The registry row of `insert/rate/region`.
 pub(super) const ROW_RATE: FixRow = style(

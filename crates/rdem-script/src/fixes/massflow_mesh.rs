@@ -11,7 +11,8 @@ pub(super) const ROW: FixRow = style(
     parse,
     Stages::END_OF_STEP.and(Stages::VALUES),
     "`mesh ID vec_side vx vy vz`, `count once\\|multiple`, `delete_atoms yes\\|no`; `screen`, `writeTime` accepted",
-);
+)
+.notes("`f_ID[1..6]`: mass and count through the face, mass and number rates since the previous evaluation (thermo output), deleted mass and count; a particle counts when its centre crosses the face's plane inside a triangle; `delete_atoms yes` removes it at the next re-neighboring, as LIGGGHTS does; `point_at_outlet`, `inside_out`, `file`, `append` stop with an error");
 
 /// `fix massflow/mesh`: the engine's counter and the output rates.
 pub struct MassFlowFix {

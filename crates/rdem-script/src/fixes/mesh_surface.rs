@@ -12,8 +12,9 @@ pub(super) const ROW: FixRow = style(
     "mesh/surface",
     parse,
     Stages::NONE,
-    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate`, `surface_vel`, `surface_ang_vel`, `precision`, `heal auto_remove_duplicates`",
-);
+    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate axis ax ay az angle deg` (in the order given), `surface_vel vx vy vz`, `surface_ang_vel origin .. axis .. omega w`, `precision`, `heal auto_remove_duplicates`; `curvature`, `curvature_tolerant`, `verbose` accepted; `/stress`: `stress on\\|off`, `wear finnie\\|off` (with `property/global k_finnie peratomtypepair`), `reference_point`",
+)
+.notes("`curvature` changes nothing in rdem: edges and corners count once whatever their angle; `/planar` refuses a mesh that is not planar; `/stress`: per-triangle force summed in particle order (the same on any thread count), `f_ID[1..9]` total force, torque about the reference point, the point; `surface_vel` is used as given (LIGGGHTS projects it onto each face); `temperature`, `element_exclusion_list`, `extrude_planar` stop with an error");
 
 /// The registry row of `mesh/surface/planar`.
 pub(super) const ROW_PLANAR: FixRow = style(

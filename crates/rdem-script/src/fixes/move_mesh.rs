@@ -12,7 +12,8 @@ pub(super) const ROW: FixRow = style(
     parse,
     Stages::NONE,
     "`mesh ID` then `linear`, `wiggle`, `rotate`, `riggle`, `viblin`, `vibrot`",
-);
+)
+.notes("positions and vertex velocities evaluated analytically each step; several on one mesh superpose in LIGGGHTS' order (a later motion moves with the earlier ones) and are removed in reverse order, the mesh staying where it is; `viblin`/`vibrot` follow LIGGGHTS' cosine series (the mesh jumps by Σ Cₖ cos pₖ when they start); `linear/variable`, `rotate/variable` stop with an error");
 
 /// A motion of the world's mesh of index `mesh`.
 pub struct MoveMesh {

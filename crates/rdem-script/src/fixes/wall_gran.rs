@@ -16,8 +16,9 @@ pub(super) const ROW: FixRow = style(
     "wall/gran",
     parse,
     Stages::ENGINE,
-    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `mesh n_meshes k meshes ID...`; the model words of `pair_style gran`",
-);
+    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
+)
+.notes("with `cohesion bond`, particle–wall bonds (on mesh walls anchored to a triangle, so they go with `fix move/mesh` and `surface_vel`); mesh walls: one contact per shared edge or corner and per flat surface (`curvature`), history that follows a sphere to the next triangle; the wall's velocity at the contact point (`surface_vel`, `surface_ang_vel`, `fix move/mesh`) enters the contact");
 
 fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let kind = match wall_gran(sim, a, &head.id)? {

@@ -1,0 +1,61 @@
+//! The README's command tables are made from the registries (commands, fix, compute and
+//! dump styles): this test fails when they differ, so a style added to a registry is
+//! documented and a README row never names a style rdem does not run.
+//!
+//! After changing a registry row, `RDEM_BLESS=1 cargo test -p rdem-script --test
+//! readme_registry` rewrites the tables in the README.
+
+use std::path::Path;
+
+const BEGIN: &str = "<!-- command tables: made from the registries";
+const END: &str = "<!-- end of the command tables -->";
+
+#[test]
+fn readme_tables_are_the_registries() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let readme = std::fs::read_to_string(&path).expect("README.md");
+    let b = readme.find(BEGIN).expect("README has the begin marker");
+    let b = b + readme[b..].find('\n').expect("marker line ends") + 1;
+    let e = readme.find(END).expect("README has the end marker");
+    let want = format!("\n{}", rdem_script::commands::readme_tables());
+    if std::env::var_os("RDEM_BLESS").is_some() {
+        let new = format!("{}{want}{}", &readme[..b], &readme[e..]);
+        std::fs::write(&path, new).expect("write README.md");
+        return;
+    }
+    let got = &readme[b..e];
+    if got != want {
+        let first = got
+            .lines()
+            .zip(want.lines())
+            .position(|(g, w)| g != w)
+            .unwrap_or(got.lines().count().min(want.lines().count()));
+        panic!(
+            "the README's command tables differ from the registries at table line {}:\n  README:   {:?}\n  registry: {:?}\nRun RDEM_BLESS=1 cargo test -p rdem-script --test readme_registry",
+            first + 1,
+            got.lines().nth(first),
+            want.lines().nth(first)
+        );
+    }
+}
+
+#[test]
+fn every_registry_name_is_unique() {
+    use rdem_script::{commands, dump, fixes};
+    let mut all: Vec<Vec<&str>> = vec![
+        commands::REGISTRY.rows.iter().map(|r| r.name).collect(),
+        fixes::REGISTRY.rows.iter().map(|r| r.name).collect(),
+        commands::compute::STYLES
+            .rows
+            .iter()
+            .map(|r| r.name)
+            .collect(),
+        dump::STYLES.rows.iter().map(|r| r.name).collect(),
+    ];
+    for names in &mut all {
+        let n = names.len();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), n, "a name is listed twice: {names:?}");
+    }
+}
