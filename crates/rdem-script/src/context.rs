@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use rdem::World;
 
 use crate::atom_fields;
-use crate::computes::{self, ComputeKind, ReduceInput};
+use crate::computes;
 use crate::expr::{self, Context, Name};
 use crate::sim::Sim;
 use crate::variables::Variable;
@@ -84,83 +84,22 @@ fn eval_atom_depth(
 fn find_compute<'s>(sim: &'s Sim, id: &str) -> Result<&'s crate::computes::Compute, String> {
     sim.computes
         .iter()
-        .find(|c| c.id == id)
+        .find(|c| c.id() == id)
         .ok_or_else(|| format!("no compute '{id}'"))
-}
-
-/// The 0-based position of `c_ID` / `c_ID[k]` among `n` values (columns or vector
-/// elements): no index is only valid for a single value.
-fn pick_index(id: &str, idx: Option<usize>, n: usize) -> Result<usize, String> {
-    match (idx, n) {
-        (None, 1) => Ok(0),
-        (Some(k), n) if k >= 1 && k <= n => Ok(k - 1),
-        (None, n) => Err(format!("compute {id} gives {n} values: use c_{id}[i]")),
-        (Some(k), n) => Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)")),
-    }
 }
 
 /// Per-atom values of a compute (column `col`, 1-based, for array computes).
 pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
-    let w = world(sim)?;
+    world(sim)?;
     let c = find_compute(sim, id)?;
-    match &c.kind {
-        ComputeKind::PropertyAtom(fields) => {
-            let k = pick_index(id, col, fields.len())?;
-            computes::field_values(w, &fields[k]).ok_or_else(|| format!("bad field {}", fields[k]))
-        }
-        ComputeKind::ContactAtom => {
-            if col.is_some() {
-                return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
-            }
-            Ok(computes::contact_counts(w))
-        }
-        ComputeKind::NBondAtom => {
-            if col.is_some() {
-                return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
-            }
-            Ok(w.bonds_per_particle())
-        }
-        ComputeKind::StressAtom { ke, pair } => {
-            let k = pick_index(id, col, 6)?;
-            computes::stress_atom(w, c.groupbit, *ke, *pair, k)
-        }
-        _ => Err(format!("compute {id} does not compute per-atom values")),
-    }
+    c.imp.peratom(sim, &c.head, col)
 }
 
 /// Global value of a compute: its scalar, or element `idx` (1-based) of its vector.
 pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
-    let w = world(sim)?;
+    world(sim)?;
     let c = find_compute(sim, id)?;
-    match (&c.kind, idx) {
-        (ComputeKind::ERotateSphere, None) => Ok(computes::erotate(w, c.groupbit)),
-        (ComputeKind::Ke, None) => Ok(computes::kinetic(w, c.groupbit)),
-        (ComputeKind::Reduce { mode, inputs }, _) => {
-            let k = pick_index(id, idx, inputs.len())?;
-            let values = match &inputs[k] {
-                ReduceInput::Field(f) => {
-                    computes::field_values(w, f).ok_or_else(|| format!("bad field {f}"))?
-                }
-                ReduceInput::Compute(cid, col) => compute_peratom(sim, cid, *col)?,
-                ReduceInput::Variable(v) => match sim.vars.get(v) {
-                    Some(Variable::Atom(f)) => eval_atom(sim, f)?,
-                    _ => return Err(format!("variable '{v}' is not atom-style")),
-                },
-            };
-            Ok(computes::reduce(w, mode, c.groupbit, &values))
-        }
-        (ComputeKind::BondCounter(state), Some(_)) => {
-            let k = pick_index(id, idx, 6)?;
-            Ok(computes::bond_counter(w, state)[k])
-        }
-        (ComputeKind::BondCounter(_), None) => Err(format!(
-            "compute {id} is a global vector of 6: use c_{id}[1] .. c_{id}[6]"
-        )),
-        (_, Some(k)) => Err(format!("c_{id}[{k}]: compute {id} has no global vector")),
-        (_, None) => Err(format!(
-            "compute {id} has no global scalar (it is per-atom)"
-        )),
-    }
+    c.imp.global(sim, &c.head, idx)
 }
 
 impl Ctx<'_> {
@@ -256,7 +195,7 @@ impl Context for Ctx<'_> {
                 let c = sim
                     .computes
                     .iter()
-                    .find(|c| &c.id == id)
+                    .find(|c| c.id() == id)
                     .ok_or_else(|| format!("no compute '{id}'"))?;
                 if c.is_peratom() {
                     if self.atom.is_none() {

@@ -89,7 +89,7 @@ fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResult {
         return Ok(());
     }
     match split_reference(arg) {
-        Some(('c', id, col)) => match sim.computes.iter().find(|c| c.id == id) {
+        Some(('c', id, col)) => match sim.computes.iter().find(|c| c.id() == id) {
             Some(c) if c.is_peratom() => {
                 let n = c.peratom_cols();
                 match col {
@@ -108,7 +108,7 @@ fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResult {
                 Some("a dump column needs a per-atom compute (property/atom, contact/atom)".into()),
             )),
             None => {
-                let ids: Vec<&str> = sim.computes.iter().map(|c| c.id.as_str()).collect();
+                let ids: Vec<&str> = sim.computes.iter().map(|c| c.id()).collect();
                 Err(a.error_at(
                     k,
                     format!("no compute '{id}'"),

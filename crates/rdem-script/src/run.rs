@@ -259,7 +259,7 @@ impl RunStages {
             pre_exchange: fixes::with_stage(sim, Stages::PRE_EXCHANGE),
             end_of_step: fixes::with_stage(sim, Stages::END_OF_STEP),
             end_of_run: fixes::with_stage(sim, Stages::END_OF_RUN),
-            virial_always: sim.computes.iter().any(crate::computes::needs_virial),
+            virial_always: sim.computes.iter().any(|c| c.imp.needs_virial()),
         }
     }
 

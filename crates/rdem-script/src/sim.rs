@@ -255,7 +255,7 @@ impl Sim {
 
     /// Index of compute `id`.
     pub fn compute_index(&self, id: &str) -> Option<usize> {
-        self.computes.iter().position(|c| c.id == id)
+        self.computes.iter().position(|c| c.id() == id)
     }
 
     /// Simulated time at the current step.

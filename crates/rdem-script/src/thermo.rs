@@ -268,7 +268,10 @@ fn header_label(c: &str) -> String {
 /// other fixes are printed as they are.
 fn extensive_reference(sim: &Sim, col: &str) -> bool {
     match split_reference(col) {
-        Some(('c', id, _)) => sim.computes.iter().any(|c| c.id == id && c.is_extensive()),
+        Some(('c', id, _)) => sim
+            .computes
+            .iter()
+            .any(|c| c.id() == id && c.is_extensive()),
         Some(('f', id, _)) => crate::fixes::is_extensive(sim, id),
         _ => false,
     }

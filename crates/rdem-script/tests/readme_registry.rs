@@ -45,7 +45,7 @@ fn every_registry_name_is_unique() {
     let mut all: Vec<Vec<&str>> = vec![
         commands::REGISTRY.rows.iter().map(|r| r.name).collect(),
         fixes::REGISTRY.rows.iter().map(|r| r.name).collect(),
-        commands::compute::STYLES
+        rdem_script::computes::REGISTRY
             .rows
             .iter()
             .map(|r| r.name)

@@ -5,7 +5,7 @@
 //! `quit`) are rows too; [`crate::input`], which owns the file stack, runs them.
 
 mod atoms;
-pub mod compute;
+mod compute;
 mod create;
 mod data_files;
 mod group;
@@ -170,7 +170,7 @@ pub fn readme_tables() -> String {
     table(
         "Compute styles",
         "compute style",
-        compute::STYLES.readme_rows(),
+        crate::computes::REGISTRY.readme_rows(),
     );
     table("Dump styles", "dump style", dump::STYLES.readme_rows());
     out

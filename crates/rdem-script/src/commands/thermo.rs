@@ -37,7 +37,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     if !ok {
                         let what = if kind == 'c' { "compute" } else { "fix" };
                         let ids: Vec<&str> = if kind == 'c' {
-                            sim.computes.iter().map(|c| c.id.as_str()).collect()
+                            sim.computes.iter().map(|c| c.id()).collect()
                         } else {
                             sim.fixes.iter().map(|f| f.id()).collect()
                         };

@@ -67,10 +67,7 @@ fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn Scri
         };
         if !known {
             let (what, ids): (&str, Vec<&str>) = match kind {
-                'c' => (
-                    "compute",
-                    sim.computes.iter().map(|c| c.id.as_str()).collect(),
-                ),
+                'c' => ("compute", sim.computes.iter().map(|c| c.id()).collect()),
                 'f' => ("fix", sim.fixes.iter().map(|f| f.id()).collect()),
                 _ => ("variable", sim.vars.names()),
             };

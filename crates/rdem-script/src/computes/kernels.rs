@@ -1,6 +1,5 @@
-//! Computes: `erotate/sphere`, `ke`, `reduce`, `property/atom` and `contact/atom`,
-//! evaluated on demand from the current state (a LIGGGHTS compute is evaluated when
-//! thermo, a dump, a variable or `fix ave/time` asks for it; the values are the same).
+//! The calculations behind the compute styles (and thermo's `ke`), on the world's
+//! owned particles, summed over ranks.
 
 use std::cell::RefCell;
 
@@ -18,50 +17,6 @@ pub const STRESS_KEYWORDS: [&str; 9] = [
     "ke", "pair", "bond", "angle", "dihedral", "improper", "kspace", "fix", "virial",
 ];
 
-/// One input of `compute reduce`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ReduceInput {
-    /// A per-atom field (`x`, `vx`, `radius`, ...).
-    Field(String),
-    /// `c_ID` or `c_ID[i]` of a per-atom compute.
-    Compute(String, Option<usize>),
-    /// `v_name` of an atom-style variable.
-    Variable(String),
-}
-
-/// What a compute calculates.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ComputeKind {
-    /// Σ ½ I ω² over the group.
-    ERotateSphere,
-    /// Σ ½ m v² over the group.
-    Ke,
-    /// A reduction of per-atom inputs over the group.
-    Reduce {
-        /// `sum`, `min`, `max`, `ave`, `sumsq`, `avesq`.
-        mode: String,
-        /// Inputs (one gives a scalar, several a vector).
-        inputs: Vec<ReduceInput>,
-    },
-    /// Per-atom fields (one: a vector, several: an array).
-    PropertyAtom(Vec<String>),
-    /// Per-atom number of particle contacts.
-    ContactAtom,
-    /// Per-atom stress × volume (6 columns: xx yy zz xy xz yz), LAMMPS' convention:
-    /// −(m v ⊗ v + ½ Σ r_ij ⊗ F_ij).
-    StressAtom {
-        /// Include the kinetic term −m v ⊗ v.
-        ke: bool,
-        /// Include the pair contact virial.
-        pair: bool,
-    },
-    /// `bond/counter` (seed 003): bonds created and broken since the last evaluation and
-    /// intact now, for pairs and for walls.
-    BondCounter(RefCell<BondCounterState>),
-    /// `nbond/atom` (an rdem addition): intact bonds per particle.
-    NBondAtom,
-}
-
 /// What `compute bond/counter` remembers between evaluations.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BondCounterState {
@@ -70,68 +25,6 @@ pub struct BondCounterState {
     pub last: [f64; 4],
     /// Step of the last evaluation and its values (one evaluation per step, as LIGGGHTS).
     pub cached: Option<(u64, [f64; 6])>,
-}
-
-/// A compute.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Compute {
-    /// Compute ID.
-    pub id: String,
-    /// Group bit mask.
-    pub groupbit: u32,
-    /// What it computes.
-    pub kind: ComputeKind,
-}
-
-impl Compute {
-    /// True for a global scalar compute.
-    pub fn is_scalar(&self) -> bool {
-        match &self.kind {
-            ComputeKind::ERotateSphere | ComputeKind::Ke => true,
-            ComputeKind::Reduce { inputs, .. } => inputs.len() == 1,
-            _ => false,
-        }
-    }
-
-    /// True for a per-atom compute.
-    pub fn is_peratom(&self) -> bool {
-        matches!(
-            self.kind,
-            ComputeKind::PropertyAtom(_)
-                | ComputeKind::ContactAtom
-                | ComputeKind::StressAtom { .. }
-                | ComputeKind::NBondAtom
-        )
-    }
-
-    /// Number of per-atom columns (0 = a single vector).
-    pub fn peratom_cols(&self) -> usize {
-        match &self.kind {
-            ComputeKind::PropertyAtom(f) if f.len() > 1 => f.len(),
-            ComputeKind::StressAtom { .. } => 6,
-            _ => 0,
-        }
-    }
-
-    /// True if the global value is extensive: thermo divides it by the atom count under
-    /// `thermo_modify norm yes` (LIGGGHTS: ke, erotate/sphere and reduce sum are; reduce
-    /// min/max/ave are not; sumsq follows sum, avesq follows ave).
-    pub fn is_extensive(&self) -> bool {
-        match &self.kind {
-            ComputeKind::ERotateSphere | ComputeKind::Ke => true,
-            ComputeKind::Reduce { mode, .. } => matches!(mode.as_str(), "sum" | "sumsq"),
-            _ => false,
-        }
-    }
-
-    /// Length of the global vector (reduce with several inputs), else 0.
-    pub fn vector_len(&self) -> usize {
-        match &self.kind {
-            ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
-            ComputeKind::BondCounter(_) => 6,
-            _ => 0,
-        }
-    }
 }
 
 /// Σ ½ I ω² over owned particles in `groupbit`.
@@ -213,11 +106,6 @@ pub fn contact_counts(w: &World) -> Vec<f64> {
     w.comm.reverse_scalar(p, &mut c);
     c.truncate(nlocal);
     c
-}
-
-/// True when `c` needs the engine's per-particle contact virial.
-pub fn needs_virial(c: &Compute) -> bool {
-    matches!(c.kind, ComputeKind::StressAtom { pair: true, .. })
 }
 
 /// Column `col` (0..6: xx yy zz xy xz yz) of `compute stress/atom` for the owned particles:

@@ -1,0 +1,186 @@
+//! Computes, one file per style in this folder, all listed in one registry
+//! ([`REGISTRY`]). A compute is evaluated on demand from the current state (a LIGGGHTS
+//! compute is evaluated when thermo, a dump, a variable or `fix ave/time` asks for it;
+//! the values are the same). A style's file holds its parser and a type implementing
+//! [`ScriptCompute`]: what it gives ([`Shape`]) and how to evaluate it.
+
+mod bond_counter;
+mod contact_atom;
+mod erotate_sphere;
+mod ke;
+pub mod kernels;
+mod nbond_atom;
+mod property_atom;
+pub mod reduce;
+mod stress_atom;
+
+use rdem::World;
+
+use crate::args::{Args, CmdResult};
+use crate::registry::{Registry, Row};
+use crate::sim::Sim;
+
+pub use kernels::{erotate, kinetic};
+
+/// What a compute gives: a global scalar, a global vector, per-atom values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Shape {
+    /// A global scalar.
+    pub scalar: bool,
+    /// Length of the global vector (0: none).
+    pub vector: usize,
+    /// Per-atom values: `Some(0)` a vector, `Some(n)` an array of n columns.
+    pub peratom: Option<usize>,
+}
+
+impl Shape {
+    /// A global scalar.
+    pub const fn scalar() -> Self {
+        Self {
+            scalar: true,
+            vector: 0,
+            peratom: None,
+        }
+    }
+
+    /// A global vector of `n`.
+    pub const fn vector(n: usize) -> Self {
+        Self {
+            scalar: false,
+            vector: n,
+            peratom: None,
+        }
+    }
+
+    /// Per-atom values in `cols` columns (0: a vector).
+    pub const fn peratom(cols: usize) -> Self {
+        Self {
+            scalar: false,
+            vector: 0,
+            peratom: Some(cols),
+        }
+    }
+}
+
+/// The words every compute starts with: `compute ID group style`.
+#[derive(Debug, Clone)]
+pub struct ComputeHead {
+    /// Compute ID.
+    pub id: String,
+    /// Group bit mask.
+    pub groupbit: u32,
+}
+
+/// A compute style's evaluation.
+pub trait ScriptCompute: std::fmt::Debug {
+    /// What it gives.
+    fn shape(&self) -> Shape;
+
+    /// Its global scalar (`idx` None) or element `idx` (1-based) of its global vector.
+    fn global(&self, _sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+        let id = &c.id;
+        Err(match idx {
+            Some(k) => format!("c_{id}[{k}]: compute {id} has no global vector"),
+            None => format!("compute {id} has no global scalar (it is per-atom)"),
+        })
+    }
+
+    /// Its per-atom values (column `col`, 1-based, of an array) for the owned particles.
+    fn peratom(
+        &self,
+        _sim: &Sim,
+        c: &ComputeHead,
+        _col: Option<usize>,
+    ) -> Result<Vec<f64>, String> {
+        Err(format!("compute {} does not compute per-atom values", c.id))
+    }
+
+    /// True if thermo divides its global value by the atom count under
+    /// `thermo_modify norm yes`.
+    fn extensive(&self) -> bool {
+        false
+    }
+
+    /// True if it needs the engine's per-particle contact virial at every step.
+    fn needs_virial(&self) -> bool {
+        false
+    }
+}
+
+/// A compute's parser: reads the words after `compute ID group style` (all of them).
+pub type ComputeParse = fn(&Sim, &mut Args) -> CmdResult<Box<dyn ScriptCompute>>;
+
+/// A row of the compute registry.
+pub type ComputeRow = Row<ComputeParse>;
+
+/// Every compute style: those rdem runs, then LIGGGHTS styles it does not run yet.
+pub static REGISTRY: Registry<ComputeParse> = Registry {
+    family: "compute style",
+    readme_prefix: "compute ",
+    rows: &[
+        erotate_sphere::ROW,
+        ke::ROW,
+        reduce::ROW,
+        property_atom::ROW,
+        contact_atom::ROW,
+        stress_atom::ROW,
+        bond_counter::ROW,
+        nbond_atom::ROW,
+        Row::not_yet("pair/gran/local", "contact output"),
+        Row::not_yet("wall/gran/local", "contact output"),
+        Row::not_yet("com", ""),
+        Row::not_yet("msd", ""),
+        Row::not_yet("rdf", ""),
+    ],
+};
+
+/// A compute as the script defined it.
+#[derive(Debug)]
+pub struct Compute {
+    /// ID and group.
+    pub head: ComputeHead,
+    /// Style, as in the registry.
+    pub style: &'static str,
+    /// The compute.
+    pub imp: Box<dyn ScriptCompute>,
+}
+
+impl Compute {
+    /// Compute ID.
+    pub fn id(&self) -> &str {
+        &self.head.id
+    }
+
+    /// True for a per-atom compute.
+    pub fn is_peratom(&self) -> bool {
+        self.imp.shape().peratom.is_some()
+    }
+
+    /// Number of per-atom columns (0 = a single vector).
+    pub fn peratom_cols(&self) -> usize {
+        self.imp.shape().peratom.unwrap_or(0)
+    }
+
+    /// True if the global value is extensive (see [`ScriptCompute::extensive`]).
+    pub fn is_extensive(&self) -> bool {
+        self.imp.extensive()
+    }
+}
+
+/// The world, or the error of a compute evaluated before the box exists.
+pub(crate) fn world(sim: &Sim) -> Result<&World, String> {
+    sim.world
+        .as_ref()
+        .ok_or_else(|| "the simulation box is not defined yet".to_string())
+}
+
+/// The 0-based position of `c_ID` / `c_ID[k]` among `n` values (columns or vector
+/// elements): no index is only valid for a single value.
+pub(crate) fn pick_index(id: &str, idx: Option<usize>, n: usize) -> Result<usize, String> {
+    match (idx, n) {
+        (None, 1) => Ok(0),
+        (Some(k), n) if k >= 1 && k <= n => Ok(k - 1),
+        (None, n) => Err(format!("compute {id} gives {n} values: use c_{id}[i]")),
+        (Some(k), n) => Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)")),
+    }
+}
