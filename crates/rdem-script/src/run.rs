@@ -164,7 +164,6 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         w.neighbor.settings = sim.pending.neighbor;
         w.sort = sim.pending.sort;
         w.lost_policy = sim.pending.lost;
-        w.set_timestep(sim.pending.dt).map_err(|e| e.to_string())?;
         w.timers.reset();
     }
     let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);

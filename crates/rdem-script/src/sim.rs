@@ -84,7 +84,8 @@ pub struct Pending {
     pub boundary: [[Boundary; 2]; 3],
     /// `neighbor` / `neigh_modify`.
     pub neighbor: NeighborSettings,
-    /// `timestep`.
+    /// `timestep` before the box exists (then the world's [`World::dt`] is the one
+    /// value: read it with [`Sim::dt`], set it with [`Sim::set_timestep`]).
     pub dt: f64,
     /// `atom_modify sort`.
     pub sort: rdem::SortSettings,
@@ -258,12 +259,31 @@ impl Sim {
         self.computes.iter().position(|c| c.id() == id)
     }
 
+    /// The time step.
+    pub fn dt(&self) -> f64 {
+        self.world.as_ref().map_or(self.pending.dt, |w| w.dt)
+    }
+
+    /// Sets the time step (finite and > 0): the world's once a box exists, else the one
+    /// the box will get. Simulated time stays continuous across a change (`time` is
+    /// t0 + (step − step0)·dt from the step of the change on, as in LIGGGHTS).
+    pub fn set_timestep(&mut self, dt: f64) -> Result<(), String> {
+        let now = (self.world.as_ref().map_or(0, |w| w.step), self.time());
+        match &mut self.world {
+            Some(w) => w.set_timestep(dt).map_err(|e| e.to_string())?,
+            None if dt.is_finite() && dt > 0.0 => self.pending.dt = dt,
+            None => return Err(format!("timestep must be finite and > 0, not {dt}")),
+        }
+        self.time_origin = now;
+        Ok(())
+    }
+
     /// Simulated time at the current step.
     pub fn time(&self) -> f64 {
         let (s0, t0) = self.time_origin;
         let w = self.world.as_ref();
         let step = w.map(|w| w.step).unwrap_or(0);
-        t0 + (step as f64 - s0 as f64) * self.pending.dt
+        t0 + (step as f64 - s0 as f64) * self.dt()
     }
 
     /// Number of owned particles (0 without a box).

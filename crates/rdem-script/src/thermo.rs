@@ -107,7 +107,7 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
         "step" => w.map(|w| w.step).unwrap_or(0) as f64,
         "elapsed" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
         "elaplong" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
-        "dt" => w.map(|w| w.dt).unwrap_or(sim.pending.dt),
+        "dt" => sim.dt(),
         "time" => sim.time(),
         // Wall time since the run's loop started (0 at set-up), as LIGGGHTS.
         "cpu" => {

@@ -53,7 +53,8 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 0)?;
-    w.dt = sim.pending.dt;
+    w.set_timestep(sim.pending.dt)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
     sim.ntypes = n as usize;
     sim.world = Some(w);
     Ok(())

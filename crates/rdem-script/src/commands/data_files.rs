@@ -36,7 +36,8 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 1)?;
-    w.dt = sim.pending.dt;
+    w.set_timestep(sim.pending.dt)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
     for (mut p, image) in data.new_particles() {
         p.mask = 1;
         if !w.owns_point(p.x) {

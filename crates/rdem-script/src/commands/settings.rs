@@ -252,13 +252,7 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
 pub(super) fn timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let dt = a.positive("timestep")?;
     a.done()?;
-    let now = (sim.world.as_ref().map(|w| w.step).unwrap_or(0), sim.time());
-    sim.time_origin = now;
-    sim.pending.dt = dt;
-    if let Some(w) = &mut sim.world {
-        w.dt = dt;
-    }
-    Ok(())
+    sim.set_timestep(dt).map_err(|m| a.error_at(1, m, None))
 }
 
 /// `reset_timestep N`.

@@ -255,7 +255,7 @@ pub(super) fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Bo
         )
     })?;
     sim.world_ref(a)?;
-    let dt = sim.pending.dt;
+    let dt = sim.dt();
     if stream {
         return super::insert_stream::build(
             sim,
