@@ -13,7 +13,7 @@ pub mod commands;
 pub mod computes;
 pub mod context;
 pub mod diagnostic;
-pub mod dump;
+pub mod dumps;
 pub mod euler;
 pub mod expr;
 pub mod fixes;

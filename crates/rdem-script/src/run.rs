@@ -197,7 +197,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     ));
     sim.out.line(&thermo::header(sim));
     thermo_row(sim)?;
-    crate::dump::write_due(sim, start_step, true)?;
+    crate::dumps::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
         w.timers.reset();
@@ -220,7 +220,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
         if (every > 0 && step % every == 0) || step == sim.run_last {
             thermo_row(sim)?;
         }
-        crate::dump::write_due(sim, step, false)?;
+        crate::dumps::write_due(sim, step, false)?;
         if let Some(w) = &mut sim.world {
             w.timers.lap(Stage::Output, t_out);
         }

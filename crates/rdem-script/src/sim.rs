@@ -12,7 +12,7 @@ use rdem::{Boundary, NeighborSettings, World};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::computes::Compute;
-use crate::dump::Dump;
+use crate::dumps::Dump;
 use crate::fixes::FixEntry;
 use crate::lattice::Lattice;
 use crate::output::Output;

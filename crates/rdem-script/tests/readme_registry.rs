@@ -41,7 +41,7 @@ fn readme_tables_are_the_registries() {
 
 #[test]
 fn every_registry_name_is_unique() {
-    use rdem_script::{commands, dump, fixes};
+    use rdem_script::{commands, dumps, fixes};
     let mut all: Vec<Vec<&str>> = vec![
         commands::REGISTRY.rows.iter().map(|r| r.name).collect(),
         fixes::REGISTRY.rows.iter().map(|r| r.name).collect(),
@@ -50,7 +50,7 @@ fn every_registry_name_is_unique() {
             .iter()
             .map(|r| r.name)
             .collect(),
-        dump::STYLES.rows.iter().map(|r| r.name).collect(),
+        dumps::REGISTRY.rows.iter().map(|r| r.name).collect(),
     ];
     for names in &mut all {
         let n = names.len();

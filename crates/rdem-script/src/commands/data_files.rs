@@ -4,7 +4,7 @@
 use rdem::{Domain, World};
 
 use crate::args::{Args, CmdResult};
-use crate::dump;
+use crate::dumps;
 use crate::sim::Sim;
 
 use super::create::decompose;
@@ -84,7 +84,7 @@ pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let f = f.replace('*', &w.step.to_string());
     // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.
     let all: Vec<usize> = (0..w.particles.nlocal()).collect();
-    if let Some(g) = dump::gather_owned(&*w.comm, &w.particles, &all, &[]) {
+    if let Some(g) = dumps::gather_owned(&*w.comm, &w.particles, &all, &[]) {
         rdem_io::write_data(
             std::path::Path::new(&f),
             &g.particles,

@@ -17,7 +17,7 @@ mod thermo;
 use crate::args::{nearest, suggest, Args, CmdResult};
 use crate::registry::{Registry, Row};
 use crate::sim::Sim;
-use crate::{dump, fixes, run};
+use crate::{dumps, fixes, run};
 
 /// A command's handler.
 pub type Handler = fn(&mut Sim, &mut Args) -> CmdResult;
@@ -87,10 +87,10 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
         sim("run", run::run, "`N`, `N upto`"),
         sim("reset_timestep", settings::reset_timestep, "`N`"),
-        sim("dump", dump::dump, "the dump styles below"),
-        sim("dump_modify", dump::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `binary`, `compressor`"),
-        sim("undump", dump::undump, "`ID`"),
-        sim("write_dump", dump::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
+        sim("dump", dumps::dump, "the dump styles below"),
+        sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `binary`, `compressor`"),
+        sim("undump", dumps::undump, "`ID`"),
+        sim("write_dump", dumps::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
         sim("write_restart", data_files::write_data, "file name")
             .notes("rdem's restart file is a portable LAMMPS data file (box, particles with velocities and spins, the step in its title line): `read_restart` continues from it in a new script. Contact histories and fix states are not saved"),
         sim("read_restart", data_files::read_data, "file name")
@@ -172,6 +172,6 @@ pub fn readme_tables() -> String {
         "compute style",
         crate::computes::REGISTRY.readme_rows(),
     );
-    table("Dump styles", "dump style", dump::STYLES.readme_rows());
+    table("Dump styles", "dump style", dumps::REGISTRY.readme_rows());
     out
 }

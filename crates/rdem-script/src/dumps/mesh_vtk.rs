@@ -1,0 +1,184 @@
+//! `dump ID group mesh/vtk N file [output ...] values... [mesh IDs]` (and its old name
+//! `mesh/gran/VTK`): the meshes as legacy VTK polydata as LIGGGHTS writes them (three
+//! points per triangle) with the per-triangle values asked for, and a `.pvd` series.
+
+use rdem::DVec3;
+use rdem_io::{DumpFileName, Sort};
+
+use super::particles::Done;
+use super::{mesh_ids, DumpHead, DumpRow, DumpStyle, NotHere};
+use crate::args::{suggest, Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: DumpRow = DumpRow::runs(
+    "mesh/vtk",
+    parse,
+    "`stress` (normal_stress_average, shear_stress_average), `wear`, `vel`, `id`, `area`, then mesh IDs; `output` accepted",
+)
+.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays), with a `.pvd` series; `stresscomponents`, `owner`, `aedges`, `acorners`, `nneighs` stop with an error");
+
+/// The registry row of the old name.
+pub(super) const ROW_OLD_NAME: DumpRow =
+    DumpRow::runs("mesh/gran/VTK", parse, "the old name of `mesh/vtk`");
+
+/// The values rdem writes.
+const FIELDS: [&str; 5] = ["stress", "wear", "vel", "id", "area"];
+
+fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
+    // [output face|interpolate|original] fields... mesh IDs...
+    const LATER_FIELDS: [&str; 5] = ["stresscomponents", "owner", "aedges", "acorners", "nneighs"];
+    let style = a.words()[3].text.as_str();
+    let mut cols = Vec::new();
+    let mut meshes = Vec::new();
+    while let Some(w) = a.peek() {
+        if w == "modify" {
+            break;
+        }
+        if w == "output" {
+            a.seek(a.pos() + 1);
+            a.keyword("output", &["face", "interpolate", "original"])?;
+            continue;
+        }
+        if FIELDS.contains(&w) {
+            cols.push(w.to_string());
+        } else if LATER_FIELDS.contains(&w) {
+            return Err(a.error_at(
+                a.pos(),
+                format!("dump {style} value '{w}' is not supported by this rdem release yet"),
+                Some(format!("supported: {}", FIELDS.join(", "))),
+            ));
+        } else {
+            let known = mesh_ids(sim);
+            if !known.contains(&w) {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!(
+                        "dump {style}: '{w}' is neither a value ({}) nor a mesh ID",
+                        FIELDS.join(", ")
+                    ),
+                    Some(suggest(w, &known)),
+                ));
+            }
+            meshes.push(w.to_string());
+        }
+        a.seek(a.pos() + 1);
+    }
+    let name = DumpFileName::new(file);
+    Ok((Box::new(MeshVtk { name, meshes }), cols))
+}
+
+/// The file name pattern and the meshes (all without any); the values are the dump's
+/// columns.
+struct MeshVtk {
+    name: DumpFileName,
+    meshes: Vec<String>,
+}
+
+impl DumpStyle for MeshVtk {
+    fn write(
+        &mut self,
+        sim: &Sim,
+        _head: &DumpHead,
+        columns: &[String],
+        step: u64,
+        time: f64,
+        _background: bool,
+    ) -> Result<Done, String> {
+        let w = sim
+            .world
+            .as_ref()
+            .ok_or("dump before the simulation box is defined")?;
+        if w.comm.rank() != 0 {
+            return Ok(Vec::new());
+        }
+        let path = self.name.path(step, 0);
+        let (tris, arrays) = mesh_arrays(w, &self.meshes, columns);
+        rdem_io::mesh_vtk::write_mesh_vtk(&path, &tris, &arrays).map_err(|e| e.to_string())?;
+        Ok(vec![(time, path)])
+    }
+
+    fn name_mut(&mut self) -> &mut DumpFileName {
+        &mut self.name
+    }
+
+    fn set_sort(&mut self, _: Sort) -> Result<(), NotHere> {
+        Err(("mesh dumps write triangles: sort does not apply", None))
+    }
+}
+
+/// The triangles of the meshes `ids` (all without any) of `w` and the cell arrays
+/// `fields` asks for (`stress`: normal_stress_average and shear_stress_average, `wear`,
+/// `vel`: the velocity of each triangle's centroid, `id`, `area`).
+fn mesh_arrays(
+    w: &rdem::World,
+    ids: &[String],
+    fields: &[String],
+) -> (Vec<[DVec3; 3]>, Vec<rdem_io::mesh_vtk::CellArray>) {
+    use rdem_io::mesh_vtk::CellArray;
+    let mut tris = Vec::new();
+    let mut arrays: Vec<CellArray> = Vec::new();
+    let mut push = |name: &str, components: usize, values: &[f64]| match arrays
+        .iter_mut()
+        .find(|a| a.name == name)
+    {
+        Some(a) => a.values.extend_from_slice(values),
+        None => arrays.push(CellArray {
+            name: name.to_string(),
+            components,
+            values: values.to_vec(),
+        }),
+    };
+    for m in w
+        .meshes
+        .iter()
+        .filter(|m| ids.is_empty() || ids.contains(&m.id))
+    {
+        let n = m.mesh.tris.len();
+        for t in 0..n {
+            tris.push(m.mesh.corners(t as u32));
+        }
+        for f in fields {
+            match f.as_str() {
+                "stress" => {
+                    let (mut sn, mut ss) = rdem::wall::mesh_stress::stresses(m);
+                    sn.resize(n, 0.0);
+                    ss.resize(n, 0.0);
+                    push("normal_stress_average", 1, &sn);
+                    push("shear_stress_average", 1, &ss);
+                }
+                "wear" => {
+                    let wear = m
+                        .stress
+                        .as_ref()
+                        .map(|s| s.wear.clone())
+                        .unwrap_or_else(|| vec![0.0; n]);
+                    push("wear", 1, &wear);
+                }
+                "vel" => {
+                    let v: Vec<f64> = (0..n as u32)
+                        .flat_map(|t| {
+                            let [a, b, c] = m.mesh.corners(t);
+                            m.wall_velocity(t, (a + b + c) / 3.0).to_array()
+                        })
+                        .collect();
+                    push("v", 3, &v);
+                }
+                "id" => {
+                    let ids: Vec<f64> = (0..n).map(|t| t as f64).collect();
+                    push("id", 1, &ids);
+                }
+                _ => {
+                    let area: Vec<f64> = (0..n as u32)
+                        .map(|t| {
+                            let [a, b, c] = m.mesh.corners(t);
+                            0.5 * (b - a).cross(c - a).length()
+                        })
+                        .collect();
+                    push("area", 1, &area);
+                }
+            }
+        }
+    }
+    (tris, arrays)
+}

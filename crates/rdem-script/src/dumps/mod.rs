@@ -1,0 +1,435 @@
+//! `dump`, `dump_modify`, `undump` and `write_dump`, and every dump style, one file per
+//! style in this folder, all listed in one registry ([`REGISTRY`]). A style's file holds
+//! its parser (the file name's rules and the columns after it) and a type implementing
+//! [`DumpStyle`]: how a snapshot is written and which `dump_modify` keywords apply. The
+//! file formats themselves are in `rdem-io`.
+
+mod atom_vtk;
+mod custom;
+mod custom_vtk;
+mod euler_vtk;
+mod mesh_stl;
+mod mesh_vtk;
+pub(crate) mod particles;
+
+use rdem::comm::Comm;
+use rdem_io::{Compressor, DumpFileName, PvdSeries, Sort};
+
+use crate::args::{suggest, Args, CmdResult};
+use crate::registry::{Registry, Row};
+use crate::sim::Sim;
+
+pub(crate) use particles::gather_owned;
+use particles::Done;
+
+/// The words every dump starts with: `dump ID group style`.
+#[derive(Debug, Clone)]
+pub struct DumpHead {
+    /// Dump ID.
+    pub id: String,
+    /// Group bit mask.
+    pub groupbit: u32,
+}
+
+/// Why a `dump_modify` keyword does not apply to a style: the message and a help line.
+pub type NotHere = (&'static str, Option<&'static str>);
+
+/// A dump style: how a snapshot is written and what `dump_modify` may change.
+pub trait DumpStyle {
+    /// Writes the snapshot of step `step` (collective: every rank calls it; rank 0
+    /// writes). `background`: the writer may finish the file on another thread (then
+    /// [`DumpStyle::finish`] reports it). Returns the files finished, with their times,
+    /// for the `.pvd` collection.
+    fn write(
+        &mut self,
+        sim: &Sim,
+        head: &DumpHead,
+        columns: &[String],
+        step: u64,
+        time: f64,
+        background: bool,
+    ) -> Result<Done, String>;
+
+    /// Waits for the snapshots being written in the background.
+    fn finish(&mut self) -> Result<Done, String> {
+        Ok(Vec::new())
+    }
+
+    /// The file name pattern (`dump_modify pad`).
+    fn name_mut(&mut self) -> &mut DumpFileName;
+
+    /// Whether a name with `*` gets a ParaView collection (`.pvd`).
+    fn has_collection(&self) -> bool {
+        true
+    }
+
+    /// `dump_modify sort`.
+    fn set_sort(&mut self, s: Sort) -> Result<(), NotHere>;
+
+    /// `dump_modify binary`.
+    fn set_binary(&mut self, _yes: bool) -> Result<(), NotHere> {
+        Err((
+            "binary applies to the particle VTK dump styles (custom/vtk, atom/vtk)",
+            None,
+        ))
+    }
+
+    /// `dump_modify compressor` (compression only exists for binary data: asking for it
+    /// turns binary on).
+    fn set_compressor(&mut self, _c: Compressor) -> Result<(), NotHere> {
+        Err((
+            "compressor applies to VTK XML output (atom/vtk, custom/vtk with .vtp or .vtu)",
+            Some("legacy .vtk files cannot be compressed"),
+        ))
+    }
+
+    /// `dump_modify format`: `Ok(Some(error))` for a bad format string.
+    fn set_format(&mut self, _f: &str, _ncols: usize) -> Result<Option<String>, NotHere> {
+        Err(("format applies to dump custom only", None))
+    }
+}
+
+/// A dump style's parser: checks the file name (the word just read) and reads the
+/// columns after it, up to `modify` or the end; returns the style and the columns.
+pub type DumpParse = fn(&Sim, &mut Args, &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)>;
+
+/// A row of the dump registry.
+pub type DumpRow = Row<DumpParse>;
+
+/// Every dump style: those rdem writes, then LIGGGHTS styles it does not write yet.
+pub static REGISTRY: Registry<DumpParse> = Registry {
+    family: "dump style",
+    readme_prefix: "dump ",
+    rows: &[
+        custom::ROW,
+        custom_vtk::ROW,
+        atom_vtk::ROW,
+        euler_vtk::ROW,
+        mesh_stl::ROW,
+        mesh_vtk::ROW,
+        mesh_vtk::ROW_OLD_NAME,
+        Row::not_yet("mesh/vtm", ""),
+        Row::not_yet("local/gran/vtk", "contact output"),
+        Row::not_yet("local", "contact output"),
+        Row::not_yet("atom", ""),
+    ],
+};
+
+/// One dump.
+pub struct Dump {
+    /// ID and group.
+    pub head: DumpHead,
+    /// Every this many steps.
+    pub every: u64,
+    /// Column arguments as written.
+    pub columns: Vec<String>,
+    /// The style.
+    pub style: Box<dyn DumpStyle>,
+    /// Step of the last snapshot.
+    pub last: Option<u64>,
+    /// The ParaView collection of a VTK dump whose name has `*` (see [`rdem_io::pvd`]);
+    /// `None` for text dumps, `write_dump` and a VTK file overwritten at each snapshot.
+    pub pvd: Option<PvdSeries>,
+}
+
+impl Dump {
+    /// Dump ID.
+    pub fn id(&self) -> &str {
+        &self.head.id
+    }
+}
+
+/// Writes every dump due at `step` (at set-up: also dumps that never wrote). At the last
+/// step of a run, waits for the snapshots still being written in the background.
+pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+    for k in 0..sim.dumps.len() {
+        let d = &sim.dumps[k];
+        let due = (step % d.every == 0 || (setup && d.last.is_none())) && d.last != Some(step);
+        if due {
+            write_one(sim, k, step, true)?;
+        }
+    }
+    if step == sim.run_last {
+        finish_all(sim)?;
+    }
+    Ok(())
+}
+
+/// Waits for every snapshot being written in the background and lists it in its `.pvd`.
+/// Collective (only rank 0 writes, so a failure there stops every rank).
+pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
+    let outcome = sim.dumps.iter_mut().try_for_each(finish);
+    match &sim.world {
+        Some(w) => agree(&*w.comm, "dump", outcome),
+        None => outcome,
+    }
+}
+
+fn finish(d: &mut Dump) -> Result<(), String> {
+    let done = d
+        .style
+        .finish()
+        .map_err(|e| format!("dump {}: {e}", d.head.id))?;
+    record(d, done)
+}
+
+/// Lists completed snapshots in the dump's `.pvd`.
+fn record(d: &mut Dump, done: Done) -> Result<(), String> {
+    if let Some(pvd) = &mut d.pvd {
+        for (time, path) in done {
+            pvd.add(time, &path)
+                .map_err(|e| format!("dump {}: {e}", d.head.id))?;
+        }
+    }
+    Ok(())
+}
+
+/// Makes the outcome of writing a file, which only rank 0 does, the same on every rank: a
+/// failure on rank 0 becomes an error everywhere, so that all ranks stop together instead
+/// of the others going on to the next collective call. Collective.
+pub(crate) fn agree<T>(comm: &dyn Comm, what: &str, r: Result<T, String>) -> Result<T, String> {
+    let failed = comm.max(if r.is_err() { 1.0 } else { 0.0 }) > 0.0;
+    match r {
+        Ok(_) if failed => Err(format!("{what}: writing failed on rank 0")),
+        r => r,
+    }
+}
+
+/// Writes dump `k`'s snapshot of `step` and lists its files. Collective.
+fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(), String> {
+    let time = sim.time();
+    // The dump is out of `sim.dumps` while it reads the rest of the state.
+    let vacant = Dump {
+        head: DumpHead {
+            id: String::new(),
+            groupbit: 0,
+        },
+        every: 1,
+        columns: Vec::new(),
+        style: Box::new(Vacant),
+        last: None,
+        pvd: None,
+    };
+    let mut d = std::mem::replace(&mut sim.dumps[k], vacant);
+    let wrote = d
+        .style
+        .write(sim, &d.head, &d.columns, step, time, background);
+    let outcome = wrote
+        .map_err(|e| format!("dump {}: {e}", d.head.id))
+        .and_then(|done| record(&mut d, done));
+    d.last = Some(step);
+    let what = format!("dump {}", d.head.id);
+    sim.dumps[k] = d;
+    match &sim.world {
+        Some(w) => agree(&*w.comm, &what, outcome),
+        None => outcome,
+    }
+}
+
+/// The stand-in of a dump whose style is writing (it is out of `Sim::dumps` meanwhile).
+struct Vacant;
+
+impl DumpStyle for Vacant {
+    fn write(
+        &mut self,
+        _: &Sim,
+        _: &DumpHead,
+        _: &[String],
+        _: u64,
+        _: f64,
+        _: bool,
+    ) -> Result<Done, String> {
+        Ok(Vec::new())
+    }
+
+    fn name_mut(&mut self) -> &mut DumpFileName {
+        unreachable!("a vacant dump has no file")
+    }
+
+    fn set_sort(&mut self, _: Sort) -> Result<(), NotHere> {
+        Ok(())
+    }
+}
+
+/// The ID of the temporary dump of `write_dump`.
+const WRITE_DUMP: &str = "__write_dump";
+
+/// The IDs of the meshes (`fix mesh/surface`).
+pub(crate) fn mesh_ids(sim: &Sim) -> Vec<&str> {
+    sim.world
+        .iter()
+        .flat_map(|w| w.meshes.iter().map(|m| m.id.as_str()))
+        .collect()
+}
+
+/// A dump's style, interval, file name and columns as a command gives them.
+type Parsed = (Box<dyn DumpStyle>, u64, String, Vec<String>);
+
+/// Reads `style [N] file columns...` (as `dump` and, without N, `write_dump` have them).
+fn style_file_columns(sim: &Sim, a: &mut Args, every: bool) -> CmdResult<Parsed> {
+    let style_word = a.word("dump style")?;
+    let (_, parse) = REGISTRY.lookup(a, style_word)?;
+    let n = if every {
+        a.count("N (dump every N steps)")?
+    } else {
+        1
+    };
+    let file = a.word("file name")?.to_string();
+    let (style, cols) = parse(sim, a, &file)?;
+    Ok((style, n, file, cols))
+}
+
+/// `dump ID group style N file columns...`.
+pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("dump ID")?.to_string();
+    if sim.dumps.iter().any(|d| d.id() == id) {
+        return Err(a.error_prev(
+            format!("dump ID '{id}' is already used"),
+            Some("undump it first".into()),
+        ));
+    }
+    let groupbit = sim.group_bit(a, "group ID")?;
+    let (style, every, file, columns) = style_file_columns(sim, a, true)?;
+    a.done()?;
+    sim.world_ref(a)?;
+    let pvd = if style.has_collection() {
+        PvdSeries::for_pattern(&file, 0)
+    } else {
+        None
+    };
+    sim.dumps.push(Dump {
+        head: DumpHead { id, groupbit },
+        every,
+        columns,
+        style,
+        last: None,
+        pvd,
+    });
+    Ok(())
+}
+
+/// `dump_modify ID keyword value ...`.
+pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("dump ID")?;
+    let Some(k) = sim.dumps.iter().position(|d| d.id() == id) else {
+        let names: Vec<&str> = sim.dumps.iter().map(|d| d.id()).collect();
+        return Err(a.error_prev(format!("no dump '{id}'"), Some(suggest(id, &names))));
+    };
+    if a.is_done() {
+        return Err(a.error_at(
+            a.pos(),
+            "dump_modify: missing keyword",
+            Some("e.g. sort id, pad 5, every N, format \"...\", binary yes".into()),
+        ));
+    }
+    modify(
+        &mut sim.dumps[k],
+        a,
+        &[
+            "sort",
+            "pad",
+            "format",
+            "every",
+            "first",
+            "binary",
+            "compressor",
+        ],
+    )
+}
+
+/// Applies `dump_modify`-style keywords (those in `valid`) to dump `d`.
+fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str]) -> CmdResult {
+    let not_here = |a: &Args, (m, h): NotHere| a.error_prev(m, h.map(str::to_string));
+    while !a.is_done() {
+        let kw = a.keyword("dump_modify keyword", valid)?;
+        let ncols = d.columns.len();
+        match kw {
+            "sort" => {
+                let v = a.word("sort order (id, off, N or -N)")?;
+                let s = Sort::parse(v, ncols).map_err(|m| a.error_prev(m, None))?;
+                d.style.set_sort(s).map_err(|e| not_here(a, e))?;
+            }
+            "pad" => {
+                let n = a.u64("pad width")? as usize;
+                d.style.name_mut().set_pad(n);
+            }
+            "binary" => {
+                let yes = a.yes_no("binary")?;
+                d.style.set_binary(yes).map_err(|e| not_here(a, e))?;
+            }
+            "compressor" => {
+                let w = a.word("compressor (none, zlib or lz4)")?;
+                let Some(c) = Compressor::parse(w) else {
+                    return Err(a.error_prev(
+                        format!("unknown compressor '{w}'"),
+                        Some(suggest(w, &Compressor::NAMES)),
+                    ));
+                };
+                d.style.set_compressor(c).map_err(|e| not_here(a, e))?;
+            }
+            "format" => {
+                let f = a.word("format string")?;
+                if let Some(e) = d.style.set_format(f, ncols).map_err(|e| not_here(a, e))? {
+                    return Err(a.error_prev(format!("bad format: {e}"), None));
+                }
+            }
+            "every" => d.every = a.count("every")?,
+            "first" => {
+                if a.yes_no("first")? {
+                    d.last = None;
+                }
+            }
+            other => unreachable!("dump_modify keyword {other} is not in the valid list"),
+        }
+    }
+    Ok(())
+}
+
+/// `undump ID`.
+pub fn undump(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("dump ID")?;
+    a.done()?;
+    if let Some(d) = sim.dumps.iter_mut().find(|d| d.id() == id) {
+        finish(d).map_err(|m| a.error_cmd(m, None))?;
+    }
+    let n = sim.dumps.len();
+    sim.dumps.retain(|d| d.id() != id);
+    if n == sim.dumps.len() {
+        let names: Vec<&str> = sim.dumps.iter().map(|d| d.id()).collect();
+        return Err(a.error_at(1, format!("no dump '{id}'"), Some(suggest(id, &names))));
+    }
+    Ok(())
+}
+
+/// `write_dump group style file columns... [modify ...]`: one snapshot now.
+pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let groupbit = sim.group_bit(a, "group ID")?;
+    let (style, _, _, columns) = style_file_columns(sim, a, false)?;
+    let step = sim.world_ref(a)?.step;
+    sim.dumps.push(Dump {
+        head: DumpHead {
+            id: WRITE_DUMP.into(),
+            groupbit,
+        },
+        every: 1,
+        columns,
+        style,
+        last: None,
+        pvd: None,
+    });
+    let k = sim.dumps.len() - 1;
+    let mut result = Ok(());
+    if a.peek() == Some("modify") {
+        a.seek(a.pos() + 1);
+        result = modify(
+            &mut sim.dumps[k],
+            a,
+            &["sort", "pad", "format", "binary", "compressor"],
+        );
+    }
+    if result.is_ok() {
+        result = write_one(sim, k, step, false).map_err(|m| a.error_cmd(m, None));
+    }
+    sim.dumps.pop();
+    result
+}
