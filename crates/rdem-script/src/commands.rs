@@ -410,16 +410,13 @@ fn boundary(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
-fn scale_of(sim: &Sim, a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
-    if !units_lattice {
-        return Ok(DVec3::ONE);
-    }
-    sim.lattice.as_ref().map(|l| l.spacing()).ok_or_else(|| {
-        a.error_cmd(
-            "units lattice (the default) needs a lattice",
-            Some("add 'units box' to use box coordinates, or define a 'lattice' first".into()),
-        )
-    })
+/// `units lattice` scale; without a `lattice` command it is LIGGGHTS' default `none 1.0`.
+fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
+    Ok(sim
+        .lattice
+        .as_ref()
+        .filter(|_| units_lattice)
+        .map_or(DVec3::ONE, |l| l.spacing()))
 }
 
 /// "region block takes xlo xhi ylo yhi zlo zhi ..." for help texts.
@@ -474,7 +471,7 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     }
-    let (mut outside, mut lattice_units) = (false, true);
+    let (mut outside, mut lattice_units) = (false, false); // LIGGGHTS 3.8: units box
     while !a.is_done() {
         match a.keyword(
             "region keyword",
@@ -606,9 +603,9 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
 fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.keyword("lattice style", &lattice::STYLES)?;
     if style == "none" {
-        a.f64("scale")?;
+        let scale = a.f64("scale")?;
         a.done()?;
-        sim.lattice = None;
+        sim.lattice = Lattice::new(style, scale);
         return Ok(());
     }
     let scale = a.positive("lattice constant (m)")?;
@@ -730,7 +727,7 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             ))
         }
     }
-    let mut lattice_units = true;
+    let mut lattice_units = false; // LIGGGHTS 3.8: units box
     while !a.is_done() {
         a.keyword("create_atoms keyword", &["units"])?;
         lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice";
@@ -744,12 +741,16 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         let s = scale_of(sim, a, lattice_units)?;
         points.push(x * s);
     } else {
-        let l = sim.lattice.as_ref().ok_or_else(|| {
-            a.error_cmd(
-                "create_atoms box/region needs a lattice",
-                Some("define one with 'lattice sc|bcc|fcc a'".into()),
-            )
-        })?;
+        let l = sim
+            .lattice
+            .as_ref()
+            .filter(|l| l.style != "none")
+            .ok_or_else(|| {
+                a.error_cmd(
+                    "create_atoms box/region needs a lattice",
+                    Some("define one with 'lattice sc|bcc|fcc a'".into()),
+                )
+            })?;
         points = l.points(lo, hi);
         if let Some(r) = &reg {
             points.retain(|x| r.contains(*x));
