@@ -24,6 +24,7 @@ pub mod models;
 pub mod output;
 pub mod run;
 pub mod sim;
+pub mod source;
 pub mod thermo;
 pub mod variables;
 

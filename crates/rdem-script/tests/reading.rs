@@ -29,6 +29,13 @@ pair_coeff * *
 timestep 0.00001
 ";
 
+/// A box -0.05..0.05 × -0.05..0.05 × 0..0.15 with materials and no particles.
+fn head() -> String {
+    format!(
+        "{PRE}region reg block -0.05 0.05 -0.05 0.05 0. 0.15 units box\ncreate_box 1 reg\n{POST}"
+    )
+}
+
 /// Runs `script`; the screen text, or the rendered error report.
 fn try_run(script: &str) -> Result<String, String> {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
@@ -146,4 +153,166 @@ fn create_atoms_single_defaults_to_box_units() {
     ))
     .unwrap_err();
     assert!(e.contains("create_atoms box/region needs a lattice"), "{e}");
+}
+
+/// Runs script bytes; the screen text, or the rendered error report.
+fn try_run_bytes(script: &[u8]) -> Result<String, String> {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = i.run_bytes("in.test", script);
+    let screen = i.sim.out.captured.clone().unwrap_or_default();
+    r.map(|()| screen).map_err(|e| render(&e))
+}
+
+/// `head()` + `tail` as bytes.
+fn script_bytes(tail: &[u8]) -> Vec<u8> {
+    let mut b = head().into_bytes();
+    b.extend_from_slice(tail);
+    b
+}
+
+/// A packing run printing thermo rows, to compare two spellings of the same script.
+const PACK: &str = "\
+fix g all gravity 9.81 vector 0 0 -1
+fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.002
+fix pd all particledistribution/discrete 10009 1 pts 1.0
+region inlet block -0.04 0.04 -0.04 0.04 0.08 0.14 units box
+fix ins all insert/pack seed 10037 distributiontemplate pd maxattempt 100 insert_every 1000 &
+    overlapcheck yes all_in yes vel constant 0.0 0.0 -0.5 region inlet particles_in_region 20 ntry_mc 10000
+fix nve all nve/sphere
+compute z all property/atom z
+compute zs all reduce sum c_z
+thermo_style custom step atoms c_zs
+thermo 5
+run 10
+";
+
+/// The screen text without the wall-clock timings of the run summary.
+fn stable(s: &str) -> String {
+    s.lines()
+        .filter(|l| !l.starts_with("Loop time") && !l.contains(" time (%)"))
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// A temporary directory of its own for a test.
+fn tmpdir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("rdem-reading-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// LIGGGHTS 3.8 runs a script with a Latin-1 `µ` (byte 0xB5) in a comment and in a
+/// quoted `print` string: it prints `size 5 \xB5m here` (the byte as it is) and goes on.
+/// rdem reads the byte as the Latin-1 `µ`: the script runs as its ASCII twin does, with
+/// the same thermo, and prints the text with `µ`.
+#[test]
+fn latin1_comments_and_quoted_text_are_read() {
+    let ascii = script_bytes(
+        format!("# comment with um in ASCII\n{PACK}print \"size 5 um here\"\n").as_bytes(),
+    );
+    let mut latin1 = script_bytes(b"# comment with \xb5m in Latin-1\n");
+    latin1.extend_from_slice(PACK.as_bytes());
+    latin1.extend_from_slice(b"print \"size 5 \xb5m here\" # \xe9t\xe9\n");
+    let a = try_run_bytes(&ascii).unwrap();
+    let b = try_run_bytes(&latin1).unwrap_or_else(|e| panic!("{e}"));
+    let rows = |s: &str| lines_with(s, "      10").join("\n");
+    assert!(rows(&a).contains(" 20 "), "{a}");
+    assert_eq!(rows(&a), rows(&b));
+    assert!(b.contains("\nsize 5 µm here\n"), "{b}");
+    assert_eq!(
+        stable(&a.replace("size 5 um here", "size 5 µm here")),
+        stable(&b)
+    );
+    // A file on disk (run_file) reads the same way.
+    let d = tmpdir("latin1");
+    let path = d.join("in.latin1");
+    std::fs::write(&path, &latin1).unwrap();
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.run_file(path.to_str().unwrap()).unwrap();
+    assert_eq!(stable(&i.sim.out.captured.clone().unwrap()), stable(&b));
+}
+
+/// A 0xB5 byte inside a command word: LIGGGHTS 3.8 stops with
+/// `ERROR: Unknown command: pri\xB5nt "x"`; as an unquoted argument (`print x\xB5y`) it
+/// prints the bytes back. rdem stops at the byte in both cases, with the line, the column
+/// (the byte counts as one character) and a caret under it, before running anything.
+#[test]
+fn a_non_utf8_byte_in_a_command_word_is_an_error_at_it() {
+    let n = head().lines().count();
+    for (tail, line, col) in [
+        (&b"pri\xb5nt \"x\"\n"[..], n + 1, 4),
+        (b"print \"\xb5\" # \xb5\nprint x\xb5y\n", n + 2, 8),
+        (b"fix g all &\n  gra\xb5vity 9.81 vector 0 0 -1\n", n + 2, 6),
+    ] {
+        let e = try_run_bytes(&script_bytes(tail)).unwrap_err();
+        assert!(e.contains("non-UTF-8 byte 0xB5 in a command word"), "{e}");
+        assert!(
+            e.contains("only comments and quoted text may use other encodings"),
+            "{e}"
+        );
+        assert!(e.contains(&format!("in.test:{line}:{col}")), "{e}");
+        // The caret is under the µ.
+        let code = e
+            .lines()
+            .find(|l| l.contains('µ') && l.contains('│'))
+            .unwrap();
+        let caret = e.lines().find(|l| l.contains('┬')).unwrap();
+        assert_eq!(
+            caret.find('┬').map(|k| caret[..k].chars().count()),
+            code.find('µ').map(|k| code[..k].chars().count()),
+            "{e}"
+        );
+    }
+    // Nothing ran: the error comes before the first command.
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = i.run_bytes("in.test", b"print \"first\"\npri\xb5nt x\n");
+    assert!(r.is_err());
+    assert_eq!(i.sim.out.captured.clone().unwrap(), "");
+}
+
+/// `include` and `jump` to another file read bytes too: Latin-1 comments run, a byte in
+/// a command word is reported in that file.
+#[test]
+fn included_and_jumped_to_files_are_read_as_bytes() {
+    let d = tmpdir("include");
+    let good = d.join("good.inc");
+    let bad = d.join("bad.inc");
+    std::fs::write(&good, b"# \xb5 \xe9\r\nprint \"in good \xb5\"\r\n").unwrap();
+    std::fs::write(&bad, b"print ok\n\nvariable a equal 1\xb5\n").unwrap();
+    let s = try_run_bytes(format!("include {}\nprint after\n", good.display()).as_bytes()).unwrap();
+    assert_eq!(s, "in good µ\nafter\n");
+    let s = try_run_bytes(format!("jump {}\nprint never\n", good.display()).as_bytes()).unwrap();
+    assert_eq!(s, "in good µ\n");
+    for cmd in ["include", "jump"] {
+        let e = try_run_bytes(format!("{cmd} {}\n", bad.display()).as_bytes()).unwrap_err();
+        assert!(e.contains("non-UTF-8 byte 0xB5 in a command word"), "{e}");
+        assert!(e.contains(&format!("{}:3:19", bad.display())), "{e}");
+    }
+}
+
+/// LIGGGHTS 3.8 runs a script with CRLF line ends as its LF twin, also through a `&`
+/// continuation inside a quoted string (`print "a is &` CRLF `${a} ok"` printed
+/// `a is 2 ok`) and a continued `fix ... &` CRLF line. rdem gives the same screen text
+/// for both, and an error in a CRLF file has the line, column and caret of the LF file.
+#[test]
+fn crlf_scripts_run_as_their_lf_twins() {
+    let tail = format!(
+        "variable a equal 2\nprint \"a is &\n${{a}} ok\"\nprint 'quoted  with spaces' # c\n{PACK}print done"
+    );
+    let lf = script_bytes(format!("{tail}\n").as_bytes());
+    let crlf = script_bytes(format!("{}\r\n", tail.replace('\n', "\r\n")).as_bytes());
+    let crlf_cr = script_bytes(format!("{}\r", tail.replace('\n', "\r\n")).as_bytes());
+    assert!(crlf.windows(4).any(|w| w == b"&\r\n$"));
+    let a = try_run_bytes(&lf).unwrap();
+    assert!(a.contains("\na is 2 ok\nquoted  with spaces\n"), "{a}");
+    assert!(a.ends_with("\ndone\n"), "{a}");
+    assert_eq!(stable(&try_run_bytes(&crlf).unwrap()), stable(&a));
+    assert_eq!(stable(&try_run_bytes(&crlf_cr).unwrap()), stable(&a));
+    let bad = "variable a equal 2\nfix g all &\n  gravty 9.81 vector 0 0 -1\n";
+    let e_lf = try_run_bytes(&script_bytes(bad.as_bytes())).unwrap_err();
+    let e_crlf = try_run_bytes(&script_bytes(bad.replace('\n', "\r\n").as_bytes())).unwrap_err();
+    let n = head().lines().count();
+    assert!(e_lf.contains(&format!("in.test:{}:3", n + 3)), "{e_lf}");
+    assert_eq!(e_crlf, e_lf);
 }
