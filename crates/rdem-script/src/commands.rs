@@ -523,7 +523,7 @@ fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 _ => Ok(if lo { -1e300 } else { 1e300 }),
             };
         }
-        crate::args::parse_f64(w).map(|v| v * scale).ok_or_else(|| {
+        a.f64_at(word).map(|v| v * scale).ok_or_else(|| {
             a.error_at(
                 word,
                 format!(

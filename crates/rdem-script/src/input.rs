@@ -169,6 +169,16 @@ impl Interpreter {
         })
     }
 
+    /// Where the current command's warnings go (see [`crate::args::WarningSink`]).
+    fn warning_sink(&self) -> crate::args::WarningSink {
+        let f = self.frames.last().expect("a command runs in a script");
+        crate::args::WarningSink {
+            queue: self.sim.out.warnings(),
+            src: f.src.clone(),
+            file: (self.frames.len() > 1).then(|| f.name.clone()),
+        }
+    }
+
     /// Runs the script file `path`.
     pub fn run_file(&mut self, path: &str) -> Result<(), Box<ScriptReport>> {
         match std::fs::read(path) {
@@ -198,6 +208,7 @@ impl Interpreter {
             let cmd = f.cmds[f.pos].clone();
             f.pos += 1;
             let mut result = self.execute(&cmd);
+            self.sim.out.flush_warnings();
             if self.nprocs > 1 {
                 // Every rank runs every command: they stop together when any fails, and
                 // the report (printed by rank 0) is the lowest failing rank's.
@@ -245,7 +256,7 @@ impl Interpreter {
             return Ok(());
         }
         self.sim.out.echo_command(&cmd.text);
-        let mut a = Args::new(&cmd, &words);
+        let mut a = Args::new(&cmd, &words).warn_into(self.warning_sink());
         match a.name() {
             "include" => {
                 let file = a.word("file name")?.to_string();

@@ -316,3 +316,147 @@ fn crlf_scripts_run_as_their_lf_twins() {
     assert!(e_lf.contains(&format!("in.test:{}:3", n + 3)), "{e_lf}");
     assert_eq!(e_crlf, e_lf);
 }
+
+/// The `WARNING:` lines of a screen text.
+fn warnings(s: &str) -> Vec<&str> {
+    lines_with(s, "WARNING:")
+}
+
+/// Integers written `1.` where LIGGGHTS 3.8 reads them with `atoi`: the seeds of fix
+/// particletemplate/sphere, particledistribution/discrete and insert/pack written
+/// `10007.`, `10009.`, `10037.`, `particles_in_region 20.` and `run 10.` ran with the same
+/// thermo as the plain integers (step 10: 20 atoms, z sum 2.2717043); so did `10037.0`.
+/// rdem runs them the same as the plain script, with one warning naming each word's line.
+#[test]
+fn integers_written_with_a_point_where_liggghts_reads_them() {
+    let plain = script_bytes(PACK.as_bytes());
+    let dotted = PACK
+        .replace("sphere 10007 ", "sphere 10007. ")
+        .replace("discrete 10009 ", "discrete 10009. ")
+        .replace("seed 10037 ", "seed 10037.0 ")
+        .replace("particles_in_region 20 ", "particles_in_region 20. ")
+        .replace("run 10\n", "run 10.\n");
+    let a = try_run_bytes(&plain).unwrap();
+    let b = try_run_bytes(&script_bytes(dotted.as_bytes())).unwrap_or_else(|e| panic!("{e}"));
+    assert!(warnings(&a).is_empty(), "{a}");
+    let n = head().lines().count();
+    assert_eq!(
+        warnings(&b),
+        vec![
+            format!(
+                "WARNING: line {}: '10007.' read as the integer 10007 (LIGGGHTS reads it so)",
+                n + 2
+            ),
+            format!(
+                "WARNING: line {}: '10009.' read as the integer 10009 (LIGGGHTS reads it so)",
+                n + 3
+            ),
+            format!(
+                "WARNING: line {}: '10037.0' read as the integer 10037 (LIGGGHTS reads it so)",
+                n + 5
+            ),
+            format!(
+                "WARNING: line {}: '20.' read as the integer 20 (LIGGGHTS reads it so)",
+                n + 6
+            ),
+            format!(
+                "WARNING: line {}: '10.' read as the integer 10 (LIGGGHTS reads it so)",
+                n + 12
+            ),
+        ]
+    );
+    let no_warnings = |s: &str| -> String {
+        stable(s)
+            .lines()
+            .filter(|l| !l.starts_with("WARNING:"))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    assert_eq!(no_warnings(&b), stable(&a));
+    // The warning about `run 10.` comes before the run's output.
+    let w = b.find("'10.' read as").unwrap();
+    assert!(w < b.find("Setting up run").unwrap(), "{b}");
+}
+
+/// Integers LIGGGHTS 3.8 reads differently from what they show, or refuses:
+/// `seed 10037.5` and `run 10.5` ran there as 10037 and 10 (`atoi`), `run 1e1` ran 1
+/// step, `particles_in_region 20.7` inserted 20; rdem stops and says what LIGGGHTS would
+/// read. `thermo 5.`, `create_box 1. reg`, `neigh_modify delay 0.`, `dump ... 5. ...`,
+/// `fix ave/time 1. ...` and `fix adapt 10. ...` stopped LIGGGHTS with "Expected integer
+/// parameter in input script or data file"; rdem stops too.
+#[test]
+fn integers_liggghts_cuts_or_refuses_are_errors() {
+    let n = head().lines().count();
+    for (from, to, word, line, help) in [
+        (
+            "seed 10037 ",
+            "seed 10037.5 ",
+            "10037.5",
+            n + 5,
+            Some("10037"),
+        ),
+        ("run 10\n", "run 10.5\n", "10.5", n + 12, Some("10")),
+        ("run 10\n", "run 1e1\n", "1e1", n + 12, Some("1")),
+        ("thermo 5\n", "thermo 5.\n", "5.", n + 11, None),
+    ] {
+        let s = script_bytes(PACK.replace(from, to).as_bytes());
+        let e = try_run_bytes(&s).unwrap_err();
+        assert!(
+            e.contains(&format!("must be a non-negative integer, not '{word}'")),
+            "{e}"
+        );
+        assert!(e.contains(&format!("in.test:{line}:")), "{e}");
+        match help {
+            Some(v) => assert!(
+                e.contains(&format!("LIGGGHTS would read '{word}' as {v}")),
+                "{e}"
+            ),
+            None => assert!(!e.contains("LIGGGHTS would read"), "{e}"),
+        }
+    }
+    let e = try_run(&format!(
+        "{PRE}region reg block 0 1 0 1 0 1\ncreate_box 1. reg\n"
+    ))
+    .unwrap_err();
+    assert!(e.contains("not '1.'"), "{e}");
+}
+
+/// Floats with a stray `.`: LIGGGHTS 3.8 ran `timestep 0.00001.`, `timestep 1e-5.`,
+/// `poissonsRatio peratomtype 0.45.` and a region bound `0.15.` with the same thermo as
+/// without the dot (it checks the characters are digits, signs, `.`, `e` and reads the
+/// number with `atof`, which stops at the second dot); `0.4.5` ran as 0.4; `1e-5x` and
+/// `0.45x` stopped it with "Expected floating point parameter". rdem reads a single
+/// trailing dot with a warning, and refuses `0.4.5` (it does not mean 0.4) and `1e-5x`.
+#[test]
+fn floats_with_a_stray_trailing_point() {
+    let plain = script_bytes(PACK.as_bytes());
+    let dotted = head()
+        .replace("timestep 0.00001\n", "timestep 1e-5.\n")
+        .replace("peratomtype 0.45\n", "peratomtype 0.45.\n")
+        .replace("0. 0.15 units box\n", "0. 0.15. units box\n")
+        + &PACK.replace("region inlet block -0.04 ", "region inlet block -0.04. ");
+    let a = try_run_bytes(&plain).unwrap();
+    let b = try_run_bytes(dotted.as_bytes()).unwrap_or_else(|e| panic!("{e}"));
+    let n = head().lines().count();
+    assert_eq!(
+        warnings(&b),
+        vec![
+            "WARNING: line 7: '0.15.' read as 0.15 (LIGGGHTS reads it so)".to_string(),
+            "WARNING: line 12: '0.45.' read as 0.45 (LIGGGHTS reads it so)".to_string(),
+            "WARNING: line 17: '1e-5.' read as 0.00001 (LIGGGHTS reads it so)".to_string(),
+            format!(
+                "WARNING: line {}: '-0.04.' read as -0.04 (LIGGGHTS reads it so)",
+                n + 4
+            ),
+        ]
+    );
+    let rows = |s: &str| lines_with(s, "      10").join("\n");
+    assert!(rows(&a).contains(" 20 "), "{a}");
+    assert_eq!(rows(&a), rows(&b));
+    for bad in ["0.4.5", "1e-5x", "0.5.."] {
+        let s = head().replace("timestep 0.00001\n", &format!("timestep {bad}\n"));
+        let e = try_run(&s).unwrap_err();
+        assert!(e.contains(&format!("must be a number, not '{bad}'")), "{e}");
+        assert!(e.contains("in.test:17:10"), "{e}");
+    }
+}
