@@ -234,12 +234,12 @@ fn main() -> ExitCode {
     let result = match &cli.input {
         Some(f) => interp.run_file(f),
         None => {
-            let mut s = String::new();
-            if let Err(e) = std::io::stdin().read_to_string(&mut s) {
+            let mut s = Vec::new();
+            if let Err(e) = std::io::stdin().read_to_end(&mut s) {
                 eprintln!("rdem: cannot read the script from standard input: {e}");
                 return ExitCode::from(1);
             }
-            interp.run_source("<stdin>", &s)
+            interp.run_bytes("<stdin>", &s)
         }
     };
     interp.sim.out.flush();

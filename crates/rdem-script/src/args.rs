@@ -2,8 +2,23 @@
 //! word it is about (or just past the last word when one is missing) and, for keywords,
 //! lists the valid ones and suggests the nearest.
 
+use std::sync::Arc;
+
 use crate::diagnostic::{one_of, ScriptError};
 use crate::lexer::{Command, Word};
+use crate::output::Warnings;
+
+/// Where the readers' warnings go: the output's queue, and the script the command comes
+/// from (for the line of the word).
+#[derive(Clone)]
+pub struct WarningSink {
+    /// The output's warning queue ([`crate::output::Output::warnings`]).
+    pub queue: Warnings,
+    /// The script text the word spans point into.
+    pub src: Arc<str>,
+    /// The script's name when it is not the main script (an `include`d file).
+    pub file: Option<String>,
+}
 
 /// Result of a command handler.
 pub type CmdResult<T = ()> = Result<T, ScriptError>;
@@ -13,6 +28,7 @@ pub struct Args<'a> {
     cmd: &'a Command,
     words: &'a [Word],
     pos: usize,
+    warnings: Option<WarningSink>,
 }
 
 /// Levenshtein distance, for "did you mean" suggestions.
@@ -56,10 +72,104 @@ pub fn parse_f64(s: &str) -> Option<f64> {
     (v.is_finite() && !s.to_ascii_lowercase().contains("inf")).then_some(v)
 }
 
+/// A number with one stray `.` after it (`0.5.`, `1e-3.`), which LIGGGHTS 3.8 reads as
+/// the number before the dot (it checks the characters, then reads with `atof`).
+pub fn number_with_trailing_dot(s: &str) -> Option<f64> {
+    parse_f64(s.strip_suffix('.')?)
+}
+
+/// A whole number written with a decimal point and no fraction (`1.`, `12345.0`), which
+/// LIGGGHTS 3.8 reads as that integer where it reads integers with `atoi`.
+pub fn integer_with_point(s: &str) -> Option<u64> {
+    let (int, frac) = s.split_once('.')?;
+    let digits = int.strip_prefix('+').unwrap_or(int);
+    (!digits.is_empty()
+        && digits.bytes().all(|c| c.is_ascii_digit())
+        && frac.bytes().all(|c| c == b'0'))
+    .then(|| digits.parse().ok())
+    .flatten()
+}
+
+/// What C's `atoi` reads from the start of `s` (sign and digits), if it starts so.
+fn atoi_prefix(s: &str) -> Option<i64> {
+    let body = s.strip_prefix(['+', '-']).unwrap_or(s);
+    let n = body.bytes().take_while(|c| c.is_ascii_digit()).count();
+    let v: i64 = body[..n].parse().ok()?;
+    Some(if s.starts_with('-') { -v } else { v })
+}
+
+/// Fix styles whose integer arguments LIGGGHTS 3.8 reads with `atoi` (checked: `seed
+/// 10037.`, `particles_in_region 20.`, `insert_every 5.`, `atom_type 1.` run there, where
+/// `thermo 5.`, `create_box 1. reg` or `fix ave/time 1. ...` stop with "Expected integer
+/// parameter").
+const ATOI_FIX_STYLES: [&str; 6] = [
+    "insert/pack",
+    "insert/stream",
+    "insert/rate/region",
+    "particletemplate/sphere",
+    "particledistribution/discrete",
+    "check/timestep/gran",
+];
+
 impl<'a> Args<'a> {
     /// A cursor after the command name.
     pub fn new(cmd: &'a Command, words: &'a [Word]) -> Self {
-        Self { cmd, words, pos: 1 }
+        Self {
+            cmd,
+            words,
+            pos: 1,
+            warnings: None,
+        }
+    }
+
+    /// Sends the readers' warnings (numbers read as LIGGGHTS reads them) to `sink`;
+    /// without a sink they are dropped.
+    pub fn warn_into(mut self, sink: WarningSink) -> Self {
+        self.warnings = Some(sink);
+        self
+    }
+
+    /// Queues a warning about word `k`, prefixed with its line (and file if included).
+    pub fn warn_at(&self, k: usize, message: &str) {
+        let (Some(sink), Some(w)) = (&self.warnings, self.words.get(k)) else {
+            return;
+        };
+        let at = w.span.start.min(sink.src.len());
+        let line = 1 + sink.src.as_bytes()[..at]
+            .iter()
+            .filter(|&&c| c == b'\n')
+            .count();
+        let place = match &sink.file {
+            Some(f) => format!("{f} line {line}"),
+            None => format!("line {line}"),
+        };
+        if let Ok(mut q) = sink.queue.lock() {
+            q.push(format!("{place}: {message}"));
+        }
+    }
+
+    /// True where LIGGGHTS reads this command's integers with C's `atoi` (`run`,
+    /// `reset_timestep` and the insertion fixes, see [`ATOI_FIX_STYLES`]).
+    fn reads_integers_with_atoi(&self) -> bool {
+        match self.name() {
+            "run" | "reset_timestep" => true,
+            "fix" => self
+                .words
+                .get(3)
+                .is_some_and(|w| ATOI_FIX_STYLES.contains(&w.text.as_str())),
+            _ => false,
+        }
+    }
+
+    /// Word `k` as a finite number; a number with a stray trailing `.` is read as
+    /// LIGGGHTS reads it (`0.5.` is 0.5), with a warning.
+    pub fn f64_at(&self, k: usize) -> Option<f64> {
+        let w = &self.words.get(k)?.text;
+        parse_f64(w).or_else(|| {
+            let v = number_with_trailing_dot(w)?;
+            self.warn_at(k, &format!("'{w}' read as {v} (LIGGGHTS reads it so)"));
+            Some(v)
+        })
     }
 
     /// The command (for spans).
@@ -166,7 +276,7 @@ impl<'a> Args<'a> {
     /// The next word as a finite number.
     pub fn f64(&mut self, what: &str) -> CmdResult<f64> {
         let w = self.word(what)?;
-        parse_f64(w)
+        self.f64_at(self.pos - 1)
             .ok_or_else(|| self.error_prev(format!("{what} must be a number, not '{w}'"), None))
     }
 
@@ -193,12 +303,25 @@ impl<'a> Args<'a> {
     /// The next word as a non-negative integer.
     pub fn u64(&mut self, what: &str) -> CmdResult<u64> {
         let w = self.word(what)?;
-        w.parse::<u64>().map_err(|_| {
-            self.error_prev(
-                format!("{what} must be a non-negative integer, not '{w}'"),
-                None,
-            )
-        })
+        if let Ok(v) = w.parse::<u64>() {
+            return Ok(v);
+        }
+        let atoi = self.reads_integers_with_atoi();
+        if let Some(v) = integer_with_point(w).filter(|_| atoi) {
+            self.warn_at(
+                self.pos - 1,
+                &format!("'{w}' read as the integer {v} (LIGGGHTS reads it so)"),
+            );
+            return Ok(v);
+        }
+        // LIGGGHTS would cut `1.5` to 1 and `1e4` to 1 here: rdem asks for the number.
+        let help = atoi_prefix(w)
+            .filter(|_| atoi)
+            .map(|v| format!("LIGGGHTS would read '{w}' as {v}; write the whole number you mean"));
+        Err(self.error_prev(
+            format!("{what} must be a non-negative integer, not '{w}'"),
+            help,
+        ))
     }
 
     /// The next word as an integer >= 1.
@@ -274,6 +397,24 @@ mod tests {
         );
         assert_eq!(nearest("xyz", &["tangential", "model"]), None);
         assert_eq!(nearest("Hertz", &["hertz", "hooke"]), Some("hertz"));
+    }
+
+    #[test]
+    fn numbers_as_liggghts_reads_them() {
+        assert_eq!(number_with_trailing_dot("0.5."), Some(0.5));
+        assert_eq!(number_with_trailing_dot("1e-3."), Some(1e-3));
+        assert_eq!(number_with_trailing_dot("0.4.5"), None);
+        assert_eq!(number_with_trailing_dot("1e-5x"), None);
+        assert_eq!(number_with_trailing_dot("0.5"), None);
+        assert_eq!(integer_with_point("1."), Some(1));
+        assert_eq!(integer_with_point("12345.00"), Some(12345));
+        assert_eq!(integer_with_point("1.5"), None);
+        assert_eq!(integer_with_point(".0"), None);
+        assert_eq!(integer_with_point("-1."), None);
+        assert_eq!(atoi_prefix("1.5"), Some(1));
+        assert_eq!(atoi_prefix("1e4"), Some(1));
+        assert_eq!(atoi_prefix("-7x"), Some(-7));
+        assert_eq!(atoi_prefix("x7"), None);
     }
 
     #[test]

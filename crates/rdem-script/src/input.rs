@@ -124,10 +124,16 @@ impl Interpreter {
 
     /// Runs the script `src` named `name` (a file name for messages).
     pub fn run_source(&mut self, name: &str, src: &str) -> Result<(), Box<ScriptReport>> {
-        let src: Arc<str> = src.into();
+        self.run_bytes(name, src.as_bytes())
+    }
+
+    /// Runs the script bytes `bytes` named `name`, read as LIGGGHTS reads a script file
+    /// (see [`crate::source`]: any encoding in comments and quotes, CRLF as LF).
+    pub fn run_bytes(&mut self, name: &str, bytes: &[u8]) -> Result<(), Box<ScriptReport>> {
+        let (src, cmds) = crate::source::load(name, bytes)?;
         self.frames.push(Frame {
             name: name.to_string(),
-            cmds: lexer::commands(&src),
+            cmds,
             src,
             pos: 0,
         });
@@ -137,10 +143,38 @@ impl Interpreter {
         r
     }
 
+    /// A frame for the script file `file` named by word 1 of `a` (`include`, `jump`). A
+    /// file that cannot be read is an error at the word; a non-UTF-8 byte outside
+    /// comments and quotes is reported in that file.
+    fn open_frame(&mut self, a: &Args, file: &str) -> CmdResult<Frame> {
+        let bytes = std::fs::read(file)
+            .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
+        let (src, cmds) = crate::source::load(file, &bytes).map_err(|report| {
+            self.inner_report = Some(report);
+            a.error_at(1, "error in included file", None)
+        })?;
+        Ok(Frame {
+            name: file.to_string(),
+            cmds,
+            src,
+            pos: 0,
+        })
+    }
+
+    /// Where the current command's warnings go (see [`crate::args::WarningSink`]).
+    fn warning_sink(&self) -> crate::args::WarningSink {
+        let f = self.frames.last().expect("a command runs in a script");
+        crate::args::WarningSink {
+            queue: self.sim.out.warnings(),
+            src: f.src.clone(),
+            file: (self.frames.len() > 1).then(|| f.name.clone()),
+        }
+    }
+
     /// Runs the script file `path`.
     pub fn run_file(&mut self, path: &str) -> Result<(), Box<ScriptReport>> {
-        match std::fs::read_to_string(path) {
-            Ok(s) => self.run_source(path, &s),
+        match std::fs::read(path) {
+            Ok(s) => self.run_bytes(path, &s),
             Err(e) => Err(Box::new(ScriptReport::without_source(
                 format!("cannot open input script '{path}': {e}"),
                 None,
@@ -166,6 +200,7 @@ impl Interpreter {
             let cmd = f.cmds[f.pos].clone();
             f.pos += 1;
             let mut result = self.execute(&cmd);
+            self.sim.out.flush_warnings();
             if self.nprocs > 1 {
                 // Every rank runs every command: they stop together when any fails, and
                 // the report (printed by rank 0) is the lowest failing rank's.
@@ -213,20 +248,13 @@ impl Interpreter {
             return Ok(());
         }
         self.sim.out.echo_command(&cmd.text);
-        let mut a = Args::new(&cmd, &words);
+        let mut a = Args::new(&cmd, &words).warn_into(self.warning_sink());
         match a.name() {
             "include" => {
                 let file = a.word("file name")?.to_string();
                 a.done()?;
-                let src = std::fs::read_to_string(&file)
-                    .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
-                let src: Arc<str> = src.into();
-                self.frames.push(Frame {
-                    name: file,
-                    cmds: lexer::commands(&src),
-                    src,
-                    pos: 0,
-                });
+                let frame = self.open_frame(&a, &file)?;
+                self.frames.push(frame);
                 let depth = self.frames.len();
                 // Run the included file to its end; its errors are reported in it.
                 if let Err(report) = self.drive(depth) {
@@ -253,15 +281,7 @@ impl Interpreter {
                 let target = if file == "SELF" || file == self.frames[top].name {
                     None
                 } else {
-                    let src = std::fs::read_to_string(&file)
-                        .map_err(|e| a.error_at(1, format!("cannot open '{file}': {e}"), None))?;
-                    let src: Arc<str> = src.into();
-                    Some(Frame {
-                        name: file.clone(),
-                        cmds: lexer::commands(&src),
-                        src,
-                        pos: 0,
-                    })
+                    Some(self.open_frame(&a, &file)?)
                 };
                 if let Some(label) = label {
                     let cmds = target.as_ref().map_or(&self.frames[top].cmds, |f| &f.cmds);

@@ -1,7 +1,9 @@
 //! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`
 //! whose `scale` is the lattice constant in metres, with an `origin` shift. `units
 //! lattice` in `region` and `create_atoms` multiplies by the lattice spacings, which for
-//! these unrotated cubic lattices all equal the constant.
+//! these unrotated cubic lattices all equal the constant. As in LIGGGHTS 3.8, `units box`
+//! is those commands' default, and without a `lattice` command the scale is that of the
+//! default lattice `none 1.0`.
 
 use glam::DVec3;
 
@@ -22,10 +24,12 @@ pub struct Lattice {
 pub const STYLES: [&str; 5] = ["none", "sc", "bcc", "fcc", "diamond"];
 
 impl Lattice {
-    /// A lattice of `style` with constant `a` (`None` for style `none`).
+    /// A lattice of `style` with constant `a` (`None` for an unknown style). Style `none`
+    /// has no points, only the `units lattice` scale (LIGGGHTS' default is `none 1.0`).
     pub fn new(style: &str, a: f64) -> Option<Self> {
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         let basis = match style {
+            "none" => vec![],
             "sc" => vec![v(0.0, 0.0, 0.0)],
             "bcc" => vec![v(0.0, 0.0, 0.0), v(0.5, 0.5, 0.5)],
             "fcc" => vec![

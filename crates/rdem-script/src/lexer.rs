@@ -152,6 +152,26 @@ fn cur_quote(text: &str) -> Quote {
     q
 }
 
+/// Index in `cmd.text` of the first byte outside quotes (quote marks excluded) whose
+/// source offset satisfies `pred`.
+pub fn first_unquoted(cmd: &Command, pred: impl Fn(usize) -> bool) -> Option<usize> {
+    let b = cmd.text.as_bytes();
+    let mut q = Quote::None;
+    let mut i = 0;
+    while i < b.len() {
+        let n = quote_step(b, i, &mut q);
+        if n > 0 {
+            i += n;
+            continue;
+        }
+        if q == Quote::None && pred(cmd.origin[i]) {
+            return Some(i);
+        }
+        i += 1;
+    }
+    None
+}
+
 /// What a `$` refers to.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Reference {

@@ -25,6 +25,7 @@ pub mod output;
 pub mod registry;
 pub mod run;
 pub mod sim;
+pub mod source;
 pub mod thermo;
 pub mod variables;
 

@@ -3,6 +3,11 @@
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
+use std::sync::{Arc, Mutex};
+
+/// Warnings waiting to be printed: the output prints them before its next line (and at
+/// [`Output::flush_warnings`]), so a command's reader can warn while the command runs.
+pub type Warnings = Arc<Mutex<Vec<String>>>;
 
 /// Which sinks echo each input command (`echo none|screen|log|both`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -26,6 +31,8 @@ pub struct Output {
     pub echo: Echo,
     /// Everything written to the screen sink is also kept here when set (tests).
     pub captured: Option<String>,
+    /// Warnings not yet printed.
+    pending: Warnings,
 }
 
 impl Default for Output {
@@ -42,6 +49,7 @@ impl Output {
             log: None,
             echo: Echo::Log,
             captured: None,
+            pending: Warnings::default(),
         }
     }
 
@@ -52,6 +60,7 @@ impl Output {
             log: None,
             echo: Echo::Log,
             captured: Some(String::new()),
+            pending: Warnings::default(),
         }
     }
 
@@ -85,8 +94,25 @@ impl Output {
         self.log_line(text);
     }
 
+    /// The queue of warnings that are printed before the next line.
+    pub fn warnings(&self) -> Warnings {
+        self.pending.clone()
+    }
+
+    /// Prints the queued warnings (`WARNING: ...`) on screen and in the log.
+    pub fn flush_warnings(&mut self) {
+        let pending = match self.pending.lock() {
+            Ok(mut q) if !q.is_empty() => std::mem::take(&mut *q),
+            _ => return,
+        };
+        for w in pending {
+            self.warning(&w);
+        }
+    }
+
     /// Writes a line to the screen only.
     pub fn screen_line(&mut self, text: &str) {
+        self.flush_warnings();
         if let Some(s) = &mut self.screen {
             let _ = writeln!(s, "{text}");
         }
@@ -98,6 +124,7 @@ impl Output {
 
     /// Writes a line to the log only.
     pub fn log_line(&mut self, text: &str) {
+        self.flush_warnings();
         if let Some(l) = &mut self.log {
             let _ = writeln!(l, "{text}");
         }

@@ -100,7 +100,7 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             ))
         }
     }
-    let mut lattice_units = true;
+    let mut lattice_units = false; // LIGGGHTS 3.8: units box
     while !a.is_done() {
         a.keyword("create_atoms keyword", &["units"])?;
         lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice";
@@ -114,12 +114,16 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         let s = scale_of(sim, a, lattice_units)?;
         points.push(x * s);
     } else {
-        let l = sim.lattice.as_ref().ok_or_else(|| {
-            a.error_cmd(
-                "create_atoms box/region needs a lattice",
-                Some("define one with 'lattice sc|bcc|fcc a'".into()),
-            )
-        })?;
+        let l = sim
+            .lattice
+            .as_ref()
+            .filter(|l| l.style != "none")
+            .ok_or_else(|| {
+                a.error_cmd(
+                    "create_atoms box/region needs a lattice",
+                    Some("define one with 'lattice sc|bcc|fcc a'".into()),
+                )
+            })?;
         points = l.points(lo, hi);
         if let Some(r) = &reg {
             points.retain(|x| r.contains(*x));

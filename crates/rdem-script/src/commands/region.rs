@@ -8,16 +8,13 @@ use crate::args::{Args, CmdResult};
 use crate::lattice::{self, Lattice};
 use crate::sim::Sim;
 
-pub(super) fn scale_of(sim: &Sim, a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
-    if !units_lattice {
-        return Ok(DVec3::ONE);
-    }
-    sim.lattice.as_ref().map(|l| l.spacing()).ok_or_else(|| {
-        a.error_cmd(
-            "units lattice (the default) needs a lattice",
-            Some("add 'units box' to use box coordinates, or define a 'lattice' first".into()),
-        )
-    })
+/// `units lattice` scale; without a `lattice` command it is LIGGGHTS' default `none 1.0`.
+pub(super) fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
+    Ok(sim
+        .lattice
+        .as_ref()
+        .filter(|_| units_lattice)
+        .map_or(DVec3::ONE, |l| l.spacing()))
 }
 
 /// "region block takes xlo xhi ylo yhi zlo zhi ..." for help texts.
@@ -72,7 +69,7 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     }
-    let (mut outside, mut lattice_units) = (false, true);
+    let (mut outside, mut lattice_units) = (false, false); // LIGGGHTS 3.8: units box
     while !a.is_done() {
         match a.keyword(
             "region keyword",
@@ -124,7 +121,7 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 _ => Ok(if lo { -1e300 } else { 1e300 }),
             };
         }
-        crate::args::parse_f64(w).map(|v| v * scale).ok_or_else(|| {
+        a.f64_at(word).map(|v| v * scale).ok_or_else(|| {
             a.error_at(
                 word,
                 format!(
@@ -204,9 +201,9 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
 pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.keyword("lattice style", &lattice::STYLES)?;
     if style == "none" {
-        a.f64("scale")?;
+        let scale = a.f64("scale")?;
         a.done()?;
-        sim.lattice = None;
+        sim.lattice = Lattice::new(style, scale);
         return Ok(());
     }
     let scale = a.positive("lattice constant (m)")?;
