@@ -230,6 +230,8 @@ impl<'a> Args<'a> {
             message: message.into(),
             span,
             help,
+            file: None,
+            code: None,
         }
     }
 

@@ -5,9 +5,40 @@
 use std::ops::Range;
 use std::sync::Arc;
 
-use miette::{Diagnostic, NamedSource, SourceSpan};
+use miette::{Diagnostic, LabeledSpan, NamedSource, SourceCode, SourceSpan};
 
 use crate::lexer::{span_of, Command};
+
+/// A script file: its name (for messages) and its text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SourceFile {
+    /// The name as the user gave it (`in.script`, an `include`d file).
+    pub name: Arc<str>,
+    /// The text the spans point into.
+    pub src: Arc<str>,
+}
+
+/// Where a word of a script stands: its file and byte range. Kept by the commands that
+/// introduce a reference evaluated later (a thermo column, a dump column, a fix), so
+/// that an error found during a run points at that word.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Origin {
+    /// The file.
+    pub file: SourceFile,
+    /// Byte range of the word.
+    pub span: Range<usize>,
+}
+
+impl Origin {
+    /// 1-based line of the word.
+    pub fn line(&self) -> usize {
+        let at = self.span.start.min(self.file.src.len());
+        1 + self.file.src.as_bytes()[..at]
+            .iter()
+            .filter(|&&c| c == b'\n')
+            .count()
+    }
+}
 
 /// An error at a place in a script.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -19,6 +50,53 @@ pub struct ScriptError {
     pub span: Range<usize>,
     /// The valid alternatives or the fix, if any.
     pub help: Option<String>,
+    /// The file the span points into, when it is not the file of the command that
+    /// failed (an error found during a run, at the word that introduced it).
+    pub file: Option<SourceFile>,
+    /// A miette error code (`rdem::run::thermo`, ...), for errors found during a run.
+    pub code: Option<&'static str>,
+}
+
+/// An error found during a run (or its set-up), with the word that introduced what
+/// failed when it is known: a thermo column, a dump column, a fix. Without one it is
+/// reported at the `run` command.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{message}")]
+pub struct RunError {
+    /// What is wrong.
+    pub message: String,
+    /// The word that introduced it.
+    pub origin: Option<Origin>,
+    /// The error code: `rdem::run::thermo`, `rdem::run::dump`, `rdem::run::fix`,
+    /// `rdem::run::engine`, `rdem::run`.
+    pub code: &'static str,
+}
+
+impl RunError {
+    /// An error of kind `code` at `origin` (if known).
+    pub fn at(origin: Option<&Origin>, code: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            origin: origin.cloned(),
+            code,
+        }
+    }
+}
+
+impl From<String> for RunError {
+    fn from(message: String) -> Self {
+        Self {
+            message,
+            origin: None,
+            code: "rdem::run",
+        }
+    }
+}
+
+impl From<&str> for RunError {
+    fn from(message: &str) -> Self {
+        message.to_string().into()
+    }
 }
 
 impl ScriptError {
@@ -28,6 +106,19 @@ impl ScriptError {
             message,
             span: span_of(cmd, r),
             help,
+            file: None,
+            code: None,
+        }
+    }
+
+    /// The error at `origin`, in its own file.
+    pub fn at_origin(origin: &Origin, message: String, help: Option<String>) -> Self {
+        Self {
+            message,
+            span: origin.span.clone(),
+            help,
+            file: Some(origin.file.clone()),
+            code: None,
         }
     }
 
@@ -37,7 +128,12 @@ impl ScriptError {
     }
 
     /// Attaches the script's name and text for rendering.
+    /// An error that carries its own file ([`ScriptError::file`]) keeps it.
     pub fn in_file(self, name: &str, source: Arc<str>) -> ScriptReport {
+        let (name, source) = match &self.file {
+            Some(f) => (f.name.to_string(), f.src.clone()),
+            None => (name.to_string(), source),
+        };
         let len = source.len();
         let start = self.span.start.min(len);
         let end = self.span.end.clamp(start, len);
@@ -46,6 +142,7 @@ impl ScriptError {
             help: self.help,
             src: Some(NamedSource::new(name, source)),
             span: Some((start, end - start).into()),
+            code: self.code,
         }
     }
 }
@@ -59,21 +156,52 @@ impl ScriptReport {
             help,
             src: None,
             span: None,
+            code: None,
         }
     }
 }
 
 /// A [`ScriptError`] with its file, ready to render (`miette::Report::new(report)`).
-#[derive(Debug, thiserror::Error, Diagnostic)]
+#[derive(Debug, thiserror::Error)]
 #[error("{message}")]
 pub struct ScriptReport {
     message: String,
-    #[help]
     help: Option<String>,
-    #[source_code]
     src: Option<NamedSource<Arc<str>>>,
-    #[label("here")]
     span: Option<SourceSpan>,
+    code: Option<&'static str>,
+}
+
+impl ScriptReport {
+    /// The error code, if it has one (errors found during a run).
+    pub fn code(&self) -> Option<&'static str> {
+        self.code
+    }
+}
+
+impl Diagnostic for ScriptReport {
+    fn code<'a>(&'a self) -> Option<Box<dyn std::fmt::Display + 'a>> {
+        self.code.map(|c| Box::new(c) as Box<dyn std::fmt::Display>)
+    }
+
+    fn help<'a>(&'a self) -> Option<Box<dyn std::fmt::Display + 'a>> {
+        self.help
+            .as_ref()
+            .map(|h| Box::new(h) as Box<dyn std::fmt::Display>)
+    }
+
+    fn source_code(&self) -> Option<&dyn SourceCode> {
+        self.src.as_ref().map(|s| s as &dyn SourceCode)
+    }
+
+    fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
+        self.span.map(|s| {
+            Box::new(std::iter::once(LabeledSpan::new_with_span(
+                Some("here".into()),
+                s,
+            ))) as Box<dyn Iterator<Item = LabeledSpan>>
+        })
+    }
 }
 
 /// "one of a, b or c" for help texts listing valid keywords.
@@ -113,6 +241,8 @@ mod tests {
             message: format!("unknown boundary '{}'", w[3].text),
             span: w[3].span.clone(),
             help: Some(format!("use {}", one_of(&["p", "f", "s", "m"]))),
+            file: None,
+            code: None,
         };
         let text = render(e.in_file("in.test", src.clone()));
         assert!(text.contains("unknown boundary 'q'"), "{text}");

@@ -199,6 +199,13 @@ impl Interpreter {
             }
             let cmd = f.cmds[f.pos].clone();
             f.pos += 1;
+            // The file of the command, for the words that later errors point at.
+            if self.sim.here.as_ref().is_none_or(|h| *h.name != *f.name) {
+                self.sim.here = Some(crate::diagnostic::SourceFile {
+                    name: f.name.as_str().into(),
+                    src: f.src.clone(),
+                });
+            }
             let mut result = self.execute(&cmd);
             self.sim.out.flush_warnings();
             if self.nprocs > 1 {

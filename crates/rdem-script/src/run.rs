@@ -8,6 +8,7 @@ use rdem::timers::Stage;
 use rdem::Materials;
 
 use crate::args::{Args, CmdResult};
+use crate::diagnostic::{RunError, ScriptError};
 use crate::fixes::{self, FixEntry, Notes, Stages};
 use crate::sim::Sim;
 use crate::thermo;
@@ -43,14 +44,30 @@ pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
     } else {
         n
     };
-    steps(sim, nsteps).map_err(|m| {
-        let help = m.contains("lost").then(|| {
-            "particles that leave through a fixed face stop the run by default; \
-             'thermo_modify lost ignore' (or warn) drops them instead"
-                .to_string()
-        });
-        a.error_cmd(m, help)
-    })
+    steps(sim, nsteps).map_err(|e| run_error(a, e))
+}
+
+/// A run's error: at the word that introduced what failed when it is known (with the
+/// `run` command's line in the help), else at the `run` command.
+fn run_error(a: &Args, e: RunError) -> ScriptError {
+    let help = e.message.contains("lost").then(|| {
+        "particles that leave through a fixed face stop the run by default; \
+         'thermo_modify lost ignore' (or warn) drops them instead"
+            .to_string()
+    });
+    let mut err = match &e.origin {
+        Some(o) => {
+            let line = a.command().line;
+            ScriptError::at_origin(
+                o,
+                e.message,
+                Some(format!("found during the run of line {line}")),
+            )
+        }
+        None => a.error_cmd(e.message, help),
+    };
+    err.code = Some(e.code);
+    err
 }
 
 /// Builds the engine's material table from the `fix property/global` values.
@@ -127,7 +144,7 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
 }
 
 /// Runs `nsteps` steps with set-up, output and the end-of-run report.
-pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
+pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     let m = materials(sim)?;
     {
         let w = sim
@@ -156,7 +173,8 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
                     "property k_finnie (fix {}) must be peratomtypepair with {} value(s)",
                     p.fix_id,
                     ntypes * ntypes
-                ));
+                )
+                .into());
             }
             st.k_finnie = p.values.clone();
             st.ntypes = ntypes;
@@ -187,7 +205,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     let want = stages.wants_virial(sim, start_step, true);
     let w = sim.world.as_mut().expect("checked");
     w.want_virial = want;
-    w.setup().map_err(|e| e.to_string())?;
+    w.setup().map_err(engine_error)?;
     stages.end_of_step(sim, start_step, true)?;
     flush_world_warnings(sim);
     let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
@@ -240,6 +258,16 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     Ok(())
 }
 
+/// An error of the engine's step (lost or non-finite particles, ...).
+fn engine_error(e: rdem::Error) -> RunError {
+    RunError::at(None, "rdem::run::engine", e.to_string())
+}
+
+/// An error of fix `k`'s stage, at the fix's style word.
+fn fix_error(sim: &Sim, k: usize, message: String) -> RunError {
+    RunError::at(sim.fixes[k].origin.as_ref(), "rdem::run::fix", message)
+}
+
 /// The fixes of each stage, listed once when a run starts (no fix is added or removed
 /// during a run): a stage no fix uses costs nothing.
 struct RunStages {
@@ -272,23 +300,26 @@ impl RunStages {
                 .any(|&k| sim.fixes[k].imp.wants_virial(step, setup))
     }
 
-    fn pre_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+    fn pre_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
         for &k in &self.pre_step {
-            fixes::with_fix(sim, k, |f, sim, head| f.pre_step(sim, head, step, setup))?;
+            fixes::with_fix(sim, k, |f, sim, head| f.pre_step(sim, head, step, setup))
+                .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
 
-    fn end_of_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+    fn end_of_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
         for &k in &self.end_of_step {
-            fixes::with_fix(sim, k, |f, sim, head| f.end_of_step(sim, head, step, setup))?;
+            fixes::with_fix(sim, k, |f, sim, head| f.end_of_step(sim, head, step, setup))
+                .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
 
-    fn end_of_run(&self, sim: &mut Sim) -> Result<(), String> {
+    fn end_of_run(&self, sim: &mut Sim) -> Result<(), RunError> {
         for &k in &self.end_of_run {
-            fixes::with_fix(sim, k, |f, sim, head| f.end_of_run(sim, head))?;
+            fixes::with_fix(sim, k, |f, sim, head| f.end_of_run(sim, head))
+                .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
@@ -296,7 +327,7 @@ impl RunStages {
     /// One step of the engine, with the fixes due at `step` acting in its pre-exchange
     /// stage as in LIGGGHTS (after the initial integration: new particles are not moved
     /// in the step they appear, get their forces and the final half kick).
-    fn advance(&self, sim: &mut Sim, step: u64) -> Result<(), String> {
+    fn advance(&self, sim: &mut Sim, step: u64) -> Result<(), RunError> {
         let mut due: Vec<(usize, FixEntry)> = Vec::new();
         for &k in &self.pre_exchange {
             if sim.fixes[k].imp.due(step) {
@@ -305,7 +336,7 @@ impl RunStages {
         }
         let w = sim.world.as_mut().expect("a run has a world");
         if due.is_empty() {
-            return w.advance().map_err(|e| e.to_string());
+            return w.advance().map_err(engine_error);
         }
         let mut notes = Notes::default();
         let result = w.advance_with(|w| {
@@ -317,7 +348,7 @@ impl RunStages {
         for (k, f) in due {
             sim.fixes[k] = f;
         }
-        result.map_err(|e| e.to_string())?;
+        result.map_err(engine_error)?;
         for (warning, text) in notes.0 {
             if warning {
                 sim.out.warning(&text);
@@ -338,7 +369,7 @@ fn flush_world_warnings(sim: &mut Sim) {
     }
 }
 
-fn thermo_row(sim: &mut Sim) -> Result<(), String> {
+fn thermo_row(sim: &mut Sim) -> Result<(), RunError> {
     let step = sim.world.as_ref().map(|w| w.step);
     if step.is_some() && sim.thermo.last_printed == step {
         return Ok(());

@@ -160,6 +160,8 @@ pub struct Sim {
     pub warned: std::collections::BTreeSet<String>,
     /// `units si` was given.
     pub units_set: bool,
+    /// The file of the command being run (see [`Sim::origin`]).
+    pub here: Option<crate::diagnostic::SourceFile>,
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
@@ -194,6 +196,7 @@ impl Sim {
             warned: Default::default(),
             units_set: false,
             time_origin: (0, 0.0),
+            here: None,
         }
     }
 
@@ -206,6 +209,14 @@ impl Sim {
                 Some("use create_box or read_data first".into()),
             )
         })
+    }
+
+    /// Where word `k` of the command being run stands, for errors found later (during a
+    /// run) about what it introduced.
+    pub fn origin(&self, a: &Args, k: usize) -> Option<crate::diagnostic::Origin> {
+        let file = self.here.clone()?;
+        let span = a.words().get(k)?.span.clone();
+        Some(crate::diagnostic::Origin { file, span })
     }
 
     /// The world (read-only), or the same error.

@@ -5,6 +5,7 @@
 
 use crate::computes;
 use crate::context;
+use crate::diagnostic::RunError;
 use crate::sim::Sim;
 use crate::variables::format_g;
 
@@ -51,6 +52,8 @@ pub struct Thermo {
     pub every: u64,
     /// Columns.
     pub columns: Vec<String>,
+    /// Where each column was written (`thermo_style`), for errors found during a run.
+    pub origins: Vec<Option<crate::diagnostic::Origin>>,
     /// `thermo_modify norm`.
     pub norm: bool,
     /// Per-column C formats (`thermo_modify format N "fmt"`), by 1-based column.
@@ -70,6 +73,7 @@ impl Default for Thermo {
         Self {
             every: 0,
             columns: ["step", "atoms", "ke", "cpu"].map(String::from).to_vec(),
+            origins: vec![None; 4],
             norm: false,
             col_format: Vec::new(),
             int_format: None,
@@ -278,10 +282,13 @@ fn extensive_reference(sim: &Sim, col: &str) -> bool {
 }
 
 /// One row.
-pub fn row(sim: &Sim) -> Result<String, String> {
+pub fn row(sim: &Sim) -> Result<String, RunError> {
     let mut s = String::new();
     for (k, c) in sim.thermo.columns.iter().enumerate() {
-        let (mut v, int) = column_value(sim, c)?;
+        let (mut v, int) = column_value(sim, c).map_err(|m| {
+            let origin = sim.thermo.origins.get(k).and_then(Option::as_ref);
+            RunError::at(origin, "rdem::run::thermo", m)
+        })?;
         let n = sim.natoms();
         if sim.thermo.norm && n > 0 && extensive_reference(sim, c) {
             v /= n as f64;
@@ -313,7 +320,7 @@ pub fn row(sim: &Sim) -> Result<String, String> {
                 } else {
                     rdem_io::Value::Float(v)
                 })),
-                Err(e) => return Err(format!("thermo_modify format '{f}': {e}")),
+                Err(e) => return Err(format!("thermo_modify format '{f}': {e}").into()),
             },
             None if int => s.push_str(&format!("{:>8}", v as i64)),
             None => s.push_str(&format!("{:>14}", format_g(v, 8))),

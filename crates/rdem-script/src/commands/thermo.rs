@@ -17,9 +17,11 @@ pub(super) fn thermo(sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.keyword("thermo style", &["custom", "one", "multi"])?;
+    let mut origins = vec![None; 4];
     let cols: Vec<String> = match style {
         "custom" => {
             let mut c = Vec::new();
+            origins.clear();
             while let Some(w) = a.peek() {
                 if !thermo::valid_column(w) {
                     return Err(a.error_at(
@@ -49,6 +51,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     }
                 }
                 c.push(w.to_string());
+                origins.push(sim.origin(a, a.pos()));
                 a.seek(a.pos() + 1);
             }
             if c.is_empty() {
@@ -75,6 +78,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             .warning("New thermo_style command, previous thermo_modify settings will be lost");
     }
     sim.thermo.columns = cols;
+    sim.thermo.origins = origins;
     sim.thermo.norm = false;
     sim.thermo.col_format.clear();
     sim.thermo.int_format = None;

@@ -16,6 +16,7 @@ use rdem::comm::Comm;
 use rdem_io::{Compressor, DumpFileName, PvdSeries, Sort};
 
 use crate::args::{suggest, Args, CmdResult};
+use crate::diagnostic::{Origin, RunError};
 use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 
@@ -130,6 +131,8 @@ pub struct Dump {
     /// The ParaView collection of a VTK dump whose name has `*` (see [`rdem_io::pvd`]);
     /// `None` for text dumps, `write_dump` and a VTK file overwritten at each snapshot.
     pub pvd: Option<PvdSeries>,
+    /// Where its style word stands, for errors found while it writes during a run.
+    pub origin: Option<Origin>,
 }
 
 impl Dump {
@@ -141,12 +144,13 @@ impl Dump {
 
 /// Writes every dump due at `step` (at set-up: also dumps that never wrote). At the last
 /// step of a run, waits for the snapshots still being written in the background.
-pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
+pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
     for k in 0..sim.dumps.len() {
         let d = &sim.dumps[k];
         let due = (step % d.every == 0 || (setup && d.last.is_none())) && d.last != Some(step);
         if due {
-            write_one(sim, k, step, true)?;
+            write_one(sim, k, step, true)
+                .map_err(|m| RunError::at(sim.dumps[k].origin.as_ref(), "rdem::run::dump", m))?;
         }
     }
     if step == sim.run_last {
@@ -209,6 +213,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         style: Box::new(Vacant),
         last: None,
         pvd: None,
+        origin: None,
     };
     let mut d = std::mem::replace(&mut sim.dumps[k], vacant);
     let wrote = d
@@ -289,6 +294,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         ));
     }
     let groupbit = sim.group_bit(a, "group ID")?;
+    let origin = sim.origin(a, 3);
     let (style, every, file, columns) = style_file_columns(sim, a, true)?;
     a.done()?;
     sim.world_ref(a)?;
@@ -304,6 +310,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         style,
         last: None,
         pvd,
+        origin,
     });
     Ok(())
 }
@@ -416,6 +423,7 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         style,
         last: None,
         pvd: None,
+        origin: None,
     });
     let k = sim.dumps.len() - 1;
     let mut result = Ok(());

@@ -275,6 +275,8 @@ pub struct FixEntry {
     pub head: FixHead,
     /// The stages it takes part in (from its registry row).
     pub stages: Stages,
+    /// Where its style word stands, for errors of its stages during a run.
+    pub origin: Option<crate::diagnostic::Origin>,
     /// The fix.
     pub imp: Box<dyn ScriptFix>,
 }
@@ -321,6 +323,7 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
         FixEntry {
             head: FixHead::default(),
             stages: Stages::NONE,
+            origin: None,
             imp: Box::new(Vacant),
         },
     )
@@ -394,9 +397,11 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         groupbit,
     };
     let imp = (row.parse)(sim, a, &head)?;
+    let origin = sim.origin(a, STYLE_WORD);
     sim.fixes.push(FixEntry {
         head,
         stages: row.stages,
+        origin,
         imp,
     });
     Ok(())
