@@ -269,6 +269,9 @@ pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult<bool> {
             let ntypes = sim.ntypes as u32;
             let w = sim.world_ref(a)?;
             let f = f.replace('*', &w.step.to_string());
+            if sim.check {
+                return Ok(true); // rdem -check writes no file
+            }
             // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.
             let all: Vec<usize> = (0..w.particles.nlocal()).collect();
             if let Some(g) = dump::gather_owned(&*w.comm, &w.particles, &all, &[]) {

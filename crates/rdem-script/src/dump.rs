@@ -133,7 +133,7 @@ fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResult {
     }
 }
 
-fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String> {
+pub(crate) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String> {
     args.iter()
         .map(|arg| {
             if let Some(c) = Column::field(arg) {
@@ -912,7 +912,12 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         );
     }
     if result.is_ok() {
-        result = write_one(sim, k, step).map_err(|m| a.error_cmd(m, None));
+        result = if sim.check {
+            crate::check::dump_columns(sim, k)
+        } else {
+            write_one(sim, k, step)
+        }
+        .map_err(|m| a.error_cmd(m, None));
     }
     sim.dumps.pop();
     result

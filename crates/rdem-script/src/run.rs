@@ -198,6 +198,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
     ));
     sim.out.line(&thermo::header(sim));
     thermo_row(sim)?;
+    if sim.check {
+        return crate::check::after_setup(sim, nsteps);
+    }
     crate::dump::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
