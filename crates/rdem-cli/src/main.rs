@@ -23,6 +23,10 @@ Options (LIGGGHTS' own):
   -screen FILE|none        screen output to a file, or none
   -nocite                  accepted (rdem writes no citation file)
 Options (rdem):
+  -check, --check          check the script without running it: report every line rdem
+                           cannot run (each with its file:line and caret), then one
+                           summary line; exit 1 if there is any. No step runs and no
+                           file is written (no dump, data, log or print file).
   --threads N              worker threads (also RDEM_THREADS; default: all cores)
   -h, --help               this text
   -V, --version            version
@@ -37,6 +41,7 @@ struct Cli {
     echo: Option<Echo>,
     screen: Option<String>,
     threads: Option<usize>,
+    check: bool,
     help: bool,
     version: bool,
 }
@@ -90,6 +95,15 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 i += 2;
             }
             "-nocite" | "-nc" => i += 1,
+            "-check" | "--check" => {
+                c.check = true;
+                i += 1;
+                // `rdem -check in.x`: the script may follow the flag.
+                if c.input.is_none() && args.get(i).is_some_and(|a| !a.starts_with('-')) {
+                    c.input = Some(args[i].clone());
+                    i += 1;
+                }
+            }
             "--threads" | "-threads" => {
                 let v = value(i, a)?;
                 c.threads = Some(
@@ -116,6 +130,7 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                     "-echo",
                     "-screen",
                     "-nocite",
+                    "-check",
                     "--threads",
                     "--help",
                     "--version",
@@ -173,6 +188,9 @@ fn main() -> ExitCode {
             }
         },
     };
+    if cli.check {
+        return check(&cli, threads, rank);
+    }
     let mut out = Output::stdout();
     // Only rank 0 prints and keeps the log, as in LIGGGHTS.
     if rank != 0 {
@@ -266,6 +284,59 @@ fn main() -> ExitCode {
     }
 }
 
+/// `rdem -check`: runs the script in check mode (see `rdem_script::check`) with no screen
+/// output and no log file; prints every report on standard error, then the notes and the
+/// summary line on standard output. Exit 1 if any line cannot run.
+fn check(cli: &Cli, threads: usize, rank: usize) -> ExitCode {
+    if let Err(e) = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .use_current_thread()
+        .build_global()
+    {
+        eprintln!("rdem: cannot start {threads} threads: {e}");
+        return ExitCode::from(1);
+    }
+    let mut out = Output::stdout();
+    out.set_screen(None);
+    out.echo = Echo::None;
+    let mut sim = Sim::new(out);
+    sim.threads = threads;
+    for (name, vals) in &cli.vars {
+        if let Err(e) = sim.vars.define(name, "index", vals) {
+            eprintln!("rdem: -var {name}: {}", e.message);
+            return ExitCode::from(2);
+        }
+    }
+    let mut interp = Interpreter::new(sim);
+    let (name, checked) = match &cli.input {
+        Some(f) => (f.clone(), interp.check_file(f)),
+        None => {
+            let mut s = Vec::new();
+            if let Err(e) = std::io::stdin().read_to_end(&mut s) {
+                eprintln!("rdem: cannot read the script from standard input: {e}");
+                return ExitCode::from(1);
+            }
+            ("<stdin>".to_string(), interp.check_bytes("<stdin>", &s))
+        }
+    };
+    let summary = checked.summary(&name);
+    let ok = checked.problems.is_empty();
+    if rank == 0 {
+        for p in checked.problems {
+            eprintln!("{:?}", miette::Report::new(p.report));
+        }
+        for n in &checked.notes {
+            println!("{n}");
+        }
+        println!("{summary}");
+    }
+    if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}
+
 fn hms(s: u64) -> String {
     format!("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60)
 }
@@ -342,5 +413,15 @@ mod tests {
             .contains("unknown option"));
         assert!(parse(&s(&["--threads", "0"])).is_err());
         assert!(parse(&s(&["-var", "n"])).is_err());
+        for args in [
+            &["-check", "in.x"][..],
+            &["--check", "in.x"],
+            &["-in", "in.x", "-check"],
+            &["-check", "-in", "in.x", "-var", "a", "1"],
+        ] {
+            let c = parse(&s(args)).unwrap();
+            assert!(c.check, "{args:?}");
+            assert_eq!(c.input.as_deref(), Some("in.x"), "{args:?}");
+        }
     }
 }

@@ -40,6 +40,8 @@ pub struct Interpreter {
     inner_report: Option<Box<ScriptReport>>,
     /// Number of MPI ranks running the script (1 without MPI).
     nprocs: usize,
+    /// `rdem -check`: the errors so far (each is recorded and the script goes on).
+    pub(crate) check: Option<crate::check::State>,
 }
 
 /// Every command name rdem knows (for suggestions).
@@ -52,7 +54,7 @@ const IF_USAGE: &str =
 
 /// Replaces `$x`, `${name}` and `$(expression)` in `cmd` (see [`lexer::substitute`]); an
 /// unknown variable's error suggests the defined ones.
-fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
+pub(crate) fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
     let mut help = None;
     let mut expr_span = None;
     lexer::substitute(cmd, |r| match r {
@@ -119,6 +121,7 @@ impl Interpreter {
             quit: false,
             inner_report: None,
             nprocs: rdem::comm::process_rank_size().1,
+            check: None,
         }
     }
 
@@ -233,6 +236,10 @@ impl Interpreter {
                 // when it ran; an `include` may have pushed more frames meanwhile).
                 let f = &self.frames[top.min(self.frames.len() - 1)];
                 let report = e.in_file(&f.name, f.src.clone());
+                if let Some(c) = &mut self.check {
+                    c.record(&self.sim, &f.name, &cmd, report);
+                    continue;
+                }
                 self.frames.truncate(depth - 1);
                 return Err(Box::new(report));
             }
@@ -285,6 +292,11 @@ impl Interpreter {
                     return Ok(());
                 }
                 let top = self.frames.len() - 1;
+                if let Some(c) = &mut self.check {
+                    if c.jump_capped(&self.frames[top].name, raw.line, label.as_deref()) {
+                        return Ok(());
+                    }
+                }
                 let target = if file == "SELF" || file == self.frames[top].name {
                     None
                 } else {
@@ -313,13 +325,15 @@ impl Interpreter {
                         suggest(&label, &labels)
                     };
                     let here = &self.frames[top];
-                    let missing = a
-                        .error_at(
-                            2,
-                            format!("label '{label}' not found in {name}"),
-                            Some(help),
-                        )
-                        .in_file(&here.name, here.src.clone());
+                    let missing = a.error_at(
+                        2,
+                        format!("label '{label}' not found in {name}"),
+                        Some(help),
+                    );
+                    if self.check.is_some() && !labels.contains(&label.as_str()) {
+                        return Err(missing);
+                    }
+                    let missing = missing.in_file(&here.name, here.src.clone());
                     self.skip_to = Some(SkipTo {
                         label,
                         missing: Box::new(missing),
@@ -367,7 +381,7 @@ impl Interpreter {
                     a.keyword("log keyword", &["append"])?;
                     append = true;
                 }
-                let path = (file != "none").then_some(file.as_str());
+                let path = (file != "none" && self.check.is_none()).then_some(file.as_str());
                 self.sim.out.set_log(path, append).map_err(|e| {
                     a.error_at(1, format!("cannot open log file '{file}': {e}"), None)
                 })?;
@@ -417,7 +431,7 @@ impl Interpreter {
         } else {
             self.sim.out.log_line(&text);
         }
-        if let Some((f, append)) = file {
+        if let Some((f, append)) = file.filter(|_| self.check.is_none()) {
             use std::io::Write;
             let mut h = std::fs::OpenOptions::new()
                 .create(true)

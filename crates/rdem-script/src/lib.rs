@@ -9,6 +9,7 @@
 
 pub mod args;
 pub mod atom_fields;
+pub mod check;
 pub mod commands;
 pub mod computes;
 pub mod context;

@@ -215,6 +215,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     ));
     sim.out.line(&thermo::header(sim));
     thermo_row(sim)?;
+    if sim.check {
+        return crate::check::after_setup(sim, nsteps);
+    }
     crate::dumps::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.

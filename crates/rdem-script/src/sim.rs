@@ -165,6 +165,8 @@ pub struct Sim {
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
+    /// `rdem -check`: runs no step and writes no file (see [`crate::check`]).
+    pub check: bool,
 }
 
 impl Sim {
@@ -197,6 +199,7 @@ impl Sim {
             units_set: false,
             time_origin: (0, 0.0),
             here: None,
+            check: false,
         }
     }
 

@@ -82,6 +82,9 @@ pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let ntypes = sim.ntypes as u32;
     let w = sim.world_ref(a)?;
     let f = f.replace('*', &w.step.to_string());
+    if sim.check {
+        return Ok(()); // rdem -check writes no file
+    }
     // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.
     let all: Vec<usize> = (0..w.particles.nlocal()).collect();
     if let Some(g) = dumps::gather_owned(&*w.comm, &w.particles, &all, &[]) {

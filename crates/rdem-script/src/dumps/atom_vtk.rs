@@ -75,6 +75,10 @@ impl DumpStyle for AtomVtk {
             .collect())
     }
 
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+        super::particles::columns(sim, columns).map(|_| ())
+    }
+
     fn name_mut(&mut self) -> &mut DumpFileName {
         self.0.name_mut()
     }

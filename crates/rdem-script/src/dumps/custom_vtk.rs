@@ -62,6 +62,10 @@ impl DumpStyle for CustomVtk {
         Ok(vec![(time, main)])
     }
 
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+        super::particles::columns(sim, columns).map(|_| ())
+    }
+
     fn name_mut(&mut self) -> &mut DumpFileName {
         self.0.name_mut()
     }

@@ -51,6 +51,12 @@ pub trait DumpStyle {
         background: bool,
     ) -> Result<Done, String>;
 
+    /// Evaluates the columns' references (`c_`, `f_`, `v_`) without writing anything
+    /// (`rdem -check`).
+    fn resolve(&self, _sim: &Sim, _columns: &[String]) -> Result<(), String> {
+        Ok(())
+    }
+
     /// Waits for the snapshots being written in the background.
     fn finish(&mut self) -> Result<Done, String> {
         Ok(Vec::new())
@@ -436,7 +442,12 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         );
     }
     if result.is_ok() {
-        result = write_one(sim, k, step, false).map_err(|m| a.error_cmd(m, None));
+        result = if sim.check {
+            crate::check::dump_columns(sim, k)
+        } else {
+            write_one(sim, k, step, false)
+        }
+        .map_err(|m| a.error_cmd(m, None));
     }
     sim.dumps.pop();
     result

@@ -92,6 +92,9 @@ fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn Scri
         match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
             "file" => {
                 let f = a.word("file name")?;
+                if sim.check {
+                    continue; // rdem -check writes no file
+                }
                 rdem_io::atomic::create_parent_dir(std::path::Path::new(f))
                     .map_err(|e| a.error_prev(e.to_string(), None))?;
                 file = Some(std::io::BufWriter::new(std::fs::File::create(f).map_err(

@@ -1,0 +1,352 @@
+//! `rdem -check SCRIPT`: every line rdem cannot run is reported, nothing runs, nothing is
+//! written.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+mod common;
+use common::{copy_dir, rdem_command, scratch_dir};
+
+const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
+
+/// Every file under `dir` with its size and modification time.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, (u64, std::time::SystemTime)> {
+    let mut m = BTreeMap::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let e = e.unwrap();
+            let meta = e.metadata().unwrap();
+            if meta.is_dir() {
+                todo.push(e.path());
+            }
+            m.insert(e.path(), (meta.len(), meta.modified().unwrap()));
+        }
+    }
+    m
+}
+
+/// Runs `rdem ARGS` in `dir` and checks that nothing in `dir` changed.
+fn check_in(dir: &Path, args: &[&str]) -> Output {
+    let before = snapshot(dir);
+    let out = rdem_command(None)
+        .args(args)
+        .env("RDEM_THREADS", "1")
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        snapshot(dir),
+        before,
+        "rdem {args:?} changed its folder:\n{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    out
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// The last line of standard output: the summary.
+fn summary(out: &Output) -> String {
+    text(&out.stdout).lines().last().unwrap_or("").to_string()
+}
+
+/// The real users' scripts, `<repo>/../shared/wild`.
+fn wild() -> Option<PathBuf> {
+    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/wild");
+    if d.join("MANIFEST.tsv").exists() {
+        Some(d)
+    } else {
+        eprintln!(
+            "note: {} is absent; the wild-script check is skipped",
+            d.display()
+        );
+        None
+    }
+}
+
+/// Copies the wild case `case_dir` (its top folder) to a scratch directory, runs
+/// `rdem -check main` there and returns the output.
+fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
+    let top = case_dir.split('/').next().unwrap();
+    let tmp = scratch_dir("check-wild");
+    copy_dir(&root.join(top), &tmp.join(top));
+    let out = check_in(&tmp.join(case_dir), &["-check", main]);
+    let _ = std::fs::remove_dir_all(&tmp);
+    out
+}
+
+/// Three real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
+///
+/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 4 lines:
+/// - 92 `pair_style gran model hertz tangential incremental_history ...`: the tangential
+///   model `incremental_history` is LIGGGHTS-PFM's;
+/// - 128 `compute_modify thermo_temp dynamic no`: no `compute_modify` in rdem;
+/// - 131 `compute pgl all pair/gran/local ...`: no per-contact computes;
+/// - 134 `dump dmpdisp all local ...`: no `dump local`.
+///
+/// Left out as follow-ons: 93 `pair_coeff * *` (the pair style failed) and 135
+/// `dump_modify dmpdisp` (the dump failed).
+///
+/// `24_fibers_cantilever_beam/in.liggghts` — 13 lines:
+/// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
+/// - 70 `shell mkdir post`: rdem runs no shell commands;
+/// - 74 `pair_style gran ...` comes before `create_box` (line 82): LIGGGHTS refuses that too;
+/// - 76 `bond_style gran` and 97 `bond_coeff ...`: the fibre bond package's bonds;
+/// - 106 `compute bc all property/local batom1x ...`: no `compute property/local`;
+/// - 110 `group bonded id >= 1` and 114 `group freezed id == 1`: no comparison forms of
+///   `group id`;
+/// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
+/// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword;
+/// - 159 `dump bondforcechain all local ...`: no `dump local`;
+/// - 164 `fix outfile all print ...`: no `fix print`;
+/// - 170 `fix_modify bondcr every 0`: no `fix_modify`.
+///
+/// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
+/// `fix f1 freezed freeze` (groups whose lines failed).
+///
+/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 6 lines:
+/// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
+/// - 30 `pair_style gran/hertz/history`: the pre-3.0 pair syntax;
+/// - 38 `fix c1 all mesh/surface ... temperature 600 surface_vel ...`: no mesh
+///   temperature;
+/// - 42 `fix wall all wall/gran/hertz/history ...`: the pre-3.0 wall syntax;
+/// - 65 `compute_modify thermo_temp dynamic yes`: no `compute_modify`;
+/// - 69 `dump dmp all custom ... f_Temp[0]`: no per-particle temperature (`fix heat/gran`
+///   would make `Temp`; rdem cannot know that, so the line is listed).
+///
+/// Left out as follow-ons: 31 `pair_coeff` and 62 `thermo_style ... f_heattransfer`.
+/// (Line 46, `fix pdd1 all particledistribution/discrete 1. 1 pts1 1.0`, runs: the seed
+/// `1.` is read as LIGGGHTS reads it, with a warning; so do 52, the insertion that uses
+/// `pdd1`, and 74, its `unfix`.)
+#[test]
+fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
+    let Some(root) = wild() else { return };
+    let cases = [
+        (
+            "12_pfm_chung_normal_impact",
+            "in.elastic_normal_impact_2_spheres",
+            "in.elastic_normal_impact_2_spheres: 4 lines rdem cannot run: pair_style gran (line 92), \
+             compute_modify (128), compute pair/gran/local (131), dump local (134)",
+            &[93, 135][..],
+        ),
+        (
+            "24_fibers_cantilever_beam",
+            "in.liggghts",
+            "in.liggghts: 13 lines rdem cannot run: atom_style hybrid (line 53), shell (70), \
+             pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
+             group (110), group (114), fix bond/create/gran (118), thermo_style custom (135), \
+             dump local (159), fix print (164), fix_modify (170)",
+            &[94, 111, 176][..],
+        ),
+        (
+            "40_2x_conveyor_surface_vel_heat",
+            "in.surface_vel",
+            "in.surface_vel: 6 lines rdem cannot run: fix heat/gran (line 27), \
+             pair_style gran/hertz/history (30), fix mesh/surface (38), \
+             fix wall/gran/hertz/history (42), compute_modify (65), dump custom (69)",
+            &[31, 62][..],
+        ),
+    ];
+    for (case, main, want, left_out) in cases {
+        let out = check_wild(&root, case, main);
+        let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+        assert_eq!(out.status.code(), Some(1), "{case}:\n{stdout}\n{stderr}");
+        assert_eq!(summary(&out), want, "{case}:\n{stderr}");
+        // Each line has its report, with file:line:column.
+        let listed: Vec<usize> = want
+            .split(['(', ')'])
+            .filter_map(|s| s.trim_start_matches("line ").parse().ok())
+            .collect();
+        for l in &listed {
+            assert!(
+                stderr.contains(&format!("{main}:{l}:")),
+                "{case}: no report for line {l}:\n{stderr}"
+            );
+        }
+        assert_eq!(
+            stderr.matches(&format!("[{main}:")).count(),
+            listed.len(),
+            "{case}: one report per line:\n{stderr}"
+        );
+        let note = stdout
+            .lines()
+            .find(|l| l.contains("left out"))
+            .unwrap_or_else(|| panic!("{case}: no note on the left-out errors:\n{stdout}"));
+        for l in left_out {
+            assert!(
+                note.contains(&format!("{main}:{l} ")),
+                "{case}: {l}: {note}"
+            );
+        }
+    }
+}
+
+/// Every LIGGGHTS tutorial the tutorial tests run (`tutorials.rs`, `mesh_tutorials.rs`):
+/// `-check` reports nothing, exits 0 and writes nothing.
+#[test]
+fn tutorials_check_clean() {
+    let cases = [
+        ("contactModels", "in.newModels"),
+        ("cohesion", "in.noCohesion"),
+        ("cohesion", "in.cohesion"),
+        ("hysteresis", "in.noHysteresis"),
+        ("hysteresis", "in.hysteresis"),
+        ("packing", "in.packing"),
+        ("conveyor", "in.conveyor"),
+        ("insert_stream", "in.insert_stream"),
+        ("meshGran", "in.meshGran"),
+        ("movingMeshGran", "in.movingMeshGran"),
+        ("chute_wear", "in.chute_wear"),
+    ];
+    for (dir, file) in cases {
+        let src = Path::new(TUTORIALS).join(dir);
+        assert!(
+            src.join(file).exists(),
+            "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
+            src.join(file).display()
+        );
+        let tmp = scratch_dir("check-tutorial");
+        copy_dir(&src, &tmp);
+        let out = check_in(&tmp, &["-check", file]);
+        let _ = std::fs::remove_dir_all(&tmp);
+        let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+        assert!(out.status.success(), "{dir}/{file}:\n{stdout}\n{stderr}");
+        assert_eq!(
+            stdout,
+            format!("{file}: rdem can run every line\n"),
+            "{dir}"
+        );
+        assert_eq!(stderr, "", "{dir}/{file}");
+    }
+}
+
+/// Writes `script` as `in.test` (and `files`) in a scratch directory and runs `args` there
+/// (the directory must not change); returns the output.
+fn check_script(script: &str, files: &[(&str, &str)], args: &[&str]) -> Output {
+    let dir = scratch_dir("check");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    for (n, t) in files {
+        std::fs::write(dir.join(n), t).unwrap();
+    }
+    let out = check_in(&dir, args);
+    let _ = std::fs::remove_dir_all(&dir);
+    out
+}
+
+/// A script with two independent errors (a typo in a command name at line 9, a fix style
+/// rdem does not have at line 14) and one that only follows from the second (line 16,
+/// `unfix` of that fix): both are reported with their lines, the follow-on is not, exit 1;
+/// every command that would write a file (log, print file, dump, fix ave/time file,
+/// write_dump, write_data, write_restart) writes nothing.
+#[test]
+fn two_errors_both_reported_and_nothing_written() {
+    let script = "\
+log log.check
+units si
+atom_style granular
+boundary f f f
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+create_atoms 1 single 0.5 0.5 0.5 units box
+set atom 1 diameter 0.1 density 2500
+neighbr 0.01 bin
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+fix heat all heat/gran initial_temperature 300
+pair_style gran model hertz tangential history
+unfix heat
+pair_coeff * *
+timestep 1e-5
+fix integr all nve/sphere
+variable z equal z[1]
+fix ave all ave/time 1 1 1 v_z file ave.txt
+print \"z = ${z}\" file printed.txt
+dump d all custom 10 post/d*.txt id x y z
+thermo_style custom step atoms v_z
+run 100
+write_dump all custom one.txt id x
+write_data data.out
+write_restart restart.out
+";
+    let want = "in.test: 2 lines rdem cannot run: neighbr (line 9), fix heat/gran (14)";
+    for args in [
+        &["-check", "in.test"][..],
+        &["--check", "in.test"],
+        &["-in", "in.test", "-check", "-log", "log.x"],
+    ] {
+        let out = check_script(script, &[], args);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert_eq!(summary(&out), want, "{args:?}: {stderr}");
+        assert!(stderr.contains("unknown command 'neighbr'"), "{stderr}");
+        assert!(stderr.contains("in.test:9:1"), "{stderr}");
+        assert!(stderr.contains("unknown fix style 'heat/gran'"), "{stderr}");
+        assert!(stderr.contains("in.test:14:"), "{stderr}");
+        assert!(!stderr.contains("in.test:16:"), "{stderr}");
+    }
+    // -var reaches the script; the fixed script checks clean.
+    let fixed = script
+        .replace("neighbr", "neighbor")
+        .replace("fix heat all heat/gran initial_temperature 300\n", "")
+        .replace("unfix heat\n", "")
+        + "unfix ${f}\n";
+    let out = check_script(&fixed, &[], &["-check", "in.test", "-var", "f", "ave"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert_eq!(text(&out.stdout), "in.test: rdem can run every line\n");
+}
+
+/// A `label`/`jump` loop over a `loop` variable is followed: a line in the body that fails
+/// on every pass is reported once, and a line that only fails on the third pass is
+/// reached.
+#[test]
+fn loops_are_followed_and_each_line_reported_once() {
+    let script = "\
+units si
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+variable i loop 3
+label top
+compute_modify thermo_temp dynamic no
+if \"$i == 3\" then \"bogus_on_the_last_pass\"
+next i
+jump SELF top
+";
+    let out = check_script(script, &[], &["-check", "in.test"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        summary(&out),
+        "in.test: 2 lines rdem cannot run: compute_modify (line 6), if (7)",
+        "{stderr}"
+    );
+    assert_eq!(stderr.matches("[in.test:6:").count(), 1, "{stderr}");
+    assert!(stderr.contains("bogus_on_the_last_pass"), "{stderr}");
+}
+
+/// A loop whose end depends on what the steps would do is cut after 1000 passes, with a
+/// note, and the check goes on past it.
+#[test]
+fn loops_waiting_for_steps_end() {
+    let script = "\
+units si
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+label wait
+run 10
+if \"$(atoms) < 5\" then \"jump SELF wait\"
+bogus_after_the_loop
+";
+    let out = check_script(script, &[], &["-check", "in.test"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(
+        summary(&out),
+        "in.test: 1 line rdem cannot run: bogus_after_the_loop (line 7)"
+    );
+    assert!(stdout.contains("followed 1000 times"), "{stdout}");
+}
