@@ -65,6 +65,15 @@ pub fn suggest(word: &str, valid: &[&str]) -> String {
     }
 }
 
+/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
+pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
+    if ids.is_empty() {
+        format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
+    } else {
+        suggest(id, ids)
+    }
+}
+
 /// Parses a number as C's `atof` would accept it in a script, but strictly: the whole word,
 /// finite.
 pub fn parse_f64(s: &str) -> Option<f64> {

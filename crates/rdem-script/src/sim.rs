@@ -165,7 +165,7 @@ pub struct Sim {
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
-    /// `rdem -check`: runs no step and writes no file (see [`crate::check`]).
+    /// `rdem -check`: runs no step and writes no file (see `crate::check`).
     pub check: bool,
 }
 

@@ -14,7 +14,8 @@ mod region;
 mod settings;
 mod thermo;
 
-use crate::args::{nearest, suggest, Args, CmdResult};
+pub use crate::args::id_help;
+use crate::args::{nearest, Args, CmdResult};
 use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 use crate::{dumps, fixes, run};
@@ -138,15 +139,6 @@ pub fn unknown_command_help(name: &str, all: &[&str]) -> String {
             format!("did you mean '{n}'? (rdem runs the LIGGGHTS commands listed in its README)")
         }
         None => "rdem runs the LIGGGHTS commands listed in its README".into(),
-    }
-}
-
-/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
-pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
-    if ids.is_empty() {
-        format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
-    } else {
-        suggest(id, ids)
     }
 }
 

@@ -3,8 +3,8 @@
 
 use super::kernels::{field_values, reduce, REDUCE_MODES};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
+use crate::args::id_help;
 use crate::args::{Args, CmdResult};
-use crate::commands::id_help;
 use crate::sim::Sim;
 use crate::thermo;
 use crate::variables::Variable;

@@ -443,7 +443,8 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     if result.is_ok() {
         result = if sim.check {
-            crate::check::dump_columns(sim, k)
+            let d = &sim.dumps[k];
+            d.style.resolve(sim, &d.columns)
         } else {
             write_one(sim, k, step, false)
         }

@@ -44,7 +44,7 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 Err(a.error_at(
                     k,
                     format!("no compute '{id}'"),
-                    Some(crate::commands::id_help("compute", id, &ids)),
+                    Some(crate::args::id_help("compute", id, &ids)),
                 ))
             }
         },
@@ -60,7 +60,7 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
             None => Err(a.error_at(
                 k,
                 format!("no variable '{id}'"),
-                Some(crate::commands::id_help("variable", id, &sim.vars.names())),
+                Some(crate::args::id_help("variable", id, &sim.vars.names())),
             )),
         },
         _ => Err(a.error_at(

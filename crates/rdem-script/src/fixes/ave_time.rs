@@ -74,7 +74,7 @@ fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn Scri
             return Err(a.error_at(
                 a.pos(),
                 format!("'{w}': no {what} '{id}'"),
-                Some(crate::commands::id_help(what, id, &ids)),
+                Some(crate::args::id_help(what, id, &ids)),
             ));
         }
         inputs.push(w.to_string());

@@ -59,7 +59,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
                     return Err(a.error_at(
                         at,
                         format!("no fix mesh/surface '{mid}'"),
-                        Some(crate::commands::id_help("fix mesh/surface", mid, &ids)),
+                        Some(crate::args::id_help("fix mesh/surface", mid, &ids)),
                     ));
                 };
                 meshes.push(m);
