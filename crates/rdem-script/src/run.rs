@@ -5,7 +5,6 @@
 use std::time::Instant;
 
 use rdem::timers::Stage;
-use rdem::Materials;
 
 use crate::args::{Args, CmdResult};
 use crate::context;
@@ -54,82 +53,9 @@ pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
     })
 }
 
-/// Builds the engine's material table from the `fix property/global` values.
-pub fn materials(sim: &Sim) -> Result<Materials, String> {
-    let n = sim.ntypes;
-    let mut m = Materials {
-        ntypes: n,
-        ..Default::default()
-    };
-    for (name, p) in &sim.properties {
-        if rdem::bond::PROPERTIES.contains(&name.as_str()) {
-            let scalar = name == "tsCreateBond";
-            let ok = if scalar {
-                p.style == "scalar"
-            } else {
-                p.style == "peratomtypepair"
-            };
-            if !ok {
-                return Err(format!(
-                    "property {name} (fix {}) must be {}, not {}",
-                    p.fix_id,
-                    if scalar { "scalar" } else { "peratomtypepair" },
-                    p.style
-                ));
-            }
-            if !scalar && p.values.len() != n * n {
-                return Err(format!(
-                    "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {} are needed",
-                    p.fix_id,
-                    p.values.len(),
-                    n * n
-                ));
-            }
-            m.bond.push((name.clone(), p.values.clone()));
-            continue;
-        }
-        let slot = match name.as_str() {
-            "youngsModulus" => &mut m.youngs_modulus,
-            "poissonsRatio" => &mut m.poissons_ratio,
-            "coefficientRestitution" => &mut m.restitution,
-            "coefficientFriction" => &mut m.friction,
-            "coefficientRollingFriction" => &mut m.rolling_friction,
-            "coefficientRollingViscousDamping" => &mut m.rolling_viscous_damping,
-            "cohesionEnergyDensity" => &mut m.cohesion_energy_density,
-            "coefficientAdhesionStiffness" => &mut m.adhesion_stiffness,
-            "coefficientPlasticityDepth" => &mut m.plasticity_depth,
-            "coefficientMaxElasticStiffness" => &mut m.max_elastic_stiffness,
-            "characteristicVelocity" => {
-                m.characteristic_velocity = p.values.first().copied();
-                continue;
-            }
-            _ => continue,
-        };
-        let want = match p.style.as_str() {
-            "peratomtype" => n,
-            "peratomtypepair" => n * n,
-            _ => {
-                return Err(format!(
-                    "property {name} (fix {}) must be peratomtype or peratomtypepair, not {}",
-                    p.fix_id, p.style
-                ))
-            }
-        };
-        if p.values.len() != want {
-            return Err(format!(
-                "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {want} are needed",
-                p.fix_id,
-                p.values.len()
-            ));
-        }
-        *slot = p.values.clone();
-    }
-    Ok(m)
-}
-
 /// Runs `nsteps` steps with set-up, output and the end-of-run report.
 pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), String> {
-    let m = materials(sim)?;
+    let m = crate::materials::materials(sim)?;
     {
         let w = sim
             .world
