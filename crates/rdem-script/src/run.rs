@@ -1,10 +1,12 @@
-//! `run N [upto]`: set-up, the steps with the front-end hooks around the engine's
-//! [`World::advance`], thermo and dump output, and LIGGGHTS' end-of-run report
-//! (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
+//! `run N [upto]`: set-up, the steps with the front-end hooks around and inside the
+//! engine's [`World::advance_with`] (`rdem::step` writes down the order of a step and where
+//! these front-end stages sit in it), thermo and dump output, and LIGGGHTS' end-of-run
+//! report (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
 
 use std::time::Instant;
 
 use rdem::timers::Stage;
+use rdem::{HookMask, StepHooks, World};
 
 use crate::args::{Args, CmdResult};
 use crate::context;
@@ -207,29 +209,12 @@ fn advance(sim: &mut Sim, step: u64) -> Result<(), String> {
             )
         })
         .collect();
-    let mut reports = Vec::new();
-    let result = w.advance_with(|w| {
-        for (k, f) in taken.iter_mut() {
-            let FrontFix::Insert(ins) = f else { continue };
-            let rep = match (&mut ins.pack, &mut ins.rate) {
-                (InsertEngine::Stream(st), _) => st.insert(w)?,
-                (InsertEngine::Pack(pack), None) => pack.insert(w)?,
-                (InsertEngine::Pack(pack), Some(r)) => {
-                    let want = r.per_insertion + r.carry;
-                    let mut n = want.floor() as u64;
-                    r.carry = want - n as f64;
-                    if let Some(lim) = r.limit {
-                        n = n.min(lim.saturating_sub(ins.total));
-                    }
-                    pack.insert_n(w, n)?
-                }
-            };
-            ins.total += rep.inserted;
-            ins.total_mass += rep.mass;
-            reports.push((*k, rep, ins.total, ins.total_mass, ins.verbose));
-        }
-        Ok(())
-    });
+    let mut hooks = Insertions {
+        taken: &mut taken,
+        reports: Vec::new(),
+    };
+    let result = w.advance_with(&mut hooks);
+    let reports = hooks.reports;
     for (k, f) in taken {
         sim.fixes[k].kind = f;
     }
@@ -250,6 +235,46 @@ fn advance(sim: &mut Sim, step: u64) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The insertion fixes due at a step, in the engine's pre-exchange stage; what each
+/// inserted: (fix index, report, total count, total mass, verbose).
+struct Insertions<'a> {
+    taken: &'a mut [(usize, FrontFix)],
+    reports: Vec<(usize, rdem::insert::InsertReport, u64, f64, bool)>,
+}
+
+impl StepHooks for Insertions<'_> {
+    fn mask(&self) -> HookMask {
+        HookMask {
+            pre_exchange: true,
+            ..HookMask::NONE
+        }
+    }
+
+    fn pre_exchange(&mut self, w: &mut World) -> rdem::Result<()> {
+        for (k, f) in self.taken.iter_mut() {
+            let FrontFix::Insert(ins) = f else { continue };
+            let rep = match (&mut ins.pack, &mut ins.rate) {
+                (InsertEngine::Stream(st), _) => st.insert(w)?,
+                (InsertEngine::Pack(pack), None) => pack.insert(w)?,
+                (InsertEngine::Pack(pack), Some(r)) => {
+                    let want = r.per_insertion + r.carry;
+                    let mut n = want.floor() as u64;
+                    r.carry = want - n as f64;
+                    if let Some(lim) = r.limit {
+                        n = n.min(lim.saturating_sub(ins.total));
+                    }
+                    pack.insert_n(w, n)?
+                }
+            };
+            ins.total += rep.inserted;
+            ins.total_mass += rep.mass;
+            self.reports
+                .push((*k, rep, ins.total, ins.total_mass, ins.verbose));
+        }
+        Ok(())
+    }
 }
 
 fn adapt_all(sim: &mut Sim, step: u64, setup: bool) -> Result<(), String> {
