@@ -270,3 +270,72 @@ impl World {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::{Boundary, Domain, Fix, FixKind, NewParticle};
+
+    /// Records the velocity of particle 0 and the particle count at each hook.
+    #[derive(Default)]
+    struct Record {
+        pre_exchange: Vec<(u64, f64, usize)>,
+        end_of_step: Vec<(u64, f64, usize)>,
+    }
+
+    impl StepHooks for Record {
+        fn pre_exchange(&mut self, w: &mut World) -> Result<()> {
+            let p = &w.particles;
+            self.pre_exchange.push((w.step, p.v[0].z, p.nlocal()));
+            if w.step == 2 {
+                w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.5, 0.8), 0.01, 1000.0))?;
+            }
+            Ok(())
+        }
+
+        fn end_of_step(&mut self, w: &mut World) -> Result<()> {
+            let p = &w.particles;
+            self.end_of_step.push((w.step, p.v[0].z, p.nlocal()));
+            Ok(())
+        }
+    }
+
+    /// A sphere falling freely under gravity g (velocity Verlet, dt): the pre-exchange
+    /// hook sees the velocity after the initial half kick, −g (n − ½) dt at step n, the
+    /// end-of-step hook after the final one, −g n dt; a particle added in the
+    /// pre-exchange hook of step 2 is there at the end of that step, and the hooks of
+    /// [`NoHooks`] are never called.
+    #[test]
+    fn hooks_run_at_their_place_in_the_step() {
+        let (g, dt) = (9.81, 1e-3);
+        let domain = Domain::new(DVec3::ZERO, DVec3::ONE, [Boundary::Fixed; 3]).unwrap();
+        let mut w = World::new(domain);
+        w.set_timestep(dt).unwrap();
+        w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.5, 0.5), 0.01, 1000.0))
+            .unwrap();
+        w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+            .unwrap();
+        w.add_fix(Fix::gravity("g", 1, g, DVec3::NEG_Z).unwrap())
+            .unwrap();
+        w.setup().unwrap();
+        let mut rec = Record::default();
+        for _ in 0..3 {
+            w.advance_with(&mut rec).unwrap();
+        }
+        for (k, (&(s0, v0, n0), &(s1, v1, n1))) in
+            rec.pre_exchange.iter().zip(&rec.end_of_step).enumerate()
+        {
+            let n = k as u64 + 1;
+            assert_eq!((s0, s1), (n, n));
+            assert!((v0 + g * (n as f64 - 0.5) * dt).abs() < 1e-15, "{v0}");
+            assert!((v1 + g * n as f64 * dt).abs() < 1e-15, "{v1}");
+            assert_eq!(n0, if n <= 2 { 1 } else { 2 });
+            assert_eq!(n1, if n < 2 { 1 } else { 2 });
+        }
+        assert_eq!(NoHooks.mask(), HookMask::NONE);
+        w.advance().unwrap();
+        assert_eq!(w.step, 4);
+    }
+}
