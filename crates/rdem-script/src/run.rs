@@ -1,11 +1,12 @@
-//! `run N [upto]`: set-up, the steps with the front-end hooks around the engine's
-//! [`World::advance`], thermo and dump output, and LIGGGHTS' end-of-run report
-//! (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
+//! `run N [upto]`: set-up, the steps with the front-end hooks around and inside the
+//! engine's [`World::advance_with`] (`rdem::step` writes down the order of a step and where
+//! these front-end stages sit in it), thermo and dump output, and LIGGGHTS' end-of-run
+//! report (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
 
 use std::time::Instant;
 
 use rdem::timers::Stage;
-use rdem::Materials;
+use rdem::{HookMask, StepHooks, World};
 
 use crate::args::{Args, CmdResult};
 use crate::diagnostic::{RunError, ScriptError};
@@ -70,82 +71,9 @@ fn run_error(a: &Args, e: RunError) -> ScriptError {
     err
 }
 
-/// Builds the engine's material table from the `fix property/global` values.
-pub fn materials(sim: &Sim) -> Result<Materials, String> {
-    let n = sim.ntypes;
-    let mut m = Materials {
-        ntypes: n,
-        ..Default::default()
-    };
-    for (name, p) in &sim.properties {
-        if rdem::bond::PROPERTIES.contains(&name.as_str()) {
-            let scalar = name == "tsCreateBond";
-            let ok = if scalar {
-                p.style == "scalar"
-            } else {
-                p.style == "peratomtypepair"
-            };
-            if !ok {
-                return Err(format!(
-                    "property {name} (fix {}) must be {}, not {}",
-                    p.fix_id,
-                    if scalar { "scalar" } else { "peratomtypepair" },
-                    p.style
-                ));
-            }
-            if !scalar && p.values.len() != n * n {
-                return Err(format!(
-                    "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {} are needed",
-                    p.fix_id,
-                    p.values.len(),
-                    n * n
-                ));
-            }
-            m.bond.push((name.clone(), p.values.clone()));
-            continue;
-        }
-        let slot = match name.as_str() {
-            "youngsModulus" => &mut m.youngs_modulus,
-            "poissonsRatio" => &mut m.poissons_ratio,
-            "coefficientRestitution" => &mut m.restitution,
-            "coefficientFriction" => &mut m.friction,
-            "coefficientRollingFriction" => &mut m.rolling_friction,
-            "coefficientRollingViscousDamping" => &mut m.rolling_viscous_damping,
-            "cohesionEnergyDensity" => &mut m.cohesion_energy_density,
-            "coefficientAdhesionStiffness" => &mut m.adhesion_stiffness,
-            "coefficientPlasticityDepth" => &mut m.plasticity_depth,
-            "coefficientMaxElasticStiffness" => &mut m.max_elastic_stiffness,
-            "characteristicVelocity" => {
-                m.characteristic_velocity = p.values.first().copied();
-                continue;
-            }
-            _ => continue,
-        };
-        let want = match p.style.as_str() {
-            "peratomtype" => n,
-            "peratomtypepair" => n * n,
-            _ => {
-                return Err(format!(
-                    "property {name} (fix {}) must be peratomtype or peratomtypepair, not {}",
-                    p.fix_id, p.style
-                ))
-            }
-        };
-        if p.values.len() != want {
-            return Err(format!(
-                "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {want} are needed",
-                p.fix_id,
-                p.values.len()
-            ));
-        }
-        *slot = p.values.clone();
-    }
-    Ok(m)
-}
-
 /// Runs `nsteps` steps with set-up, output and the end-of-run report.
 pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
-    let m = materials(sim)?;
+    let m = crate::materials::materials(sim)?;
     {
         let w = sim
             .world
@@ -261,6 +189,29 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     Ok(())
 }
 
+/// The fixes due in a step's pre-exchange stage (insertion), out of `Sim::fixes` while
+/// the engine holds the world, and what they print.
+struct Insertions<'a> {
+    due: &'a mut [(usize, FixEntry)],
+    notes: Notes,
+}
+
+impl StepHooks for Insertions<'_> {
+    fn mask(&self) -> HookMask {
+        HookMask {
+            pre_exchange: true,
+            end_of_step: false,
+        }
+    }
+
+    fn pre_exchange(&mut self, w: &mut World) -> rdem::Result<()> {
+        for (_, f) in self.due.iter_mut() {
+            f.imp.pre_exchange(&f.head, w, &mut self.notes)?;
+        }
+        Ok(())
+    }
+}
+
 /// An error of the engine's step (lost or non-finite particles, ...).
 fn engine_error(e: rdem::Error) -> RunError {
     RunError::at(None, "rdem::run::engine", e.to_string())
@@ -341,13 +292,12 @@ impl RunStages {
         if due.is_empty() {
             return w.advance().map_err(engine_error);
         }
-        let mut notes = Notes::default();
-        let result = w.advance_with(|w| {
-            for (_, f) in due.iter_mut() {
-                f.imp.pre_exchange(&f.head, w, &mut notes)?;
-            }
-            Ok(())
-        });
+        let mut hooks = Insertions {
+            due: &mut due,
+            notes: Notes::default(),
+        };
+        let result = w.advance_with(&mut hooks);
+        let notes = hooks.notes;
         for (k, f) in due {
             sim.fixes[k] = f;
         }

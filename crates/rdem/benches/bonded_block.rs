@@ -12,7 +12,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkId, Criterion, Throughput};
-use rdem::bond::BondFlags;
+use rdem::bond::{BondCoefficients, BondFlags};
 use rdem::{
     Boundary, CohesionKind, ContactModel, DVec3, Domain, Fix, FixKind, Materials, NewParticle,
     PairGran, PrimitiveWall, WallShape, World,
@@ -34,21 +34,21 @@ fn block() -> World {
         .unwrap(),
     );
     let mut m = Materials::uniform(1, 1e8, 0.25, 0.5, 0.5);
-    for (name, v) in [
-        ("radiusMultiplierBond", 1.0),
-        ("normalBondStiffnessPerUnitArea", 5e10),
-        ("tangentialBondStiffnessPerUnitArea", 2e10),
-        ("maxSigmaBond", 5e6),
-        ("maxTauBond", 5e6),
-        ("createDistanceBond", 0.00202),
-        ("tsCreateBond", 1.0),
-        ("dampingNormalForceBond", 0.1),
-        ("dampingTangentialForceBond", 0.1),
-        ("dampingNormalTorqueBond", 0.1),
-        ("dampingTangentialTorqueBond", 0.1),
-    ] {
-        m.bond.push((name.to_string(), vec![v]));
-    }
+    let pair = |v: f64| Some(vec![v]);
+    m.bond = BondCoefficients {
+        radius_multiplier: pair(1.0),
+        normal_stiffness: pair(5e10),
+        tangential_stiffness: pair(2e10),
+        max_sigma: pair(5e6),
+        max_tau: pair(5e6),
+        create_distance: pair(0.00202),
+        ts_create: Some(1.0),
+        damping_normal_force: pair(0.1),
+        damping_tangential_force: pair(0.1),
+        damping_normal_torque: pair(0.1),
+        damping_tangential_torque: pair(0.1),
+        ..Default::default()
+    };
     w.materials = m;
     let model = ContactModel {
         cohesion: CohesionKind::Bond,

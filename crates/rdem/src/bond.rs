@@ -106,28 +106,51 @@ impl Default for BondFlags {
     }
 }
 
-/// The `fix property/global` names the bond model reads (per type pair, except
-/// `tsCreateBond`, a scalar).
-pub const PROPERTIES: [&str; 18] = [
-    "radiusMultiplierBond",
-    "normalBondStiffnessPerUnitArea",
-    "tangentialBondStiffnessPerUnitArea",
-    "dampingNormalForceBond",
-    "dampingTangentialForceBond",
-    "dampingNormalTorqueBond",
-    "dampingTangentialTorqueBond",
-    "dissipationNormalForceBond",
-    "dissipationTangentialForceBond",
-    "dissipationNormalTorqueBond",
-    "dissipationTangentialTorqueBond",
-    "maxDistanceBond",
-    "maxSigmaBond",
-    "maxTauBond",
-    "createDistanceBond",
-    "frictionAngle",
-    "ratioTensionCompression",
-    "tsCreateBond",
-];
+/// The `cohesion bond` coefficients as the script gave them (`None`: not given). Each
+/// table is per type pair, row-major `ntypes × ntypes`; [`BondTable::new`] checks which
+/// are required by the switches, their length, ranges and symmetry. Error messages name
+/// each coefficient by its LIGGGHTS-INL property (given in each field's doc), as the
+/// other material errors do.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BondCoefficients {
+    /// `radiusMultiplierBond`: bond radius over the smaller particle radius.
+    pub radius_multiplier: Option<Vec<f64>>,
+    /// `normalBondStiffnessPerUnitArea` k_n.
+    pub normal_stiffness: Option<Vec<f64>>,
+    /// `tangentialBondStiffnessPerUnitArea` k_t.
+    pub tangential_stiffness: Option<Vec<f64>>,
+    /// `dampingNormalForceBond`.
+    pub damping_normal_force: Option<Vec<f64>>,
+    /// `dampingTangentialForceBond`.
+    pub damping_tangential_force: Option<Vec<f64>>,
+    /// `dampingNormalTorqueBond`.
+    pub damping_normal_torque: Option<Vec<f64>>,
+    /// `dampingTangentialTorqueBond`.
+    pub damping_tangential_torque: Option<Vec<f64>>,
+    /// `dissipationNormalForceBond` (a relaxation time).
+    pub dissipation_normal_force: Option<Vec<f64>>,
+    /// `dissipationTangentialForceBond` (a relaxation time).
+    pub dissipation_tangential_force: Option<Vec<f64>>,
+    /// `dissipationNormalTorqueBond` (a relaxation time).
+    pub dissipation_normal_torque: Option<Vec<f64>>,
+    /// `dissipationTangentialTorqueBond` (a relaxation time).
+    pub dissipation_tangential_torque: Option<Vec<f64>>,
+    /// `maxDistanceBond`: breakage distance (without `stressBreak`).
+    pub max_distance: Option<Vec<f64>>,
+    /// `maxSigmaBond`: breakage normal stress (`stressBreak on`).
+    pub max_sigma: Option<Vec<f64>>,
+    /// `maxTauBond`: breakage shear stress (`stressBreak on`).
+    pub max_tau: Option<Vec<f64>>,
+    /// `createDistanceBond`: centre distance below which a bond is created.
+    pub create_distance: Option<Vec<f64>>,
+    /// `frictionAngle` in degrees (`druckerPrager on`).
+    pub friction_angle: Option<Vec<f64>>,
+    /// `ratioTensionCompression` (`ratioTensionCompression on`).
+    pub ratio_tension_compression: Option<Vec<f64>>,
+    /// `tsCreateBond`: the step at which bonds are created, as given (checked to be a
+    /// step number when `createBondAlways` is off).
+    pub ts_create: Option<f64>,
+}
 
 /// The bond parameters of one type pair (or particle type × wall type).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -169,28 +192,26 @@ pub struct BondTable {
     pub wall_reach: f64,
 }
 
-/// Looks up a per-type-pair property by its LIGGGHTS name.
-fn prop<'a>(props: &'a [(String, Vec<f64>)], name: &str) -> Option<&'a [f64]> {
-    props
-        .iter()
-        .find(|(n, _)| n == name)
-        .map(|(_, v)| v.as_slice())
-}
-
 impl BondTable {
-    /// Reads the bond properties `props` (`(name, values)`, per type pair row-major) for
-    /// `ntypes` types and switches `fl`, checking what is required and the ranges.
-    pub fn new(props: &[(String, Vec<f64>)], ntypes: usize, fl: BondFlags) -> Result<Self> {
+    /// Checks the `given` coefficients for `ntypes` types and switches `fl` (what is required,
+    /// the lengths, ranges and symmetry) and builds the table.
+    pub fn new(given: &BondCoefficients, ntypes: usize, fl: BondFlags) -> Result<Self> {
         let n = ntypes;
-        let need = |name: &'static str, why: &str| -> Result<&[f64]> {
-            prop(props, name).ok_or_else(|| Error::Invalid {
+        fn need<'a, T: ?Sized>(
+            values: Option<&'a T>,
+            name: &'static str,
+            why: &str,
+            n: usize,
+        ) -> Result<&'a T> {
+            values.ok_or_else(|| Error::Invalid {
                 what: name,
                 reason: format!(
                     "cohesion bond{why} needs 'fix ID all property/global {name} peratomtypepair {n} ...'"
                 ),
             })
-        };
-        let table = |name: &'static str,
+        }
+        let table = |values: &Option<Vec<f64>>,
+                     name: &'static str,
                      why: &str,
                      needed: bool,
                      ok: fn(f64) -> bool,
@@ -199,7 +220,14 @@ impl BondTable {
             if !needed {
                 return Ok(vec![0.0; n * n]);
             }
-            pair_table(name, need(name, why)?, n, true, ok, range)
+            pair_table(
+                name,
+                need(values.as_deref(), name, why, n)?,
+                n,
+                true,
+                ok,
+                range,
+            )
         };
         if !fl.damping && !fl.damping_smooth && !fl.dissipation {
             return Err(Error::Invalid {
@@ -212,8 +240,16 @@ impl BondTable {
         let damping = fl.damping || fl.damping_smooth;
         let pos = |v: f64| v > 0.0;
         let nonneg = |v: f64| v >= 0.0;
-        let mult = table("radiusMultiplierBond", "", true, nonneg, "must be >= 0")?;
+        let mult = table(
+            &given.radius_multiplier,
+            "radiusMultiplierBond",
+            "",
+            true,
+            nonneg,
+            "must be >= 0",
+        )?;
         let kn = table(
+            &given.normal_stiffness,
             "normalBondStiffnessPerUnitArea",
             "",
             true,
@@ -221,21 +257,36 @@ impl BondTable {
             "must be >= 0",
         )?;
         let kt = table(
+            &given.tangential_stiffness,
             "tangentialBondStiffnessPerUnitArea",
             "",
             true,
             nonneg,
             "must be >= 0",
         )?;
-        let create = table("createDistanceBond", "", true, nonneg, "must be >= 0")?;
+        let create = table(
+            &given.create_distance,
+            "createDistanceBond",
+            "",
+            true,
+            nonneg,
+            "must be >= 0",
+        )?;
         let mut damp = Vec::new();
-        for name in [
-            "dampingNormalForceBond",
-            "dampingTangentialForceBond",
-            "dampingNormalTorqueBond",
-            "dampingTangentialTorqueBond",
+        for (values, name) in [
+            (&given.damping_normal_force, "dampingNormalForceBond"),
+            (
+                &given.damping_tangential_force,
+                "dampingTangentialForceBond",
+            ),
+            (&given.damping_normal_torque, "dampingNormalTorqueBond"),
+            (
+                &given.damping_tangential_torque,
+                "dampingTangentialTorqueBond",
+            ),
         ] {
             damp.push(table(
+                values,
                 name,
                 " with dampingBond on",
                 damping,
@@ -244,13 +295,26 @@ impl BondTable {
             )?);
         }
         let mut diss = Vec::new();
-        for name in [
-            "dissipationNormalForceBond",
-            "dissipationTangentialForceBond",
-            "dissipationNormalTorqueBond",
-            "dissipationTangentialTorqueBond",
+        for (values, name) in [
+            (
+                &given.dissipation_normal_force,
+                "dissipationNormalForceBond",
+            ),
+            (
+                &given.dissipation_tangential_force,
+                "dissipationTangentialForceBond",
+            ),
+            (
+                &given.dissipation_normal_torque,
+                "dissipationNormalTorqueBond",
+            ),
+            (
+                &given.dissipation_tangential_torque,
+                "dissipationTangentialTorqueBond",
+            ),
         ] {
             diss.push(table(
+                values,
                 name,
                 " with dissipationBond on",
                 fl.dissipation,
@@ -259,8 +323,16 @@ impl BondTable {
             )?);
         }
         let simple = !fl.stress_break;
-        let max_d = table("maxDistanceBond", "", simple, pos, "must be > 0")?;
+        let max_d = table(
+            &given.max_distance,
+            "maxDistanceBond",
+            "",
+            simple,
+            pos,
+            "must be > 0",
+        )?;
         let sigma = table(
+            &given.max_sigma,
             "maxSigmaBond",
             " with stressBreak on",
             fl.stress_break,
@@ -268,6 +340,7 @@ impl BondTable {
             "must be > 0",
         )?;
         let tau = table(
+            &given.max_tau,
             "maxTauBond",
             " with stressBreak on",
             fl.stress_break,
@@ -275,6 +348,7 @@ impl BondTable {
             "must be > 0",
         )?;
         let rtc = table(
+            &given.ratio_tension_compression,
             "ratioTensionCompression",
             " with ratioTensionCompression on",
             fl.stress_break && fl.ratio_tc,
@@ -282,6 +356,7 @@ impl BondTable {
             "must be > 0",
         )?;
         let phi = table(
+            &given.friction_angle,
             "frictionAngle",
             " with druckerPrager on",
             fl.stress_break && fl.drucker_prager,
@@ -291,8 +366,12 @@ impl BondTable {
         let ts_create = if fl.create_always {
             None
         } else {
-            let v = need("tsCreateBond", " with createBondAlways off")?;
-            let t = *v.first().unwrap_or(&-1.0);
+            let t = *need(
+                given.ts_create.as_ref(),
+                "tsCreateBond",
+                " with createBondAlways off",
+                n,
+            )?;
             check(
                 "tsCreateBond",
                 t,
@@ -872,5 +951,43 @@ mod tests {
         let t = turn_tangent(h, n);
         assert!(t.dot(n).abs() < 1e-14, "{t}");
         assert!((t.length() - 2.0).abs() < 1e-15);
+    }
+
+    /// The table reads the typed coefficients (1 type): the reach follows the longest
+    /// bond (1.1 × max(maxDistanceBond, createDistanceBond)), the dissipation times
+    /// become rates, and a coefficient the switches require but that was not given is
+    /// named by its LIGGGHTS-INL property in the error.
+    #[test]
+    fn table_from_typed_coefficients() {
+        let one = |v: f64| Some(vec![v]);
+        let mut given = BondCoefficients {
+            radius_multiplier: one(1.0),
+            normal_stiffness: one(1e9),
+            tangential_stiffness: one(5e8),
+            create_distance: one(0.0021),
+            max_distance: one(0.003),
+            dissipation_normal_force: one(0.5),
+            dissipation_tangential_force: one(0.5),
+            dissipation_normal_torque: one(0.5),
+            dissipation_tangential_torque: one(0.25),
+            ts_create: Some(3.0),
+            ..Default::default()
+        };
+        let t = BondTable::new(&given, 1, flags_plain()).unwrap();
+        assert_eq!(t.ts_create, Some(3));
+        assert!(
+            (t.pair_reach - 1.1 * 0.003).abs() < 1e-18,
+            "{}",
+            t.pair_reach
+        );
+        assert_eq!(t.get(1, 1).dissipation, [2.0, 2.0, 2.0, 4.0]);
+        given.normal_stiffness = None;
+        let e = BondTable::new(&given, 1, flags_plain()).unwrap_err();
+        assert!(
+            e.to_string().contains(
+                "cohesion bond needs 'fix ID all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 ...'"
+            ),
+            "{e}"
+        );
     }
 }

@@ -1,33 +1,144 @@
-//! One timestep, in the LAMMPS/LIGGGHTS order so that scripts behave the same. This is the
-//! one place where the order is written down:
+//! The order of everything a run does — one timestep, the set-up before a run and the full
+//! re-neighboring — in the LAMMPS/LIGGGHTS order, so that scripts behave the same. This is
+//! the one place where the order is written down: the functions below call the stages in
+//! this order; the bodies of the larger stages live in `stages.rs` and in the
+//! modules named for what they do (sorting, insertion, walls, mesh stress). The timer each
+//! stage counts against ([`Stage`], printed in the end-of-run breakdown) is in brackets.
 //!
+//! # One timestep ([`World::advance_with`])
+//!
+//! Before the step, the front end (rdem-script's `run.rs`) applies `fix adapt` (new
+//! radii) and says whether it wants the contact virial ([`World::want_virial`]).
+//!
+//! 0. a full set-up first if particles were added since the last one ([`World::setup`])
 //! 1. `step += 1`
-//! 2. initial integrate (`nve/sphere`: half kick, drift); then the `pre_exchange` hook of
-//!    [`World::advance_with`] (insertion), whose new particles force step 3's rebuild
-//! 3. neighbor decision: if a rebuild is due (delay/every/check), full re-neighboring
-//!    (periodic remap, shrink-wrap, lost particles, exchange, sort, borders, list build);
-//!    otherwise forward communication of ghost positions and velocities
-//! 4. force clear
-//! 5. pair forces (particle–particle contacts)
-//! 6. reverse communication (ghost forces onto their owners)
-//! 7. post-force fixes in definition order: walls (`wall/gran`), gravity, addforce,
-//!    setforce, viscous, freeze
-//! 8. final integrate (half kick)
-//! 9. finiteness checks, after 7 (forces, torques) and 8 (positions, velocities): a NaN or
-//!    infinite value stops the run with the particle's tag and the step (the pair pass
-//!    treats a NaN distance as no contact, so a broken particle does not spread NaN to
-//!    its neighbours first)
+//! 2. initial integrate (`nve/sphere`: half kick, drift) [Modify]
+//! 3. mesh motion (`move/mesh`) to the step's time [Modify]
+//! 4. [`StepHooks::pre_exchange`] (LIGGGHTS' `pre_exchange`: insertion); particles added
+//!    here are not moved this step, get their forces and the final half kick, and force
+//!    step 5's rebuild [Modify]
+//! 5. neighbor decision: a rebuild is due when particles were added or removed (on any
+//!    rank), when the list's delay/every/check says so (any rank), or when a moving mesh
+//!    drifted half a skin since its wall candidates were built. Rebuild: tags for the
+//!    added particles, then the full re-neighboring below [Neigh, Comm]; otherwise
+//!    forward communication of ghost positions and velocities [Comm]
+//! 6. force clear; walls told the step (bonds are created at a given step) [Other]
+//! 7. pair forces (particle–particle contacts, bonds; the near list refreshed when
+//!    stale; the per-particle virial when wanted) [Pair]
+//! 8. reverse communication: ghost forces (and virial) onto their owners [Comm]
+//! 9. post-force fixes in definition order, each particle seeing them in that order:
+//!    walls (`wall/gran` primitive and mesh), gravity, addforce, setforce, viscous,
+//!    freeze [Modify]
+//! 10. held streamed particles: force and torque zeroed for the particles an
+//!     `insert/stream` still holds (they fly at their insertion velocity) [Modify]
+//! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
+//!     [Modify]
+//! 12. finiteness check of forces and torques [Other]
+//! 13. final integrate (half kick) [Modify]
+//! 14. finiteness check of positions and velocities [Other]
+//! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
+//! 16. the front end's end-of-step fixes, in rdem-script's `run.rs` once
+//!     [`World::advance_with`] has returned: `ave/euler`, then in definition order
+//!     `massflow/mesh`, `check/timestep/gran` and `ave/time` (they need the script's
+//!     variables and computes). This is the last stage of a step; the thermo output and
+//!     the dumps that are due follow [Output].
 //!
-//! Set-up before a run ([`World::setup`]) does 3 (a full re-neighboring), 4–7.
+//! The finiteness checks stop the run at the first NaN or infinite value with the
+//! particle's tag and the step (the pair pass treats a NaN distance as no contact, so a
+//! broken particle does not spread NaN to its neighbours first).
+//!
+//! # Set-up before a run ([`World::setup`], LAMMPS' `setup`)
+//!
+//! Before it, the front end applies `fix adapt` (LIGGGHTS' `setup_pre_force`); after it,
+//! its set-up end of step (`ave/euler`), thermo output and dumps.
+//!
+//! 1. checks: timestep, neighbor settings; tags for untagged particles; particle types
+//!    within the material table when a pair style or a wall uses it
+//! 2. pair style: coefficient mixing and bond table, contact history layout, bond reach
+//!    (at most 10 diameters of the smallest particle), the `tsCreateBond` warning
+//! 3. walls in definition order: coefficient tables, history properties
+//! 4. mesh motion to the current time
+//! 5. full re-neighboring (below)
+//! 6. forces: steps 6–12 of a timestep, without advancing contact history (as LIGGGHTS)
+//!
+//! # Full re-neighboring ([`World::reneighbor`])
+//!
+//! 1. contact history saved by tag (several ranks: the mirror entries of contacts with
+//!    other ranks' ghosts go to the ghosts' owners) [Neigh]
+//! 2. ghosts cleared; the particles marked for removal removed
+//!    ([`World::remove_at_reneighbor`]: `massflow/mesh delete_atoms`) [Neigh]
+//! 3. periodic remap [Neigh]
+//! 4. shrink-wrap of the shrink-wrapped faces around the particles [Neigh]
+//! 5. lost particles (beyond a fixed face): error, warning or silence as
+//!    `thermo_modify lost` says [Neigh]
+//! 6. exchange: particles migrate to the rank of their subdomain, with their carried
+//!    history [Comm]
+//! 7. spatial sort when due (`atom_modify sort`) [Neigh]
+//! 8. cutoff checks (periodic box, subdomain) [Neigh]
+//! 9. borders: ghosts [Comm]
+//! 10. neighbor list build, contact history carried by tag [Neigh]
+//! 11. moving meshes' reference positions; wall candidate lists [Neigh]
 
 use std::time::Instant;
 
-use glam::DVec3;
-
-use crate::error::{Error, Result};
-use crate::fix::integrate;
+use crate::error::Result;
 use crate::timers::Stage;
 use crate::world::World;
+
+/// Front-end stages the step calls at their place in the order (LAMMPS' fix masks): a
+/// hook that the front end leaves out costs nothing.
+pub trait StepHooks {
+    /// Which hooks act (LAMMPS' `setmask`); a stage left out is skipped, untimed.
+    fn mask(&self) -> HookMask {
+        HookMask::ALL
+    }
+
+    /// Step 4: after the initial integration and the mesh motion, before the neighbor
+    /// decision (LIGGGHTS' `pre_exchange`: insertion). Particles added here force a
+    /// re-neighboring of this step.
+    fn pre_exchange(&mut self, world: &mut World) -> Result<()> {
+        let _ = world;
+        Ok(())
+    }
+
+    /// Step 15: after the final integration and its checks (LIGGGHTS' `end_of_step`).
+    fn end_of_step(&mut self, world: &mut World) -> Result<()> {
+        let _ = world;
+        Ok(())
+    }
+}
+
+/// The stages a [`StepHooks`] acts in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct HookMask {
+    /// [`StepHooks::pre_exchange`] acts.
+    pub pre_exchange: bool,
+    /// [`StepHooks::end_of_step`] acts.
+    pub end_of_step: bool,
+}
+
+impl HookMask {
+    /// No hook acts.
+    pub const NONE: Self = Self {
+        pre_exchange: false,
+        end_of_step: false,
+    };
+    /// Every hook acts.
+    pub const ALL: Self = Self {
+        pre_exchange: true,
+        end_of_step: true,
+    };
+}
+
+/// No front-end stage: the engine's step alone ([`World::advance`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoHooks;
+
+impl StepHooks for NoHooks {
+    fn mask(&self) -> HookMask {
+        HookMask::NONE
+    }
+}
 
 impl World {
     /// Runs `n` timesteps after a set-up.
@@ -39,56 +150,29 @@ impl World {
         Ok(())
     }
 
-    /// One timestep (the set-up must have been done; a particle added since forces a
-    /// full set-up first).
+    /// One timestep without front-end stages (the set-up must have been done; a particle
+    /// added since forces a full set-up first).
     pub fn advance(&mut self) -> Result<()> {
-        self.advance_with(|_| Ok(()))
+        self.advance_with(&mut NoHooks)
     }
 
-    /// One timestep with a hook between the initial integration and the neighbor
-    /// decision, where LIGGGHTS' insertion fixes act (`pre_exchange`): particles the hook
-    /// adds are not moved this step, get their forces and the final half kick, and force
-    /// a re-neighboring of this step.
-    pub fn advance_with(
-        &mut self,
-        mut pre_exchange: impl FnMut(&mut World) -> Result<()>,
-    ) -> Result<()> {
+    /// One timestep, stages 0–15 of [`crate::step`], with the front end's `hooks` at
+    /// their places.
+    pub fn advance_with(&mut self, hooks: &mut impl StepHooks) -> Result<()> {
+        let mask = hooks.mask();
         if self.needs_reneighbor {
             self.setup()?;
         }
         let t0 = Instant::now();
         self.step += 1;
-        let dt = self.dt;
-        for fix in &self.fixes {
-            if fix.integrates() {
-                integrate::initial_integrate(&mut self.particles, fix.groupbit, dt);
-            }
-        }
+        self.initial_integrate();
         self.move_meshes();
-        pre_exchange(self)?;
+        if mask.pre_exchange {
+            hooks.pre_exchange(self)?;
+        }
         let t1 = self.timers.lap(Stage::Modify, t0);
-        let nlocal = self.particles.nlocal();
-        let removed = std::mem::take(&mut self.rebuild_next);
-        let added = std::mem::take(&mut self.needs_reneighbor);
-        // Every rank takes the same decision: particles added on any rank, or moved too
-        // far on any rank.
-        let comm = &self.comm;
-        let added = comm.any(added);
-        let removed = comm.any(removed);
-        // A mesh that moved half a skin since the candidate lists were built needs new
-        // ones (every rank moves every mesh alike: no communication).
-        let skin = self.neighbor.settings.skin;
-        let mesh_far = self
-            .meshes
-            .iter()
-            .any(|m| m.motion.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
-        if added
-            || removed
-            || self
-                .neighbor
-                .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
-            || mesh_far
-        {
+        let (added, rebuild) = self.rebuild_due();
+        if rebuild {
             self.timers.lap(Stage::Neigh, t1);
             if added {
                 self.extend_tags();
@@ -100,68 +184,29 @@ impl World {
         }
         self.compute_forces(true)?;
         let t2 = Instant::now();
-        for fix in &self.fixes {
-            if fix.integrates() {
-                integrate::final_integrate(&mut self.particles, fix.groupbit, dt);
-            }
-        }
+        self.final_integrate();
         let t3 = self.timers.lap(Stage::Modify, t2);
         let p = &self.particles;
         self.check_finite(["position", "velocity"], &p.x, &p.v, None)?;
         self.timers.lap(Stage::Other, t3);
+        if mask.end_of_step {
+            let t4 = Instant::now();
+            hooks.end_of_step(self)?;
+            self.timers.lap(Stage::Modify, t4);
+        }
         Ok(())
     }
 
-    /// Steps 4–7: force clear, pair, reverse communication, post-force fixes. `update`
-    /// false evaluates the forces without advancing contact history (run set-up).
+    /// Steps 6–12: force clear, pair, reverse communication, post-force fixes, held
+    /// streamed particles, mesh stress, finiteness check. `update` false evaluates the
+    /// forces without advancing contact history (run set-up).
     pub(crate) fn compute_forces(&mut self, update: bool) -> Result<()> {
         let t0 = Instant::now();
-        let p = &mut self.particles;
-        crate::par::zero(&mut p.f, &mut p.torque);
-        // Bonds are created at a given step.
-        for fix in &mut self.fixes {
-            match &mut fix.kind {
-                crate::fix::FixKind::WallGran(wall) => wall.step = self.step,
-                crate::fix::FixKind::MeshWall(wall) => wall.step = self.step,
-                _ => {}
-            }
-        }
+        self.clear_forces();
         let t1 = self.timers.lap(Stage::Other, t0);
-        if let Some(pair) = &mut self.pair {
-            pair.step = self.step;
-            // A local decision: the check covers this rank's ghosts too.
-            if pair.near_list_stale(&self.particles.x, &self.neighbor) {
-                pair.build_near_list(&self.particles, &self.neighbor);
-            }
-            if self.want_virial {
-                self.virial.clear();
-                self.virial.resize(self.particles.len(), [0.0; 6]);
-                pair.compute_with_virial(
-                    &mut self.particles,
-                    &mut self.neighbor.list,
-                    self.dt,
-                    update,
-                    &mut self.virial,
-                );
-            } else {
-                pair.compute(
-                    &mut self.particles,
-                    &mut self.neighbor.list,
-                    self.dt,
-                    update,
-                );
-            }
-        } else if self.want_virial {
-            self.virial.clear();
-            self.virial.resize(self.particles.len(), [0.0; 6]);
-        }
+        self.pair_forces(update);
         let t2 = self.timers.lap(Stage::Pair, t1);
-        self.comm.reverse(&mut self.particles);
-        if self.want_virial {
-            self.comm.reverse_virial(&self.particles, &mut self.virial);
-            self.virial.truncate(self.particles.nlocal());
-            self.virial_step = Some(self.step);
-        }
+        self.reverse_comm();
         let t3 = self.timers.lap(Stage::Comm, t2);
         let finite = crate::fix::post_force(
             &self.fixes,
@@ -170,15 +215,8 @@ impl World {
             self.dt,
             update,
         );
-        self.hold_streamed();
-        if self.meshes.iter().any(|m| m.stress.is_some()) {
-            crate::wall::mesh_stress::accumulate(
-                &self.fixes,
-                &mut self.meshes,
-                &self.particles,
-                update,
-            );
-        }
+        crate::insert::stream::hold_streamed(&mut self.particles, self.step);
+        self.accumulate_mesh_stress(update);
         let t4 = self.timers.lap(Stage::Modify, t3);
         if !finite || self.comm.size() > 1 {
             let p = &self.particles;
@@ -188,94 +226,116 @@ impl World {
         Ok(())
     }
 
-    /// Moves the meshes with `fix move/mesh` motions to the current time.
-    pub(crate) fn move_meshes(&mut self) {
-        let t = self.step as f64 * self.dt;
-        for m in &mut self.meshes {
-            m.move_to(t);
+    /// Prepares a run (set-up 1–6 of [`crate::step`]): checks, coefficient tables,
+    /// re-neighboring and the forces of the current state (LAMMPS `setup`).
+    pub fn setup(&mut self) -> Result<()> {
+        self.check_settings()?;
+        self.extend_tags();
+        self.check_types()?;
+        self.setup_pair()?;
+        self.setup_walls()?;
+        self.move_meshes();
+        self.reneighbor()?;
+        // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
+        self.compute_forces(false)?;
+        self.needs_reneighbor = false;
+        self.rebuild_next = false;
+        Ok(())
+    }
+
+    /// Full re-neighboring (1–11 of [`crate::step`]): history saved, removals, periodic
+    /// remap, shrink-wrap, lost particles, migration, spatial sort when due, ghosts,
+    /// neighbor list (history carried by tag), wall candidates.
+    pub(crate) fn reneighbor(&mut self) -> Result<()> {
+        let t0 = Instant::now();
+        self.save_history();
+        self.particles.clear_ghosts();
+        self.remove_marked();
+        self.remap_periodic();
+        self.shrink_wrap();
+        self.remove_lost()?;
+        let t1 = self.timers.lap(Stage::Neigh, t0);
+        self.comm
+            .exchange(&mut self.particles, &self.domain, &mut self.neighbor);
+        self.neighbor.merge_carried();
+        let t2 = self.timers.lap(Stage::Comm, t1);
+        self.sort_if_due();
+        let cutoff = self.checked_cutoff()?;
+        let t3 = self.timers.lap(Stage::Neigh, t2);
+        self.comm.borders(&mut self.particles, &self.domain, cutoff);
+        let t4 = self.timers.lap(Stage::Comm, t3);
+        self.neighbor.build(&self.particles, self.step);
+        self.build_wall_candidates();
+        self.timers.lap(Stage::Neigh, t4);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::{Boundary, Domain, Fix, FixKind, NewParticle};
+
+    /// Records the velocity of particle 0 and the particle count at each hook.
+    #[derive(Default)]
+    struct Record {
+        pre_exchange: Vec<(u64, f64, usize)>,
+        end_of_step: Vec<(u64, f64, usize)>,
+    }
+
+    impl StepHooks for Record {
+        fn pre_exchange(&mut self, w: &mut World) -> Result<()> {
+            let p = &w.particles;
+            self.pre_exchange.push((w.step, p.v[0].z, p.nlocal()));
+            if w.step == 2 {
+                w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.5, 0.8), 0.01, 1000.0))?;
+            }
+            Ok(())
+        }
+
+        fn end_of_step(&mut self, w: &mut World) -> Result<()> {
+            let p = &w.particles;
+            self.end_of_step.push((w.step, p.v[0].z, p.nlocal()));
+            Ok(())
         }
     }
 
-    /// Zeroes the force and torque of particles an `insert/stream` still holds (they fly
-    /// at their insertion velocity until they reach the insertion face).
-    fn hold_streamed(&mut self) {
-        let p = &mut self.particles;
-        let Some(id) = p.property(crate::insert::stream::HOLD_PROPERTY) else {
-            return;
-        };
-        let step = self.step as f64;
-        let n = p.nlocal();
-        let held = &p.props[id.0].data[..n];
-        for (i, &release) in held.iter().enumerate() {
-            if release > step {
-                p.f[i] = DVec3::ZERO;
-                p.torque[i] = DVec3::ZERO;
-            }
+    /// A sphere falling freely under gravity g (velocity Verlet, dt): the pre-exchange
+    /// hook sees the velocity after the initial half kick, −g (n − ½) dt at step n, the
+    /// end-of-step hook after the final one, −g n dt; a particle added in the
+    /// pre-exchange hook of step 2 is there at the end of that step, and the hooks of
+    /// [`NoHooks`] are never called.
+    #[test]
+    fn hooks_run_at_their_place_in_the_step() {
+        let (g, dt) = (9.81, 1e-3);
+        let domain = Domain::new(DVec3::ZERO, DVec3::ONE, [Boundary::Fixed; 3]).unwrap();
+        let mut w = World::new(domain);
+        w.set_timestep(dt).unwrap();
+        w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.5, 0.5), 0.01, 1000.0))
+            .unwrap();
+        w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+            .unwrap();
+        w.add_fix(Fix::gravity("g", 1, g, DVec3::NEG_Z).unwrap())
+            .unwrap();
+        w.setup().unwrap();
+        let mut rec = Record::default();
+        for _ in 0..3 {
+            w.advance_with(&mut rec).unwrap();
         }
-    }
-
-    /// Stops with the first particle whose `a` or `b` (named `names`) is not finite. One
-    /// pass over both arrays first ([`crate::par::all_finite_par`]), in parallel.
-    /// `known_bad`: this rank's answer when already known (the fused post-force pass).
-    /// With several ranks every rank must call this (it agrees on the answer).
-    fn check_finite(
-        &self,
-        names: [&'static str; 2],
-        a: &[DVec3],
-        b: &[DVec3],
-        known_bad: Option<bool>,
-    ) -> Result<()> {
-        let n = self.particles.nlocal();
-        let bad_here = known_bad.unwrap_or_else(|| !crate::par::all_finite_par(a, b, n));
-        if self.comm.size() > 1 {
-            // Every rank stops with the same error: the lowest of each rank's first
-            // offending particle, as 2·tag + (0 for `a`, 1 for `b`), in one reduction.
-            let mine = if bad_here {
-                self.first_nonfinite(names, a, b)
-                    .map(|(i, q)| 2.0 * self.particles.tag[i] as f64 + (q != names[0]) as u8 as f64)
-                    .unwrap_or(f64::INFINITY)
-            } else {
-                f64::INFINITY
-            };
-            let first = self.comm.min(mine);
-            if first.is_infinite() {
-                return Ok(());
-            }
-            return Err(Error::NonFinite {
-                quantity: names[(first % 2.0) as usize],
-                tag: (first / 2.0).floor() as crate::particles::Tag,
-                step: self.step,
-            });
+        for (k, (&(s0, v0, n0), &(s1, v1, n1))) in
+            rec.pre_exchange.iter().zip(&rec.end_of_step).enumerate()
+        {
+            let n = k as u64 + 1;
+            assert_eq!((s0, s1), (n, n));
+            assert!((v0 + g * (n as f64 - 0.5) * dt).abs() < 1e-15, "{v0}");
+            assert!((v1 + g * n as f64 * dt).abs() < 1e-15, "{v1}");
+            assert_eq!(n0, if n <= 2 { 1 } else { 2 });
+            assert_eq!(n1, if n < 2 { 1 } else { 2 });
         }
-        if !bad_here {
-            return Ok(());
-        }
-        match self.first_nonfinite(names, a, b) {
-            Some((i, quantity)) => Err(Error::NonFinite {
-                quantity,
-                tag: self.particles.tag[i],
-                step: self.step,
-            }),
-            None => Ok(()),
-        }
-    }
-
-    /// The first owned particle whose `a` or `b` is not finite, with the quantity's name.
-    fn first_nonfinite(
-        &self,
-        names: [&'static str; 2],
-        a: &[DVec3],
-        b: &[DVec3],
-    ) -> Option<(usize, &'static str)> {
-        let n = self.particles.nlocal().min(a.len());
-        (0..n).find_map(|i| {
-            if !a[i].is_finite() {
-                Some((i, names[0]))
-            } else if !b[i].is_finite() {
-                Some((i, names[1]))
-            } else {
-                None
-            }
-        })
+        assert_eq!(NoHooks.mask(), HookMask::NONE);
+        w.advance().unwrap();
+        assert_eq!(w.step, 4);
     }
 }

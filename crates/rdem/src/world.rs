@@ -1,6 +1,7 @@
 //! The simulation state: particles, box, materials, pair style, neighbor list, fixes and
-//! the communicator, with the set-up done before a run and the full re-neighboring.
-//! [`crate::step`] holds the timestep itself.
+//! the communicator, and what the front end does to it between steps (adding and removing
+//! particles and fixes, new radii). [`crate::step`] holds the order of a timestep, of the
+//! set-up before a run and of the full re-neighboring.
 
 use glam::DVec3;
 
@@ -11,8 +12,7 @@ use crate::error::{Error, Result};
 use crate::fix::{Fix, FixKind};
 use crate::neighbor::{Neighbor, NeighborSettings};
 use crate::pair::PairGran;
-use crate::particles::{NewParticle, Particles, Tag};
-use crate::sort::sort_particles;
+use crate::particles::{NewParticle, Particles};
 use crate::timers::Timers;
 
 /// What to do when particles leave a fixed boundary (`thermo_modify lost`).
@@ -194,7 +194,7 @@ impl World {
 
     /// Removes the owned particles marked by [`World::remove_at_reneighbor`] (call with
     /// the ghosts cleared and the history saved).
-    fn remove_marked(&mut self) {
+    pub(crate) fn remove_marked(&mut self) {
         let Some(id) = self.particles.property(REMOVAL_PROP) else {
             return;
         };
@@ -279,224 +279,6 @@ impl World {
     /// Total number of owned particles over all ranks.
     pub fn natoms(&self) -> u64 {
         self.comm.sum_count(self.particles.nlocal() as u64)
-    }
-
-    /// Prepares a run: checks the set-up, mixes coefficient tables, re-neighbors and
-    /// computes the forces of the current state (LAMMPS `setup`).
-    pub fn setup(&mut self) -> Result<()> {
-        crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
-        self.neighbor.settings.validate()?;
-        self.extend_tags();
-        let ntypes = self.materials.ntypes as u32;
-        let uses_materials = self.pair.is_some()
-            || self
-                .fixes
-                .iter()
-                .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
-        if uses_materials {
-            if let Some(&ty) = self.particles.ty[..self.particles.nlocal()]
-                .iter()
-                .find(|&&t| t > ntypes)
-            {
-                return Err(Error::TypeOutOfRange { ty, ntypes });
-            }
-        }
-        if let Some(pair) = &mut self.pair {
-            pair.setup(&self.materials)?;
-            let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
-            self.neighbor.set_history_layout(w, odd);
-            self.neighbor.reach = pair.reach();
-            if pair.reach() > 0.0 {
-                // As LIGGGHTS-INL: a bond longer than 10 diameters of the smallest particle
-                // would make the neighbor lists explode.
-                let n = self.particles.nlocal();
-                let rmin = self.comm.min(
-                    self.particles.radius[..n]
-                        .iter()
-                        .copied()
-                        .fold(f64::INFINITY, f64::min),
-                );
-                if rmin.is_finite() && pair.reach() > 20.0 * rmin {
-                    return Err(Error::Invalid {
-                        what: "cohesion bond",
-                        reason: format!(
-                            "the longest bond ({:.4e}, from maxDistanceBond, or createDistanceBond and maxSigmaBond/normalBondStiffnessPerUnitArea) exceeds 10 diameters of the smallest particle ({:.4e}); reduce maxDistanceBond or maxSigmaBond",
-                            pair.reach(),
-                            2.0 * rmin
-                        ),
-                    });
-                }
-            }
-            if let Some(ts) = pair.bond_table().and_then(|b| b.ts_create) {
-                let none = ts <= self.step
-                    && !pair.ts_warned
-                    && self.comm.sum_count(pair.count_bonds(&self.neighbor.list)) == 0;
-                if none {
-                    pair.ts_warned = true;
-                    self.warnings.push(format!(
-                        "tsCreateBond {ts} is not after the current step {}: no bond exists and none will be created (bonds are made in the force evaluation of step tsCreateBond, never at a run's set-up)",
-                        self.step
-                    ));
-                }
-            }
-        } else {
-            self.neighbor.set_history_layout(0, 0);
-            self.neighbor.reach = 0.0;
-        }
-        for fix in &mut self.fixes {
-            if let FixKind::WallGran(wall) = &mut fix.kind {
-                self.neighbor.save_history(&self.particles);
-                self.particles.clear_ghosts();
-                wall.setup(&self.materials, &mut self.particles)?;
-            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
-                self.neighbor.save_history(&self.particles);
-                self.particles.clear_ghosts();
-                wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
-            }
-        }
-        self.move_meshes();
-        self.reneighbor()?;
-        // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
-        self.compute_forces(false)?;
-        self.needs_reneighbor = false;
-        self.rebuild_next = false;
-        Ok(())
-    }
-
-    /// Full re-neighboring: periodic remap, shrink-wrap, lost particles, migration,
-    /// spatial sort when due, ghosts, neighbor list (history carried by tag).
-    pub(crate) fn reneighbor(&mut self) -> Result<()> {
-        let t0 = std::time::Instant::now();
-        self.neighbor.save_history(&self.particles);
-        if self.comm.size() > 1 {
-            // Mirror entries of contacts with other ranks' ghosts go to the ghosts' owners,
-            // so that whichever rank lists the pair next finds its history.
-            let out = self.neighbor.take_remote(self.comm.size());
-            let got = self.comm.all_to_all(out);
-            self.neighbor.append_history(&got);
-        }
-        self.particles.clear_ghosts();
-        self.remove_marked();
-        let nlocal = self.particles.nlocal();
-        {
-            let p = &mut self.particles;
-            for i in 0..nlocal {
-                self.domain.remap(&mut p.x[i], &mut p.image[i]);
-            }
-        }
-        if self.domain.has_shrink() {
-            let mut lo = DVec3::splat(f64::INFINITY);
-            let mut hi = DVec3::splat(f64::NEG_INFINITY);
-            for &x in &self.particles.x[..nlocal] {
-                lo = lo.min(x);
-                hi = hi.max(x);
-            }
-            let lo = DVec3::new(
-                self.comm.min(lo.x),
-                self.comm.min(lo.y),
-                self.comm.min(lo.z),
-            );
-            let hi = DVec3::new(
-                self.comm.max(hi.x),
-                self.comm.max(hi.y),
-                self.comm.max(hi.z),
-            );
-            self.domain.shrink_wrap(lo, hi);
-        }
-        self.remove_lost()?;
-        let t1 = self.timers.lap(crate::timers::Stage::Neigh, t0);
-        self.comm
-            .exchange(&mut self.particles, &self.domain, &mut self.neighbor);
-        self.neighbor.merge_carried();
-        let t2 = self.timers.lap(crate::timers::Stage::Comm, t1);
-        if self.sort.every > 0 && self.step >= self.next_sort {
-            let rmax = self
-                .comm
-                .max(self.particles.radius.iter().copied().fold(0.0, f64::max));
-            let mut h = if self.sort.binsize > 0.0 {
-                self.sort.binsize
-            } else {
-                0.5 * self.neighbor.cutoff_for(rmax)
-            };
-            // Bins over the subdomain (seed 002). A sparse system in a large box would ask
-            // for far more bins than particles (LAMMPS stops with "too many atom sorting
-            // bins"); instead the bin size doubles until there are at most 8 N + 64 bins.
-            let (lo, hi) = (self.domain.sublo, self.domain.subhi);
-            let limit = 8.0 * self.particles.nlocal() as f64 + 64.0;
-            let nbins = |h: f64| -> f64 {
-                (0..3)
-                    .map(|a| ((hi[a] - lo[a]) / h).floor().max(1.0))
-                    .product()
-            };
-            while nbins(h) > limit {
-                h *= 2.0;
-            }
-            sort_particles(&mut self.particles, lo, hi, h);
-            self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
-        }
-        let rmax = self.comm.max(
-            self.particles.radius[..self.particles.nlocal()]
-                .iter()
-                .copied()
-                .fold(0.0, f64::max),
-        );
-        let cutoff = self.neighbor.cutoff_for(rmax);
-        self.domain.check_periodic_cutoff(cutoff)?;
-        self.domain.check_subdomain_cutoff(cutoff)?;
-        let t3 = self.timers.lap(crate::timers::Stage::Neigh, t2);
-        self.comm.borders(&mut self.particles, &self.domain, cutoff);
-        let t4 = self.timers.lap(crate::timers::Stage::Comm, t3);
-        self.neighbor.build(&self.particles, self.step);
-        let skin = self.neighbor.settings.skin;
-        for m in &mut self.meshes {
-            if m.motion.is_moving() {
-                m.motion.built.clone_from(&m.mesh.verts);
-            }
-        }
-        for fix in &mut self.fixes {
-            if let FixKind::WallGran(wall) = &mut fix.kind {
-                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
-            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
-                wall.build_candidates(&self.meshes, &mut self.particles, fix.groupbit, skin);
-            }
-        }
-        self.timers.lap(crate::timers::Stage::Neigh, t4);
-        Ok(())
-    }
-
-    fn remove_lost(&mut self) -> Result<()> {
-        let nlocal = self.particles.nlocal();
-        let lost: Vec<bool> = self.particles.x[..nlocal]
-            .iter()
-            .map(|&x| self.domain.is_lost(x))
-            .collect();
-        let nlost_local = lost.iter().filter(|&&l| l).count();
-        let nlost = self.comm.sum_count(nlost_local as u64);
-        if nlost == 0 {
-            return Ok(());
-        }
-        // The lowest of the ranks' first lost tags, the same on every rank.
-        let first_tag = self.comm.min(
-            lost.iter()
-                .position(|&l| l)
-                .map_or(f64::INFINITY, |i| self.particles.tag[i] as f64),
-        ) as Tag;
-        if self.lost_policy == LostPolicy::Error {
-            return Err(Error::LostParticles {
-                count: nlost as usize,
-                first_tag,
-                step: self.step,
-            });
-        }
-        self.particles.remove_locals(&lost);
-        self.lost += nlost;
-        if self.lost_policy == LostPolicy::Warn {
-            self.warnings.push(format!(
-                "{nlost} particle(s) lost at step {} (left a fixed boundary)",
-                self.step
-            ));
-        }
-        Ok(())
     }
 
     /// This rank's bond tallies (`cohesion bond`): pair bonds created and broken so far,

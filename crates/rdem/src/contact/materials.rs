@@ -32,9 +32,8 @@ pub struct Materials {
     pub plasticity_depth: Vec<f64>,
     /// `coefficientMaxElasticStiffness` per type pair (hooke/hysteresis: k2max = value · k1).
     pub max_elastic_stiffness: Vec<f64>,
-    /// The `cohesion bond` properties ([`crate::bond::PROPERTIES`]) that were given, as
-    /// (name, values); per type pair row-major, `tsCreateBond` a single value.
-    pub bond: Vec<(String, Vec<f64>)>,
+    /// The `cohesion bond` coefficients that were given.
+    pub bond: crate::bond::BondCoefficients,
 }
 
 impl Materials {

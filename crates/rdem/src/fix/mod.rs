@@ -194,7 +194,7 @@ impl Fix {
     }
 }
 
-/// Step 7 of [`crate::step`]: the post-force fixes, walls included, in definition order on
+/// Step 9 of [`crate::step`]: the post-force fixes, walls included, in definition order on
 /// the owned particles; returns false when some force or torque is then not finite (the
 /// caller finds which). Every fix acts on each particle alone, so the pass runs all fixes
 /// chunk by chunk in parallel (see [`crate::par`]): each particle sees the fixes in the

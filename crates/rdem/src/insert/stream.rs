@@ -21,9 +21,26 @@ use crate::mesh::TriMesh;
 use crate::world::World;
 
 /// Per-particle property holding the step from which a streamed particle moves freely;
-/// before it, [`World`] zeroes its force and torque after all forces (so it flies
+/// before it, [`hold_streamed`] zeroes its force and torque after all forces (so it flies
 /// ballistically through the insertion volume).
 pub const HOLD_PROPERTY: &str = "insert_stream_release";
+
+/// Zeroes the force and torque of the owned particles an `insert/stream` still holds at
+/// `step` (stage 10 of [`crate::step`]: after the post-force fixes).
+pub(crate) fn hold_streamed(p: &mut crate::particles::Particles, step: u64) {
+    let Some(id) = p.property(HOLD_PROPERTY) else {
+        return;
+    };
+    let step = step as f64;
+    let n = p.nlocal();
+    let held = &p.props[id.0].data[..n];
+    for (i, &release) in held.iter().enumerate() {
+        if release > step {
+            p.f[i] = DVec3::ZERO;
+            p.torque[i] = DVec3::ZERO;
+        }
+    }
+}
 
 /// How the insertion volume's depth is given.
 #[derive(Debug, Clone, Copy, PartialEq)]

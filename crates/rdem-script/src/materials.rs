@@ -1,0 +1,110 @@
+//! The engine's material table from the `fix property/global` values: the one place where
+//! LIGGGHTS' property names (`youngsModulus`, `radiusMultiplierBond`, ...) map onto the
+//! engine's typed fields, with the errors about a property's style and value count.
+
+use rdem::bond::BondCoefficients;
+use rdem::Materials;
+
+use crate::sim::Sim;
+
+/// The `cohesion bond` coefficient that the property `name` gives, if it is one (the
+/// per-type-pair tables; `tsCreateBond` is the scalar [`BondCoefficients::ts_create`]).
+fn bond_table<'a>(b: &'a mut BondCoefficients, name: &str) -> Option<&'a mut Option<Vec<f64>>> {
+    Some(match name {
+        "radiusMultiplierBond" => &mut b.radius_multiplier,
+        "normalBondStiffnessPerUnitArea" => &mut b.normal_stiffness,
+        "tangentialBondStiffnessPerUnitArea" => &mut b.tangential_stiffness,
+        "dampingNormalForceBond" => &mut b.damping_normal_force,
+        "dampingTangentialForceBond" => &mut b.damping_tangential_force,
+        "dampingNormalTorqueBond" => &mut b.damping_normal_torque,
+        "dampingTangentialTorqueBond" => &mut b.damping_tangential_torque,
+        "dissipationNormalForceBond" => &mut b.dissipation_normal_force,
+        "dissipationTangentialForceBond" => &mut b.dissipation_tangential_force,
+        "dissipationNormalTorqueBond" => &mut b.dissipation_normal_torque,
+        "dissipationTangentialTorqueBond" => &mut b.dissipation_tangential_torque,
+        "maxDistanceBond" => &mut b.max_distance,
+        "maxSigmaBond" => &mut b.max_sigma,
+        "maxTauBond" => &mut b.max_tau,
+        "createDistanceBond" => &mut b.create_distance,
+        "frictionAngle" => &mut b.friction_angle,
+        "ratioTensionCompression" => &mut b.ratio_tension_compression,
+        _ => return None,
+    })
+}
+
+/// Builds the engine's material table from the `fix property/global` values.
+pub fn materials(sim: &Sim) -> Result<Materials, String> {
+    let n = sim.ntypes;
+    let mut m = Materials {
+        ntypes: n,
+        ..Default::default()
+    };
+    for (name, p) in &sim.properties {
+        let scalar = name == "tsCreateBond";
+        if scalar || bond_table(&mut m.bond, name).is_some() {
+            let ok = if scalar {
+                p.style == "scalar"
+            } else {
+                p.style == "peratomtypepair"
+            };
+            if !ok {
+                return Err(format!(
+                    "property {name} (fix {}) must be {}, not {}",
+                    p.fix_id,
+                    if scalar { "scalar" } else { "peratomtypepair" },
+                    p.style
+                ));
+            }
+            if !scalar && p.values.len() != n * n {
+                return Err(format!(
+                    "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {} are needed",
+                    p.fix_id,
+                    p.values.len(),
+                    n * n
+                ));
+            }
+            match bond_table(&mut m.bond, name) {
+                Some(table) => *table = Some(p.values.clone()),
+                // A scalar property has exactly one value.
+                None => m.bond.ts_create = p.values.first().copied(),
+            }
+            continue;
+        }
+        let slot = match name.as_str() {
+            "youngsModulus" => &mut m.youngs_modulus,
+            "poissonsRatio" => &mut m.poissons_ratio,
+            "coefficientRestitution" => &mut m.restitution,
+            "coefficientFriction" => &mut m.friction,
+            "coefficientRollingFriction" => &mut m.rolling_friction,
+            "coefficientRollingViscousDamping" => &mut m.rolling_viscous_damping,
+            "cohesionEnergyDensity" => &mut m.cohesion_energy_density,
+            "coefficientAdhesionStiffness" => &mut m.adhesion_stiffness,
+            "coefficientPlasticityDepth" => &mut m.plasticity_depth,
+            "coefficientMaxElasticStiffness" => &mut m.max_elastic_stiffness,
+            "characteristicVelocity" => {
+                m.characteristic_velocity = p.values.first().copied();
+                continue;
+            }
+            _ => continue,
+        };
+        let want = match p.style.as_str() {
+            "peratomtype" => n,
+            "peratomtypepair" => n * n,
+            _ => {
+                return Err(format!(
+                    "property {name} (fix {}) must be peratomtype or peratomtypepair, not {}",
+                    p.fix_id, p.style
+                ))
+            }
+        };
+        if p.values.len() != want {
+            return Err(format!(
+                "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {want} are needed",
+                p.fix_id,
+                p.values.len()
+            ));
+        }
+        *slot = p.values.clone();
+    }
+    Ok(m)
+}

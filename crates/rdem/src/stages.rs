@@ -1,0 +1,443 @@
+//! The bodies of the stages of a timestep, the set-up and the re-neighboring, each named
+//! for what it does. [`crate::step`] says when each runs (and is the only caller).
+
+use glam::DVec3;
+
+use crate::error::{Error, Result};
+use crate::fix::{integrate, FixKind};
+use crate::particles::Tag;
+use crate::sort::sort_particles;
+use crate::world::{LostPolicy, World};
+
+/// Set-up stages.
+impl World {
+    /// Set-up 1: the timestep and the neighbor settings are valid.
+    pub(crate) fn check_settings(&self) -> Result<()> {
+        crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
+        self.neighbor.settings.validate()
+    }
+
+    /// Set-up 1: every owned particle's type is in the material table, when a pair style
+    /// or a wall uses the table.
+    pub(crate) fn check_types(&self) -> Result<()> {
+        let ntypes = self.materials.ntypes as u32;
+        let uses_materials = self.pair.is_some()
+            || self
+                .fixes
+                .iter()
+                .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
+        if uses_materials {
+            if let Some(&ty) = self.particles.ty[..self.particles.nlocal()]
+                .iter()
+                .find(|&&t| t > ntypes)
+            {
+                return Err(Error::TypeOutOfRange { ty, ntypes });
+            }
+        }
+        Ok(())
+    }
+
+    /// Set-up 2: the pair style's coefficient and bond tables, the contact history layout
+    /// and the neighbor reach, the bond reach check and the `tsCreateBond` warning.
+    pub(crate) fn setup_pair(&mut self) -> Result<()> {
+        let Some(pair) = &mut self.pair else {
+            self.neighbor.set_history_layout(0, 0);
+            self.neighbor.reach = 0.0;
+            return Ok(());
+        };
+        pair.setup(&self.materials)?;
+        let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
+        self.neighbor.set_history_layout(w, odd);
+        self.neighbor.reach = pair.reach();
+        if pair.reach() > 0.0 {
+            // As LIGGGHTS-INL: a bond longer than 10 diameters of the smallest particle
+            // would make the neighbor lists explode.
+            let n = self.particles.nlocal();
+            let rmin = self.comm.min(
+                self.particles.radius[..n]
+                    .iter()
+                    .copied()
+                    .fold(f64::INFINITY, f64::min),
+            );
+            if rmin.is_finite() && pair.reach() > 20.0 * rmin {
+                return Err(Error::Invalid {
+                    what: "cohesion bond",
+                    reason: format!(
+                        "the longest bond ({:.4e}, from maxDistanceBond, or createDistanceBond and maxSigmaBond/normalBondStiffnessPerUnitArea) exceeds 10 diameters of the smallest particle ({:.4e}); reduce maxDistanceBond or maxSigmaBond",
+                        pair.reach(),
+                        2.0 * rmin
+                    ),
+                });
+            }
+        }
+        if let Some(ts) = pair.bond_table().and_then(|b| b.ts_create) {
+            let none = ts <= self.step
+                && !pair.ts_warned
+                && self.comm.sum_count(pair.count_bonds(&self.neighbor.list)) == 0;
+            if none {
+                pair.ts_warned = true;
+                self.warnings.push(format!(
+                    "tsCreateBond {ts} is not after the current step {}: no bond exists and none will be created (bonds are made in the force evaluation of step tsCreateBond, never at a run's set-up)",
+                    self.step
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Set-up 3: each wall's coefficient table and history property, in definition order.
+    pub(crate) fn setup_walls(&mut self) -> Result<()> {
+        for fix in &mut self.fixes {
+            if let FixKind::WallGran(wall) = &mut fix.kind {
+                self.neighbor.save_history(&self.particles);
+                self.particles.clear_ghosts();
+                wall.setup(&self.materials, &mut self.particles)?;
+            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
+                self.neighbor.save_history(&self.particles);
+                self.particles.clear_ghosts();
+                wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Re-neighboring stages.
+impl World {
+    /// Re-neighboring 1: the contact history saved by tag; with several ranks the mirror
+    /// entries of contacts with other ranks' ghosts go to the ghosts' owners, so that
+    /// whichever rank lists the pair next finds its history.
+    pub(crate) fn save_history(&mut self) {
+        self.neighbor.save_history(&self.particles);
+        if self.comm.size() > 1 {
+            let out = self.neighbor.take_remote(self.comm.size());
+            let got = self.comm.all_to_all(out);
+            self.neighbor.append_history(&got);
+        }
+    }
+
+    /// Re-neighboring 3: owned particles beyond a periodic face wrapped back in.
+    pub(crate) fn remap_periodic(&mut self) {
+        let nlocal = self.particles.nlocal();
+        let p = &mut self.particles;
+        for i in 0..nlocal {
+            self.domain.remap(&mut p.x[i], &mut p.image[i]);
+        }
+    }
+
+    /// Re-neighboring 4: the shrink-wrapped faces of the box moved to the particles'
+    /// extent over all ranks.
+    pub(crate) fn shrink_wrap(&mut self) {
+        if !self.domain.has_shrink() {
+            return;
+        }
+        let nlocal = self.particles.nlocal();
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for &x in &self.particles.x[..nlocal] {
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+        let lo = DVec3::new(
+            self.comm.min(lo.x),
+            self.comm.min(lo.y),
+            self.comm.min(lo.z),
+        );
+        let hi = DVec3::new(
+            self.comm.max(hi.x),
+            self.comm.max(hi.y),
+            self.comm.max(hi.z),
+        );
+        self.domain.shrink_wrap(lo, hi);
+    }
+
+    /// Re-neighboring 5: the particles beyond a fixed face, handled by the lost-particle
+    /// policy (stop, or remove them with or without a warning).
+    pub(crate) fn remove_lost(&mut self) -> Result<()> {
+        let nlocal = self.particles.nlocal();
+        let lost: Vec<bool> = self.particles.x[..nlocal]
+            .iter()
+            .map(|&x| self.domain.is_lost(x))
+            .collect();
+        let nlost_local = lost.iter().filter(|&&l| l).count();
+        let nlost = self.comm.sum_count(nlost_local as u64);
+        if nlost == 0 {
+            return Ok(());
+        }
+        // The lowest of the ranks' first lost tags, the same on every rank.
+        let first_tag = self.comm.min(
+            lost.iter()
+                .position(|&l| l)
+                .map_or(f64::INFINITY, |i| self.particles.tag[i] as f64),
+        ) as Tag;
+        if self.lost_policy == LostPolicy::Error {
+            return Err(Error::LostParticles {
+                count: nlost as usize,
+                first_tag,
+                step: self.step,
+            });
+        }
+        self.particles.remove_locals(&lost);
+        self.lost += nlost;
+        if self.lost_policy == LostPolicy::Warn {
+            self.warnings.push(format!(
+                "{nlost} particle(s) lost at step {} (left a fixed boundary)",
+                self.step
+            ));
+        }
+        Ok(())
+    }
+
+    /// Re-neighboring 7: the owned particles sorted by spatial bin when a sort is due.
+    pub(crate) fn sort_if_due(&mut self) {
+        if self.sort.every == 0 || self.step < self.next_sort {
+            return;
+        }
+        let rmax = self
+            .comm
+            .max(self.particles.radius.iter().copied().fold(0.0, f64::max));
+        let mut h = if self.sort.binsize > 0.0 {
+            self.sort.binsize
+        } else {
+            0.5 * self.neighbor.cutoff_for(rmax)
+        };
+        // Bins over the subdomain (seed 002). A sparse system in a large box would ask
+        // for far more bins than particles (LAMMPS stops with "too many atom sorting
+        // bins"); instead the bin size doubles until there are at most 8 N + 64 bins.
+        let (lo, hi) = (self.domain.sublo, self.domain.subhi);
+        let limit = 8.0 * self.particles.nlocal() as f64 + 64.0;
+        let nbins = |h: f64| -> f64 {
+            (0..3)
+                .map(|a| ((hi[a] - lo[a]) / h).floor().max(1.0))
+                .product()
+        };
+        while nbins(h) > limit {
+            h *= 2.0;
+        }
+        sort_particles(&mut self.particles, lo, hi, h);
+        self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
+    }
+
+    /// Re-neighboring 8: the ghost cutoff for the largest particle, checked against the
+    /// periodic box and the subdomain.
+    pub(crate) fn checked_cutoff(&mut self) -> Result<f64> {
+        let rmax = self.comm.max(
+            self.particles.radius[..self.particles.nlocal()]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max),
+        );
+        let cutoff = self.neighbor.cutoff_for(rmax);
+        self.domain.check_periodic_cutoff(cutoff)?;
+        self.domain.check_subdomain_cutoff(cutoff)?;
+        Ok(cutoff)
+    }
+
+    /// Re-neighboring 11: the moving meshes' positions at this build (for the drift
+    /// test of step 5) and each wall's candidate particles (those within the skin).
+    pub(crate) fn build_wall_candidates(&mut self) {
+        let skin = self.neighbor.settings.skin;
+        for m in &mut self.meshes {
+            if m.motion.is_moving() {
+                m.motion.built.clone_from(&m.mesh.verts);
+            }
+        }
+        for fix in &mut self.fixes {
+            if let FixKind::WallGran(wall) = &mut fix.kind {
+                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
+            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
+                wall.build_candidates(&self.meshes, &mut self.particles, fix.groupbit, skin);
+            }
+        }
+    }
+}
+
+/// Timestep stages.
+impl World {
+    /// Step 2: the first half of velocity Verlet for each integrating fix.
+    pub(crate) fn initial_integrate(&mut self) {
+        for fix in &self.fixes {
+            if fix.integrates() {
+                integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt);
+            }
+        }
+    }
+
+    /// Step 3: the meshes with `fix move/mesh` motions moved to the current time.
+    pub(crate) fn move_meshes(&mut self) {
+        let t = self.step as f64 * self.dt;
+        for m in &mut self.meshes {
+            m.move_to(t);
+        }
+    }
+
+    /// Step 5: whether particles were added (on any rank), and whether the neighbor
+    /// lists must be rebuilt: particles added or removed, the list's own decision, or a
+    /// moving mesh that drifted half a skin since the wall candidates were built (every
+    /// rank moves every mesh alike: no communication). Every rank takes the same
+    /// decision. Clears the added and removed flags.
+    pub(crate) fn rebuild_due(&mut self) -> (bool, bool) {
+        let nlocal = self.particles.nlocal();
+        let removed = std::mem::take(&mut self.rebuild_next);
+        let added = std::mem::take(&mut self.needs_reneighbor);
+        let comm = &self.comm;
+        let added = comm.any(added);
+        let removed = comm.any(removed);
+        let skin = self.neighbor.settings.skin;
+        let mesh_far = self
+            .meshes
+            .iter()
+            .any(|m| m.motion.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
+        let rebuild = added
+            || removed
+            || self
+                .neighbor
+                .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
+            || mesh_far;
+        (added, rebuild)
+    }
+
+    /// Step 6: forces and torques zeroed; the walls told the step (bonds are created at
+    /// a given step).
+    pub(crate) fn clear_forces(&mut self) {
+        let p = &mut self.particles;
+        crate::par::zero(&mut p.f, &mut p.torque);
+        for fix in &mut self.fixes {
+            match &mut fix.kind {
+                FixKind::WallGran(wall) => wall.step = self.step,
+                FixKind::MeshWall(wall) => wall.step = self.step,
+                _ => {}
+            }
+        }
+    }
+
+    /// Step 7: the pair style's forces (the near list refreshed when stale, the virial
+    /// filled when wanted; without a pair style, a zero virial when wanted).
+    pub(crate) fn pair_forces(&mut self, update: bool) {
+        if let Some(pair) = &mut self.pair {
+            pair.step = self.step;
+            // A local decision: the check covers this rank's ghosts too.
+            if pair.near_list_stale(&self.particles.x, &self.neighbor) {
+                pair.build_near_list(&self.particles, &self.neighbor);
+            }
+            if self.want_virial {
+                self.virial.clear();
+                self.virial.resize(self.particles.len(), [0.0; 6]);
+                pair.compute_with_virial(
+                    &mut self.particles,
+                    &mut self.neighbor.list,
+                    self.dt,
+                    update,
+                    &mut self.virial,
+                );
+            } else {
+                pair.compute(
+                    &mut self.particles,
+                    &mut self.neighbor.list,
+                    self.dt,
+                    update,
+                );
+            }
+        } else if self.want_virial {
+            self.virial.clear();
+            self.virial.resize(self.particles.len(), [0.0; 6]);
+        }
+    }
+
+    /// Step 8: ghost forces (and the virial, when wanted) added to their owners.
+    pub(crate) fn reverse_comm(&mut self) {
+        self.comm.reverse(&mut self.particles);
+        if self.want_virial {
+            self.comm.reverse_virial(&self.particles, &mut self.virial);
+            self.virial.truncate(self.particles.nlocal());
+            self.virial_step = Some(self.step);
+        }
+    }
+
+    /// Step 11: the wall contacts of this evaluation summed per triangle of the meshes
+    /// that track stress ([`crate::wall::mesh_stress::accumulate`]).
+    pub(crate) fn accumulate_mesh_stress(&mut self, update: bool) {
+        if self.meshes.iter().any(|m| m.stress.is_some()) {
+            crate::wall::mesh_stress::accumulate(
+                &self.fixes,
+                &mut self.meshes,
+                &self.particles,
+                update,
+            );
+        }
+    }
+
+    /// Step 13: the second half of velocity Verlet for each integrating fix.
+    pub(crate) fn final_integrate(&mut self) {
+        for fix in &self.fixes {
+            if fix.integrates() {
+                integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt);
+            }
+        }
+    }
+
+    /// Steps 12 and 14: stops with the first particle whose `a` or `b` (named `names`) is
+    /// not finite. One pass over both arrays first ([`crate::par::all_finite_par`]), in
+    /// parallel. `known_bad`: this rank's answer when already known (the fused post-force
+    /// pass). With several ranks every rank must call this (it agrees on the answer).
+    pub(crate) fn check_finite(
+        &self,
+        names: [&'static str; 2],
+        a: &[DVec3],
+        b: &[DVec3],
+        known_bad: Option<bool>,
+    ) -> Result<()> {
+        let n = self.particles.nlocal();
+        let bad_here = known_bad.unwrap_or_else(|| !crate::par::all_finite_par(a, b, n));
+        if self.comm.size() > 1 {
+            // Every rank stops with the same error: the lowest of each rank's first
+            // offending particle, as 2·tag + (0 for `a`, 1 for `b`), in one reduction.
+            let mine = if bad_here {
+                self.first_nonfinite(names, a, b)
+                    .map(|(i, q)| 2.0 * self.particles.tag[i] as f64 + (q != names[0]) as u8 as f64)
+                    .unwrap_or(f64::INFINITY)
+            } else {
+                f64::INFINITY
+            };
+            let first = self.comm.min(mine);
+            if first.is_infinite() {
+                return Ok(());
+            }
+            return Err(Error::NonFinite {
+                quantity: names[(first % 2.0) as usize],
+                tag: (first / 2.0).floor() as Tag,
+                step: self.step,
+            });
+        }
+        if !bad_here {
+            return Ok(());
+        }
+        match self.first_nonfinite(names, a, b) {
+            Some((i, quantity)) => Err(Error::NonFinite {
+                quantity,
+                tag: self.particles.tag[i],
+                step: self.step,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// The first owned particle whose `a` or `b` is not finite, with the quantity's name.
+    fn first_nonfinite(
+        &self,
+        names: [&'static str; 2],
+        a: &[DVec3],
+        b: &[DVec3],
+    ) -> Option<(usize, &'static str)> {
+        let n = self.particles.nlocal().min(a.len());
+        (0..n).find_map(|i| {
+            if !a[i].is_finite() {
+                Some((i, names[0]))
+            } else if !b[i].is_finite() {
+                Some((i, names[1]))
+            } else {
+                None
+            }
+        })
+    }
+}
