@@ -7,8 +7,9 @@
 //!
 //! # One timestep ([`World::advance_with`])
 //!
-//! Before the step, the front end (rdem-script's `run.rs`) applies `fix adapt` (new
-//! radii) and says whether it wants the contact virial ([`World::want_virial`]).
+//! Before the step, the front end (rdem-script's `run.rs`) runs its pre-step fixes
+//! (`Stages::PRE_STEP`: `fix adapt`, new radii) and says whether it wants the contact
+//! virial ([`World::want_virial`]).
 //!
 //! 0. a full set-up first if particles were added since the last one ([`World::setup`])
 //! 1. `step += 1`
@@ -37,11 +38,12 @@
 //! 13. final integrate (half kick) [Modify]
 //! 14. finiteness check of positions and velocities [Other]
 //! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
-//! 16. the front end's end-of-step fixes, in rdem-script's `run.rs` once
-//!     [`World::advance_with`] has returned: `ave/euler`, then in definition order
-//!     `massflow/mesh`, `check/timestep/gran` and `ave/time` (they need the script's
-//!     variables and computes). This is the last stage of a step; the thermo output and
-//!     the dumps that are due follow [Output].
+//! 16. the front end's end-of-step fixes (rdem-script's `Stages::END_OF_STEP`:
+//!     `ave/euler`, `massflow/mesh`, `check/timestep/gran`, `ave/time`), in definition
+//!     order, in rdem-script's `run.rs` once [`World::advance_with`] has returned (they
+//!     need the script's variables and computes, so they cannot run while the engine
+//!     holds the world). This is the last stage of a step; the thermo output and the
+//!     dumps that are due follow [Output].
 //!
 //! The finiteness checks stop the run at the first NaN or infinite value with the
 //! particle's tag and the step (the pair pass treats a NaN distance as no contact, so a
