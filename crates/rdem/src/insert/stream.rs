@@ -21,7 +21,7 @@ use crate::mesh::TriMesh;
 use crate::world::World;
 
 /// Per-particle property holding the step from which a streamed particle moves freely;
-/// before it, [`hold_streamed`] zeroes its force and torque after all forces (so it flies
+/// before it, `hold_streamed` zeroes its force and torque after all forces (so it flies
 /// ballistically through the insertion volume).
 pub const HOLD_PROPERTY: &str = "insert_stream_release";
 
