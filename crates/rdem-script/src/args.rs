@@ -29,6 +29,7 @@ pub struct Args<'a> {
     words: &'a [Word],
     pos: usize,
     warnings: Option<WarningSink>,
+    atoi: bool,
 }
 
 /// Levenshtein distance, for "did you mean" suggestions.
@@ -107,19 +108,6 @@ fn atoi_prefix(s: &str) -> Option<i64> {
     Some(if s.starts_with('-') { -v } else { v })
 }
 
-/// Fix styles whose integer arguments LIGGGHTS 3.8 reads with `atoi` (checked: `seed
-/// 10037.`, `particles_in_region 20.`, `insert_every 5.`, `atom_type 1.` run there, where
-/// `thermo 5.`, `create_box 1. reg` or `fix ave/time 1. ...` stop with "Expected integer
-/// parameter").
-const ATOI_FIX_STYLES: [&str; 6] = [
-    "insert/pack",
-    "insert/stream",
-    "insert/rate/region",
-    "particletemplate/sphere",
-    "particledistribution/discrete",
-    "check/timestep/gran",
-];
-
 impl<'a> Args<'a> {
     /// A cursor after the command name.
     pub fn new(cmd: &'a Command, words: &'a [Word]) -> Self {
@@ -128,6 +116,7 @@ impl<'a> Args<'a> {
             words,
             pos: 1,
             warnings: None,
+            atoi: false,
         }
     }
 
@@ -157,17 +146,16 @@ impl<'a> Args<'a> {
         }
     }
 
-    /// True where LIGGGHTS reads this command's integers with C's `atoi` (`run`,
-    /// `reset_timestep` and the insertion fixes, see [`ATOI_FIX_STYLES`]).
+    /// Reads this command's integers as LIGGGHTS does where it uses C's `atoi` (`1.`
+    /// read as 1, with a warning): set by the commands and styles whose registry rows say
+    /// so (`run`, `reset_timestep`, [`crate::fixes::FixStyle::atoi`]).
+    pub fn read_integers_with_atoi(&mut self) {
+        self.atoi = true;
+    }
+
+    /// True where LIGGGHTS reads this command's integers with C's `atoi`.
     fn reads_integers_with_atoi(&self) -> bool {
-        match self.name() {
-            "run" | "reset_timestep" => true,
-            "fix" => self
-                .words
-                .get(3)
-                .is_some_and(|w| ATOI_FIX_STYLES.contains(&w.text.as_str())),
-            _ => false,
-        }
+        self.atoi
     }
 
     /// Word `k` as a finite number; a number with a stray trailing `.` is read as

@@ -367,9 +367,10 @@ impl Interpreter {
                 let rest: Vec<String> = words[3..].iter().map(|w| w.text.clone()).collect();
                 self.sim.vars.define(&name, &style, &rest).map_err(|e| {
                     let k = if e.arg == usize::MAX { 1 } else { e.arg + 2 };
-                    let help = e.help.clone().or_else(|| {
-                        (e.arg == 0).then(|| suggest(&style, &crate::variables::STYLES))
-                    });
+                    let help = e
+                        .help
+                        .clone()
+                        .or_else(|| (e.arg == 0).then(|| crate::variables::STYLES.suggest(&style)));
                     a.error_at(k.min(words.len()), e.message, help)
                 })?;
             }

@@ -5,6 +5,7 @@
 //! (an `equal` variable prints as C's `%.15g`).
 
 use crate::expr::{self, Context};
+use crate::registry::{Registry, Row};
 
 /// One variable.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,10 +34,29 @@ pub enum Variable {
     Atom(String),
 }
 
-/// Valid style words of `variable`.
-pub const STYLES: [&str; 7] = [
-    "delete", "index", "loop", "string", "getenv", "equal", "atom",
-];
+/// Every style word of `variable` (their definitions are read in
+/// [`Variables::define`]), then LIGGGHTS styles rdem does not take yet.
+pub static STYLES: Registry<()> = Registry {
+    family: "variable style",
+    readme_prefix: "variable ",
+    rows: &[
+        Row::runs("delete", (), "removes the variable"),
+        Row::runs("index", (), "`v1 v2 ...`: the next one at each `next`"),
+        Row::runs("loop", (), "`N`, `N1 N2`, `pad`: counts at each `next`"),
+        Row::runs("string", (), "one string"),
+        Row::runs("getenv", (), "an environment variable"),
+        Row::runs("equal", (), "a formula, evaluated when used")
+            .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `x[ID]`, `vx[ID]`, ..."),
+        Row::runs("atom", (), "a formula evaluated per particle"),
+        Row::not_yet("file", ""),
+        Row::not_yet("atomfile", ""),
+        Row::not_yet("uloop", ""),
+        Row::not_yet("universe", ""),
+        Row::not_yet("world", ""),
+        Row::not_yet("format", ""),
+        Row::not_yet("python", ""),
+    ],
+};
 
 /// A definition error: the message and which argument (0 = the style word) it is about.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -179,11 +199,12 @@ impl Variables {
             "equal" => Variable::Equal(self.formula(style, args)?),
             "atom" => Variable::Atom(self.formula(style, args)?),
             _ => {
-                return derr(
-                    format!("unknown variable style '{style}'"),
-                    0,
-                    Some(format!("use {}", crate::diagnostic::one_of(&STYLES))),
-                )
+                let message = match STYLES.row(style) {
+                    Some(_) => format!("variable style '{style}' is not supported by rdem yet"),
+                    None => format!("unknown variable style '{style}'"),
+                };
+                let valid = crate::diagnostic::one_of(&STYLES.names());
+                return derr(message, 0, Some(format!("use {valid}")));
             }
         };
         self.set(name, v);

@@ -51,6 +51,16 @@ fn every_registry_name_is_unique() {
             .map(|r| r.name)
             .collect(),
         dumps::REGISTRY.rows.iter().map(|r| r.name).collect(),
+        commands::region::STYLES
+            .rows
+            .iter()
+            .map(|r| r.name)
+            .collect(),
+        rdem_script::variables::STYLES
+            .rows
+            .iter()
+            .map(|r| r.name)
+            .collect(),
     ];
     for names in &mut all {
         let n = names.len();

@@ -10,7 +10,7 @@ mod create;
 mod data_files;
 mod group;
 mod pair;
-mod region;
+pub mod region;
 mod settings;
 mod thermo;
 
@@ -55,7 +55,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("soft_particles", settings::hard_particles, "accepted").notes("tuning only"),
         sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each)")
             .notes("the keywords `grid`, `map`, `part`, `file` are not supported"),
-        sim("region", region::region, "`block`, `sphere`, `cylinder`, `cone`, `plane`, `union`, `intersect`; `side in\\|out`; `units box\\|lattice`; `INF`, `EDGE` bounds")
+        sim("region", region::region, "the region styles below; `side in\\|out`; `units box\\|lattice` (default `box`, as LIGGGHTS 3.8)")
             .notes("no `move`/`rotate`"),
         sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `origin`")
             .notes("no `orient`/`spacing`"),
@@ -96,8 +96,7 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("rdem's restart file is a portable LAMMPS data file (box, particles with velocities and spins, the step in its title line): `read_restart` continues from it in a new script. Contact histories and fix states are not saved"),
         sim("read_restart", data_files::read_data, "file name")
             .notes("reads rdem's restart files; LIGGGHTS' binary restart files cannot be read"),
-        flow("variable", "`equal`, `atom`, `index`, `loop` (`pad`), `string`, `getenv`, `delete`")
-            .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `x[ID]`, `vx[ID]`, ..."),
+        flow("variable", "the variable styles below"),
         flow("print", "text with `$x`, `${name}`, `$(formula)`; `file`, `append`, `screen`"),
         flow("include", "a script file, run in place"),
         flow("label", "`ID`"),
@@ -165,5 +164,15 @@ pub fn readme_tables() -> String {
         crate::computes::REGISTRY.readme_rows(),
     );
     table("Dump styles", "dump style", dumps::REGISTRY.readme_rows());
+    table(
+        "Region styles",
+        "region style",
+        region::STYLES.readme_rows(),
+    );
+    table(
+        "Variable styles",
+        "variable style",
+        crate::variables::STYLES.readme_rows(),
+    );
     out
 }

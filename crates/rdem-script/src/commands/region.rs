@@ -6,6 +6,7 @@ use rdem::region::{Region, Shape};
 
 use crate::args::{Args, CmdResult};
 use crate::lattice::{self, Lattice};
+use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 
 /// `units lattice` scale; without a `lattice` command it is LIGGGHTS' default `none 1.0`.
@@ -16,6 +17,41 @@ pub(super) fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<D
         .filter(|_| units_lattice)
         .map_or(DVec3::ONE, |l| l.spacing()))
 }
+
+/// Every region style, with the names of its geometry arguments (`union` and
+/// `intersect` take a count and region IDs instead).
+pub static STYLES: Registry<&'static [&'static str]> = Registry {
+    family: "region style",
+    readme_prefix: "region ",
+    rows: &[
+        Row::runs(
+            "block",
+            &["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"],
+            "`xlo xhi ylo yhi zlo zhi` (`INF`, `-INF`, `EDGE` allowed)",
+        ),
+        Row::runs("sphere", &["x", "y", "z", "radius"], "`x y z radius`"),
+        Row::runs(
+            "cylinder",
+            &["dim", "c1", "c2", "radius", "lo", "hi"],
+            "`dim c1 c2 radius lo hi` (`INF`, `-INF`, `EDGE` allowed for lo, hi)",
+        ),
+        Row::runs(
+            "cone",
+            &["dim", "c1", "c2", "radlo", "radhi", "lo", "hi"],
+            "`dim c1 c2 radlo radhi lo hi` (`INF`, `-INF`, `EDGE` allowed for lo, hi)",
+        ),
+        Row::runs(
+            "plane",
+            &["px", "py", "pz", "nx", "ny", "nz"],
+            "`px py pz nx ny nz`: the half-space behind the normal",
+        ),
+        Row::runs("union", &[], "`N ID1 ID2 ...`"),
+        Row::runs("intersect", &[], "`N ID1 ID2 ...`"),
+        Row::not_yet("prism", ""),
+        Row::not_yet("wedge", ""),
+        Row::not_yet("mesh/tet", "tetrahedral mesh regions"),
+    ],
+};
 
 /// "region block takes xlo xhi ylo yhi zlo zhi ..." for help texts.
 fn region_usage(style: &str, names: &[&str]) -> String {
@@ -30,25 +66,10 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if sim.regions.contains_key(&id) {
         return Err(a.error_prev(format!("region ID '{id}' is already used"), None));
     }
-    const STYLES: [&str; 7] = [
-        "block",
-        "sphere",
-        "cylinder",
-        "cone",
-        "plane",
-        "union",
-        "intersect",
-    ];
-    let style = a.keyword("region style", &STYLES)?;
+    let w = a.word("region style")?;
+    let (style, arg_names) = STYLES.lookup(a, w)?;
+    let arg_names: &[&str] = arg_names;
     let args_start = a.pos();
-    let arg_names: &[&str] = match style {
-        "block" => &["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"],
-        "sphere" => &["x", "y", "z", "radius"],
-        "cylinder" => &["dim", "c1", "c2", "radius", "lo", "hi"],
-        "cone" => &["dim", "c1", "c2", "radlo", "radhi", "lo", "hi"],
-        "plane" => &["px", "py", "pz", "nx", "ny", "nz"],
-        _ => &[],
-    };
     // Geometry words first (numbers may be INF/EDGE); keywords after.
     let mut geo: Vec<String> = Vec::new();
     let mut parts: Vec<Region> = Vec::new();

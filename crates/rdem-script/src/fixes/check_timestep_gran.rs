@@ -13,7 +13,8 @@ pub(super) const ROW: FixRow = style(
     Stages::END_OF_STEP.and(Stages::VALUES),
     "`N fraction_r fraction_h` (`warn`, `error`, `vmax`)",
 )
-.notes("`f_ID[1]`, `f_ID[2]`: dt over the Rayleigh and Hertz times");
+.notes("`f_ID[1]`, `f_ID[2]`: dt over the Rayleigh and Hertz times")
+.atoi();
 
 /// `fix check/timestep/gran`.
 pub struct CheckTimestep {

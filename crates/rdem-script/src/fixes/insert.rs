@@ -21,7 +21,8 @@ pub(super) const ROW_PACK: FixRow = style(
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
     "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `start`; `ntry_mc`, `verbose`",
 )
-.notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not");
+.notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not")
+.atoi();
 
 /// The registry row of `insert/rate/region`.
 pub(super) const ROW_RATE: FixRow = style(
@@ -29,7 +30,8 @@ pub(super) const ROW_RATE: FixRow = style(
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
     "`nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `insert_every`, the placement keywords of insert/pack",
-);
+)
+.atoi();
 
 /// The engine part of an insertion fix.
 pub enum InsertEngine {

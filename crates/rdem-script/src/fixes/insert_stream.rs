@@ -18,7 +18,8 @@ pub(super) const ROW: FixRow = style(
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
     "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
 )
-.notes("a packet every `round(L / (v·n dt))` steps, each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps");
+.notes("a packet every `round(L / (v·n dt))` steps, each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps")
+.atoi();
 
 /// What `fix insert/stream` was given (besides the settings every insertion has).
 pub(super) struct StreamArgs<'a> {

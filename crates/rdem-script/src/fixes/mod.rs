@@ -31,7 +31,7 @@ use std::any::Any;
 use rdem::World;
 
 use crate::args::{suggest, Args, CmdResult};
-use crate::registry::{Registry, Row};
+use crate::registry::{Registry, Row, Support};
 use crate::sim::Sim;
 
 pub use check_timestep_gran::timestep_limits;
@@ -210,6 +210,25 @@ pub struct FixStyle {
     pub parse: Parse,
     /// The stages its fixes take part in.
     pub stages: Stages,
+    /// LIGGGHTS 3.8 reads its integer arguments with C's `atoi`, so `seed 10037.` or
+    /// `insert_every 5.` run there: rdem reads them so too, with a warning (checked on
+    /// LIGGGHTS 3.8: the insertion fixes, templates, distributions and
+    /// check/timestep/gran do; `fix ave/time 1. ...` stops with "Expected integer
+    /// parameter").
+    pub atoi: bool,
+}
+
+impl FixRow {
+    /// The same row for a style whose integers LIGGGHTS reads with `atoi`.
+    pub const fn atoi(self) -> Self {
+        match self.support {
+            Support::Runs(h) => Row {
+                support: Support::Runs(FixStyle { atoi: true, ..h }),
+                ..self
+            },
+            Support::Not(_) => self,
+        }
+    }
 }
 
 /// A row of the fix registry.
@@ -222,7 +241,15 @@ pub(crate) const fn style(
     stages: Stages,
     help: &'static str,
 ) -> FixRow {
-    Row::runs(name, FixStyle { parse, stages }, help)
+    Row::runs(
+        name,
+        FixStyle {
+            parse,
+            stages,
+            atoi: false,
+        },
+        help,
+    )
 }
 
 /// Every fix style: those rdem runs, then LIGGGHTS styles it does not run yet.
@@ -391,6 +418,9 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let groupbit = sim.group_bit(a, "group ID")?;
     let style_word = a.word("fix style")?;
     let (style, row) = REGISTRY.lookup(a, style_word)?;
+    if row.atoi {
+        a.read_integers_with_atoi();
+    }
     let head = FixHead {
         id,
         style,

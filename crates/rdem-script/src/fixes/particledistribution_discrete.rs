@@ -14,7 +14,8 @@ pub(super) const ROW: FixRow = style(
     Stages::NONE,
     "mass fractions",
 )
-.notes("weights are normalised with a warning");
+.notes("weights are normalised with a warning")
+.atoi();
 
 /// The registry row of the mass-based form (the same as the plain one).
 pub(super) const ROW_MASS: FixRow = style(

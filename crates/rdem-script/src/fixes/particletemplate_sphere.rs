@@ -13,7 +13,8 @@ pub(super) const ROW: FixRow = style(
     parse,
     Stages::NONE,
     "`atom_type`, `density constant`, `radius constant\\|uniform\\|gaussian`",
-);
+)
+.atoi();
 
 /// A defined template: it lives in `Sim::templates` under the fix ID.
 pub struct Template;
