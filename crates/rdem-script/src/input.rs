@@ -365,7 +365,7 @@ impl Interpreter {
                 let name = a.word("variable name")?.to_string();
                 let style = a.word("variable style")?.to_string();
                 let rest: Vec<String> = words[3..].iter().map(|w| w.text.clone()).collect();
-                self.sim.vars.define(&name, &style, &rest).map_err(|e| {
+                let defined = self.sim.vars.define(&name, &style, &rest).map_err(|e| {
                     let k = if e.arg == usize::MAX { 1 } else { e.arg + 2 };
                     let help = e
                         .help
@@ -373,6 +373,12 @@ impl Interpreter {
                         .or_else(|| (e.arg == 0).then(|| crate::variables::STYLES.suggest(&style)));
                     a.error_at(k.min(words.len()), e.message, help)
                 })?;
+                if defined && style != "delete" {
+                    // The formula (or first value): errors of its evaluation during a
+                    // run point at it.
+                    let origin = self.sim.origin(&a, 3.min(words.len() - 1));
+                    self.sim.vars.set_origin(&name, origin);
+                }
             }
             "print" => self.print(&mut a, &cmd)?,
             "log" => {

@@ -286,8 +286,18 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
     let mut s = String::new();
     for (k, c) in sim.thermo.columns.iter().enumerate() {
         let (mut v, int) = column_value(sim, c).map_err(|m| {
-            let origin = sim.thermo.origins.get(k).and_then(Option::as_ref);
-            RunError::at(origin, "rdem::run::thermo", m)
+            // A variable that fails is reported at its definition, else the column.
+            let var = match split_reference(c) {
+                Some(('v', id, _)) => sim.vars.origin(id),
+                _ => None,
+            };
+            match var {
+                Some(o) => RunError::at(Some(o), "rdem::run::variable", m),
+                None => {
+                    let origin = sim.thermo.origins.get(k).and_then(Option::as_ref);
+                    RunError::at(origin, "rdem::run::thermo", m)
+                }
+            }
         })?;
         let n = sim.natoms();
         if sim.thermo.norm && n > 0 && extensive_reference(sim, c) {

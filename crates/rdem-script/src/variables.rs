@@ -81,6 +81,9 @@ fn derr<T>(message: impl Into<String>, arg: usize, help: Option<String>) -> Resu
 #[derive(Debug, Clone, Default)]
 pub struct Variables {
     vars: Vec<(String, Variable)>,
+    /// Where each variable's definition stands (its formula or first value), for errors
+    /// found while it is evaluated during a run.
+    origins: Vec<(String, crate::diagnostic::Origin)>,
 }
 
 fn valid_name(n: &str) -> bool {
@@ -96,6 +99,19 @@ impl Variables {
     /// The variable `name`.
     pub fn get(&self, name: &str) -> Option<&Variable> {
         self.vars.iter().find(|(n, _)| n == name).map(|(_, v)| v)
+    }
+
+    /// Where variable `name` was defined (its formula or first value), if known.
+    pub fn origin(&self, name: &str) -> Option<&crate::diagnostic::Origin> {
+        self.origins.iter().find(|(n, _)| n == name).map(|(_, o)| o)
+    }
+
+    /// Records where variable `name` was defined.
+    pub fn set_origin(&mut self, name: &str, origin: Option<crate::diagnostic::Origin>) {
+        self.origins.retain(|(n, _)| n != name);
+        if let Some(o) = origin {
+            self.origins.push((name.to_string(), o));
+        }
     }
 
     /// Names of all variables, in definition order.
@@ -143,6 +159,7 @@ impl Variables {
                     return derr("style delete takes no arguments", 1, None);
                 }
                 self.vars.retain(|(n, _)| n != name);
+                self.origins.retain(|(n, _)| n != name);
                 return Ok(true);
             }
             "index" => {

@@ -1,6 +1,7 @@
 //! Errors found during a run point at the word that introduced what failed, with a miette
-//! error code: a thermo column (`rdem::run::thermo`), a dump (`rdem::run::dump`), a fix
-//! (`rdem::run::fix`); what belongs to no word (a particle lost through a fixed face) stays
+//! error code: a thermo column (`rdem::run::thermo`), a variable's formula
+//! (`rdem::run::variable`), a dump (`rdem::run::dump`), a fix (`rdem::run::fix`); what
+//! belongs to no word (a particle lost through a fixed face) stays
 //! at the `run` command (`rdem::run::engine`). Before, every one of them was reported at
 //! `run`.
 
@@ -50,6 +51,20 @@ fn a_thermo_column_that_fails_is_reported_at_its_word() {
         "{text}"
     );
     assert!(text.contains("found during the run of line 12"), "{text}");
+}
+
+#[test]
+fn a_variable_that_fails_is_reported_at_its_formula() {
+    // Line 11 defines the variable; its formula `f_g` starts at column 18; thermo uses
+    // it on line 12; the run is line 13.
+    let r = report(&script(
+        "variable e equal f_g\nthermo_style custom step v_e\nrun 10\n",
+    ));
+    let text = render(&r);
+    assert_eq!(r.code(), Some("rdem::run::variable"), "{text}");
+    assert!(text.contains("in.rt:11:18"), "{text}");
+    assert!(text.contains("computes no global values"), "{text}");
+    assert!(text.contains("found during the run of line 13"), "{text}");
 }
 
 #[test]
