@@ -34,7 +34,7 @@ fn bond_table<'a>(b: &'a mut BondCoefficients, name: &str) -> Option<&'a mut Opt
 
 /// Builds the engine's material table from the `fix property/global` values.
 pub fn materials(sim: &Sim) -> Result<Materials, String> {
-    let n = sim.ntypes;
+    let n = sim.ntypes();
     let mut m = Materials {
         ntypes: n,
         ..Default::default()

@@ -86,7 +86,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         }
         w.materials = m;
         // k_finnie for the meshes that wear.
-        let ntypes = sim.ntypes;
+        let ntypes = w.materials.ntypes;
         for mesh in &mut w.meshes {
             let Some(st) = &mut mesh.stress else { continue };
             if !st.finnie {

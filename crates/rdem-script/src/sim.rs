@@ -115,8 +115,6 @@ pub struct Sim {
     pub world: Option<World>,
     /// Settings that wait for the box.
     pub pending: Pending,
-    /// Number of atom types of the box.
-    pub ntypes: usize,
     /// Groups.
     pub groups: Groups,
     /// Regions by ID.
@@ -175,7 +173,6 @@ impl Sim {
         Self {
             world: None,
             pending: Pending::default(),
-            ntypes: 0,
             groups: Groups::default(),
             regions: BTreeMap::new(),
             lattice: None,
@@ -290,6 +287,12 @@ impl Sim {
         }
         self.time_origin = now;
         Ok(())
+    }
+
+    /// Number of atom types of the box (0 before it exists): the world's material
+    /// table holds it.
+    pub fn ntypes(&self) -> usize {
+        self.world.as_ref().map_or(0, |w| w.materials.ntypes)
     }
 
     /// Simulated time at the current step.

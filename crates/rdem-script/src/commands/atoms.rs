@@ -127,7 +127,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 "property/atom",
             ],
         )?;
-        let ntypes = sim.ntypes;
+        let ntypes = sim.ntypes();
         let w = sim.world.as_mut().expect("select checked");
         w.neighbor.save_history(&w.particles);
         w.particles.clear_ghosts();

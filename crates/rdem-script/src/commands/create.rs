@@ -55,7 +55,7 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     decompose(sim, &mut w, a, 0)?;
     w.set_timestep(sim.pending.dt)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    sim.ntypes = n as usize;
+    w.materials.ntypes = n as usize;
     sim.world = Some(w);
     Ok(())
 }
@@ -79,9 +79,9 @@ pub(super) fn new_default(x: DVec3, ty: u32) -> NewParticle {
 
 pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let ty = a.count("atom type")? as u32;
-    if ty as usize > sim.ntypes {
+    if ty as usize > sim.ntypes() {
         return Err(a.error_prev(
-            format!("atom type {ty} > the box's {} type(s)", sim.ntypes),
+            format!("atom type {ty} > the box's {} type(s)", sim.ntypes()),
             None,
         ));
     }

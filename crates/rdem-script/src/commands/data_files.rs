@@ -63,7 +63,7 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 )
             })?;
     }
-    sim.ntypes = data.ntypes as usize;
+    w.materials.ntypes = data.ntypes as usize;
     sim.world = Some(w);
     Ok(())
 }
@@ -79,7 +79,7 @@ pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
             a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
         }
     }
-    let ntypes = sim.ntypes as u32;
+    let ntypes = sim.ntypes() as u32;
     let w = sim.world_ref(a)?;
     let f = f.replace('*', &w.step.to_string());
     if sim.check {

@@ -48,12 +48,12 @@ pub(super) fn pair_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
     for (t, k) in [(t1, 1), (t2, 2)] {
         if t != "*"
             && t.parse::<usize>()
-                .map_or(true, |v| v == 0 || v > sim.ntypes.max(1))
+                .map_or(true, |v| v == 0 || v > sim.ntypes().max(1))
         {
             return Err(a.error_at(
                 k,
                 format!("bad atom type '{t}'"),
-                Some(format!("use * or 1..{}", sim.ntypes)),
+                Some(format!("use * or 1..{}", sim.ntypes())),
             ));
         }
     }

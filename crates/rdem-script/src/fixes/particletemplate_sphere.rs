@@ -36,11 +36,11 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
         )? {
             "atom_type" => {
                 let t = a.count("atom type")?;
-                if sim.ntypes > 0 && t as usize > sim.ntypes {
+                if sim.ntypes() > 0 && t as usize > sim.ntypes() {
                     return Err(a.error_prev(
                         format!(
                             "atom type {t} is larger than the box's {} type(s)",
-                            sim.ntypes
+                            sim.ntypes()
                         ),
                         None,
                     ));

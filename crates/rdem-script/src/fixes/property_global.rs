@@ -52,9 +52,9 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
     let mut values = Vec::new();
     if style == "peratomtypepair" || style == "matrix" {
         let n = a.count("number of atom types")? as usize;
-        if style == "peratomtypepair" && sim.ntypes > 0 && n != sim.ntypes {
+        if style == "peratomtypepair" && sim.ntypes() > 0 && n != sim.ntypes() {
             return Err(a.error_prev(
-                format!("{name}: {n} types given but the box has {}", sim.ntypes),
+                format!("{name}: {n} types given but the box has {}", sim.ntypes()),
                 None,
             ));
         }
@@ -99,16 +99,16 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
                 "use 'vector' for several values".into(),
             ));
         }
-        if style == "peratomtype" && sim.ntypes > 0 && values.len() != sim.ntypes {
+        if style == "peratomtype" && sim.ntypes() > 0 && values.len() != sim.ntypes() {
             return Err(count_error(
                 a,
                 start,
-                sim.ntypes,
+                sim.ntypes(),
                 values.len(),
                 format!(
                     "{name}: {} given but the box has {}",
                     plural(values.len(), "value"),
-                    plural(sim.ntypes, "atom type")
+                    plural(sim.ntypes(), "atom type")
                 ),
                 "peratomtype takes one value per atom type".into(),
             ));
