@@ -17,7 +17,10 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use rdem_script::{Interpreter, Output, ScriptReport, Sim};
+use rdem_script::{Interpreter, Output, Sim};
+
+mod common;
+use common::render;
 
 const DIR: &str = "tests/data/errors";
 
@@ -53,16 +56,6 @@ fn header(src: &str) -> Result<Expect, String> {
         return Err("header has no '# expect-message: ...'".into());
     }
     Ok(e)
-}
-
-/// The report as text, without colour and wide enough that no line wraps.
-fn render(r: &ScriptReport) -> String {
-    let mut out = String::new();
-    miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
-        .with_width(10_000)
-        .render_report(&mut out, r)
-        .expect("render");
-    out
 }
 
 /// Column (1-based) of the caret under source line `line`, read off the rendering: the

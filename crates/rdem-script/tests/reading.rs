@@ -6,6 +6,9 @@
 
 use rdem_script::{Interpreter, Output, Sim};
 
+mod common;
+use common::render;
+
 /// The first lines of every script here: a granular SI set-up.
 const PRE: &str = "\
 atom_style granular
@@ -50,16 +53,6 @@ fn try_run(script: &str) -> Result<String, String> {
 /// Runs `script`, which must succeed; the screen text.
 fn run(script: &str) -> String {
     try_run(script).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// A report as plain text.
-fn render(r: &rdem_script::ScriptReport) -> String {
-    let mut out = String::new();
-    miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
-        .with_width(200)
-        .render_report(&mut out, r)
-        .unwrap();
-    out
 }
 
 /// Lines of `screen` starting with `prefix`.

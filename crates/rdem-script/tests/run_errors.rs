@@ -7,6 +7,9 @@
 
 use rdem_script::{Interpreter, Output, ScriptReport, Sim};
 
+mod common;
+use common::render;
+
 /// One particle falling in a box, and `tail` after it.
 fn script(tail: &str) -> String {
     format!(
@@ -28,15 +31,6 @@ fn report(src: &str) -> Box<ScriptReport> {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     i.run_source("in.rt", src)
         .expect_err("the script must fail")
-}
-
-fn render(r: &ScriptReport) -> String {
-    let mut out = String::new();
-    miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
-        .with_width(10_000)
-        .render_report(&mut out, r)
-        .expect("render");
-    out
 }
 
 #[test]

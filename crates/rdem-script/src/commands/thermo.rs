@@ -17,11 +17,10 @@ pub(super) fn thermo(sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.keyword("thermo style", &["custom", "one", "multi"])?;
-    let mut origins = vec![None; 4];
+    let mut origins = Vec::new();
     let cols: Vec<String> = match style {
         "custom" => {
             let mut c = Vec::new();
-            origins.clear();
             while let Some(w) = a.peek() {
                 if !thermo::valid_column(w) {
                     return Err(a.error_at(
@@ -66,7 +65,10 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
             c
         }
-        "one" => ["step", "atoms", "ke", "cpu"].map(String::from).to_vec(),
+        "one" => {
+            origins = vec![None; 4];
+            ["step", "atoms", "ke", "cpu"].map(String::from).to_vec()
+        }
         _ => return Err(a.error_prev("thermo_style multi is not supported; use custom", None)),
     };
     if sim.thermo.norm

@@ -67,22 +67,6 @@ impl Stages {
     pub const fn has(self, other: Self) -> bool {
         self.0 & other.0 == other.0 && other.0 != 0
     }
-
-    /// The stage names (for help and the README).
-    pub fn names(self) -> Vec<&'static str> {
-        [
-            (Self::ENGINE, "engine"),
-            (Self::PRE_STEP, "pre-step"),
-            (Self::PRE_EXCHANGE, "pre-exchange"),
-            (Self::END_OF_STEP, "end-of-step"),
-            (Self::END_OF_RUN, "end-of-run"),
-            (Self::VALUES, "f_ID values"),
-        ]
-        .into_iter()
-        .filter(|(s, _)| self.has(*s))
-        .map(|(_, n)| n)
-        .collect()
-    }
 }
 
 /// The words every fix starts with: `fix ID group style`.
