@@ -28,7 +28,13 @@ const FIELDS: [&str; 5] = ["stress", "wear", "vel", "id", "area"];
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
     // [output face|interpolate|original] fields... mesh IDs...
     const LATER_FIELDS: [&str; 5] = ["stresscomponents", "owner", "aedges", "acorners", "nneighs"];
-    let style = a.words()[3].text.as_str();
+    // The style word as written (`dump` has it at word 3, `write_dump` at word 2).
+    let style = a
+        .words()
+        .iter()
+        .map(|w| w.text.as_str())
+        .find(|t| matches!(*t, "mesh/vtk" | "mesh/gran/VTK"))
+        .unwrap_or("mesh/vtk");
     let mut cols = Vec::new();
     let mut meshes = Vec::new();
     while let Some(w) = a.peek() {
