@@ -304,13 +304,7 @@ impl RunStages {
             sim.fixes[k] = f;
         }
         result.map_err(engine_error)?;
-        for (warning, text) in notes.0 {
-            if warning {
-                sim.out.warning(&text);
-            } else {
-                sim.out.line(&text);
-            }
-        }
+        notes.print(&mut sim.out);
         Ok(())
     }
 }

@@ -30,7 +30,7 @@ pub struct Adapt {
     pub saved: Option<Vec<(u64, f64)>>,
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let every = a.count("N (adapt every N steps)")?;
     match a.keyword("adapt attribute", &["atom", "pair"])? {
         "atom" => {}

@@ -42,7 +42,7 @@ pub struct AveEuler {
     pub step: u64,
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let id = head.id.as_str();
     // LIGGGHTS 3.8 stops a second ave/euler with "Reuse of compute ID" (each creates an
     // internal compute of the same name); say so plainly.

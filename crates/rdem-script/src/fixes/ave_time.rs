@@ -41,7 +41,7 @@ pub struct AveTime {
     pub windows: u64,
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let nevery = a.count("Nevery")?;
     let nrepeat = a.count("Nrepeat")?;
     let nfreq = a.count("Nfreq")?;

@@ -34,7 +34,7 @@ pub struct CheckTimestep {
     pub values: [f64; 2],
 }
 
-fn parse(_sim: &mut Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let every = a.count("nevery")?;
     let fraction_r = a.positive("fraction of the Rayleigh time")?;
     let fraction_h = a.positive("fraction of the Hertz time")?;

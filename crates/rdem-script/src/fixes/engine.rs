@@ -45,10 +45,24 @@ pub(super) const ROW_SETFORCE: FixRow = style(
     "`fx fy fz` (numbers or NULL)",
 );
 
-/// A fix that lives in `World::fixes` under the same ID.
-pub struct InEngine;
+/// A fix the engine runs: parsed into an engine [`Fix`], which [`ScriptFix::install`]
+/// hands to `World::fixes` (the one owner of its state from then on; the script's entry
+/// keeps its ID, style and group for `unfix` and redefinitions).
+pub struct InEngine {
+    /// The parsed fix, until it is installed.
+    fix: Option<Fix>,
+}
 
 impl ScriptFix for InEngine {
+    fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+        if let Some(fix) = self.fix.take() {
+            sim.world_mut(a)?
+                .add_fix(fix)
+                .map_err(|e| a.error_cmd(e.to_string(), None))?;
+        }
+        Ok(())
+    }
+
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
         if let Some(w) = &mut sim.world {
             w.remove_fix(&head.id);
@@ -56,26 +70,20 @@ impl ScriptFix for InEngine {
     }
 }
 
-/// Hands an engine fix of `kind` to the world.
+/// An engine fix of `kind` (a box must exist).
 pub(super) fn engine_fix(
-    sim: &mut Sim,
+    sim: &Sim,
     a: &Args,
     head: &FixHead,
     kind: FixKind,
 ) -> CmdResult<Box<dyn ScriptFix>> {
+    sim.world_ref(a)?;
     let fix =
         Fix::new(&head.id, head.groupbit, kind).map_err(|e| a.error_cmd(e.to_string(), None))?;
-    add_engine(sim, a, fix)
+    Ok(Box::new(InEngine { fix: Some(fix) }))
 }
 
-fn add_engine(sim: &mut Sim, a: &Args, fix: Fix) -> CmdResult<Box<dyn ScriptFix>> {
-    let w = sim.world_mut(a)?;
-    w.add_fix(fix)
-        .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    Ok(Box::new(InEngine))
-}
-
-fn nve_sphere(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn nve_sphere(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     if !a.is_done() {
         let w = a.word("")?;
         return Err(a.error_prev(
@@ -86,29 +94,30 @@ fn nve_sphere(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn 
     engine_fix(sim, a, head, FixKind::NveSphere)
 }
 
-fn gravity(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn gravity(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let g = a.f64("gravity magnitude")?;
     let how = a.keyword("gravity direction style", &["vector"])?;
     debug_assert_eq!(how, "vector");
     let d = a.vec3("gravity vector")?;
     a.done()?;
+    sim.world_ref(a)?;
     let fix = Fix::gravity(&head.id, head.groupbit, g, d)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    add_engine(sim, a, fix)
+    Ok(Box::new(InEngine { fix: Some(fix) }))
 }
 
-fn freeze(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn freeze(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     a.done()?;
     engine_fix(sim, a, head, FixKind::Freeze)
 }
 
-fn viscous(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn viscous(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let gamma = a.non_negative("damping coefficient gamma")?;
     a.done()?;
     engine_fix(sim, a, head, FixKind::Viscous { gamma })
 }
 
-fn addforce(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn addforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let mut v = [0.0; 3];
     for (k, c) in v.iter_mut().enumerate() {
         let w = a.word(["fx", "fy", "fz"][k])?;
@@ -126,7 +135,7 @@ fn addforce(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Sc
     engine_fix(sim, a, head, FixKind::AddForce { force })
 }
 
-fn setforce(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn setforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let mut v = [None; 3];
     for (k, c) in v.iter_mut().enumerate() {
         let what = ["fx", "fy", "fz"][k];

@@ -63,6 +63,8 @@ pub struct Inserter {
     pub rate: Option<RateState>,
     /// `verbose yes`.
     pub verbose: bool,
+    /// What the definition reports, printed when it is installed.
+    pub announce: Option<Notes>,
 }
 
 /// State of `insert/rate/region`.
@@ -76,7 +78,7 @@ pub struct RateState {
 }
 
 /// The parser of all three insertion styles (their keywords overlap).
-pub(super) fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let (id, groupbit, style) = (head.id.as_str(), head.groupbit, head.style);
     let stream = style == "insert/stream";
     let rate = style == "insert/rate/region" || stream;
@@ -373,6 +375,7 @@ pub(super) fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Bo
         total_mass: 0.0,
         rate: rate_state,
         verbose,
+        announce: None,
     }))
 }
 
@@ -393,6 +396,14 @@ pub fn insertion_report(
 }
 
 impl ScriptFix for Inserter {
+    /// Prints what the definition reports (`insert/stream`'s rate).
+    fn install(&mut self, sim: &mut Sim, _a: &Args, _head: &FixHead) -> CmdResult<()> {
+        if let Some(notes) = self.announce.take() {
+            notes.print(&mut sim.out);
+        }
+        Ok(())
+    }
+
     /// `f_ID[1]`, `f_ID[2]`: particles inserted so far and their mass.
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Ok(vec![self.total as f64, self.total_mass])

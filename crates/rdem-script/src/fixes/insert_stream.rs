@@ -6,7 +6,7 @@
 use rdem::insert::{Distribution, VelocityLaw};
 
 use super::insert::{InsertEngine, Inserter};
-use super::{style, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::{style, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 use crate::variables::format_e;
@@ -43,7 +43,7 @@ pub(super) struct StreamArgs<'a> {
 /// `fix insert/stream`: checks the keyword combinations LIGGGHTS requires and builds
 /// the engine's stream.
 pub(super) fn build(
-    sim: &mut Sim,
+    sim: &Sim,
     a: &mut Args,
     s: StreamArgs,
     settings: impl FnOnce(&mut rdem::insert::InsertStream),
@@ -120,8 +120,9 @@ pub(super) fn build(
     .map_err(|e| a.error_at(face_at, e.to_string(), None))?;
     st.limit = limit;
     settings(&mut st);
+    let mut announce = Notes::default();
     if verbose {
-        sim.out.line(&format!(
+        announce.line(format!(
             "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
             s.id,
             st.per_insertion,
@@ -136,5 +137,6 @@ pub(super) fn build(
         total_mass: 0.0,
         rate: None,
         verbose,
+        announce: Some(announce),
     }))
 }

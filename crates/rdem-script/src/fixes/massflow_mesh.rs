@@ -57,7 +57,7 @@ impl MassFlowFix {
 
 /// `fix ID group massflow/mesh mesh MESH vec_side x y z [count once|multiple]
 /// [delete_atoms yes|no] [screen yes|no]`.
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let (id, groupbit) = (head.id.as_str(), head.groupbit);
     a.keyword("massflow/mesh keyword", &["mesh"])?;
     let mesh_at = a.pos();

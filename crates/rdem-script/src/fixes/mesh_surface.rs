@@ -3,7 +3,7 @@
 //! (`wall/gran ... mesh`), motions, insertion faces and mesh dumps use. The `/stress`
 //! form sums the force on each triangle (and wears it): `f_ID[1..9]`.
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::{style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -32,16 +32,30 @@ pub(super) const ROW_STRESS: FixRow = style(
     "as `mesh/surface`, and `stress on\\|off`, `wear finnie\\|off`, `reference_point`",
 );
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let mesh = mesh_surface(sim, a, &head.id, head.style)?;
-    sim.world_mut(a)?.add_mesh(mesh);
-    Ok(Box::new(Mesh))
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    sim.world_ref(a)?;
+    let mut notes = Notes::default();
+    let mesh = mesh_surface(a, &head.id, head.style, &mut notes)?;
+    Ok(Box::new(Mesh {
+        parsed: Some((mesh, notes)),
+    }))
 }
 
 /// A mesh in `World::meshes` under the fix ID.
-pub struct Mesh;
+pub struct Mesh {
+    /// The mesh read from its file and what to print about it, until installed.
+    parsed: Option<(rdem::wall::MeshSurface, Notes)>,
+}
 
 impl ScriptFix for Mesh {
+    fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+        if let Some((mesh, notes)) = self.parsed.take() {
+            sim.world_mut(a)?.add_mesh(mesh);
+            notes.print(&mut sim.out);
+        }
+        Ok(())
+    }
+
     /// `f_ID[1..9]` of a `/stress` mesh: total force, torque about the reference point,
     /// the point.
     fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, String> {
@@ -63,10 +77,10 @@ impl ScriptFix for Mesh {
 /// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
 /// triangles, and `surface_vel` for a conveyor belt.
 fn mesh_surface(
-    sim: &mut Sim,
     a: &mut Args,
     id: &str,
     style: &str,
+    notes: &mut Notes,
 ) -> CmdResult<rdem::wall::MeshSurface> {
     let stress_style = style == "mesh/surface/stress";
     let (mut stress_on, mut finnie, mut reference_point) = (true, false, rdem::DVec3::ZERO);
@@ -204,13 +218,13 @@ fn mesh_surface(
     let (mesh, report) = rdem::mesh::TriMesh::from_triangles(&soup, precision, heal)
         .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), None))?;
     if !report.degenerate.is_empty() || !report.duplicates.is_empty() {
-        sim.out.warning(&format!(
+        notes.warning(format!(
             "mesh/surface {id}: dropped {} degenerate and {} repeated triangle(s) of {file}",
             report.degenerate.len(),
             report.duplicates.len()
         ));
     }
-    sim.out.line(&format!(
+    notes.line(format!(
         "  mesh {id}: {} triangles, {} vertices",
         mesh.tris.len(),
         mesh.verts.len()

@@ -80,7 +80,8 @@ pub struct FixHead {
     pub groupbit: u32,
 }
 
-/// Lines a fix prints while the engine holds the world (insertion reports), in order:
+/// Lines a fix prints later (insertion reports while the engine holds the world, a
+/// definition's report when it is installed), in order:
 /// `(true, text)` for a warning, `(false, text)` for a plain line.
 #[derive(Debug, Default)]
 pub struct Notes(pub Vec<(bool, String)>);
@@ -94,6 +95,17 @@ impl Notes {
     /// A warning.
     pub fn warning(&mut self, text: String) {
         self.0.push((true, text));
+    }
+
+    /// Prints the lines and warnings in order.
+    pub fn print(self, out: &mut crate::output::Output) {
+        for (warning, text) in self.0 {
+            if warning {
+                out.warning(&text);
+            } else {
+                out.line(&text);
+            }
+        }
     }
 }
 
@@ -113,7 +125,19 @@ impl<T: Any> AsAny for T {
 /// A fix as the script defined it. Each method is one stage; a fix implements those its
 /// registry row declares (the others are never called). Methods that take the whole
 /// [`Sim`] are called with the fix itself out of `Sim::fixes` (see [`with_fix`]).
+///
+/// A definition has three steps, as LAMMPS' constructor, `init` and destructor: the
+/// style's parser reads the words with the script state read-only (a definition that
+/// fails changes nothing), [`ScriptFix::install`] puts into the rest of the state what
+/// the fix adds there, and [`ScriptFix::unfix`] takes it out again.
 pub trait ScriptFix: AsAny {
+    /// Adds to the rest of the script state what the definition brings (an engine fix, a
+    /// mesh, a property table, a template), once the parser has read every word; errors
+    /// point into `a`, the definition's words.
+    fn install(&mut self, _sim: &mut Sim, _a: &Args, _head: &FixHead) -> CmdResult<()> {
+        Ok(())
+    }
+
     /// [`Stages::VALUES`]: the global values `f_ID[1..]` at the current step.
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Err("computes no global values".into())
@@ -184,8 +208,9 @@ pub trait ScriptFix: AsAny {
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead);
 }
 
-/// A fix's parser: reads the words after `fix ID group style`.
-pub type Parse = fn(&mut Sim, &mut Args, &FixHead) -> CmdResult<Box<dyn ScriptFix>>;
+/// A fix's parser: reads the words after `fix ID group style` with the script state
+/// read-only; [`ScriptFix::install`] then adds the fix's effects.
+pub type Parse = fn(&Sim, &mut Args, &FixHead) -> CmdResult<Box<dyn ScriptFix>>;
 
 /// What the registry knows of a fix style rdem runs.
 #[derive(Clone, Copy)]
@@ -382,10 +407,13 @@ pub fn is_extensive(sim: &Sim, id: &str) -> bool {
         .any(|f| f.head.id == id && f.imp.extensive())
 }
 
-/// `fix ID group style args...`.
+/// `fix ID group style args...`: the style's parser reads the words (the state is
+/// unchanged if they are wrong), a fix of the same ID is removed, and the new one is
+/// installed.
 pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("fix ID")?.to_string();
-    if let Some(k) = sim.fix_index(&id) {
+    let replaces = sim.fix_index(&id);
+    if let Some(k) = replaces {
         // LIGGGHTS replaces a fix of the same ID and style; a different style is an error.
         let style = a.words().get(3).map(|w| w.text.as_str()).unwrap_or("");
         if sim.fixes[k].head.style != style {
@@ -397,7 +425,6 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 Some("unfix it first or pick another ID".into()),
             ));
         }
-        unfix_id(sim, &id);
     }
     let groupbit = sim.group_bit(a, "group ID")?;
     let style_word = a.word("fix style")?;
@@ -410,7 +437,11 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         style,
         groupbit,
     };
-    let imp = (row.parse)(sim, a, &head)?;
+    let mut imp = (row.parse)(sim, a, &head)?;
+    if replaces.is_some() {
+        unfix_id(sim, &head.id);
+    }
+    imp.install(sim, a, &head)?;
     let origin = sim.origin(a, STYLE_WORD);
     sim.fixes.push(FixEntry {
         head,

@@ -18,9 +18,25 @@ pub(super) const ROW: FixRow = style(
 /// A motion of the world's mesh of index `mesh`.
 pub struct MoveMesh {
     mesh: usize,
+    /// The motion and the word its errors point at, until installed.
+    parsed: Option<(rdem::mesh_motion::Motion, usize)>,
 }
 
 impl ScriptFix for MoveMesh {
+    /// Starts the motion at the current time.
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        let Some((motion, style_at)) = self.parsed.take() else {
+            return Ok(());
+        };
+        let w = sim.world_mut(a)?;
+        let t = w.step as f64 * w.dt;
+        let m = &mut w.meshes[self.mesh];
+        let verts = m.mesh.verts.clone();
+        m.motion
+            .add(&head.id, motion, t, &verts)
+            .map_err(|e| a.error_at(style_at, e.to_string(), None))
+    }
+
     /// Refuses to remove a motion that is not the last one of its mesh (LIGGGHTS' rule:
     /// superposed motions go in reverse order).
     fn check_unfix(&self, sim: &Sim, head: &FixHead) -> Result<(), String> {
@@ -48,8 +64,7 @@ impl ScriptFix for MoveMesh {
 
 /// `fix ID group move/mesh mesh MESH style args`: linear, wiggle, rotate, riggle,
 /// viblin, vibrot ([`rdem::mesh_motion::Motion`]), from the current time on.
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let id = head.id.as_str();
+fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     use rdem::mesh_motion::Motion;
     a.keyword("move/mesh keyword", &["mesh"])?;
     let mesh = mesh_ref(sim, a, "mesh ID (a fix mesh/surface)")?;
@@ -146,12 +161,8 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
         }
     };
     a.done()?;
-    let w = sim.world_mut(a)?;
-    let t = w.step as f64 * w.dt;
-    let m = &mut w.meshes[mesh];
-    let verts = m.mesh.verts.clone();
-    m.motion
-        .add(id, motion, t, &verts)
-        .map_err(|e| a.error_at(style_at, e.to_string(), None))?;
-    Ok(Box::new(MoveMesh { mesh }))
+    Ok(Box::new(MoveMesh {
+        mesh,
+        parsed: Some((motion, style_at)),
+    }))
 }

@@ -34,15 +34,27 @@ pub(super) const ROW_NUMBER: FixRow = style(
 );
 
 /// A defined distribution: it lives in `Sim::distributions` under the fix ID.
-pub struct DistributionFix;
+pub struct DistributionFix {
+    parsed: Option<Distribution>,
+}
 
 impl ScriptFix for DistributionFix {
+    fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
+        if let Some(d) = self.parsed.take() {
+            if let Some(wm) = &d.warning {
+                sim.out.warning(wm);
+            }
+            sim.distributions.insert(head.id.clone(), d);
+        }
+        Ok(())
+    }
+
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
         sim.distributions.remove(&head.id);
     }
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let (id, style) = (head.id.as_str(), head.style);
     let seed = a.u64("seed")?;
     let n = a.count("number of templates")?;
@@ -67,9 +79,5 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
     };
     let d = Distribution::new(id, seed, weighting, parts)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    if let Some(wm) = &d.warning {
-        sim.out.warning(wm);
-    }
-    sim.distributions.insert(id.to_string(), d);
-    Ok(Box::new(DistributionFix))
+    Ok(Box::new(DistributionFix { parsed: Some(d) }))
 }

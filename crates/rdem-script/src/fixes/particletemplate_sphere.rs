@@ -17,15 +17,24 @@ pub(super) const ROW: FixRow = style(
 .atoi();
 
 /// A defined template: it lives in `Sim::templates` under the fix ID.
-pub struct Template;
+pub struct Template {
+    parsed: Option<ParticleTemplate>,
+}
 
 impl ScriptFix for Template {
+    fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
+        if let Some(t) = self.parsed.take() {
+            sim.templates.insert(head.id.clone(), t);
+        }
+        Ok(())
+    }
+
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
         sim.templates.remove(&head.id);
     }
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let id = head.id.as_str();
     let seed = a.u64("seed")?;
     let (mut ty, mut density, mut radius) = (1u32, None, None);
@@ -92,6 +101,5 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
     })?;
     let t = ParticleTemplate::new(id, seed, ty, density, radius)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    sim.templates.insert(id.to_string(), t);
-    Ok(Box::new(Template))
+    Ok(Box::new(Template { parsed: Some(t) }))
 }

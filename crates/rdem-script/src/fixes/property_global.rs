@@ -17,9 +17,17 @@ pub(super) const ROW: FixRow = style(
 /// A defined property: its values live in `Sim::properties` under `name`.
 pub struct PropertyGlobal {
     name: String,
+    parsed: Option<Property>,
 }
 
 impl ScriptFix for PropertyGlobal {
+    fn install(&mut self, sim: &mut Sim, _a: &Args, _head: &FixHead) -> CmdResult<()> {
+        if let Some(p) = self.parsed.take() {
+            sim.properties.insert(self.name.clone(), p);
+        }
+        Ok(())
+    }
+
     fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Ok(sim.properties[&self.name].values.clone())
     }
@@ -29,7 +37,7 @@ impl ScriptFix for PropertyGlobal {
     }
 }
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let id = head.id.as_str();
     let name = a.word("property name")?.to_string();
     let style = a.keyword(
@@ -114,13 +122,12 @@ fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scrip
             ));
         }
     }
-    sim.properties.insert(
-        name.clone(),
-        Property {
+    Ok(Box::new(PropertyGlobal {
+        name,
+        parsed: Some(Property {
             style: style.to_string(),
             values,
             fix_id: id.to_string(),
-        },
-    );
-    Ok(Box::new(PropertyGlobal { name }))
+        }),
+    }))
 }

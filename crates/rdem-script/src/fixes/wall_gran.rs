@@ -20,7 +20,7 @@ pub(super) const ROW: FixRow = style(
 )
 .notes("with `cohesion bond`, particle–wall bonds (on mesh walls anchored to a triangle, so they go with `fix move/mesh` and `surface_vel`); mesh walls: one contact per shared edge or corner and per flat surface (`curvature`), history that follows a sphere to the next triangle; the wall's velocity at the contact point (`surface_vel`, `surface_ang_vel`, `fix move/mesh`) enters the contact");
 
-fn parse(sim: &mut Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let kind = match wall_gran(sim, a, &head.id)? {
         Wall::Primitive(wall) => FixKind::WallGran(Box::new(wall)),
         Wall::Mesh(wall) => FixKind::MeshWall(Box::new(wall)),

@@ -1,0 +1,71 @@
+//! A fix definition has three steps: its style's parser reads the words with the script
+//! state read-only, the fix is installed (an engine fix handed to the world, a property
+//! table, a template, a mesh), and `unfix` takes it out again. So a definition whose words
+//! are wrong changes nothing — not even when it would replace a fix of the same ID — and
+//! a good redefinition replaces the old one everywhere.
+
+use rdem_script::{Interpreter, Output, Sim};
+
+const SETUP: &str = "units si\n\
+    atom_style granular\n\
+    boundary f f f\n\
+    region box block 0 1 0 1 0 1 units box\n\
+    create_box 1 box\n\
+    fix m all property/global youngsModulus peratomtype 5e6\n\
+    fix g all gravity 9.81 vector 0 0 -1\n\
+    fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.01\n";
+
+fn interpreter() -> Interpreter {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.run_source("in.setup", SETUP).expect("set-up runs");
+    i
+}
+
+fn engine_fix_ids(i: &Interpreter) -> Vec<String> {
+    let w = i.sim.world.as_ref().expect("box");
+    w.fixes.iter().map(|f| f.id.clone()).collect()
+}
+
+#[test]
+fn a_wrong_redefinition_keeps_the_old_fix() {
+    let mut i = interpreter();
+    // The engine fix: a vector with two components.
+    i.run_source("in.bad", "fix g all gravity 9.81 vector 0 0\n")
+        .expect_err("two components");
+    assert_eq!(engine_fix_ids(&i), ["g"]);
+    assert!(i.sim.fix_index("g").is_some());
+    // A property table: a value that is not a number.
+    i.run_source(
+        "in.bad",
+        "fix m all property/global youngsModulus peratomtype x\n",
+    )
+    .expect_err("not a number");
+    assert_eq!(i.sim.properties["youngsModulus"].values, [5e6]);
+    // A template: no radius.
+    i.run_source(
+        "in.bad",
+        "fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500\n",
+    )
+    .expect_err("no radius");
+    assert!(i.sim.templates.contains_key("pts"));
+    assert_eq!(i.sim.fixes.len(), 3);
+}
+
+#[test]
+fn a_good_redefinition_replaces_the_old_fix_everywhere() {
+    let mut i = interpreter();
+    i.run_source(
+        "in.good",
+        "fix g all gravity 1.0 vector 0 0 -1\n\
+         fix m all property/global youngsModulus peratomtype 7e6\n",
+    )
+    .expect("redefinitions run");
+    assert_eq!(engine_fix_ids(&i), ["g"]);
+    assert_eq!(i.sim.properties["youngsModulus"].values, [7e6]);
+    assert_eq!(i.sim.fixes.len(), 3);
+    i.run_source("in.unfix", "unfix g\nunfix m\nunfix pts\n")
+        .expect("unfix runs");
+    assert!(engine_fix_ids(&i).is_empty());
+    assert!(i.sim.properties.is_empty() && i.sim.templates.is_empty());
+    assert!(i.sim.fixes.is_empty());
+}
