@@ -237,16 +237,16 @@ fn main() -> ExitCode {
         if threads == 1 { "" } else { "s" }
     ));
     let mut sim = Sim::new(out);
-    sim.threads = threads;
+    sim.script.threads = threads;
     for (name, vals) in &cli.vars {
-        if let Err(e) = sim.vars.define(name, "index", vals) {
+        if let Err(e) = sim.script.vars.define(name, "index", vals) {
             eprintln!("rdem: -var {name}: {}", e.message);
             return ExitCode::from(2);
         }
     }
     let show_progress = std::io::stderr().is_terminal() && cli.screen.is_none() && rank == 0;
     if show_progress {
-        sim.progress = Some(progress_reporter());
+        sim.outputs.progress = Some(progress_reporter());
     }
     let mut interp = Interpreter::new(sim);
     let result = match &cli.input {
@@ -260,20 +260,20 @@ fn main() -> ExitCode {
             interp.run_bytes("<stdin>", &s)
         }
     };
-    interp.sim.out.flush();
+    interp.sim.outputs.out.flush();
     match result {
         Ok(()) => {
-            interp.sim.out.line(&format!(
+            interp.sim.outputs.out.line(&format!(
                 "Total wall time: {}",
-                hms(interp.sim.started.elapsed().as_secs())
+                hms(interp.sim.script.started.elapsed().as_secs())
             ));
-            interp.sim.out.flush();
+            interp.sim.outputs.out.flush();
             ExitCode::SUCCESS
         }
         Err(report) => {
             let text = format!("{:?}", miette::Report::new(*report));
-            interp.sim.out.log_line(&format!("ERROR: {text}"));
-            interp.sim.out.flush();
+            interp.sim.outputs.out.log_line(&format!("ERROR: {text}"));
+            interp.sim.outputs.out.flush();
             // Every rank reads the same script and the engine's errors are agreed on by
             // all ranks, so every rank stops here; rank 0 reports.
             if rank == 0 {
@@ -300,9 +300,9 @@ fn check(cli: &Cli, threads: usize, rank: usize) -> ExitCode {
     out.set_screen(None);
     out.echo = Echo::None;
     let mut sim = Sim::new(out);
-    sim.threads = threads;
+    sim.script.threads = threads;
     for (name, vals) in &cli.vars {
-        if let Err(e) = sim.vars.define(name, "index", vals) {
+        if let Err(e) = sim.script.vars.define(name, "index", vals) {
             eprintln!("rdem: -var {name}: {}", e.message);
             return ExitCode::from(2);
         }

@@ -281,8 +281,8 @@ fn describe(w: &[String]) -> String {
 /// step would start): resolves the columns of every particle dump instead of writing it,
 /// and moves the step counter on by `nsteps`.
 pub(crate) fn after_setup(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
-    for k in 0..sim.dumps.len() {
-        let d = &sim.dumps[k];
+    for k in 0..sim.outputs.dumps.len() {
+        let d = &sim.outputs.dumps[k];
         dump_columns(sim, k).map_err(|m| {
             RunError::at(
                 d.origin.as_ref(),
@@ -299,7 +299,7 @@ pub(crate) fn after_setup(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
 
 /// Resolves the columns of dump `k` (the `c_`, `f_` and `v_` references) without writing.
 pub(crate) fn dump_columns(sim: &Sim, k: usize) -> Result<(), String> {
-    let d = &sim.dumps[k];
+    let d = &sim.outputs.dumps[k];
     d.style.resolve(sim, &d.columns)
 }
 
@@ -335,7 +335,7 @@ impl Interpreter {
     /// `rdem -check` on the script bytes `bytes` named `name`, read as a run reads them
     /// (any encoding in comments and quotes, CRLF as LF).
     pub fn check_bytes(&mut self, name: &str, bytes: &[u8]) -> Checked {
-        self.sim.check = true;
+        self.sim.script.check = true;
         self.check = Some(State::default());
         let r = self.run_bytes(name, bytes);
         let mut state = self.check.take().unwrap_or_default();

@@ -44,7 +44,7 @@ pub fn eval_equal(sim: &Sim, formula: &str) -> Result<f64, expr::ExprError> {
 
 /// Text of `${name}` / `$x`.
 pub fn variable_text(sim: &Sim, name: &str) -> Result<String, String> {
-    sim.vars.text(
+    sim.script.vars.text(
         name,
         &mut Ctx {
             sim,
@@ -82,7 +82,8 @@ fn eval_atom_depth(
 }
 
 fn find_compute<'s>(sim: &'s Sim, id: &str) -> Result<&'s crate::computes::Compute, String> {
-    sim.computes
+    sim.defs
+        .computes
         .iter()
         .find(|c| c.id() == id)
         .ok_or_else(|| format!("no compute '{id}'"))
@@ -105,6 +106,7 @@ pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, St
 impl Ctx<'_> {
     fn group(&self, g: &str) -> Result<u32, String> {
         self.sim
+            .defs
             .groups
             .find(g)
             .map(|k| 1u32 << k)
@@ -142,7 +144,7 @@ impl Context for Ctx<'_> {
                 }
                 crate::thermo::keyword(sim, k)
             }
-            Name::Variable(v) => match sim.vars.get(v) {
+            Name::Variable(v) => match sim.script.vars.get(v) {
                 None => Err(format!("no variable '{v}'")),
                 Some(Variable::Equal(f)) => {
                     let e =
@@ -193,6 +195,7 @@ impl Context for Ctx<'_> {
             },
             Name::Compute(id, idx) => {
                 let c = sim
+                    .defs
                     .computes
                     .iter()
                     .find(|c| c.id() == id)

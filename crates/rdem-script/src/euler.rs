@@ -14,7 +14,8 @@ use crate::sim::Sim;
 /// The ID of the `fix ave/euler` a `dump euler/vtk` writes (LIGGGHTS allows only one;
 /// `None` when there is none).
 pub fn euler_fix_id(sim: &Sim) -> Option<&str> {
-    sim.fixes
+    sim.defs
+        .fixes
         .iter()
         .find(|f| f.downcast::<AveEuler>().is_some())
         .map(|f| f.id())
@@ -35,6 +36,7 @@ pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, String>
         }
     };
     let f = sim
+        .defs
         .fixes
         .iter()
         .find(|f| f.id() == id)

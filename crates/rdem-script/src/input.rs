@@ -59,7 +59,7 @@ pub(crate) fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
     let mut expr_span = None;
     lexer::substitute(cmd, |r| match r {
         Reference::Variable(name) => context::variable_text(sim, name).inspect_err(|_| {
-            if sim.vars.get(name).is_none() {
+            if sim.script.vars.get(name).is_none() {
                 help = Some((name.clone(), unknown_variable_help(sim, name)));
             }
         }),
@@ -101,7 +101,7 @@ pub(crate) fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
 
 /// Help for `${name}` of a variable that does not exist.
 fn unknown_variable_help(sim: &Sim, name: &str) -> String {
-    let names = sim.vars.names();
+    let names = sim.script.vars.names();
     let define =
         format!("define it with 'variable {name} ...' (or -var {name} VALUE) before it is used");
     match crate::args::nearest(name, &names) {
@@ -142,7 +142,7 @@ impl Interpreter {
         });
         let depth = self.frames.len();
         let r = self.drive(depth);
-        self.sim.out.flush();
+        self.sim.outputs.out.flush();
         r
     }
 
@@ -168,7 +168,7 @@ impl Interpreter {
     fn warning_sink(&self) -> crate::args::WarningSink {
         let f = self.frames.last().expect("a command runs in a script");
         crate::args::WarningSink {
-            queue: self.sim.out.warnings(),
+            queue: self.sim.outputs.out.warnings(),
             src: f.src.clone(),
             file: (self.frames.len() > 1).then(|| f.name.clone()),
         }
@@ -203,14 +203,20 @@ impl Interpreter {
             let cmd = f.cmds[f.pos].clone();
             f.pos += 1;
             // The file of the command, for the words that later errors point at.
-            if self.sim.here.as_ref().is_none_or(|h| *h.name != *f.name) {
-                self.sim.here = Some(crate::diagnostic::SourceFile {
+            if self
+                .sim
+                .script
+                .here
+                .as_ref()
+                .is_none_or(|h| *h.name != *f.name)
+            {
+                self.sim.script.here = Some(crate::diagnostic::SourceFile {
                     name: f.name.as_str().into(),
                     src: f.src.clone(),
                 });
             }
             let mut result = self.execute(&cmd);
-            self.sim.out.flush_warnings();
+            self.sim.outputs.out.flush_warnings();
             if self.nprocs > 1 {
                 // Every rank runs every command: they stop together when any fails, and
                 // the report (printed by rank 0) is the lowest failing rank's.
@@ -261,7 +267,7 @@ impl Interpreter {
         if words.is_empty() {
             return Ok(());
         }
-        self.sim.out.echo_command(&cmd.text);
+        self.sim.outputs.out.echo_command(&cmd.text);
         let mut a = Args::new(&cmd, &words).warn_into(self.warning_sink());
         match a.name() {
             "include" => {
@@ -354,6 +360,7 @@ impl Interpreter {
                 }
                 let exhausted = self
                     .sim
+                    .script
                     .vars
                     .next(&names)
                     .map_err(|m| a.error_at(1, m, None))?;
@@ -365,19 +372,23 @@ impl Interpreter {
                 let name = a.word("variable name")?.to_string();
                 let style = a.word("variable style")?.to_string();
                 let rest: Vec<String> = words[3..].iter().map(|w| w.text.clone()).collect();
-                let defined = self.sim.vars.define(&name, &style, &rest).map_err(|e| {
-                    let k = if e.arg == usize::MAX { 1 } else { e.arg + 2 };
-                    let help = e
-                        .help
-                        .clone()
-                        .or_else(|| (e.arg == 0).then(|| crate::variables::STYLES.suggest(&style)));
-                    a.error_at(k.min(words.len()), e.message, help)
-                })?;
+                let defined = self
+                    .sim
+                    .script
+                    .vars
+                    .define(&name, &style, &rest)
+                    .map_err(|e| {
+                        let k = if e.arg == usize::MAX { 1 } else { e.arg + 2 };
+                        let help = e.help.clone().or_else(|| {
+                            (e.arg == 0).then(|| crate::variables::STYLES.suggest(&style))
+                        });
+                        a.error_at(k.min(words.len()), e.message, help)
+                    })?;
                 if defined && style != "delete" {
                     // The formula (or first value): errors of its evaluation during a
                     // run point at it.
                     let origin = self.sim.origin(&a, 3.min(words.len() - 1));
-                    self.sim.vars.set_origin(&name, origin);
+                    self.sim.script.vars.set_origin(&name, origin);
                 }
             }
             "print" => self.print(&mut a, &cmd)?,
@@ -389,12 +400,12 @@ impl Interpreter {
                     append = true;
                 }
                 let path = (file != "none" && self.check.is_none()).then_some(file.as_str());
-                self.sim.out.set_log(path, append).map_err(|e| {
+                self.sim.outputs.out.set_log(path, append).map_err(|e| {
                     a.error_at(1, format!("cannot open log file '{file}': {e}"), None)
                 })?;
             }
             "echo" => {
-                self.sim.out.echo =
+                self.sim.outputs.out.echo =
                     match a.keyword("echo setting", &["none", "screen", "log", "both"])? {
                         "none" => Echo::None,
                         "screen" => Echo::Screen,
@@ -434,9 +445,9 @@ impl Interpreter {
             }
         }
         if screen {
-            self.sim.out.line(&text);
+            self.sim.outputs.out.line(&text);
         } else {
-            self.sim.out.log_line(&text);
+            self.sim.outputs.out.log_line(&text);
         }
         if let Some((f, append)) = file.filter(|_| self.check.is_none()) {
             use std::io::Write;

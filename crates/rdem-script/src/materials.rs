@@ -39,7 +39,7 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
         ntypes: n,
         ..Default::default()
     };
-    for (name, p) in &sim.properties {
+    for (name, p) in &sim.defs.properties {
         let scalar = name == "tsCreateBond";
         if scalar || bond_table(&mut m.bond, name).is_some() {
             let ok = if scalar {

@@ -81,7 +81,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
             .world
             .as_mut()
             .ok_or("run before the simulation box is defined")?;
-        if w.pair.is_some() && !sim.pair_coeff_set {
+        if w.pair.is_some() && !sim.defs.pair_coeff_set {
             return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
         }
         w.materials = m;
@@ -92,7 +92,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
             if !st.finnie {
                 continue;
             }
-            let p = sim.properties.get("k_finnie").ok_or_else(|| {
+            let p = sim.defs.properties.get("k_finnie").ok_or_else(|| {
                 format!(
                     "mesh {} wears (wear finnie): define fix ID all property/global k_finnie peratomtypepair {ntypes} ...",
                     mesh.id
@@ -109,16 +109,16 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
             st.k_finnie = p.values.clone();
             st.ntypes = ntypes;
         }
-        w.neighbor.settings = sim.pending.neighbor;
-        w.sort = sim.pending.sort;
-        w.lost_policy = sim.pending.lost;
+        w.neighbor.settings = sim.setup.neighbor;
+        w.sort = sim.setup.sort;
+        w.lost_policy = sim.setup.lost;
         w.timers.reset();
     }
     let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
-    sim.run_first = start_step;
-    sim.run_last = start_step + nsteps;
-    sim.run_started = Instant::now();
-    sim.thermo.last_printed = None;
+    sim.script.run_first = start_step;
+    sim.script.run_last = start_step + nsteps;
+    sim.script.run_started = Instant::now();
+    sim.outputs.thermo.last_printed = None;
     let builds0 = sim
         .world
         .as_ref()
@@ -128,10 +128,10 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
     stages.pre_step(sim, start_step, true)?;
     // As LIGGGHTS: only when there is no fix at all.
-    if sim.fixes.is_empty() {
+    if sim.defs.fixes.is_empty() {
         sim.warn_once("No fixes defined, atoms won't move");
     }
-    sim.out.line("Setting up run ...");
+    sim.outputs.out.line("Setting up run ...");
     let want = stages.wants_virial(sim, start_step, true);
     let w = sim.world.as_mut().expect("checked");
     w.want_virial = want;
@@ -139,13 +139,13 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     stages.end_of_step(sim, start_step, true)?;
     flush_world_warnings(sim);
     let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
-    sim.out.line(&format!(
+    sim.outputs.out.line(&format!(
         "Memory usage per processor = {} Mbytes",
         crate::variables::format_g(mem, 4)
     ));
-    sim.out.line(&thermo::header(sim));
+    sim.outputs.out.line(&thermo::header(sim));
     thermo_row(sim)?;
-    if sim.check {
+    if sim.script.check {
         return crate::check::after_setup(sim, nsteps);
     }
     crate::dumps::write_due(sim, start_step, true)?;
@@ -154,7 +154,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         w.timers.reset();
     }
     let t0 = Instant::now();
-    sim.run_started = t0;
+    sim.script.run_started = t0;
     let mut last_progress = Instant::now();
     for k in 0..nsteps {
         let step = start_step + k + 1;
@@ -167,8 +167,8 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         flush_world_warnings(sim);
         stages.end_of_step(sim, step, false)?;
         let t_out = Instant::now();
-        let every = sim.thermo.every;
-        if (every > 0 && step % every == 0) || step == sim.run_last {
+        let every = sim.outputs.thermo.every;
+        if (every > 0 && step % every == 0) || step == sim.script.run_last {
             thermo_row(sim)?;
         }
         crate::dumps::write_due(sim, step, false)?;
@@ -177,12 +177,12 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         }
         if last_progress.elapsed().as_secs_f64() > 0.5 {
             last_progress = Instant::now();
-            if let Some(p) = &mut sim.progress {
+            if let Some(p) = &mut sim.outputs.progress {
                 p(k + 1, nsteps);
             }
         }
     }
-    if let Some(p) = &mut sim.progress {
+    if let Some(p) = &mut sim.outputs.progress {
         p(nsteps, nsteps);
     }
     let loop_time = t0.elapsed().as_secs_f64();
@@ -221,7 +221,7 @@ fn engine_error(e: rdem::Error) -> RunError {
 
 /// An error of fix `k`'s stage, at the fix's style word.
 fn fix_error(sim: &Sim, k: usize, message: String) -> RunError {
-    RunError::at(sim.fixes[k].origin.as_ref(), "rdem::run::fix", message)
+    RunError::at(sim.defs.fixes[k].origin.as_ref(), "rdem::run::fix", message)
 }
 
 /// The fixes of each stage, listed once when a run starts (no fix is added or removed
@@ -242,7 +242,7 @@ impl RunStages {
             pre_exchange: fixes::with_stage(sim, Stages::PRE_EXCHANGE),
             end_of_step: fixes::with_stage(sim, Stages::END_OF_STEP),
             end_of_run: fixes::with_stage(sim, Stages::END_OF_RUN),
-            virial_always: sim.computes.iter().any(|c| c.imp.needs_virial()),
+            virial_always: sim.defs.computes.iter().any(|c| c.imp.needs_virial()),
         }
     }
 
@@ -253,7 +253,7 @@ impl RunStages {
             || self
                 .end_of_step
                 .iter()
-                .any(|&k| sim.fixes[k].imp.wants_virial(step, setup))
+                .any(|&k| sim.defs.fixes[k].imp.wants_virial(step, setup))
     }
 
     fn pre_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
@@ -286,7 +286,7 @@ impl RunStages {
     fn advance(&self, sim: &mut Sim, step: u64) -> Result<(), RunError> {
         let mut due: Vec<(usize, FixEntry)> = Vec::new();
         for &k in &self.pre_exchange {
-            if sim.fixes[k].imp.due(step) {
+            if sim.defs.fixes[k].imp.due(step) {
                 due.push((k, fixes::take(sim, k)));
             }
         }
@@ -301,10 +301,10 @@ impl RunStages {
         let result = w.advance_with(&mut hooks);
         let notes = hooks.notes;
         for (k, f) in due {
-            sim.fixes[k] = f;
+            sim.defs.fixes[k] = f;
         }
         result.map_err(engine_error)?;
-        notes.print(&mut sim.out);
+        notes.print(&mut sim.outputs.out);
         Ok(())
     }
 }
@@ -313,19 +313,19 @@ fn flush_world_warnings(sim: &mut Sim) {
     if let Some(w) = &mut sim.world {
         let ws = std::mem::take(&mut w.warnings);
         for m in ws {
-            sim.out.warning(&m);
+            sim.outputs.out.warning(&m);
         }
     }
 }
 
 fn thermo_row(sim: &mut Sim) -> Result<(), RunError> {
     let step = sim.world.as_ref().map(|w| w.step);
-    if step.is_some() && sim.thermo.last_printed == step {
+    if step.is_some() && sim.outputs.thermo.last_printed == step {
         return Ok(());
     }
     let r = thermo::row(sim)?;
-    sim.out.line(&r);
-    sim.thermo.last_printed = step;
+    sim.outputs.out.line(&r);
+    sim.outputs.thermo.last_printed = step;
     Ok(())
 }
 
@@ -417,6 +417,6 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
     lines.push(format!("Dangerous builds = {ndanger}"));
     lines.push(String::new());
     for l in lines {
-        sim.out.line(&l);
+        sim.outputs.out.line(&l);
     }
 }

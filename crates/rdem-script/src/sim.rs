@@ -79,7 +79,7 @@ pub struct Property {
 
 /// Settings given before the box exists, applied when it is created.
 #[derive(Debug, Clone)]
-pub struct Pending {
+pub struct Setup {
     /// `boundary`, per axis and face.
     pub boundary: [[Boundary; 2]; 3],
     /// `neighbor` / `neigh_modify`.
@@ -95,7 +95,7 @@ pub struct Pending {
     pub procs: [usize; 3],
 }
 
-impl Default for Pending {
+impl Default for Setup {
     fn default() -> Self {
         Self {
             boundary: [[Boundary::Periodic; 2]; 3],
@@ -109,12 +109,11 @@ impl Default for Pending {
     }
 }
 
-/// Everything a script defines.
-pub struct Sim {
-    /// The engine state, once `create_box` or `read_data` made a box.
-    pub world: Option<World>,
-    /// Settings that wait for the box.
-    pub pending: Pending,
+/// What the script defined by name that the engine does not hold: groups, regions, the
+/// lattice, property tables, templates and distributions, every fix (in definition
+/// order; an engine fix's state is in `World::fixes`, see [`crate::fixes`]) and compute.
+#[derive(Default)]
+pub struct Definitions {
     /// Groups.
     pub groups: Groups,
     /// Regions by ID.
@@ -131,14 +130,47 @@ pub struct Sim {
     pub fixes: Vec<FixEntry>,
     /// Computes in definition order.
     pub computes: Vec<Compute>,
-    /// Dumps in definition order.
-    pub dumps: Vec<Dump>,
-    /// Variables.
-    pub vars: Variables,
+    /// Whether a pair style was defined with `pair_coeff` given.
+    pub pair_coeff_set: bool,
+}
+
+/// Where results go: thermo, dumps, the screen and log, the progress display.
+pub struct Outputs {
     /// Thermo output settings.
     pub thermo: Thermo,
+    /// Dumps in definition order.
+    pub dumps: Vec<Dump>,
     /// Screen and log.
     pub out: Output,
+    /// Called during long runs with (steps done, steps total) for a progress display.
+    pub progress: Option<Box<dyn FnMut(u64, u64)>>,
+    /// Warnings already printed (see [`Outputs::warn_once`]).
+    pub warned: std::collections::BTreeSet<String>,
+}
+
+impl Outputs {
+    /// Prints a warning once per distinct text.
+    pub fn warn_once(&mut self, text: &str) {
+        if self.warned.insert(text.to_string()) {
+            self.out.warning(text);
+        }
+    }
+}
+
+/// The state of the script itself: variables, where it is being read, the clocks and
+/// the current run's bounds (labels and loops are the interpreter's).
+pub struct ScriptState {
+    /// Variables.
+    pub vars: Variables,
+    /// The file of the command being run (see [`Sim::origin`]).
+    pub here: Option<crate::diagnostic::SourceFile>,
+    /// `rdem -check`: runs no step and writes no file (see `crate::check`).
+    pub check: bool,
+    /// `units si` was given.
+    pub units_set: bool,
+    /// Number of threads asked for (`--threads`); the force pass runs on a rayon pool of
+    /// that size, which the caller sets up.
+    pub threads: usize,
     /// Time the script started (for `elapsed`, `cpu`).
     pub started: Instant,
     /// First step of the current run (for `elapsed`).
@@ -147,24 +179,25 @@ pub struct Sim {
     pub run_last: u64,
     /// Wall-clock start of the current run.
     pub run_started: Instant,
-    /// Whether a pair style was defined with `pair_coeff` given.
-    pub pair_coeff_set: bool,
-    /// Number of threads asked for (`--threads`); the force pass runs on a rayon pool of
-    /// that size, which the caller sets up.
-    pub threads: usize,
-    /// Called during long runs with (steps done, steps total) for a progress display.
-    pub progress: Option<Box<dyn FnMut(u64, u64)>>,
-    /// Pending warnings of insertion fixes and others, printed once.
-    pub warned: std::collections::BTreeSet<String>,
-    /// `units si` was given.
-    pub units_set: bool,
-    /// The file of the command being run (see [`Sim::origin`]).
-    pub here: Option<crate::diagnostic::SourceFile>,
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
-    /// `rdem -check`: runs no step and writes no file (see `crate::check`).
-    pub check: bool,
+}
+
+/// Everything a script defines, each fact in one place: the set-up before the box
+/// exists, the engine's [`World`] once it does, the script's definitions, the outputs
+/// and the script state.
+pub struct Sim {
+    /// The engine state, once `create_box` or `read_data` made a box.
+    pub world: Option<World>,
+    /// Settings that wait for the box.
+    pub setup: Setup,
+    /// Groups, regions, fixes, computes and the tables they read.
+    pub defs: Definitions,
+    /// Thermo, dumps, screen and log.
+    pub outputs: Outputs,
+    /// Variables, clocks, the file being read.
+    pub script: ScriptState,
 }
 
 impl Sim {
@@ -172,31 +205,27 @@ impl Sim {
     pub fn new(out: Output) -> Self {
         Self {
             world: None,
-            pending: Pending::default(),
-            groups: Groups::default(),
-            regions: BTreeMap::new(),
-            lattice: None,
-            properties: BTreeMap::new(),
-            templates: BTreeMap::new(),
-            distributions: BTreeMap::new(),
-            fixes: Vec::new(),
-            computes: Vec::new(),
-            dumps: Vec::new(),
-            vars: Variables::new(),
-            thermo: Thermo::default(),
-            out,
-            started: Instant::now(),
-            run_first: 0,
-            run_last: 0,
-            run_started: Instant::now(),
-            pair_coeff_set: false,
-            threads: 1,
-            progress: None,
-            warned: Default::default(),
-            units_set: false,
-            time_origin: (0, 0.0),
-            here: None,
-            check: false,
+            setup: Setup::default(),
+            defs: Definitions::default(),
+            outputs: Outputs {
+                thermo: Thermo::default(),
+                dumps: Vec::new(),
+                out,
+                progress: None,
+                warned: Default::default(),
+            },
+            script: ScriptState {
+                vars: Variables::new(),
+                here: None,
+                check: false,
+                units_set: false,
+                threads: 1,
+                started: Instant::now(),
+                run_first: 0,
+                run_last: 0,
+                run_started: Instant::now(),
+                time_origin: (0, 0.0),
+            },
         }
     }
 
@@ -214,7 +243,7 @@ impl Sim {
     /// Where word `k` of the command being run stands, for errors found later (during a
     /// run) about what it introduced.
     pub fn origin(&self, a: &Args, k: usize) -> Option<crate::diagnostic::Origin> {
-        let file = self.here.clone()?;
+        let file = self.script.here.clone()?;
         let span = a.words().get(k)?.span.clone();
         Some(crate::diagnostic::Origin { file, span })
     }
@@ -232,13 +261,13 @@ impl Sim {
     /// Reads a group ID word and returns its bit mask.
     pub fn group_bit(&self, a: &mut Args, what: &str) -> CmdResult<u32> {
         let g = a.word(what)?;
-        match self.groups.find(g) {
+        match self.defs.groups.find(g) {
             Some(k) => Ok(1u32 << k),
             None => Err(a.error_prev(
                 format!("no group '{g}'"),
                 Some(format!(
                     "{}; define one with 'group {g} region|type|id ...'",
-                    suggest(g, &self.groups.names())
+                    suggest(g, &self.defs.groups.names())
                 )),
             )),
         }
@@ -247,8 +276,8 @@ impl Sim {
     /// Reads a region ID word and returns the region.
     pub fn region(&self, a: &mut Args) -> CmdResult<Region> {
         let r = a.word("region ID")?;
-        self.regions.get(r).cloned().ok_or_else(|| {
-            let names: Vec<&str> = self.regions.keys().map(|s| s.as_str()).collect();
+        self.defs.regions.get(r).cloned().ok_or_else(|| {
+            let names: Vec<&str> = self.defs.regions.keys().map(|s| s.as_str()).collect();
             a.error_prev(
                 format!("no region '{r}'"),
                 Some(if names.is_empty() {
@@ -262,17 +291,17 @@ impl Sim {
 
     /// Index of fix `id`.
     pub fn fix_index(&self, id: &str) -> Option<usize> {
-        self.fixes.iter().position(|f| f.id() == id)
+        self.defs.fixes.iter().position(|f| f.id() == id)
     }
 
     /// Index of compute `id`.
     pub fn compute_index(&self, id: &str) -> Option<usize> {
-        self.computes.iter().position(|c| c.id() == id)
+        self.defs.computes.iter().position(|c| c.id() == id)
     }
 
     /// The time step.
     pub fn dt(&self) -> f64 {
-        self.world.as_ref().map_or(self.pending.dt, |w| w.dt)
+        self.world.as_ref().map_or(self.setup.dt, |w| w.dt)
     }
 
     /// Sets the time step (finite and > 0): the world's once a box exists, else the one
@@ -282,10 +311,10 @@ impl Sim {
         let now = (self.world.as_ref().map_or(0, |w| w.step), self.time());
         match &mut self.world {
             Some(w) => w.set_timestep(dt).map_err(|e| e.to_string())?,
-            None if dt.is_finite() && dt > 0.0 => self.pending.dt = dt,
+            None if dt.is_finite() && dt > 0.0 => self.setup.dt = dt,
             None => return Err(format!("timestep must be finite and > 0, not {dt}")),
         }
-        self.time_origin = now;
+        self.script.time_origin = now;
         Ok(())
     }
 
@@ -297,7 +326,7 @@ impl Sim {
 
     /// Simulated time at the current step.
     pub fn time(&self) -> f64 {
-        let (s0, t0) = self.time_origin;
+        let (s0, t0) = self.script.time_origin;
         let w = self.world.as_ref();
         let step = w.map(|w| w.step).unwrap_or(0);
         t0 + (step as f64 - s0 as f64) * self.dt()
@@ -310,8 +339,6 @@ impl Sim {
 
     /// Prints a warning once per distinct text.
     pub fn warn_once(&mut self, text: &str) {
-        if self.warned.insert(text.to_string()) {
-            self.out.warning(text);
-        }
+        self.outputs.warn_once(text);
     }
 }

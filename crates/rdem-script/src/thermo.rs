@@ -95,11 +95,13 @@ pub fn valid_column(kw: &str) -> bool {
 pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
     let v = raw_keyword(sim, kw)?;
     let n = sim.natoms();
-    Ok(if sim.thermo.norm && EXTENSIVE.contains(&kw) && n > 0 {
-        v / n as f64
-    } else {
-        v
-    })
+    Ok(
+        if sim.outputs.thermo.norm && EXTENSIVE.contains(&kw) && n > 0 {
+            v / n as f64
+        } else {
+            v
+        },
+    )
 }
 
 fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
@@ -109,16 +111,22 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
     let need_box = || format!("thermo keyword '{kw}' needs the simulation box");
     Ok(match kw {
         "step" => w.map(|w| w.step).unwrap_or(0) as f64,
-        "elapsed" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
-        "elaplong" => w.map(|w| w.step).unwrap_or(0).saturating_sub(sim.run_first) as f64,
+        "elapsed" => w
+            .map(|w| w.step)
+            .unwrap_or(0)
+            .saturating_sub(sim.script.run_first) as f64,
+        "elaplong" => w
+            .map(|w| w.step)
+            .unwrap_or(0)
+            .saturating_sub(sim.script.run_first) as f64,
         "dt" => sim.dt(),
         "time" => sim.time(),
         // Wall time since the run's loop started (0 at set-up), as LIGGGHTS.
         "cpu" => {
-            if w.map(|w| w.step).unwrap_or(0) == sim.run_first {
+            if w.map(|w| w.step).unwrap_or(0) == sim.script.run_first {
                 0.0
             } else {
-                sim.run_started.elapsed().as_secs_f64()
+                sim.script.run_started.elapsed().as_secs_f64()
             }
         }
         "cpuremain" | "spcpu" => 0.0,
@@ -198,7 +206,7 @@ pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
                 if idx.is_some() {
                     return Err(format!("{col}: variables have no index here"));
                 }
-                match sim.vars.get(id) {
+                match sim.script.vars.get(id) {
                     Some(crate::variables::Variable::Equal(f)) => {
                         context::eval_equal(sim, f).map_err(|e| e.message)?
                     }
@@ -219,7 +227,7 @@ pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
 /// The header line.
 pub fn header(sim: &Sim) -> String {
     let mut s = String::new();
-    for c in &sim.thermo.columns {
+    for c in &sim.outputs.thermo.columns {
         let int = INT_KEYWORDS.contains(&c.as_str());
         let label = header_label(c);
         if int {
@@ -273,6 +281,7 @@ fn header_label(c: &str) -> String {
 fn extensive_reference(sim: &Sim, col: &str) -> bool {
     match split_reference(col) {
         Some(('c', id, _)) => sim
+            .defs
             .computes
             .iter()
             .any(|c| c.id() == id && c.is_extensive()),
@@ -284,26 +293,27 @@ fn extensive_reference(sim: &Sim, col: &str) -> bool {
 /// One row.
 pub fn row(sim: &Sim) -> Result<String, RunError> {
     let mut s = String::new();
-    for (k, c) in sim.thermo.columns.iter().enumerate() {
+    for (k, c) in sim.outputs.thermo.columns.iter().enumerate() {
         let (mut v, int) = column_value(sim, c).map_err(|m| {
             // A variable that fails is reported at its definition, else the column.
             let var = match split_reference(c) {
-                Some(('v', id, _)) => sim.vars.origin(id),
+                Some(('v', id, _)) => sim.script.vars.origin(id),
                 _ => None,
             };
             match var {
                 Some(o) => RunError::at(Some(o), "rdem::run::variable", m),
                 None => {
-                    let origin = sim.thermo.origins.get(k).and_then(Option::as_ref);
+                    let origin = sim.outputs.thermo.origins.get(k).and_then(Option::as_ref);
                     RunError::at(origin, "rdem::run::thermo", m)
                 }
             }
         })?;
         let n = sim.natoms();
-        if sim.thermo.norm && n > 0 && extensive_reference(sim, c) {
+        if sim.outputs.thermo.norm && n > 0 && extensive_reference(sim, c) {
             v /= n as f64;
         }
         let fmt = sim
+            .outputs
             .thermo
             .col_format
             .iter()
@@ -311,16 +321,17 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
             .find(|(n, _)| *n == k + 1)
             .map(|(_, f)| f.clone())
             .or_else(|| {
-                sim.thermo
+                sim.outputs
+                    .thermo
                     .line_format
                     .as_ref()
                     .and_then(|l| l.get(k).cloned())
             })
             .or_else(|| {
                 if int {
-                    sim.thermo.int_format.clone()
+                    sim.outputs.thermo.int_format.clone()
                 } else {
-                    sim.thermo.float_format.clone()
+                    sim.outputs.thermo.float_format.clone()
                 }
             });
         match fmt {

@@ -40,15 +40,15 @@ fn a_wrong_redefinition_keeps_the_old_fix() {
         "fix m all property/global youngsModulus peratomtype x\n",
     )
     .expect_err("not a number");
-    assert_eq!(i.sim.properties["youngsModulus"].values, [5e6]);
+    assert_eq!(i.sim.defs.properties["youngsModulus"].values, [5e6]);
     // A template: no radius.
     i.run_source(
         "in.bad",
         "fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500\n",
     )
     .expect_err("no radius");
-    assert!(i.sim.templates.contains_key("pts"));
-    assert_eq!(i.sim.fixes.len(), 3);
+    assert!(i.sim.defs.templates.contains_key("pts"));
+    assert_eq!(i.sim.defs.fixes.len(), 3);
 }
 
 #[test]
@@ -61,11 +61,11 @@ fn a_good_redefinition_replaces_the_old_fix_everywhere() {
     )
     .expect("redefinitions run");
     assert_eq!(engine_fix_ids(&i), ["g"]);
-    assert_eq!(i.sim.properties["youngsModulus"].values, [7e6]);
-    assert_eq!(i.sim.fixes.len(), 3);
+    assert_eq!(i.sim.defs.properties["youngsModulus"].values, [7e6]);
+    assert_eq!(i.sim.defs.fixes.len(), 3);
     i.run_source("in.unfix", "unfix g\nunfix m\nunfix pts\n")
         .expect("unfix runs");
     assert!(engine_fix_ids(&i).is_empty());
-    assert!(i.sim.properties.is_empty() && i.sim.templates.is_empty());
-    assert!(i.sim.fixes.is_empty());
+    assert!(i.sim.defs.properties.is_empty() && i.sim.defs.templates.is_empty());
+    assert!(i.sim.defs.fixes.is_empty());
 }

@@ -227,6 +227,7 @@ for k in range(pd.GetNumberOfArrays()):
     } = {
         let f = i
             .sim
+            .defs
             .fixes
             .iter()
             .find(|f| f.id() == "euler")

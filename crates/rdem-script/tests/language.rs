@@ -35,7 +35,7 @@ fn run(script: &str) -> Interpreter {
 }
 
 fn screen(i: &Interpreter) -> String {
-    i.sim.out.captured.clone().unwrap_or_default()
+    i.sim.outputs.out.captured.clone().unwrap_or_default()
 }
 
 /// Screen lines that start with `key`, with the key removed and trimmed.

@@ -17,7 +17,7 @@ fn run_item(name: &str, dump: Option<(&str, &std::path::Path)>) -> String {
         src = src.replace(from, &to.display().to_string());
     }
     let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let out = |i: &Interpreter| i.sim.out.captured.clone().unwrap_or_default();
+    let out = |i: &Interpreter| i.sim.outputs.out.captured.clone().unwrap_or_default();
     if let Err(e) = i.run_source(name, &src) {
         panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
     }

@@ -43,7 +43,7 @@ fn head() -> String {
 fn try_run(script: &str) -> Result<String, String> {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     let r = i.run_source("in.test", script);
-    let screen = i.sim.out.captured.clone().unwrap_or_default();
+    let screen = i.sim.outputs.out.captured.clone().unwrap_or_default();
     match r {
         Ok(()) => Ok(screen),
         Err(e) => Err(render(&e)),
@@ -152,7 +152,7 @@ fn create_atoms_single_defaults_to_box_units() {
 fn try_run_bytes(script: &[u8]) -> Result<String, String> {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     let r = i.run_bytes("in.test", script);
-    let screen = i.sim.out.captured.clone().unwrap_or_default();
+    let screen = i.sim.outputs.out.captured.clone().unwrap_or_default();
     r.map(|()| screen).map_err(|e| render(&e))
 }
 
@@ -223,7 +223,10 @@ fn latin1_comments_and_quoted_text_are_read() {
     std::fs::write(&path, &latin1).unwrap();
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     i.run_file(path.to_str().unwrap()).unwrap();
-    assert_eq!(stable(&i.sim.out.captured.clone().unwrap()), stable(&b));
+    assert_eq!(
+        stable(&i.sim.outputs.out.captured.clone().unwrap()),
+        stable(&b)
+    );
 }
 
 /// A 0xB5 byte inside a command word: LIGGGHTS 3.8 stops with
@@ -261,7 +264,7 @@ fn a_non_utf8_byte_in_a_command_word_is_an_error_at_it() {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     let r = i.run_bytes("in.test", b"print \"first\"\npri\xb5nt x\n");
     assert!(r.is_err());
-    assert_eq!(i.sim.out.captured.clone().unwrap(), "");
+    assert_eq!(i.sim.outputs.out.captured.clone().unwrap(), "");
 }
 
 /// `include` and `jump` to another file read bytes too: Latin-1 comments run, a byte in

@@ -31,14 +31,14 @@ fn run(script: &str) -> Interpreter {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.out.captured.clone().unwrap_or_default()
+            i.sim.outputs.out.captured.clone().unwrap_or_default()
         );
     }
     i
 }
 
 fn screen(i: &Interpreter) -> String {
-    i.sim.out.captured.clone().unwrap_or_default()
+    i.sim.outputs.out.captured.clone().unwrap_or_default()
 }
 
 fn tmpdir(name: &str) -> std::path::PathBuf {

@@ -15,7 +15,7 @@ fn run(script: &str) -> Interpreter {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.out.captured.clone().unwrap_or_default()
+            i.sim.outputs.out.captured.clone().unwrap_or_default()
         );
     }
     i

@@ -69,7 +69,7 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         a.keyword("delete_atoms keyword", &["compress"])?;
         compress = a.yes_no("compress")?;
     }
-    let settings = sim.pending.neighbor;
+    let settings = sim.setup.neighbor;
     let w = sim.world_mut(a)?;
     w.neighbor.save_history(&w.particles);
     w.particles.clear_ghosts();
@@ -96,7 +96,8 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         // renumbering it carries over to the next run's set-up.
         w.neighbor = rdem::neighbor::Neighbor::new(settings);
     }
-    sim.out
+    sim.outputs
+        .out
         .line(&format!("Deleted {n} atoms, new total = {total}"));
     Ok(())
 }
@@ -111,7 +112,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("type, diameter, density, mass, vx, vy, vz, omega, property/atom".into()),
         ));
     }
-    sim.out.line("Setting atom values ...");
+    sim.outputs.out.line("Setting atom values ...");
     while !a.is_done() {
         let kw = a.keyword(
             "set keyword",
@@ -208,7 +209,9 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
         let count = sim.world_ref(a)?.comm.sum_count(count as u64);
-        sim.out.line(&format!("  {count} settings made for {kw}"));
+        sim.outputs
+            .out
+            .line(&format!("  {count} settings made for {kw}"));
     }
     Ok(())
 }

@@ -17,7 +17,7 @@ pub(super) fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let (style, parse) = computes::REGISTRY.lookup(a, style_word)?;
     let imp = parse(sim, a)?;
     a.done()?;
-    sim.computes.push(Compute {
+    sim.defs.computes.push(Compute {
         head: ComputeHead { id, groupbit },
         style,
         imp,
@@ -31,10 +31,10 @@ pub(super) fn uncompute(sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.done()?;
     match sim.compute_index(id) {
         Some(k) => {
-            sim.computes.remove(k);
+            sim.defs.computes.remove(k);
         }
         None => {
-            let names: Vec<&str> = sim.computes.iter().map(|c| c.id()).collect();
+            let names: Vec<&str> = sim.defs.computes.iter().map(|c| c.id()).collect();
             return Err(a.error_prev(format!("no compute '{id}'"), Some(suggest(id, &names))));
         }
     }

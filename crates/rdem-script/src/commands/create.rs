@@ -15,7 +15,7 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     let n = a.count("number of atom types")?;
     if a.is_done() {
-        let names: Vec<&str> = sim.regions.keys().map(|s| s.as_str()).collect();
+        let names: Vec<&str> = sim.defs.regions.keys().map(|s| s.as_str()).collect();
         return Err(a.error_at(
             a.pos(),
             "create_box: missing region ID",
@@ -40,9 +40,9 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if (0..3).any(|d| lo[d] <= -1e299 || hi[d] >= 1e299) {
         return Err(a.error_at(2, "create_box needs a region with finite bounds", None));
     }
-    let domain = Domain::with_faces(lo, hi, sim.pending.boundary)
+    let domain = Domain::with_faces(lo, hi, sim.setup.boundary)
         .map_err(|e| a.error_at(2, e.to_string(), None))?;
-    sim.out.line(&format!(
+    sim.outputs.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
         crate::variables::g(lo.x),
         crate::variables::g(lo.y),
@@ -53,7 +53,7 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 0)?;
-    w.set_timestep(sim.pending.dt)
+    w.set_timestep(sim.setup.dt)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     w.materials.ntypes = n as usize;
     sim.world = Some(w);
@@ -62,10 +62,10 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 /// Splits the new box between the ranks (`processors`) and reports the grid as LIGGGHTS.
 pub(super) fn decompose(sim: &mut Sim, w: &mut World, a: &Args, word: usize) -> CmdResult {
-    w.decompose(sim.pending.procs)
+    w.decompose(sim.setup.procs)
         .map_err(|e| a.error_at(word, e.to_string(), None))?;
     let g = w.domain.procgrid;
-    sim.out.line(&format!(
+    sim.outputs.out.line(&format!(
         "  {} by {} by {} MPI processor grid",
         g[0], g[1], g[2]
     ));
@@ -115,6 +115,7 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         points.push(x * s);
     } else {
         let l = sim
+            .defs
             .lattice
             .as_ref()
             .filter(|l| l.style != "none")
@@ -146,6 +147,6 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             .map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
     w.extend_tags();
-    sim.out.line(&format!("Created {n} atoms"));
+    sim.outputs.out.line(&format!("Created {n} atoms"));
     Ok(())
 }

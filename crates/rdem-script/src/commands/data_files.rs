@@ -23,9 +23,9 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     let data = rdem_io::read_data(std::path::Path::new(file))
         .map_err(|e| a.error_at(1, e.to_string(), None))?;
-    let domain = Domain::with_faces(data.lo, data.hi, sim.pending.boundary)
+    let domain = Domain::with_faces(data.lo, data.hi, sim.setup.boundary)
         .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
-    sim.out.line(&format!(
+    sim.outputs.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
         crate::variables::g(data.lo.x),
         crate::variables::g(data.lo.y),
@@ -36,7 +36,7 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ));
     let mut w = World::new(domain);
     decompose(sim, &mut w, a, 1)?;
-    w.set_timestep(sim.pending.dt)
+    w.set_timestep(sim.setup.dt)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     for (mut p, image) in data.new_particles() {
         p.mask = 1;
@@ -48,7 +48,9 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
             .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
         w.particles.image[i] = image;
     }
-    sim.out.line(&format!("  {} atoms", data.atoms.len()));
+    sim.outputs
+        .out
+        .line(&format!("  {} atoms", data.atoms.len()));
     if a.name() == "read_restart" {
         // The step written by write_restart (or write_data) into the title line.
         w.step = data
@@ -82,7 +84,7 @@ pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let ntypes = sim.ntypes() as u32;
     let w = sim.world_ref(a)?;
     let f = f.replace('*', &w.step.to_string());
-    if sim.check {
+    if sim.script.check {
         return Ok(()); // rdem -check writes no file
     }
     // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.

@@ -18,6 +18,7 @@ pub(super) fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if style == "delete" {
         a.done()?;
         let k = sim
+            .defs
             .groups
             .find(&name)
             .ok_or_else(|| a.error_at(1, format!("no group '{name}'"), None))?;
@@ -29,7 +30,7 @@ pub(super) fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 *m &= !(1u32 << k);
             }
         }
-        sim.groups.delete(k);
+        sim.defs.groups.delete(k);
         return Ok(());
     }
     if name == "all" {
@@ -106,6 +107,7 @@ pub(super) fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     };
     let k = sim
+        .defs
         .groups
         .find_or_create(&name)
         .map_err(|m| a.error_at(1, m, None))?;
@@ -120,6 +122,8 @@ pub(super) fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     let count = w.comm.sum_count(count);
-    sim.out.line(&format!("{count} atoms in group {name}"));
+    sim.outputs
+        .out
+        .line(&format!("{count} atoms in group {name}"));
     Ok(())
 }

@@ -37,7 +37,7 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     models::parse_switches(a, &mut m)?;
     sim.world_mut(a)?.pair = Some(PairGran::new(m));
-    sim.pair_coeff_set = false;
+    sim.defs.pair_coeff_set = false;
     Ok(())
 }
 
@@ -70,6 +70,6 @@ pub(super) fn pair_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("define 'pair_style gran ...' first".into()),
         ));
     }
-    sim.pair_coeff_set = true;
+    sim.defs.pair_coeff_set = true;
     Ok(())
 }

@@ -12,6 +12,7 @@ use crate::sim::Sim;
 /// `units lattice` scale; without a `lattice` command it is LIGGGHTS' default `none 1.0`.
 pub(super) fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
     Ok(sim
+        .defs
         .lattice
         .as_ref()
         .filter(|_| units_lattice)
@@ -63,7 +64,7 @@ fn region_usage(style: &str, names: &[&str]) -> String {
 
 pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("region ID")?.to_string();
-    if sim.regions.contains_key(&id) {
+    if sim.defs.regions.contains_key(&id) {
         return Err(a.error_prev(format!("region ID '{id}' is already used"), None));
     }
     let w = a.word("region style")?;
@@ -215,7 +216,7 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if outside {
         r = r.side_out();
     }
-    sim.regions.insert(id, r);
+    sim.defs.regions.insert(id, r);
     Ok(())
 }
 
@@ -224,7 +225,7 @@ pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if style == "none" {
         let scale = a.f64("scale")?;
         a.done()?;
-        sim.lattice = Lattice::new(style, scale);
+        sim.defs.lattice = Lattice::new(style, scale);
         return Ok(());
     }
     let scale = a.positive("lattice constant (m)")?;
@@ -246,12 +247,12 @@ pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     }
-    sim.out.line(&format!(
+    sim.outputs.out.line(&format!(
         "Lattice spacing in x,y,z = {} {} {}",
         crate::variables::g(scale),
         crate::variables::g(scale),
         crate::variables::g(scale)
     ));
-    sim.lattice = Some(l);
+    sim.defs.lattice = Some(l);
     Ok(())
 }

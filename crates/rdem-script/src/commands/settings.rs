@@ -45,7 +45,7 @@ pub(super) fn atom_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             _ => {
                 let every = a.u64("sort interval (0 = off)")?;
                 let bin = a.non_negative("sort bin size (0 = half the neighbor cutoff)")?;
-                sim.pending.sort = rdem::SortSettings {
+                sim.setup.sort = rdem::SortSettings {
                     every,
                     binsize: bin,
                 };
@@ -99,7 +99,7 @@ pub(super) fn boundary(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     a.done()?;
-    sim.pending.boundary = b;
+    sim.setup.boundary = b;
     Ok(())
 }
 
@@ -113,7 +113,7 @@ pub(super) fn units(sim: &mut Sim, a: &mut Args) -> CmdResult {
         ));
     }
     a.done()?;
-    sim.units_set = true;
+    sim.script.units_set = true;
     Ok(())
 }
 
@@ -189,7 +189,7 @@ pub(super) fn processors(sim: &mut Sim, a: &mut Args) -> CmdResult {
             ),
         ));
     }
-    sim.pending.procs = procs;
+    sim.setup.procs = procs;
     Ok(())
 }
 
@@ -205,7 +205,7 @@ pub(super) fn neighbor(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let skin = a.non_negative("skin distance")?;
     a.keyword("neighbor style", &["bin", "nsq"])?;
     a.done()?;
-    sim.pending.neighbor.skin = skin;
+    sim.setup.neighbor.skin = skin;
     Ok(())
 }
 
@@ -217,7 +217,7 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("delay, every, check".into()),
         ));
     }
-    let s = &mut sim.pending.neighbor;
+    let s = &mut sim.setup.neighbor;
     while !a.is_done() {
         match a.keyword(
             "neigh_modify keyword",

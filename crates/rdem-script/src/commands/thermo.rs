@@ -10,7 +10,7 @@ use super::id_help;
 
 /// `thermo N`.
 pub(super) fn thermo(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    sim.thermo.every = a.u64("thermo output interval")?;
+    sim.outputs.thermo.every = a.u64("thermo output interval")?;
     a.done()?;
     Ok(())
 }
@@ -38,9 +38,9 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     if !ok {
                         let what = if kind == 'c' { "compute" } else { "fix" };
                         let ids: Vec<&str> = if kind == 'c' {
-                            sim.computes.iter().map(|c| c.id()).collect()
+                            sim.defs.computes.iter().map(|c| c.id()).collect()
                         } else {
-                            sim.fixes.iter().map(|f| f.id()).collect()
+                            sim.defs.fixes.iter().map(|f| f.id()).collect()
                         };
                         return Err(a.error_at(
                             a.pos(),
@@ -71,21 +71,22 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
         _ => return Err(a.error_prev("thermo_style multi is not supported; use custom", None)),
     };
-    if sim.thermo.norm
-        || !sim.thermo.col_format.is_empty()
-        || sim.thermo.float_format.is_some()
-        || sim.thermo.int_format.is_some()
+    if sim.outputs.thermo.norm
+        || !sim.outputs.thermo.col_format.is_empty()
+        || sim.outputs.thermo.float_format.is_some()
+        || sim.outputs.thermo.int_format.is_some()
     {
-        sim.out
+        sim.outputs
+            .out
             .warning("New thermo_style command, previous thermo_modify settings will be lost");
     }
-    sim.thermo.columns = cols;
-    sim.thermo.origins = origins;
-    sim.thermo.norm = false;
-    sim.thermo.col_format.clear();
-    sim.thermo.int_format = None;
-    sim.thermo.float_format = None;
-    sim.thermo.line_format = None;
+    sim.outputs.thermo.columns = cols;
+    sim.outputs.thermo.origins = origins;
+    sim.outputs.thermo.norm = false;
+    sim.outputs.thermo.col_format.clear();
+    sim.outputs.thermo.int_format = None;
+    sim.outputs.thermo.float_format = None;
+    sim.outputs.thermo.line_format = None;
     Ok(())
 }
 
@@ -108,16 +109,16 @@ pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     "warn" => LostPolicy::Warn,
                     _ => LostPolicy::Ignore,
                 };
-                sim.pending.lost = p;
+                sim.setup.lost = p;
                 if let Some(w) = &mut sim.world {
                     w.lost_policy = p;
                 }
             }
-            "norm" => sim.thermo.norm = a.yes_no("norm")?,
+            "norm" => sim.outputs.thermo.norm = a.yes_no("norm")?,
             "flush" => {
                 a.yes_no("flush")?;
             }
-            "every" => sim.thermo.every = a.u64("every")?,
+            "every" => sim.outputs.thermo.every = a.u64("every")?,
             _ => {
                 let which = a.word("format target (int, float, line or a column number)")?;
                 let f = a.word("format string")?.to_string();
@@ -125,36 +126,36 @@ pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 match which {
                     "int" => {
                         check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
-                        sim.thermo.int_format = Some(f);
+                        sim.outputs.thermo.int_format = Some(f);
                     }
                     "float" => {
                         check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
-                        sim.thermo.float_format = Some(f);
+                        sim.outputs.thermo.float_format = Some(f);
                     }
                     "line" => {
                         let parts: Vec<String> = f.split_whitespace().map(String::from).collect();
                         for p in &parts {
                             check(p).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
                         }
-                        sim.thermo.line_format = Some(parts);
+                        sim.outputs.thermo.line_format = Some(parts);
                     }
                     n => {
                         let k: usize = n
                             .parse()
                             .ok()
-                            .filter(|&k| k >= 1 && k <= sim.thermo.columns.len())
+                            .filter(|&k| k >= 1 && k <= sim.outputs.thermo.columns.len())
                             .ok_or_else(|| {
                                 a.error_at(
                                     a.pos() - 2,
                                     format!(
                                         "'{n}' is not int, float, line or a column number 1..{}",
-                                        sim.thermo.columns.len()
+                                        sim.outputs.thermo.columns.len()
                                     ),
                                     None,
                                 )
                             })?;
                         check(&f).map_err(|e| a.error_prev(format!("bad format: {e}"), None))?;
-                        sim.thermo.col_format.push((k, f));
+                        sim.outputs.thermo.col_format.push((k, f));
                     }
                 }
             }

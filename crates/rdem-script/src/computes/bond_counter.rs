@@ -39,7 +39,7 @@ impl ScriptCompute for BondCounter {
 
 /// `compute ID all bond/counter` (one per script).
 fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
-    if let Some(other) = sim.computes.iter().find(|c| c.style == "bond/counter") {
+    if let Some(other) = sim.defs.computes.iter().find(|c| c.style == "bond/counter") {
         return Err(a.error_at(
             3,
             format!(

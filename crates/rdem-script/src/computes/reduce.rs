@@ -57,7 +57,7 @@ impl ScriptCompute for Reduce {
         let values = match &self.inputs[k] {
             Input::Field(f) => field_values(w, f).ok_or_else(|| format!("bad field {f}"))?,
             Input::Compute(cid, col) => crate::context::compute_peratom(sim, cid, *col)?,
-            Input::Variable(v) => match sim.vars.get(v) {
+            Input::Variable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
                 _ => return Err(format!("variable '{v}' is not atom-style")),
             },
@@ -78,7 +78,7 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
             Input::Field(w.to_string())
         } else {
             match thermo::split_reference(w) {
-                Some(('c', cid, col)) => match sim.computes.iter().find(|c| c.id() == cid) {
+                Some(('c', cid, col)) => match sim.defs.computes.iter().find(|c| c.id() == cid) {
                     Some(c) if c.is_peratom() => Input::Compute(cid.to_string(), col),
                     Some(_) => {
                         return Err(a.error_at(
@@ -88,7 +88,7 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
                         ))
                     }
                     None => {
-                        let ids: Vec<&str> = sim.computes.iter().map(|c| c.id()).collect();
+                        let ids: Vec<&str> = sim.defs.computes.iter().map(|c| c.id()).collect();
                         return Err(a.error_at(
                             a.pos(),
                             format!("no compute '{cid}'"),

@@ -151,15 +151,16 @@ impl Dump {
 /// Writes every dump due at `step` (at set-up: also dumps that never wrote). At the last
 /// step of a run, waits for the snapshots still being written in the background.
 pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
-    for k in 0..sim.dumps.len() {
-        let d = &sim.dumps[k];
+    for k in 0..sim.outputs.dumps.len() {
+        let d = &sim.outputs.dumps[k];
         let due = (step % d.every == 0 || (setup && d.last.is_none())) && d.last != Some(step);
         if due {
-            write_one(sim, k, step, true)
-                .map_err(|m| RunError::at(sim.dumps[k].origin.as_ref(), "rdem::run::dump", m))?;
+            write_one(sim, k, step, true).map_err(|m| {
+                RunError::at(sim.outputs.dumps[k].origin.as_ref(), "rdem::run::dump", m)
+            })?;
         }
     }
-    if step == sim.run_last {
+    if step == sim.script.run_last {
         finish_all(sim)?;
     }
     Ok(())
@@ -168,7 +169,7 @@ pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> 
 /// Waits for every snapshot being written in the background and lists it in its `.pvd`.
 /// Collective (only rank 0 writes, so a failure there stops every rank).
 pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
-    let outcome = sim.dumps.iter_mut().try_for_each(finish);
+    let outcome = sim.outputs.dumps.iter_mut().try_for_each(finish);
     match &sim.world {
         Some(w) => agree(&*w.comm, "dump", outcome),
         None => outcome,
@@ -208,7 +209,7 @@ pub(crate) fn agree<T>(comm: &dyn Comm, what: &str, r: Result<T, String>) -> Res
 /// Writes dump `k`'s snapshot of `step` and lists its files. Collective.
 fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(), String> {
     let time = sim.time();
-    // The dump is out of `sim.dumps` while it reads the rest of the state.
+    // The dump is out of `sim.outputs.dumps` while it reads the rest of the state.
     let vacant = Dump {
         head: DumpHead {
             id: String::new(),
@@ -221,7 +222,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         pvd: None,
         origin: None,
     };
-    let mut d = std::mem::replace(&mut sim.dumps[k], vacant);
+    let mut d = std::mem::replace(&mut sim.outputs.dumps[k], vacant);
     let wrote = d
         .style
         .write(sim, &d.head, &d.columns, step, time, background);
@@ -230,7 +231,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         .and_then(|done| record(&mut d, done));
     d.last = Some(step);
     let what = format!("dump {}", d.head.id);
-    sim.dumps[k] = d;
+    sim.outputs.dumps[k] = d;
     match &sim.world {
         Some(w) => agree(&*w.comm, &what, outcome),
         None => outcome,
@@ -293,7 +294,7 @@ fn style_file_columns(sim: &Sim, a: &mut Args, every: bool) -> CmdResult<Parsed>
 /// `dump ID group style N file columns...`.
 pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("dump ID")?.to_string();
-    if sim.dumps.iter().any(|d| d.id() == id) {
+    if sim.outputs.dumps.iter().any(|d| d.id() == id) {
         return Err(a.error_prev(
             format!("dump ID '{id}' is already used"),
             Some("undump it first".into()),
@@ -309,7 +310,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     } else {
         None
     };
-    sim.dumps.push(Dump {
+    sim.outputs.dumps.push(Dump {
         head: DumpHead { id, groupbit },
         every,
         columns,
@@ -324,8 +325,8 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
 /// `dump_modify ID keyword value ...`.
 pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("dump ID")?;
-    let Some(k) = sim.dumps.iter().position(|d| d.id() == id) else {
-        let names: Vec<&str> = sim.dumps.iter().map(|d| d.id()).collect();
+    let Some(k) = sim.outputs.dumps.iter().position(|d| d.id() == id) else {
+        let names: Vec<&str> = sim.outputs.dumps.iter().map(|d| d.id()).collect();
         return Err(a.error_prev(format!("no dump '{id}'"), Some(suggest(id, &names))));
     };
     if a.is_done() {
@@ -336,7 +337,7 @@ pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         ));
     }
     modify(
-        &mut sim.dumps[k],
+        &mut sim.outputs.dumps[k],
         a,
         &[
             "sort",
@@ -402,13 +403,13 @@ fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str]) -> CmdResult {
 pub fn undump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("dump ID")?;
     a.done()?;
-    if let Some(d) = sim.dumps.iter_mut().find(|d| d.id() == id) {
+    if let Some(d) = sim.outputs.dumps.iter_mut().find(|d| d.id() == id) {
         finish(d).map_err(|m| a.error_cmd(m, None))?;
     }
-    let n = sim.dumps.len();
-    sim.dumps.retain(|d| d.id() != id);
-    if n == sim.dumps.len() {
-        let names: Vec<&str> = sim.dumps.iter().map(|d| d.id()).collect();
+    let n = sim.outputs.dumps.len();
+    sim.outputs.dumps.retain(|d| d.id() != id);
+    if n == sim.outputs.dumps.len() {
+        let names: Vec<&str> = sim.outputs.dumps.iter().map(|d| d.id()).collect();
         return Err(a.error_at(1, format!("no dump '{id}'"), Some(suggest(id, &names))));
     }
     Ok(())
@@ -419,7 +420,7 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let groupbit = sim.group_bit(a, "group ID")?;
     let (style, _, _, columns) = style_file_columns(sim, a, false)?;
     let step = sim.world_ref(a)?.step;
-    sim.dumps.push(Dump {
+    sim.outputs.dumps.push(Dump {
         head: DumpHead {
             id: WRITE_DUMP.into(),
             groupbit,
@@ -431,25 +432,25 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         pvd: None,
         origin: None,
     });
-    let k = sim.dumps.len() - 1;
+    let k = sim.outputs.dumps.len() - 1;
     let mut result = Ok(());
     if a.peek() == Some("modify") {
         a.seek(a.pos() + 1);
         result = modify(
-            &mut sim.dumps[k],
+            &mut sim.outputs.dumps[k],
             a,
             &["sort", "pad", "format", "binary", "compressor"],
         );
     }
     if result.is_ok() {
-        result = if sim.check {
-            let d = &sim.dumps[k];
+        result = if sim.script.check {
+            let d = &sim.outputs.dumps[k];
             d.style.resolve(sim, &d.columns)
         } else {
             write_one(sim, k, step, false)
         }
         .map_err(|m| a.error_cmd(m, None));
     }
-    sim.dumps.pop();
+    sim.outputs.dumps.pop();
     result
 }

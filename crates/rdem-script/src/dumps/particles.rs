@@ -21,7 +21,7 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
         return Ok(());
     }
     match split_reference(arg) {
-        Some(('c', id, col)) => match sim.computes.iter().find(|c| c.id() == id) {
+        Some(('c', id, col)) => match sim.defs.computes.iter().find(|c| c.id() == id) {
             Some(c) if c.is_peratom() => {
                 let n = c.peratom_cols();
                 match col {
@@ -40,7 +40,7 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 Some("a dump column needs a per-atom compute (property/atom, contact/atom)".into()),
             )),
             None => {
-                let ids: Vec<&str> = sim.computes.iter().map(|c| c.id()).collect();
+                let ids: Vec<&str> = sim.defs.computes.iter().map(|c| c.id()).collect();
                 Err(a.error_at(
                     k,
                     format!("no compute '{id}'"),
@@ -48,7 +48,7 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 ))
             }
         },
-        Some(('v', id, None)) => match sim.vars.get(id) {
+        Some(('v', id, None)) => match sim.script.vars.get(id) {
             Some(Variable::Atom(_)) => Ok(()),
             Some(_) => Err(a.error_at(
                 k,
@@ -60,7 +60,11 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
             None => Err(a.error_at(
                 k,
                 format!("no variable '{id}'"),
-                Some(crate::args::id_help("variable", id, &sim.vars.names())),
+                Some(crate::args::id_help(
+                    "variable",
+                    id,
+                    &sim.script.vars.names(),
+                )),
             )),
         },
         _ => Err(a.error_at(
@@ -102,7 +106,7 @@ pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String>
             }
             let values = match split_reference(arg) {
                 Some(('c', id, col)) => context::compute_peratom(sim, id, col)?,
-                Some(('v', id, None)) => match sim.vars.get(id) {
+                Some(('v', id, None)) => match sim.script.vars.get(id) {
                     Some(Variable::Atom(f)) => context::eval_atom(sim, f)?,
                     _ => return Err(format!("variable {id} is not atom-style")),
                 },

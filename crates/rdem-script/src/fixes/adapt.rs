@@ -48,7 +48,7 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
         ));
     };
     // A variable defined later is checked when the run starts, as LIGGGHTS does.
-    match sim.vars.get(var) {
+    match sim.script.vars.get(var) {
         Some(crate::variables::Variable::Atom(_)) | None => {}
         Some(_) => {
             return Err(a.error_prev(
@@ -91,7 +91,7 @@ impl ScriptFix for Adapt {
             return Ok(());
         }
         let var = &self.var;
-        let formula = match sim.vars.get(var) {
+        let formula = match sim.script.vars.get(var) {
             Some(Variable::Atom(f)) => f.clone(),
             Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style")),
             None => return Err(format!("fix adapt: no variable '{var}'")),

@@ -47,6 +47,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     // LIGGGHTS 3.8 stops a second ave/euler with "Reuse of compute ID" (each creates an
     // internal compute of the same name); say so plainly.
     if let Some(other) = sim
+        .defs
         .fixes
         .iter()
         .find(|f| f.head.style == "ave/euler" && f.id() != id)

@@ -63,13 +63,16 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
         let known = match kind {
             'c' => sim.compute_index(id).is_some(),
             'f' => sim.fix_index(id).is_some(),
-            _ => sim.vars.get(id).is_some(),
+            _ => sim.script.vars.get(id).is_some(),
         };
         if !known {
             let (what, ids): (&str, Vec<&str>) = match kind {
-                'c' => ("compute", sim.computes.iter().map(|c| c.id()).collect()),
-                'f' => ("fix", sim.fixes.iter().map(|f| f.id()).collect()),
-                _ => ("variable", sim.vars.names()),
+                'c' => (
+                    "compute",
+                    sim.defs.computes.iter().map(|c| c.id()).collect(),
+                ),
+                'f' => ("fix", sim.defs.fixes.iter().map(|f| f.id()).collect()),
+                _ => ("variable", sim.script.vars.names()),
             };
             return Err(a.error_at(
                 a.pos(),
@@ -92,7 +95,7 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
         match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
             "file" => {
                 let f = a.word("file name")?;
-                if sim.check {
+                if sim.script.check {
                     continue; // rdem -check writes no file
                 }
                 rdem_io::atomic::create_parent_dir(std::path::Path::new(f))

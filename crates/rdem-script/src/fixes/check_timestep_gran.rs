@@ -65,8 +65,8 @@ fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptF
 pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
     let w = sim.world.as_ref()?;
     let p = &w.particles;
-    let e = sim.properties.get("youngsModulus")?;
-    let nu = sim.properties.get("poissonsRatio")?;
+    let e = sim.defs.properties.get("youngsModulus")?;
+    let nu = sim.defs.properties.get("poissonsRatio")?;
     let (mut t_r, mut t_h) = (f64::MAX, f64::MAX);
     let mut v: f64 = 0.0;
     for i in 0..p.nlocal() {

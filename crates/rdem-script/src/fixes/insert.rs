@@ -178,8 +178,9 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             }
             "distributiontemplate" => {
                 let d = a.word("distribution template ID")?;
-                dist = Some(sim.distributions.get(d).cloned().ok_or_else(|| {
-                    let names: Vec<&str> = sim.distributions.keys().map(|s| s.as_str()).collect();
+                dist = Some(sim.defs.distributions.get(d).cloned().ok_or_else(|| {
+                    let names: Vec<&str> =
+                        sim.defs.distributions.keys().map(|s| s.as_str()).collect();
                     a.error_prev(
                         format!("no particle distribution '{d}'"),
                         Some(suggest(d, &names)),
@@ -399,7 +400,7 @@ impl ScriptFix for Inserter {
     /// Prints what the definition reports (`insert/stream`'s rate).
     fn install(&mut self, sim: &mut Sim, _a: &Args, _head: &FixHead) -> CmdResult<()> {
         if let Some(notes) = self.announce.take() {
-            notes.print(&mut sim.out);
+            notes.print(&mut sim.outputs.out);
         }
         Ok(())
     }

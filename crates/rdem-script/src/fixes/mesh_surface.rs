@@ -51,7 +51,7 @@ impl ScriptFix for Mesh {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
         if let Some((mesh, notes)) = self.parsed.take() {
             sim.world_mut(a)?.add_mesh(mesh);
-            notes.print(&mut sim.out);
+            notes.print(&mut sim.outputs.out);
         }
         Ok(())
     }

@@ -337,7 +337,7 @@ impl ScriptFix for Vacant {
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
 }
 
-/// Calls `f` with fix `k` taken out of `sim.fixes` (a vacant entry stands in for it), so
+/// Calls `f` with fix `k` taken out of `sim.defs.fixes` (a vacant entry stands in for it), so
 /// that the fix can read and change the rest of the script state; puts it back after.
 /// `f` must not add or remove fixes.
 pub(crate) fn with_fix<R>(
@@ -347,15 +347,15 @@ pub(crate) fn with_fix<R>(
 ) -> R {
     let mut e = take(sim, k);
     let r = f(&mut *e.imp, sim, &e.head);
-    sim.fixes[k] = e;
+    sim.defs.fixes[k] = e;
     r
 }
 
-/// Takes fix `k` out of `sim.fixes`, leaving a vacant entry (no allocation) that the
+/// Takes fix `k` out of `sim.defs.fixes`, leaving a vacant entry (no allocation) that the
 /// caller replaces with it again.
 pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
     std::mem::replace(
-        &mut sim.fixes[k],
+        &mut sim.defs.fixes[k],
         FixEntry {
             head: FixHead::default(),
             stages: Stages::NONE,
@@ -367,14 +367,15 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
 
 /// Indices of the fixes that take part in `stage`, in definition order.
 pub fn with_stage(sim: &Sim, stage: Stages) -> Vec<usize> {
-    (0..sim.fixes.len())
-        .filter(|&k| sim.fixes[k].stages.has(stage))
+    (0..sim.defs.fixes.len())
+        .filter(|&k| sim.defs.fixes[k].stages.has(stage))
         .collect()
 }
 
 /// Value `f_ID` / `f_ID[i]` (1-based).
 pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
     let f = sim
+        .defs
         .fixes
         .iter()
         .find(|f| f.head.id == id)
@@ -402,7 +403,8 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
 
 /// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.
 pub fn is_extensive(sim: &Sim, id: &str) -> bool {
-    sim.fixes
+    sim.defs
+        .fixes
         .iter()
         .any(|f| f.head.id == id && f.imp.extensive())
 }
@@ -416,11 +418,11 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if let Some(k) = replaces {
         // LIGGGHTS replaces a fix of the same ID and style; a different style is an error.
         let style = a.words().get(3).map(|w| w.text.as_str()).unwrap_or("");
-        if sim.fixes[k].head.style != style {
+        if sim.defs.fixes[k].head.style != style {
             return Err(a.error_prev(
                 format!(
                     "fix ID '{id}' is already used by a {} fix",
-                    sim.fixes[k].head.style
+                    sim.defs.fixes[k].head.style
                 ),
                 Some("unfix it first or pick another ID".into()),
             ));
@@ -443,7 +445,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     imp.install(sim, a, &head)?;
     let origin = sim.origin(a, STYLE_WORD);
-    sim.fixes.push(FixEntry {
+    sim.defs.fixes.push(FixEntry {
         head,
         stages: row.stages,
         origin,
@@ -457,10 +459,10 @@ pub fn unfix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let id = a.word("fix ID")?;
     a.done()?;
     let Some(k) = sim.fix_index(id) else {
-        let names: Vec<&str> = sim.fixes.iter().map(|f| f.id()).collect();
+        let names: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
         return Err(a.error_prev(format!("no fix '{id}'"), Some(suggest(id, &names))));
     };
-    let f = &sim.fixes[k];
+    let f = &sim.defs.fixes[k];
     f.imp
         .check_unfix(sim, &f.head)
         .map_err(|m| a.error_prev(m, None))?;
@@ -473,7 +475,7 @@ pub fn unfix_id(sim: &mut Sim, id: &str) -> bool {
     let Some(k) = sim.fix_index(id) else {
         return false;
     };
-    let mut f = sim.fixes.remove(k);
+    let mut f = sim.defs.fixes.remove(k);
     f.imp.unfix(sim, &f.head);
     true
 }

@@ -42,15 +42,15 @@ impl ScriptFix for DistributionFix {
     fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
         if let Some(d) = self.parsed.take() {
             if let Some(wm) = &d.warning {
-                sim.out.warning(wm);
+                sim.outputs.out.warning(wm);
             }
-            sim.distributions.insert(head.id.clone(), d);
+            sim.defs.distributions.insert(head.id.clone(), d);
         }
         Ok(())
     }
 
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
-        sim.distributions.remove(&head.id);
+        sim.defs.distributions.remove(&head.id);
     }
 }
 
@@ -61,8 +61,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let mut parts = Vec::new();
     for _ in 0..n {
         let tid = a.word("template ID")?;
-        let t = sim.templates.get(tid).cloned().ok_or_else(|| {
-            let names: Vec<&str> = sim.templates.keys().map(|s| s.as_str()).collect();
+        let t = sim.defs.templates.get(tid).cloned().ok_or_else(|| {
+            let names: Vec<&str> = sim.defs.templates.keys().map(|s| s.as_str()).collect();
             a.error_prev(
                 format!("no particle template '{tid}'"),
                 Some(suggest(tid, &names)),

@@ -24,13 +24,13 @@ pub struct Template {
 impl ScriptFix for Template {
     fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
         if let Some(t) = self.parsed.take() {
-            sim.templates.insert(head.id.clone(), t);
+            sim.defs.templates.insert(head.id.clone(), t);
         }
         Ok(())
     }
 
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
-        sim.templates.remove(&head.id);
+        sim.defs.templates.remove(&head.id);
     }
 }
 

@@ -23,17 +23,17 @@ pub struct PropertyGlobal {
 impl ScriptFix for PropertyGlobal {
     fn install(&mut self, sim: &mut Sim, _a: &Args, _head: &FixHead) -> CmdResult<()> {
         if let Some(p) = self.parsed.take() {
-            sim.properties.insert(self.name.clone(), p);
+            sim.defs.properties.insert(self.name.clone(), p);
         }
         Ok(())
     }
 
     fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
-        Ok(sim.properties[&self.name].values.clone())
+        Ok(sim.defs.properties[&self.name].values.clone())
     }
 
     fn unfix(&mut self, sim: &mut Sim, _head: &FixHead) {
-        sim.properties.remove(&self.name);
+        sim.defs.properties.remove(&self.name);
     }
 }
 
