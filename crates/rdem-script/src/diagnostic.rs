@@ -7,8 +7,6 @@ use std::sync::Arc;
 
 use miette::{Diagnostic, LabeledSpan, NamedSource, SourceCode, SourceSpan};
 
-use crate::lexer::{span_of, Command};
-
 /// A script file: its name (for messages) and its text.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SourceFile {
@@ -100,11 +98,12 @@ impl From<&str> for RunError {
 }
 
 impl ScriptError {
-    /// An error at the bytes `r` of command `cmd`.
-    pub fn at(cmd: &Command, r: Range<usize>, message: String, help: Option<String>) -> Self {
+    /// An error at the source bytes `span` of the file being read (see
+    /// [`crate::lexer::Command::error`] for an error at the bytes of a command).
+    pub fn spanned(span: Range<usize>, message: String, help: Option<String>) -> Self {
         Self {
             message,
-            span: span_of(cmd, r),
+            span,
             help,
             file: None,
             code: None,

@@ -224,12 +224,8 @@ impl Interpreter {
                 if let Some((rank, message)) = rdem::comm::agree_on_failure(failed.as_deref()) {
                     if result.is_ok() {
                         let end = cmd.text.find(char::is_whitespace).unwrap_or(cmd.text.len());
-                        result = Err(crate::diagnostic::ScriptError::at(
-                            &cmd,
-                            0..end,
-                            format!("on MPI rank {rank}: {message}"),
-                            None,
-                        ));
+                        result =
+                            Err(cmd.error(0..end, format!("on MPI rank {rank}: {message}"), None));
                     }
                 }
             }

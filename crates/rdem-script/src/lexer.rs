@@ -209,8 +209,8 @@ pub fn substitute(
             continue;
         }
         let (reference, end) = parse_reference(&cmd.text, i)
-            .map_err(|msg| ScriptError::at(cmd, i..(i + 2).min(b.len()), msg, None))?;
-        let value = resolve(&reference).map_err(|msg| ScriptError::at(cmd, i..end, msg, None))?;
+            .map_err(|msg| cmd.error(i..(i + 2).min(b.len()), msg, None))?;
+        let value = resolve(&reference).map_err(|msg| cmd.error(i..end, msg, None))?;
         text.push_str(&value);
         origin.extend(std::iter::repeat_n(cmd.origin[i], value.len()));
         i = end;
@@ -312,8 +312,7 @@ fn split_words(cmd: &Command) -> Result<Vec<(Word, Vec<usize>)>, ScriptError> {
                 Quote::Triple => "\"\"\"",
                 _ => "\"",
             };
-            return Err(ScriptError::at(
-                cmd,
+            return Err(cmd.error(
                 opened_at..b.len(),
                 "this quote is never closed".into(),
                 Some(format!(
@@ -330,6 +329,14 @@ fn split_words(cmd: &Command) -> Result<Vec<(Word, Vec<usize>)>, ScriptError> {
         ));
     }
     Ok(out)
+}
+
+impl Command {
+    /// An error at the command's bytes `r` (the span in the source file follows the
+    /// command's origin map through continuation lines).
+    pub fn error(&self, r: Range<usize>, message: String, help: Option<String>) -> ScriptError {
+        ScriptError::spanned(span_of(self, r), message, help)
+    }
 }
 
 /// Source span of the command bytes `r`.

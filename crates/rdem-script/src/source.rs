@@ -57,8 +57,7 @@ pub fn check(src: &Source, cmds: &[Command]) -> Result<(), ScriptError> {
         let hit = lexer::first_unquoted(cmd, |o| src.foreign.binary_search(&o).is_ok());
         if let Some(i) = hit {
             let c = cmd.text[i..].chars().next().unwrap_or(' ');
-            return Err(ScriptError::at(
-                cmd,
+            return Err(cmd.error(
                 i..i + c.len_utf8(),
                 format!("non-UTF-8 byte 0x{:02X} in a command word", c as u32),
                 Some(FOREIGN_HELP.into()),
