@@ -16,8 +16,6 @@ use crate::thermo;
 
 /// `run N [upto]`.
 pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    // LIGGGHTS 3.8 reads N with `atoi`: `run 10.` runs there.
-    a.read_integers_with_atoi();
     let n = a.u64("number of steps")?;
     let mut upto = false;
     while !a.is_done() {

@@ -26,14 +26,40 @@ pub type Handler = fn(&mut Sim, &mut Args) -> CmdResult;
 /// How a command runs.
 #[derive(Clone, Copy)]
 pub enum Command {
-    /// On the simulation state.
-    Sim(Handler),
+    /// On the simulation state; with `atoi`, its integer words are read as LIGGGHTS 3.8
+    /// reads them, with C's `atoi` (`run 10.` runs there: rdem reads 10, with a warning).
+    Sim {
+        /// The handler.
+        handler: Handler,
+        /// Integers read with `atoi` (see [`Args::read_integers_with_atoi`]).
+        atoi: bool,
+    },
     /// By the interpreter (flow control, variables, output): see [`crate::input`].
     Flow,
 }
 
-const fn sim(name: &'static str, h: Handler, help: &'static str) -> Row<Command> {
-    Row::runs(name, Command::Sim(h), help)
+const fn sim(name: &'static str, handler: Handler, help: &'static str) -> Row<Command> {
+    Row::runs(
+        name,
+        Command::Sim {
+            handler,
+            atoi: false,
+        },
+        help,
+    )
+}
+
+/// A command row whose integers LIGGGHTS 3.8 reads with `atoi` (checked there: `run`
+/// and `reset_timestep`).
+const fn sim_atoi(name: &'static str, handler: Handler, help: &'static str) -> Row<Command> {
+    Row::runs(
+        name,
+        Command::Sim {
+            handler,
+            atoi: true,
+        },
+        help,
+    )
 }
 
 const fn flow(name: &'static str, help: &'static str) -> Row<Command> {
@@ -86,8 +112,8 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("`pe` is 0 (granular contacts store no potential energy)"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
-        sim("run", run::run, "`N`, `N upto`"),
-        sim("reset_timestep", settings::reset_timestep, "`N`"),
+        sim_atoi("run", run::run, "`N`, `N upto`"),
+        sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
         sim("dump", dumps::dump, "the dump styles below"),
         sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `binary`, `compressor`"),
         sim("undump", dumps::undump, "`ID`"),
@@ -123,7 +149,12 @@ pub static REGISTRY: Registry<Command> = Registry {
 pub fn execute(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let name = a.name();
     match REGISTRY.lookup_at(a, 0, name)? {
-        (_, Command::Sim(h)) => h(sim, a),
+        (_, Command::Sim { handler, atoi }) => {
+            if *atoi {
+                a.read_integers_with_atoi();
+            }
+            handler(sim, a)
+        }
         (name, Command::Flow) => Err(a.error_cmd(
             format!("internal error: {name} is run by the interpreter"),
             None,

@@ -257,8 +257,6 @@ pub(super) fn timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 /// `reset_timestep N`.
 pub(super) fn reset_timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    // LIGGGHTS 3.8 reads N with `atoi`.
-    a.read_integers_with_atoi();
     let n = a.u64("timestep")?;
     a.done()?;
     sim.world_mut(a)?.step = n;
