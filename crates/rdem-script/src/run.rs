@@ -144,7 +144,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     sim.outputs.out.line(&thermo::header(sim));
     thermo_row(sim)?;
     if sim.script.check {
-        return crate::check::after_setup(sim, nsteps);
+        crate::check::after_setup(sim, nsteps)?;
+        // What a run's end undoes (fix adapt's `reset yes`) is undone here too.
+        return stages.end_of_run(sim);
     }
     crate::dumps::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {

@@ -121,9 +121,10 @@ impl ScriptFix for Adapt {
     fn end_of_run(&mut self, sim: &mut Sim, _head: &FixHead) -> Result<(), String> {
         if let (Some(saved), Some(w)) = (self.saved.take(), &mut sim.world) {
             let p = &w.particles;
+            let saved: std::collections::HashMap<_, _> = saved.into_iter().collect();
             let mut r: Vec<f64> = p.radius[..p.nlocal()].to_vec();
             for (i, ri) in r.iter_mut().enumerate() {
-                if let Some(&(_, r0)) = saved.iter().find(|(t, _)| *t == p.tag[i]) {
+                if let Some(&r0) = saved.get(&p.tag[i]) {
                     *ri = r0;
                 }
             }
