@@ -323,6 +323,20 @@ impl<'a> Args<'a> {
         ))
     }
 
+    /// `text` (word `k` or a part of it, as either side of `a:b`) as a non-negative
+    /// integer; where this command reads integers with `atoi`, `1.` is 1, with a warning.
+    pub fn integer_in(&self, k: usize, text: &str) -> Option<u64> {
+        if let Ok(v) = text.parse::<u64>() {
+            return Some(v);
+        }
+        let v = integer_with_point(text).filter(|_| self.reads_integers_with_atoi())?;
+        self.warn_at(
+            k,
+            &format!("'{text}' read as the integer {v} (LIGGGHTS reads it so)"),
+        );
+        Some(v)
+    }
+
     /// The next word as an integer >= 1.
     pub fn count(&mut self, what: &str) -> CmdResult<u64> {
         let v = self.u64(what)?;

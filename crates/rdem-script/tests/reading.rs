@@ -456,3 +456,32 @@ fn floats_with_a_stray_trailing_point() {
         assert!(e.contains("in.test:17:10"), "{e}");
     }
 }
+
+/// `group ID id|type` values where LIGGGHTS 3.8 reads them with `atoi`: with atoms 1 and 2,
+/// `group g id 1.` printed "1 atoms in group g" and `group h id 1.5 2` "2 atoms in group
+/// h" (1.5 read as 1); `group k id <> 1. 2.` stopped with "Expected integer parameter".
+/// rdem takes `1.` (and `1.:2.`) with a warning; `1.5` stays an error.
+#[test]
+fn group_ids_written_with_a_point() {
+    let atoms = "create_atoms 1 single 0 0 0.05 units box\n\
+                 create_atoms 1 single 0 0 0.1 units box\n";
+    let s = run(&format!(
+        "{}{atoms}group g id 1.\ngroup r id 1.:2.\ngroup t type 1.\n",
+        head()
+    ));
+    assert!(s.contains("\n1 atoms in group g\n"), "{s}");
+    assert!(s.contains("\n2 atoms in group r\n"), "{s}");
+    assert!(s.contains("\n2 atoms in group t\n"), "{s}");
+    let n = head().lines().count() + 2;
+    let w = warnings(&s);
+    assert_eq!(w.len(), 4, "{s}");
+    assert_eq!(
+        w[0],
+        format!(
+            "WARNING: line {}: '1.' read as the integer 1 (LIGGGHTS reads it so)",
+            n + 1
+        )
+    );
+    let e = try_run(&format!("{}{atoms}group h id 1.5 2\n", head())).unwrap_err();
+    assert!(e.contains("'1.5' is not a number or range a:b"), "{e}");
+}

@@ -50,14 +50,15 @@ pub(super) fn group(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 return Err(a.error_at(a.pos(), format!("group {style}: missing values"), None));
             }
             while let Some(spec) = a.peek() {
+                let at = a.pos();
                 let (lo, hi) = match spec.split_once(':') {
-                    Some((l, h)) => match (l.parse::<u64>(), h.parse::<u64>()) {
-                        (Ok(l), Ok(h)) => (l, h),
+                    Some((l, h)) => match (a.integer_in(at, l), a.integer_in(at, h)) {
+                        (Some(l), Some(h)) => (l, h),
                         _ => return Err(a.error_at(a.pos(), format!("bad range '{spec}'"), None)),
                     },
-                    None => match spec.parse::<u64>() {
-                        Ok(v) => (v, v),
-                        Err(_) => {
+                    None => match a.integer_in(at, spec) {
+                        Some(v) => (v, v),
+                        None => {
                             return Err(a.error_at(
                                 a.pos(),
                                 format!("'{spec}' is not a number or range a:b"),

@@ -49,8 +49,8 @@ const fn sim(name: &'static str, handler: Handler, help: &'static str) -> Row<Co
     )
 }
 
-/// A command row whose integers LIGGGHTS 3.8 reads with `atoi` (checked there: `run`
-/// and `reset_timestep`).
+/// A command row whose integers LIGGGHTS 3.8 reads with `atoi` (checked there: `run`,
+/// `reset_timestep`, the IDs and types of `group id|type`: `group g id 1.` takes atom 1).
 const fn sim_atoi(name: &'static str, handler: Handler, help: &'static str) -> Row<Command> {
     Row::runs(
         name,
@@ -96,7 +96,7 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("the mass follows diameter and density"),
         sim("velocity", atoms::velocity, "`set` (NULL allowed), `zero linear\\|angular`, `ramp`, `create`; `sum`")
             .notes("`units box` only"),
-        sim("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
+        sim_atoi("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
         sim("neighbor", settings::neighbor, "`skin bin\\|nsq`"),
         sim("neigh_modify", settings::neigh_modify, "`delay`, `every`, `check` (`one`, `page`, `binsize`, `contact_distance_factor` accepted)"),
         sim("pair_style", pair::pair_style, "`gran` with `model hertz\\|hooke\\|hooke/hysteresis`, `tangential history\\|no_history`, `cohesion off\\|sjkr\\|sjkr2\\|bond`, `rolling_friction off\\|cdt\\|epsd\\|epsd2`, `surface default`, then `tangential_damping`, `limitForce`, `torsionTorque`, `tangential_reduce`, and with `cohesion bond` its switches (see [Bonded particles](#bonded-particles))")
