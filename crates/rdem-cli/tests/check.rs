@@ -350,3 +350,36 @@ bogus_after_the_loop
     );
     assert!(stdout.contains("followed 1000 times"), "{stdout}");
 }
+
+/// The cases of `../shared/wild` (MANIFEST.tsv) whose every line rdem can run, as
+/// `rdem -check` says (exit 0). The list grows as the commands real scripts use land
+/// (issue 17); each case not in it must have at least one line reported.
+const WILD_FULLY_SUPPORTED: &[&str] = &[
+    "02_cfdem_periodic_channel_init/DEM",
+    "04_cfdem_fillcylinder_init/DEM",
+];
+
+/// `rdem -check` on every case of `../shared/wild`: exactly the cases of
+/// [`WILD_FULLY_SUPPORTED`] are clean; every other one names its lines.
+#[test]
+fn wild_cases_rdem_can_run_every_line_of() {
+    let Some(root) = wild() else { return };
+    let manifest = std::fs::read_to_string(root.join("MANIFEST.tsv")).unwrap();
+    let mut clean = Vec::new();
+    let mut report = String::new();
+    for line in manifest.lines().skip(1) {
+        let cols: Vec<&str> = line.split('\t').collect();
+        let (case, main) = (cols[0], cols[1]);
+        let out = check_wild(&root, case, main);
+        match out.status.code() {
+            Some(0) => clean.push(case.to_string()),
+            Some(1) => report.push_str(&format!("{case}: {}\n", summary(&out))),
+            other => panic!(
+                "{case}: rdem -check exited with {other:?}:\n{}",
+                text(&out.stderr)
+            ),
+        }
+    }
+    eprintln!("{report}");
+    assert_eq!(clean, WILD_FULLY_SUPPORTED, "not clean:\n{report}");
+}
