@@ -325,3 +325,47 @@ fn dump_euler_vtk_writes_liggghts_files_and_a_collection() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `cell_size_relative cx cy cz` (LIGGGHTS-PFM's form; LIGGGHTS 3.8 takes one value and
+/// stops at the second): the cell edges per axis are those multiples of the largest
+/// diameter, so the cell counts are floor(box extent / (c · 2 r_max)) per axis.
+#[test]
+fn cell_sizes_per_axis() {
+    let head: String = script_without_dumps_and_run("in.stress")
+        .lines()
+        .filter(|l| !l.starts_with("compute") && !l.starts_with("thermo"))
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n";
+    let mut i = interp();
+    run(&mut i, &head);
+    run(
+        &mut i,
+        "fix e all ave/euler nevery 1 cell_size_relative 3 1.5 1 parallel yes\nrun 0\n",
+    );
+    let w = i.sim.world.as_ref().unwrap();
+    let p = &w.particles;
+    let d = 2.0 * p.radius[..p.nlocal()].iter().copied().fold(0.0, f64::max);
+    let ext = w.domain.boxhi - w.domain.boxlo;
+    let n: Vec<usize> = [3.0, 1.5, 1.0]
+        .iter()
+        .enumerate()
+        .map(|(a, c)| ((ext[a] / (c * d)).floor() as usize).max(1))
+        .collect();
+    assert!(
+        n[0] < n[1] && n[1] < n[2],
+        "{n:?}: the test needs distinct counts"
+    );
+    let k = i.sim.fix_index("e").unwrap();
+    let fix = i.sim.defs.fixes[k]
+        .downcast::<rdem_script::fixes::ave_euler::AveEuler>()
+        .unwrap();
+    assert_eq!(fix.cells.as_ref().unwrap().len(), n[0] * n[1] * n[2]);
+    // A word that is not a number where cy stands.
+    assert!(i
+        .run_source(
+            "in.t",
+            "fix e all ave/euler nevery 1 cell_size_relative 3 x 1 parallel yes\n"
+        )
+        .is_err());
+}

@@ -43,14 +43,14 @@ pub struct EulerGrid {
 }
 
 impl EulerGrid {
-    /// The grid over `lo..hi` for a wanted cell edge `size` (cells per axis
+    /// The grid over `lo..hi` for wanted cell edges `size` per axis (cells per axis
     /// `floor(extent / size)`, at least 1; a size that is not positive gives one cell).
-    pub fn new(lo: DVec3, hi: DVec3, size: f64) -> Self {
+    pub fn new(lo: DVec3, hi: DVec3, size: DVec3) -> Self {
         let ext = hi - lo;
         let mut n = [1usize; 3];
         for (a, na) in n.iter_mut().enumerate() {
-            if size > 0.0 && ext[a].is_finite() {
-                *na = ((ext[a] / size).floor() as usize).max(1);
+            if size[a] > 0.0 && ext[a].is_finite() {
+                *na = ((ext[a] / size[a]).floor() as usize).max(1);
             }
         }
         let cell = DVec3::new(
@@ -238,7 +238,7 @@ mod tests {
         let g = EulerGrid::new(
             DVec3::new(-0.01, -0.01, -0.01),
             DVec3::new(0.014, 0.01, 0.01),
-            0.008,
+            DVec3::splat(0.008),
         );
         assert_eq!(g.n, [3, 2, 2]);
         assert_eq!(g.ncells(), 12);
@@ -248,7 +248,14 @@ mod tests {
         assert_eq!(g.cell_of(DVec3::new(1.0, 1.0, 1.0)), 11);
         assert_eq!(g.cell_of(DVec3::new(-1.0, -1.0, -1.0)), 0);
         // A size larger than the box gives one cell per axis.
-        assert_eq!(EulerGrid::new(DVec3::ZERO, DVec3::ONE, 5.0).n, [1, 1, 1]);
+        assert_eq!(
+            EulerGrid::new(DVec3::ZERO, DVec3::ONE, DVec3::splat(5.0)).n,
+            [1, 1, 1]
+        );
+        // Edges per axis (LIGGGHTS-PFM's `cell_size_relative cx cy cz`).
+        let g = EulerGrid::new(DVec3::ZERO, DVec3::ONE, DVec3::new(0.5, 0.25, 0.1));
+        assert_eq!(g.n, [2, 4, 10]);
+        assert!((g.cell - DVec3::new(0.5, 0.25, 0.1)).length() < 1e-15);
     }
 
     /// Three spheres in one cell, two contacts, at a run's set-up (no tangential spring
@@ -350,7 +357,11 @@ mod tests {
         let vol = 0.02f64.powi(3);
         let want_p = (kin + rf) / (3.0 * vol);
 
-        let grid = EulerGrid::new(w.domain.boxlo, w.domain.boxhi, 3.0 * 2.0 * 0.0025);
+        let grid = EulerGrid::new(
+            w.domain.boxlo,
+            w.domain.boxhi,
+            DVec3::splat(3.0 * 2.0 * 0.0025),
+        );
         assert_eq!(grid.ncells(), 1);
         let cells = average(&grid, &w.particles, 1, &virial, None, &*w.comm);
         let p = cells.pressure[0];

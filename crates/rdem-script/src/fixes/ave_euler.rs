@@ -1,5 +1,5 @@
-//! `fix ave/euler nevery N cell_size_relative c parallel yes|no [basevolume_region R]`:
-//! cell averages on a regular grid ([`rdem::euler`]) at the end of every `nevery`-th step
+//! `fix ave/euler nevery N cell_size_relative c [cy cz] parallel yes|no
+//! [basevolume_region R]`: cell averages on a regular grid ([`rdem::euler`]) at the end of every `nevery`-th step
 //! and at a run's set-up, for `dump euler/vtk`. The engine computes the per-particle
 //! contact virial on exactly those steps ([`ScriptFix::wants_virial`]).
 
@@ -14,9 +14,9 @@ pub(super) const ROW: FixRow = style(
     "ave/euler",
     parse,
     Stages::END_OF_STEP,
-    "`nevery N cell_size_relative c parallel yes\\|no [basevolume_region R]`",
+    "`nevery N cell_size_relative c [cy cz] parallel yes\\|no [basevolume_region R]`",
 )
-.notes("per cell: mass-weighted velocity, mean radius, volume fraction, pressure (kinetic fluctuation + contact virial); one per script, as LIGGGHTS; `basevolume_region` volumes from a 20³ point grid per cell");
+.notes("per cell: mass-weighted velocity, mean radius, volume fraction, pressure (kinetic fluctuation + contact virial); one per script, as LIGGGHTS; three cell sizes (x, y, z) as LIGGGHTS-PFM takes them; `basevolume_region` volumes from a 20³ point grid per cell");
 
 fn due(nevery: u64, step: u64, setup: bool) -> bool {
     setup || step % nevery == 0
@@ -28,8 +28,9 @@ fn due(nevery: u64, step: u64, setup: bool) -> bool {
 pub struct AveEuler {
     /// Compute every this many steps.
     pub nevery: u64,
-    /// Cell size in multiples of the largest particle diameter.
-    pub cell_size_relative: f64,
+    /// Cell edges (x, y, z) in multiples of the largest particle diameter: one value in
+    /// LIGGGHTS 3.8, one per axis in LIGGGHTS-PFM.
+    pub cell_size_relative: rdem::DVec3,
     /// `parallel yes|no` (with one process both give the same grid over the whole box).
     pub parallel: bool,
     /// `basevolume_region`: the cells' volumes are their parts inside this region.
@@ -67,7 +68,13 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     a.keyword("ave/euler keyword", &["nevery"])?;
     let nevery = a.count("nevery")?;
     a.keyword("ave/euler keyword", &["cell_size_relative"])?;
-    let cell_size_relative = a.positive("cell_size_relative")?;
+    let c = a.positive("cell_size_relative")?;
+    // LIGGGHTS-PFM reads three sizes (x, y, z); LIGGGHTS 3.8 one.
+    let cell_size_relative = if a.peek().is_some_and(|w| w != "parallel") {
+        rdem::DVec3::new(c, a.positive("cell size y")?, a.positive("cell size z")?)
+    } else {
+        rdem::DVec3::splat(c)
+    };
     a.keyword("ave/euler keyword", &["parallel"])?;
     let parallel = a.yes_no("parallel")?;
     let mut base_region = None;
