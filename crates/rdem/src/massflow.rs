@@ -38,6 +38,12 @@ pub struct MassFlow {
     pub deleted_mass: f64,
     /// Particles deleted.
     pub deleted: u64,
+    /// Keep the local indices of the particles counted by each [`MassFlow::update`] in
+    /// [`MassFlow::crossed`] (for `file`/`append`, which write one line per particle).
+    pub record: bool,
+    /// With `record`: the local indices counted by the last update (valid until the next
+    /// re-neighboring).
+    pub crossed: Vec<usize>,
     prop: Option<PropId>,
 }
 
@@ -105,6 +111,8 @@ impl MassFlow {
             count: 0,
             deleted_mass: 0.0,
             deleted: 0,
+            record: false,
+            crossed: Vec::new(),
             prop: None,
         })
     }
@@ -131,6 +139,7 @@ impl MassFlow {
         let p = &mut world.particles;
         let nlocal = p.nlocal();
         let (mut mass, mut count) = (0.0, 0u64);
+        self.crossed.clear();
         let mut remove = Vec::new();
         for i in 0..nlocal {
             if p.mask[i] & self.groupbit == 0 {
@@ -154,6 +163,9 @@ impl MassFlow {
             h[1] = 1.0;
             mass += p.rmass[i];
             count += 1;
+            if self.record {
+                self.crossed.push(i);
+            }
             if self.delete {
                 remove.push(i);
             }
@@ -209,14 +221,20 @@ mod tests {
             let mut mf =
                 MassFlow::new("mf", 0, &w.meshes[0].mesh, 1, DVec3::new(0.0, 0.0, -1.0)).unwrap();
             mf.delete = delete;
+            mf.record = true;
             mf.update(&mut w).unwrap();
             assert_eq!(mf.count, 0);
+            let mut crossed = Vec::new();
             for _ in 0..10 {
                 for x in &mut w.particles.x {
                     x.z -= 0.01;
                 }
                 mf.update(&mut w).unwrap();
+                crossed.extend(mf.crossed.iter().copied());
             }
+            // The three above the face, each recorded in the step it crossed.
+            crossed.sort_unstable();
+            assert_eq!(crossed, [0, 1, 3]);
             let m = crate::particles::sphere_mass(1000.0, 0.01);
             assert_eq!(mf.count, 3);
             assert!((mf.mass - 3.0 * m).abs() < 1e-15);

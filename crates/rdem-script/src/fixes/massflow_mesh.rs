@@ -1,5 +1,8 @@
 //! `fix massflow/mesh`: counts the particles (and their mass) that cross a mesh face
-//! towards `vec_side`, optionally deleting them; `f_ID[1..6]` gives totals and rates.
+//! towards `vec_side`, optionally deleting them; `f_ID[1..6]` gives totals and rates;
+//! `file`/`append` write one line per counted particle.
+
+use std::io::Write;
 
 use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
@@ -10,9 +13,9 @@ pub(super) const ROW: FixRow = style(
     "massflow/mesh",
     parse,
     Stages::END_OF_STEP.and(Stages::VALUES),
-    "`mesh ID vec_side vx vy vz`, `count once\\|multiple`, `delete_atoms yes\\|no`; `screen`, `writeTime` accepted",
+    "`mesh ID vec_side vx vy vz`, `count once\\|multiple`, `delete_atoms yes\\|no`, `file F`, `append F`, `writeTime`; `screen` accepted",
 )
-.notes("`f_ID[1..6]`: mass and count through the face, mass and number rates since the previous evaluation (thermo output), deleted mass and count; a particle counts when its centre crosses the face's plane inside a triangle; `delete_atoms yes` removes it at the next re-neighboring, as LIGGGHTS does; `point_at_outlet`, `inside_out`, `file`, `append` stop with an error");
+.notes("`f_ID[1..6]`: mass and count through the face, mass and number rates since the previous evaluation (thermo output), deleted mass and count; a particle counts when its centre crosses the face's plane inside a triangle; `delete_atoms yes` removes it at the next re-neighboring, as LIGGGHTS does; `file`/`append`: a line per counted particle (ID, [time,] diameter, position, velocity) in LIGGGHTS 3.8's layout; `point_at_outlet`, `inside_out` stop with an error");
 
 /// `fix massflow/mesh`: the engine's counter and the output rates.
 pub struct MassFlowFix {
@@ -22,6 +25,51 @@ pub struct MassFlowFix {
     pub last: std::cell::Cell<Option<(u64, f64, u64)>>,
     /// (step, mass rate, number rate) of the last evaluation.
     pub rates: std::cell::Cell<(u64, f64, f64)>,
+    /// `file F` / `append F`.
+    pub out: Option<FlowFile>,
+}
+
+/// `file F` / `append F`: one line per counted particle, as LIGGGHTS 3.8 writes it (checked
+/// there): a header `# ID [time  ]diameter x y z u v w  (ex ey ez, color)`, then per
+/// particle its ID, with `writeTime` two spaces, the time and a space, then each of
+/// diameter, x, y, z, vx, vy, vz as a space and the value right-aligned in 4 columns,
+/// numbers with 4 significant digits as C's `%.4g`.
+pub struct FlowFile {
+    /// The file name.
+    pub path: String,
+    /// `append` rather than `file`.
+    pub append: bool,
+    /// Where the name stands in the definition (for errors opening it).
+    pub word: usize,
+    /// `writeTime`.
+    pub write_time: bool,
+    /// The open file (on the rank that writes files; none under `rdem -check`).
+    pub writer: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl FlowFile {
+    /// The header line.
+    fn header(&self) -> &'static str {
+        if self.write_time {
+            "# ID time  diameter x y z u v w  (ex ey ez, color)\n"
+        } else {
+            "# ID diameter x y z u v w  (ex ey ez, color)\n"
+        }
+    }
+
+    /// One line: `row` is (ID, diameter, x, y, z, vx, vy, vz).
+    fn line(&self, time: f64, row: &[f64]) -> String {
+        let g = |v: f64| crate::variables::format_g(v, 4);
+        let mut s = format!("{}", row[0] as u64);
+        if self.write_time {
+            s.push_str(&format!("  {} ", g(time)));
+        }
+        for &v in &row[1..8] {
+            s.push_str(&format!(" {:>4}", g(v)));
+        }
+        s.push('\n');
+        s
+    }
 }
 
 impl MassFlowFix {
@@ -62,9 +110,18 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     a.keyword("massflow/mesh keyword", &["mesh"])?;
     let mesh_at = a.pos();
     let mesh = mesh_ref(sim, a, "mesh ID (a fix mesh/surface)")?;
-    const KEYS: [&str; 5] = ["vec_side", "count", "delete_atoms", "screen", "writeTime"];
-    const LATER_KEYS: [&str; 5] = ["point_at_outlet", "inside_out", "file", "append", "lambda"];
+    const KEYS: [&str; 7] = [
+        "vec_side",
+        "count",
+        "delete_atoms",
+        "screen",
+        "writeTime",
+        "file",
+        "append",
+    ];
+    const LATER_KEYS: [&str; 3] = ["point_at_outlet", "inside_out", "lambda"];
     let (mut side, mut once, mut delete) = (None, false, false);
+    let (mut out, mut write_time) = (None, false);
     while let Some(w) = a.peek() {
         if LATER_KEYS.contains(&w) {
             a.seek(a.pos() + 1);
@@ -80,7 +137,11 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             "screen" => {
                 a.yes_no("screen")?;
             }
-            _ => {}
+            "writeTime" => write_time = true,
+            key => {
+                let word = a.pos();
+                out = Some((a.word("file name")?.to_string(), key == "append", word));
+            }
         }
     }
     let Some(side) = side else {
@@ -95,14 +156,50 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         .map_err(|e| a.error_at(mesh_at, e.to_string(), None))?;
     mf.once = once;
     mf.delete = delete;
+    mf.record = out.is_some();
     Ok(Box::new(MassFlowFix {
         flow: mf,
         last: std::cell::Cell::new(None),
         rates: std::cell::Cell::new((u64::MAX, 0.0, 0.0)),
+        out: out.map(|(path, append, word)| FlowFile {
+            path,
+            append,
+            word,
+            write_time,
+            writer: None,
+        }),
     }))
 }
 
 impl ScriptFix for MassFlowFix {
+    /// Opens the `file`/`append` file and writes its header (not under `rdem -check`,
+    /// and only on the rank that writes files).
+    fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+        let root = sim.world.as_ref().is_some_and(|w| w.comm.is_root());
+        let Some(f) = self.out.as_mut().filter(|_| root && !sim.script.check) else {
+            return Ok(());
+        };
+        let opened = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .append(f.append)
+            .truncate(!f.append)
+            .open(&f.path)
+            .and_then(|file| {
+                let mut w = std::io::BufWriter::new(file);
+                w.write_all(f.header().as_bytes())?;
+                w.flush()?;
+                Ok(w)
+            });
+        match opened {
+            Ok(w) => f.writer = Some(w),
+            Err(e) => {
+                return Err(a.error_at(f.word, format!("cannot write {}: {e}", f.path), None))
+            }
+        }
+        Ok(())
+    }
+
     fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         let w = sim.world.as_ref().ok_or("needs a simulation box")?;
         Ok(self.rates(w.step, w.dt).to_vec())
@@ -118,8 +215,42 @@ impl ScriptFix for MassFlowFix {
         if setup {
             return Ok(());
         }
+        let time = sim.time();
         let w = sim.world.as_mut().ok_or("needs a simulation box")?;
-        self.flow.update(w).map_err(|e| e.to_string())
+        self.flow.update(w).map_err(|e| e.to_string())?;
+        let Some(out) = &mut self.out else {
+            return Ok(());
+        };
+        let p = &w.particles;
+        let rows: Vec<f64> = self
+            .flow
+            .crossed
+            .iter()
+            .flat_map(|&i| {
+                let (x, v) = (p.x[i], p.v[i]);
+                [
+                    p.tag[i] as f64,
+                    2.0 * p.radius[i],
+                    x.x,
+                    x.y,
+                    x.z,
+                    v.x,
+                    v.y,
+                    v.z,
+                ]
+            })
+            .collect();
+        // Every rank's lines, in rank order, on the rank that writes.
+        let Some(all) = w.comm.gather(&rows) else {
+            return Ok(());
+        };
+        let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();
+        if let Some(file) = &mut out.writer {
+            file.write_all(text.as_bytes())
+                .and_then(|_| file.flush())
+                .map_err(|e| format!("cannot write {}: {e}", out.path))?;
+        }
+        Ok(())
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
