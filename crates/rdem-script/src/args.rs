@@ -66,9 +66,12 @@ pub fn suggest(word: &str, valid: &[&str]) -> String {
     }
 }
 
-/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
+/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it
+/// (when the only compute is the implicit `thermo_temp` and the ID is not near it, the
+/// script has defined none).
 pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
-    if ids.is_empty() {
+    let implicit_only = what == "compute" && ids == ["thermo_temp"];
+    if ids.is_empty() || (implicit_only && nearest(id, ids).is_none()) {
         format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
     } else {
         suggest(id, ids)

@@ -114,6 +114,12 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         w.lost_policy = sim.setup.lost;
         w.timers.reset();
     }
+    // LAMMPS' init: computes count what they keep through the run.
+    if let Some(w) = sim.world.as_ref() {
+        for c in &mut sim.defs.computes {
+            c.imp.init(w, &c.head);
+        }
+    }
     let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
     sim.script.run_first = start_step;
     sim.script.run_last = start_step + nsteps;

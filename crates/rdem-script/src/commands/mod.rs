@@ -81,9 +81,11 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("unfix", fixes::unfix, "`ID`"),
         sim("compute", compute::compute, "the compute styles below"),
         sim("uncompute", compute::uncompute, "`ID`"),
+        sim("compute_modify", compute::compute_modify, "`extra N` (also `extra/dof`), `dynamic yes\\|no` (also `dynamic/dof`), `thermo yes\\|no`; `thermo_temp` and user computes")
+            .notes("`extra/dof`, `dynamic/dof` are later LAMMPS names LIGGGHTS 3.8 refuses; a keyword a style does not use is accepted with a warning"),
         sim("thermo", thermo::thermo, "`N`"),
         sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`")
-            .notes("`pe` is 0 (granular contacts store no potential energy)"),
+            .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
         sim("run", run::run, "`N`, `N upto`"),
