@@ -53,8 +53,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("communicate", settings::communicate, "accepted").notes("tuning only"),
         sim("hard_particles", settings::hard_particles, "accepted").notes("tuning only"),
         sim("soft_particles", settings::hard_particles, "accepted").notes("tuning only"),
-        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each)")
-            .notes("the keywords `grid`, `map`, `part`, `file` are not supported"),
+        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each); `grid onelevel`; `map cart\\|cart/reorder\\|xyz`")
+            .notes("a grid that does not fit the number of processes is a warning (LIGGGHTS stops): rdem keeps the counts that fit and chooses the rest; ranks are placed in xyz order whatever `map` says (only which rank holds which part changes); `grid twolevel\\|numa\\|custom`, other maps, `part`, `file`: not supported"),
         sim("region", region::region, "the region styles below; `side in\\|out`; `units box\\|lattice` (default `box`, as LIGGGHTS 3.8)")
             .notes("no `move`/`rotate`"),
         sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `origin`")
