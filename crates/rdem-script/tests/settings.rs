@@ -58,3 +58,118 @@ fn processors_grid_that_does_not_fit_warns_and_runs() {
         assert!(e.contains(msg) && e.contains("in.t:1:"), "{e}");
     }
 }
+
+const BOX: &str = "region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n";
+
+/// `fix_modify energy` is accepted on any fix (warning where LIGGGHTS would add an energy
+/// rdem does not); `temp`, `press`, `virial` and unknown keywords or IDs stop, at the word.
+#[test]
+fn fix_modify_generic_keywords() {
+    let src = format!(
+        "{BOX}fix gr all gravity 9.81 vector 0 0 -1\nfix integr all nve/sphere\n\
+         fix_modify integr energy yes\nfix_modify gr energy no\nfix_modify gr energy yes\n"
+    );
+    let (i, r, out) = run(&src);
+    r.unwrap();
+    let energy: Vec<bool> = i.sim.defs.fixes.iter().map(|f| f.energy).collect();
+    assert_eq!(energy, [true, true]);
+    assert_eq!(
+        out.matches("WARNING").count(),
+        1,
+        "one warning, for gravity:\n{out}"
+    );
+    assert!(
+        out.contains(
+            "line 7: fix_modify energy yes: rdem does not add the energy of fix gr (gravity)"
+        ),
+        "{out}"
+    );
+    for (tail, msg, col) in [
+        (
+            "fix_modify gr temp thermo_temp",
+            "fix gr (gravity) computes no temperature",
+            15,
+        ),
+        (
+            "fix_modify gr press thermo_temp",
+            "fix gr (gravity) computes no pressure",
+            15,
+        ),
+        (
+            "fix_modify gr virial yes",
+            "fix_modify virial is not a LIGGGHTS 3.8 keyword",
+            15,
+        ),
+        ("fix_modify gr energy maybe", "unknown energy 'maybe'", 22),
+        (
+            "fix_modify gr enrgy yes",
+            "unknown fix_modify keyword 'enrgy'",
+            15,
+        ),
+        ("fix_modify gravi energy yes", "no fix 'gravi'", 12),
+        ("fix_modify gr", "fix_modify: missing keyword", 14),
+    ] {
+        let (_, r, _) = run(&format!(
+            "{BOX}fix gr all gravity 9.81 vector 0 0 -1\n{tail}\n"
+        ));
+        let e = r.unwrap_err();
+        assert!(
+            e.contains(msg) && e.contains(&format!("in.t:4:{col}")),
+            "{tail}: {e}"
+        );
+    }
+}
+
+/// A style that takes its own `fix_modify` keyword (as the servo wall's `integrate
+/// start|stop` will): the hook sees it before the generic keywords.
+#[derive(Default)]
+struct Servo {
+    integrate: Option<bool>,
+}
+
+impl rdem_script::fixes::ScriptFix for Servo {
+    fn modify(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &rdem_script::fixes::FixHead,
+        keyword: &str,
+        a: &mut rdem_script::args::Args,
+    ) -> rdem_script::args::CmdResult<bool> {
+        if keyword != "integrate" {
+            return Ok(false);
+        }
+        self.integrate = Some(a.keyword("integrate", &["start", "stop"])? == "start");
+        Ok(true)
+    }
+
+    fn unfix(&mut self, _sim: &mut Sim, _head: &rdem_script::fixes::FixHead) {}
+}
+
+#[test]
+fn fix_modify_reaches_a_style_keyword_first() {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.sim.defs.fixes.push(rdem_script::fixes::FixEntry {
+        head: rdem_script::fixes::FixHead {
+            id: "servo".into(),
+            style: "servo",
+            groupbit: 1,
+        },
+        stages: rdem_script::fixes::Stages::NONE,
+        origin: None,
+        energy: false,
+        imp: Box::new(Servo::default()),
+    });
+    i.run_source("in.t", "fix_modify servo integrate stop energy yes\n")
+        .unwrap();
+    let f = &i.sim.defs.fixes[0];
+    assert_eq!(f.downcast::<Servo>().unwrap().integrate, Some(false));
+    assert!(f.energy);
+    let e = i
+        .run_source("in.t", "fix_modify servo integrate go\n")
+        .map_err(|e| render(&e))
+        .unwrap_err();
+    assert!(
+        e.contains("unknown integrate 'go'") && e.contains("in.t:1:28"),
+        "{e}"
+    );
+}

@@ -79,6 +79,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("timestep", settings::timestep, "the time step (s)"),
         sim("fix", fixes::fix, "the fix styles below"),
         sim("unfix", fixes::unfix, "`ID`"),
+        sim("fix_modify", fixes::fix_modify, "`energy yes\\|no`, and a style's own keywords")
+            .notes("`energy yes` on `gravity`/`addforce` warns: their energy is not added to a potential energy (no granular fix tallies one in LIGGGHTS 3.8); `temp`, `press`, `virial` stop as in LIGGGHTS 3.8 (no granular fix computes a temperature or pressure)"),
         sim("compute", compute::compute, "the compute styles below"),
         sim("uncompute", compute::uncompute, "`ID`"),
         sim("compute_modify", compute::compute_modify, "`extra N` (also `extra/dof`), `dynamic yes\\|no` (also `dynamic/dof`), `thermo yes\\|no`; `thermo_temp` and user computes")
