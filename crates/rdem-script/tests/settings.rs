@@ -173,3 +173,33 @@ fn fix_modify_reaches_a_style_keyword_first() {
         "{e}"
     );
 }
+
+/// `dimension 3` runs before the box; 2, other values and a late `dimension` stop at the
+/// word.
+#[test]
+fn dimension_three_only() {
+    let (_, r, _) = run(&format!("dimension 3\n{BOX}"));
+    r.unwrap();
+    for (src, msg, at) in [
+        (
+            "dimension 2\n".to_string(),
+            "dimension 2 is not supported yet",
+            "in.t:1:11",
+        ),
+        (
+            "dimension 4\n".to_string(),
+            "dimension must be 2 or 3, not '4'",
+            "in.t:1:11",
+        ),
+        (
+            format!("{BOX}dimension 3\n"),
+            "dimension after the simulation box is defined",
+            "in.t:3:1",
+        ),
+        ("dimension 3 x\n".to_string(), "", "in.t:1:13"),
+    ] {
+        let (_, r, _) = run(&src);
+        let e = r.unwrap_err();
+        assert!(e.contains(msg) && e.contains(at), "{src}: {e}");
+    }
+}

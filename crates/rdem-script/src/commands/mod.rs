@@ -48,6 +48,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same)"),
         sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
         sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box"),
+        sim("dimension", settings::dimension, "`3`").notes("before the box; `dimension 2` is not supported yet"),
         sim("units", settings::units, "`si`").notes("other unit systems: an error"),
         sim("newton", settings::newton, "accepted").notes("tuning only"),
         sim("communicate", settings::communicate, "accepted").notes("tuning only"),

@@ -117,6 +117,27 @@ pub(super) fn units(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// `dimension 3` (before the box, as LIGGGHTS); `dimension 2` is not supported yet.
+pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    if sim.world.is_some() {
+        return Err(a.error_cmd(
+            "dimension after the simulation box is defined",
+            Some("give dimension before create_box or read_data".into()),
+        ));
+    }
+    match a.word("dimension")? {
+        "3" => a.done(),
+        "2" => Err(a.error_prev(
+            "dimension 2 is not supported yet: rdem simulates in 3d",
+            Some("use 'dimension 3' (the default)".into()),
+        )),
+        d => Err(a.error_prev(
+            format!("dimension must be 2 or 3, not '{d}'"),
+            Some("rdem supports 'dimension 3'".into()),
+        )),
+    }
+}
+
 /// `newton on|off [on|off]` (accepted: rdem computes each pair once).
 pub(super) fn newton(_sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.keyword("newton setting", &["on", "off"])?;
