@@ -149,7 +149,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         "Memory usage per processor = {} Mbytes",
         crate::variables::format_g(mem, 4)
     ));
-    sim.outputs.out.line(&thermo::header(sim));
+    sim.outputs.out.thermo_line(&thermo::header(sim));
     thermo_row(sim)?;
     if sim.script.check {
         return crate::check::after_setup(sim, nsteps);
@@ -330,7 +330,7 @@ fn thermo_row(sim: &mut Sim) -> Result<(), RunError> {
         return Ok(());
     }
     let r = thermo::row(sim)?;
-    sim.outputs.out.line(&r);
+    sim.outputs.out.thermo_line(&r);
     sim.outputs.thermo.last_printed = step;
     Ok(())
 }

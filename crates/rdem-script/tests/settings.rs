@@ -203,3 +203,37 @@ fn dimension_three_only() {
         assert!(e.contains(msg) && e.contains(at), "{src}: {e}");
     }
 }
+
+/// `thermo_log` writes thermo's lines (a header per run) to its file, truncating it
+/// unless `append`, until `thermo_log none`: the files equal LIGGGHTS 3.8's byte for byte
+/// (tests/data/settings/thermo_log_*.liggghts.txt, made by regenerate.sh).
+#[test]
+fn thermo_log_files_as_liggghts() {
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/settings");
+    let dir = std::env::temp_dir().join(format!("rdem-thermo-log-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let d = dir.display().to_string();
+    let src = std::fs::read_to_string(format!("{data}/thermo_log.in"))
+        .unwrap()
+        .replace("include ../parity/", &format!("include {data}/../parity/"))
+        .replace(
+            "thermo_log thermo_log_",
+            &format!("thermo_log {d}/thermo_log_"),
+        );
+    let (_, r, out) = run(&src);
+    r.unwrap_or_else(|e| panic!("{e}\n{out}"));
+    for f in ["a", "b"] {
+        let got = std::fs::read_to_string(dir.join(format!("thermo_log_{f}.txt"))).unwrap();
+        let want = std::fs::read_to_string(format!("{data}/thermo_log_{f}.liggghts.txt")).unwrap();
+        assert_eq!(got, want, "thermo_log_{f}.txt");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    let (_, r, _) = run("thermo_log a.txt appnd\n");
+    let e = r.unwrap_err();
+    assert!(
+        e.contains("unknown thermo_log keyword 'appnd'") && e.contains("in.t:1:18"),
+        "{e}"
+    );
+    let (_, r, _) = run("thermo_log\n");
+    assert!(r.unwrap_err().contains("missing thermo log file name"));
+}

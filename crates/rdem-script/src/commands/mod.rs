@@ -89,6 +89,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("thermo", thermo::thermo, "`N`"),
         sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`")
             .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8"),
+        sim("thermo_log", thermo::thermo_log, "`FILE [append]`, `none`: thermo's lines also go to FILE")
+            .notes("without a file name LIGGGHTS 3.8 writes to `log`; rdem asks for the name"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
         sim("run", run::run, "`N`, `N upto`"),
