@@ -237,3 +237,47 @@ fn thermo_log_files_as_liggghts() {
     let (_, r, _) = run("thermo_log\n");
     assert!(r.unwrap_err().contains("missing thermo log file name"));
 }
+
+/// Seeds LIGGGHTS 3.8 refuses (not a prime > 10000: "It is required that the random
+/// seed value is > 10000 and a prime number", for 12345 in each of these styles) run
+/// with a warning naming the line; 0 stops.
+#[test]
+fn seeds_liggghts_refuses_warn() {
+    let head = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/head.in"
+    ))
+    .unwrap();
+    let mat = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/mat.in"
+    ))
+    .unwrap();
+    let defs = "fix pts all particletemplate/sphere 12345 atom_type 1 density constant 2500 radius constant 0.0025\n\
+         fix pdd all particledistribution/discrete 9973 1 pts 1.0\n\
+         fix ins all insert/pack seed 32452867 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 5 region box\n\
+         fix ins2 all insert/pack seed 10008 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 5 region box\n";
+    let pre = format!("{head}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n{mat}");
+    let line0 = pre.lines().count();
+    let (_, r, out) = run(&format!("{pre}{defs}"));
+    r.unwrap();
+    assert_eq!(out.matches("WARNING").count(), 3, "{out}");
+    for (n, seed) in [(1, 12345), (2, 9973), (4, 10008)] {
+        let w = format!(
+            "WARNING: line {}: seed {seed} is not a prime > 10000: LIGGGHTS 3.8 refuses it, rdem takes it",
+            line0 + n
+        );
+        assert!(out.contains(&w), "{w}\n{out}");
+    }
+    let (_, r, _) = run(&format!(
+        "{pre}fix pts all particletemplate/sphere 0 atom_type 1 density constant 2500 radius constant 0.0025\n"
+    ));
+    let e = r.unwrap_err();
+    assert!(e.contains("seed must be a positive integer, not 0"), "{e}");
+    let (_, r, _) = run(&format!(
+        "{pre}fix pts all particletemplate/sphere -5 atom_type 1 density constant 2500 radius constant 0.0025\n"
+    ));
+    assert!(r
+        .unwrap_err()
+        .contains("seed must be a non-negative integer, not '-5'"));
+}
