@@ -281,3 +281,46 @@ fn seeds_liggghts_refuses_warn() {
         .unwrap_err()
         .contains("seed must be a non-negative integer, not '-5'"));
 }
+
+/// `clear` empties everything a script defined but its variables (as LIGGGHTS 3.8: a
+/// variable defined before prints after `clear`), and the script goes on from scratch.
+#[test]
+fn clear_keeps_only_variables() {
+    let head = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/head.in"
+    ))
+    .unwrap();
+    let mat = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/mat.in"
+    ))
+    .unwrap();
+    let setup = format!("{head}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n{mat}");
+    let src = format!(
+        "variable a equal 5\nprocessors * * 1\n{setup}create_atoms 1 single 0.2 0.2 0.2 units box\n\
+         group g region box\ncompute k all ke\nfix integr all nve/sphere\n\
+         thermo_style custom step c_k\ntimestep 0.001\n\
+         compute_modify thermo_temp extra 0\nclear\nprint \"a=${{a}}\"\n"
+    );
+    let (mut i, r, out) = run(&src);
+    r.unwrap_or_else(|e| panic!("{e}\n{out}"));
+    assert!(out.contains("a=5"), "{out}");
+    let s = &i.sim;
+    assert!(s.world.is_none());
+    assert_eq!(s.defs.groups.names(), ["all"]);
+    assert!(s.defs.regions.is_empty() && s.defs.fixes.is_empty() && s.defs.properties.is_empty());
+    let computes: Vec<&str> = s.defs.computes.iter().map(|c| c.id()).collect();
+    assert_eq!(computes, ["thermo_temp"]);
+    assert_eq!(s.outputs.thermo.columns, ["step", "atoms", "ke", "cpu"]);
+    assert_eq!((s.setup.dt, s.setup.procs), (1e-8, [0, 0, 0]));
+    // The same definitions run again.
+    i.run_source(
+        "in.t2",
+        &format!("{setup}create_atoms 1 single 0.2 0.2 0.2 units box\nrun 0\n"),
+    )
+    .unwrap();
+    assert_eq!(i.sim.natoms(), 1);
+    let (_, r, _) = run("clear now\n");
+    assert!(r.unwrap_err().contains("in.t:1:7"));
+}

@@ -138,6 +138,28 @@ pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
 }
 
+/// `clear`: everything back to the state after start-up (box, particles, fixes,
+/// computes, groups, regions, dumps, thermo settings, units, time step) except what
+/// LIGGGHTS 3.8 keeps: the variables, the screen and log, and the `thermo_log` file
+/// (checked there: after `clear`, `print ${a}` shows a variable defined before, and the
+/// next run's thermo lines go on into the same thermo log).
+pub(super) fn clear(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    a.done()?;
+    let out = std::mem::replace(&mut sim.outputs.out, crate::output::Output::captured());
+    let mut fresh = Sim::new(out);
+    fresh.outputs.progress = sim.outputs.progress.take();
+    fresh.outputs.warned = std::mem::take(&mut sim.outputs.warned);
+    let s = &mut sim.script;
+    let f = &mut fresh.script;
+    std::mem::swap(&mut f.vars, &mut s.vars);
+    f.here = s.here.take();
+    f.check = s.check;
+    f.threads = s.threads;
+    f.started = s.started;
+    *sim = fresh;
+    Ok(())
+}
+
 /// `newton on|off [on|off]` (accepted: rdem computes each pair once).
 pub(super) fn newton(_sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.keyword("newton setting", &["on", "off"])?;
