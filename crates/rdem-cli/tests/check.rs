@@ -81,17 +81,16 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 
 /// Three real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
 ///
-/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 4 lines:
+/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 3 lines:
 /// - 92 `pair_style gran model hertz tangential incremental_history ...`: the tangential
 ///   model `incremental_history` is LIGGGHTS-PFM's;
-/// - 128 `compute_modify thermo_temp dynamic no`: no `compute_modify` in rdem;
 /// - 131 `compute pgl all pair/gran/local ...`: no per-contact computes;
 /// - 134 `dump dmpdisp all local ...`: no `dump local`.
 ///
 /// Left out as follow-ons: 93 `pair_coeff * *` (the pair style failed) and 135
 /// `dump_modify dmpdisp` (the dump failed).
 ///
-/// `24_fibers_cantilever_beam/in.liggghts` — 13 lines:
+/// `24_fibers_cantilever_beam/in.liggghts` — 12 lines:
 /// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
 /// - 70 `shell mkdir post`: rdem runs no shell commands;
 /// - 74 `pair_style gran ...` comes before `create_box` (line 82): LIGGGHTS refuses that too;
@@ -102,19 +101,18 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
 /// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword;
 /// - 159 `dump bondforcechain all local ...`: no `dump local`;
-/// - 164 `fix outfile all print ...`: no `fix print`;
-/// - 170 `fix_modify bondcr every 0`: no `fix_modify`.
+/// - 164 `fix outfile all print ...`: no `fix print`.
 ///
 /// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
-/// `fix f1 freezed freeze` (groups whose lines failed).
+/// `fix f1 freezed freeze` (groups whose lines failed), 170 `fix_modify bondcr every 0`
+/// (the fix whose line failed).
 ///
-/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 6 lines:
+/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 5 lines:
 /// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
 /// - 30 `pair_style gran/hertz/history`: the pre-3.0 pair syntax;
 /// - 38 `fix c1 all mesh/surface ... temperature 600 surface_vel ...`: no mesh
 ///   temperature;
 /// - 42 `fix wall all wall/gran/hertz/history ...`: the pre-3.0 wall syntax;
-/// - 65 `compute_modify thermo_temp dynamic yes`: no `compute_modify`;
 /// - 69 `dump dmp all custom ... f_Temp[0]`: no per-particle temperature (`fix heat/gran`
 ///   would make `Temp`; rdem cannot know that, so the line is listed).
 ///
@@ -129,25 +127,25 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "12_pfm_chung_normal_impact",
             "in.elastic_normal_impact_2_spheres",
-            "in.elastic_normal_impact_2_spheres: 4 lines rdem cannot run: pair_style gran (line 92), \
-             compute_modify (128), compute pair/gran/local (131), dump local (134)",
+            "in.elastic_normal_impact_2_spheres: 3 lines rdem cannot run: pair_style gran (line 92), \
+             compute pair/gran/local (131), dump local (134)",
             &[93, 135][..],
         ),
         (
             "24_fibers_cantilever_beam",
             "in.liggghts",
-            "in.liggghts: 13 lines rdem cannot run: atom_style hybrid (line 53), shell (70), \
+            "in.liggghts: 12 lines rdem cannot run: atom_style hybrid (line 53), shell (70), \
              pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
              group (110), group (114), fix bond/create/gran (118), thermo_style custom (135), \
-             dump local (159), fix print (164), fix_modify (170)",
-            &[94, 111, 176][..],
+             dump local (159), fix print (164)",
+            &[94, 111, 170, 176][..],
         ),
         (
             "40_2x_conveyor_surface_vel_heat",
             "in.surface_vel",
-            "in.surface_vel: 6 lines rdem cannot run: fix heat/gran (line 27), \
+            "in.surface_vel: 5 lines rdem cannot run: fix heat/gran (line 27), \
              pair_style gran/hertz/history (30), fix mesh/surface (38), \
-             fix wall/gran/hertz/history (42), compute_modify (65), dump custom (69)",
+             fix wall/gran/hertz/history (42), dump custom (69)",
             &[31, 62][..],
         ),
     ];
@@ -312,7 +310,7 @@ region box block 0 1 0 1 0 1 units box
 create_box 1 box
 variable i loop 3
 label top
-compute_modify thermo_temp dynamic no
+modify_timing on
 if \"$i == 3\" then \"bogus_on_the_last_pass\"
 next i
 jump SELF top
@@ -322,7 +320,7 @@ jump SELF top
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert_eq!(
         summary(&out),
-        "in.test: 2 lines rdem cannot run: compute_modify (line 6), if (7)",
+        "in.test: 2 lines rdem cannot run: modify_timing (line 6), if (7)",
         "{stderr}"
     );
     assert_eq!(stderr.matches("[in.test:6:").count(), 1, "{stderr}");

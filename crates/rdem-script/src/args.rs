@@ -66,9 +66,12 @@ pub fn suggest(word: &str, valid: &[&str]) -> String {
     }
 }
 
-/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it.
+/// Help for an unknown compute/fix/dump ID: the nearest defined one, or how to define it
+/// (when the only compute is the implicit `thermo_temp` and the ID is not near it, the
+/// script has defined none).
 pub fn id_help(what: &str, id: &str, ids: &[&str]) -> String {
-    if ids.is_empty() {
+    let implicit_only = what == "compute" && ids == ["thermo_temp"];
+    if ids.is_empty() || (implicit_only && nearest(id, ids).is_none()) {
         format!("no {what} is defined yet; define '{id}' with '{what} {id} ...' first")
     } else {
         suggest(id, ids)
@@ -98,6 +101,46 @@ pub fn integer_with_point(s: &str) -> Option<u64> {
         && frac.bytes().all(|c| c == b'0'))
     .then(|| digits.parse().ok())
     .flatten()
+}
+
+/// True if `n` is prime (Miller–Rabin with the bases that decide every `u64`).
+pub fn is_prime(n: u64) -> bool {
+    const BASES: [u64; 12] = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
+    if n < 2 {
+        return false;
+    }
+    for p in BASES {
+        if n % p == 0 {
+            return n == p;
+        }
+    }
+    let mul = |a: u64, b: u64| ((a as u128 * b as u128) % n as u128) as u64;
+    let pow = |mut b: u64, mut e: u64| {
+        let mut r = 1;
+        while e > 0 {
+            if e & 1 == 1 {
+                r = mul(r, b);
+            }
+            b = mul(b, b);
+            e >>= 1;
+        }
+        r
+    };
+    let (mut d, mut s) = (n - 1, 0);
+    while d % 2 == 0 {
+        d /= 2;
+        s += 1;
+    }
+    BASES.iter().all(|&a| {
+        let mut x = pow(a, d);
+        if x == 1 || x == n - 1 {
+            return true;
+        }
+        (1..s).any(|_| {
+            x = mul(x, x);
+            x == n - 1
+        })
+    })
 }
 
 /// What C's `atoi` reads from the start of `s` (sign and digits), if it starts so.
@@ -346,6 +389,28 @@ impl<'a> Args<'a> {
         Ok(v)
     }
 
+    /// The next word as a random seed (an integer >= 1). LIGGGHTS 3.8 refuses a seed of
+    /// the insertion fixes, `particletemplate/*` and `particledistribution/*` that is not a
+    /// prime > 10000 ("It is required that the random seed value is > 10000 and a prime
+    /// number", checked with seed 12345 in each); rdem takes any, with a warning naming
+    /// the line.
+    pub fn seed(&mut self) -> CmdResult<u64> {
+        let v = self.u64("seed")?;
+        if v == 0 {
+            return Err(self.error_prev(
+                "seed must be a positive integer, not 0",
+                Some("LIGGGHTS 3.8 asks for a prime > 10000, e.g. 32452843".into()),
+            ));
+        }
+        if v <= 10000 || !is_prime(v) {
+            self.warn_at(
+                self.pos - 1,
+                &format!("seed {v} is not a prime > 10000: LIGGGHTS 3.8 refuses it, rdem takes it"),
+            );
+        }
+        Ok(v)
+    }
+
     /// The next word, which must be one of `valid`.
     pub fn keyword(&mut self, what: &str, valid: &[&'static str]) -> CmdResult<&'static str> {
         let w = match self.words.get(self.pos) {
@@ -428,6 +493,20 @@ mod tests {
         assert_eq!(atoi_prefix("1e4"), Some(1));
         assert_eq!(atoi_prefix("-7x"), Some(-7));
         assert_eq!(atoi_prefix("x7"), None);
+    }
+
+    #[test]
+    fn primes() {
+        let slow = |n: u64| n >= 2 && (2..n).take_while(|d| d * d <= n).all(|d| n % d != 0);
+        for n in 0..20_000 {
+            assert_eq!(is_prime(n), slow(n), "{n}");
+        }
+        for n in [15485863, 32452843, 32452867, 86028121, 18446744073709551557] {
+            assert!(is_prime(n), "{n}");
+        }
+        for n in [12345, 15485865, 3215031751, 18446744073709551555] {
+            assert!(!is_prime(n), "{n}");
+        }
     }
 
     #[test]

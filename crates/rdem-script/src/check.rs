@@ -53,7 +53,7 @@ pub struct Problem {
     /// 1-based line of the command's first character.
     pub line: usize,
     /// The command and, for styled commands, its style (`fix heat/gran`, `dump local`,
-    /// `pair_style gran`, `compute_modify`).
+    /// `pair_style gran`, `modify_timing`).
     pub what: String,
     /// The usual report: message, file:line:col, the line with a caret, help.
     pub report: ScriptReport,
@@ -382,7 +382,7 @@ mod tests {
              bogus_command 1\n\
              variable i loop 3\n\
              label again\n\
-             compute_modify thermo_temp dynamic no\n\
+             modify_timing on\n\
              next i\n\
              jump SELF again\n",
         );
@@ -390,7 +390,7 @@ mod tests {
         assert_eq!(lines, vec![4, 6, 9], "{c:?}");
         assert_eq!(
             c.summary("in.t"),
-            "in.t: 3 lines rdem cannot run: fix heat/gran (line 4), bogus_command (6), compute_modify (9)"
+            "in.t: 3 lines rdem cannot run: fix heat/gran (line 4), bogus_command (6), modify_timing (9)"
         );
         assert_eq!(c.notes.len(), 1, "{:?}", c.notes);
     }

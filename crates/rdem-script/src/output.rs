@@ -27,6 +27,8 @@ pub enum Echo {
 pub struct Output {
     screen: Option<Box<dyn Write + Send>>,
     log: Option<BufWriter<File>>,
+    /// `thermo_log FILE`: the thermo header and rows also go there.
+    thermo_log: Option<BufWriter<File>>,
     /// Command echo setting.
     pub echo: Echo,
     /// Everything written to the screen sink is also kept here when set (tests).
@@ -47,6 +49,7 @@ impl Output {
         Self {
             screen: Some(Box::new(std::io::stdout())),
             log: None,
+            thermo_log: None,
             echo: Echo::Log,
             captured: None,
             pending: Warnings::default(),
@@ -58,6 +61,7 @@ impl Output {
         Self {
             screen: None,
             log: None,
+            thermo_log: None,
             echo: Echo::Log,
             captured: Some(String::new()),
             pending: Warnings::default(),
@@ -86,6 +90,35 @@ impl Output {
             )),
         };
         Ok(())
+    }
+
+    /// Opens (or appends to) the thermo log file (`thermo_log`); `None` closes it.
+    pub fn set_thermo_log(&mut self, path: Option<&str>, append: bool) -> std::io::Result<()> {
+        if let Some(l) = &mut self.thermo_log {
+            l.flush()?;
+        }
+        self.thermo_log = match path {
+            None => None,
+            Some(p) => Some(BufWriter::new(
+                std::fs::OpenOptions::new()
+                    .create(true)
+                    .write(true)
+                    .append(append)
+                    .truncate(!append)
+                    .open(p)?,
+            )),
+        };
+        Ok(())
+    }
+
+    /// Writes a thermo header or row to the screen, the log and the thermo log (flushed,
+    /// so the file can be followed during a run).
+    pub fn thermo_line(&mut self, text: &str) {
+        self.line(text);
+        if let Some(t) = &mut self.thermo_log {
+            let _ = writeln!(t, "{text}");
+            let _ = t.flush();
+        }
     }
 
     /// Writes a line (a newline is added) to the screen and the log.

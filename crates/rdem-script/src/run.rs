@@ -112,6 +112,12 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         w.lost_policy = sim.setup.lost;
         w.timers.reset();
     }
+    // LAMMPS' init: computes count what they keep through the run.
+    if let Some(w) = sim.world.as_ref() {
+        for c in &mut sim.defs.computes {
+            c.imp.init(w, &c.head);
+        }
+    }
     let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
     sim.script.run_first = start_step;
     sim.script.run_last = start_step + nsteps;
@@ -141,7 +147,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         "Memory usage per processor = {} Mbytes",
         crate::variables::format_g(mem, 4)
     ));
-    sim.outputs.out.line(&thermo::header(sim));
+    sim.outputs.out.thermo_line(&thermo::header(sim));
     thermo_row(sim)?;
     if sim.script.check {
         crate::check::after_setup(sim, nsteps)?;
@@ -324,7 +330,7 @@ fn thermo_row(sim: &mut Sim) -> Result<(), RunError> {
         return Ok(());
     }
     let r = thermo::row(sim)?;
-    sim.outputs.out.line(&r);
+    sim.outputs.out.thermo_line(&r);
     sim.outputs.thermo.last_printed = step;
     Ok(())
 }

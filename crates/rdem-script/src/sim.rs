@@ -128,7 +128,8 @@ pub struct Definitions {
     pub distributions: BTreeMap<String, Distribution>,
     /// Fixes in definition order.
     pub fixes: Vec<FixEntry>,
-    /// Computes in definition order.
+    /// Computes in definition order, starting with `thermo_temp`, which every script
+    /// has (see [`crate::computes::temp`]).
     pub computes: Vec<Compute>,
     /// Whether a pair style was defined with `pair_coeff` given.
     pub pair_coeff_set: bool,
@@ -206,7 +207,10 @@ impl Sim {
         Self {
             world: None,
             setup: Setup::default(),
-            defs: Definitions::default(),
+            defs: Definitions {
+                computes: vec![crate::computes::temp::thermo_temp()],
+                ..Definitions::default()
+            },
             outputs: Outputs {
                 thermo: Thermo::default(),
                 dumps: Vec::new(),

@@ -9,9 +9,6 @@ use crate::diagnostic::RunError;
 use crate::sim::Sim;
 use crate::variables::format_g;
 
-/// Boltzmann constant in SI units as LIGGGHTS has it.
-const BOLTZ_SI: f64 = 1.3806504e-23;
-
 /// Keywords with a value of their own (besides `c_`, `f_`, `v_` references).
 pub const KEYWORDS: [&str; 23] = [
     "step",
@@ -131,34 +128,19 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
         }
         "cpuremain" | "spcpu" => 0.0,
         "atoms" => natoms as f64,
-        "ke" => {
-            // LIGGGHTS: temperature × ½ dof k_B with dof = 3N − 3: 0 for one atom or
-            // none, Σ ½ m v² otherwise.
-            let w = w.ok_or_else(need_box)?;
-            if natoms > 1 {
-                computes::kinetic(w, 1)
-            } else {
-                0.0
-            }
-        }
+        // Σ ½ m v² over all particles, whatever the degrees of freedom of `thermo_temp`:
+        // LIGGGHTS 3.8 prints 9.16297857297023e-05 for one particle (d = 0.01, ρ = 2500,
+        // v = (0.1, 0.2, 0.3)) and the same `ke` for any `compute_modify thermo_temp
+        // extra` (tests/temperature.rs).
+        "ke" => computes::kinetic(w.ok_or_else(need_box)?, 1),
+        // LIGGGHTS 3.8 has no `temp` keyword: rdem's is `c_thermo_temp`.
         "temp" => {
-            let w = w.ok_or_else(need_box)?;
-            let dof = 3.0 * natoms as f64 - 3.0;
-            if dof > 0.0 {
-                2.0 * computes::kinetic(w, 1) / (dof * BOLTZ_SI)
-            } else {
-                0.0
-            }
+            w.ok_or_else(need_box)?;
+            context::compute_global(sim, "thermo_temp", None)
+                .map_err(|e| format!("thermo keyword 'temp' is c_thermo_temp: {e}"))?
         }
         "pe" => 0.0,
-        "etotal" => {
-            let w = w.ok_or_else(need_box)?;
-            if natoms > 1 {
-                computes::kinetic(w, 1)
-            } else {
-                0.0
-            }
-        }
+        "etotal" => computes::kinetic(w.ok_or_else(need_box)?, 1),
         "vol" => {
             let s = size.ok_or_else(need_box)?;
             s.x * s.y * s.z

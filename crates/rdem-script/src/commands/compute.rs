@@ -1,6 +1,6 @@
 //! `compute` and `uncompute`.
 
-use crate::args::{suggest, Args, CmdResult};
+use crate::args::{id_help, suggest, Args, CmdResult};
 use crate::computes::{self, Compute, ComputeHead};
 use crate::sim::Sim;
 
@@ -37,6 +37,64 @@ pub(super) fn uncompute(sim: &mut Sim, a: &mut Args) -> CmdResult {
             let names: Vec<&str> = sim.defs.computes.iter().map(|c| c.id()).collect();
             return Err(a.error_prev(format!("no compute '{id}'"), Some(suggest(id, &names))));
         }
+    }
+    Ok(())
+}
+
+/// The generic `compute_modify` keywords (LAMMPS' `Compute::modify_params`): a style
+/// that does not take one accepts it with a warning that it has no effect, as LIGGGHTS
+/// 3.8 accepts it without acting. `extra/dof` and `dynamic/dof` are the names later
+/// LAMMPS versions give `extra` and `dynamic` (LIGGGHTS 3.8 refuses them).
+const MODIFY_KEYWORDS: [&str; 5] = ["extra", "extra/dof", "dynamic", "dynamic/dof", "thermo"];
+
+/// `compute_modify ID keyword value ...`: `extra N`, `dynamic yes|no` for temperature
+/// computes (`thermo_temp` included), `thermo yes|no`.
+pub(super) fn compute_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let id = a.word("compute ID")?;
+    let Some(k) = sim.compute_index(id) else {
+        let names: Vec<&str> = sim.defs.computes.iter().map(|c| c.id()).collect();
+        return Err(a.error_prev(
+            format!("no compute '{id}'"),
+            Some(id_help("compute", id, &names)),
+        ));
+    };
+    if a.is_done() {
+        return Err(a.error_at(
+            a.pos(),
+            "compute_modify: missing keyword",
+            Some(format!("expected one of: {}", MODIFY_KEYWORDS.join(", "))),
+        ));
+    }
+    // Each keyword applies as it is read: an error leaves the ones before it applied,
+    // as in LIGGGHTS.
+    while !a.is_done() {
+        let kw = a.keyword("compute_modify keyword", &MODIFY_KEYWORDS)?;
+        let c = &mut sim.defs.computes[k];
+        if c.imp.modify(kw, a)? {
+            continue;
+        }
+        let at = a.pos() - 1;
+        let style = c.style;
+        match kw {
+            "extra" | "extra/dof" => {
+                let w = a.word("number of extra degrees of freedom")?;
+                if w.parse::<i64>().is_err() {
+                    return Err(a.error_prev(format!("{kw} must be an integer, not '{w}'"), None));
+                }
+            }
+            _ => {
+                a.yes_no(kw)?;
+            }
+        }
+        let why = if kw == "thermo" {
+            "only compute pe adds the fixes' energy"
+        } else {
+            "it computes no temperature"
+        };
+        a.warn_at(
+            at,
+            &format!("compute_modify {kw} has no effect on compute {id} (style {style}): {why}"),
+        );
     }
     Ok(())
 }

@@ -74,13 +74,15 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same)"),
         sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
         sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box"),
+        sim("dimension", settings::dimension, "`3`").notes("before the box; `dimension 2` is not supported yet"),
+        sim("clear", settings::clear, "everything back to the start, except variables, screen, log and `thermo_log`"),
         sim("units", settings::units, "`si`").notes("other unit systems: an error"),
         sim("newton", settings::newton, "accepted").notes("tuning only"),
         sim("communicate", settings::communicate, "accepted").notes("tuning only"),
         sim("hard_particles", settings::hard_particles, "accepted").notes("tuning only"),
         sim("soft_particles", settings::hard_particles, "accepted").notes("tuning only"),
-        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each)")
-            .notes("the keywords `grid`, `map`, `part`, `file` are not supported"),
+        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each); `grid onelevel`; `map cart\\|cart/reorder\\|xyz`")
+            .notes("a grid that does not fit the number of processes is a warning (LIGGGHTS stops): rdem keeps the counts that fit and chooses the rest; ranks are placed in xyz order whatever `map` says (only which rank holds which part changes); `grid twolevel\\|numa\\|custom`, other maps, `part`, `file`: not supported"),
         sim("region", region::region, "the region styles below; `side in\\|out`; `units box\\|lattice` (default `box`, as LIGGGHTS 3.8)")
             .notes("no `move`/`rotate`"),
         sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `origin`")
@@ -105,11 +107,17 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("timestep", settings::timestep, "the time step (s)"),
         sim("fix", fixes::fix, "the fix styles below"),
         sim("unfix", fixes::unfix, "`ID`"),
+        sim("fix_modify", fixes::fix_modify, "`energy yes\\|no`, and a style's own keywords")
+            .notes("`energy yes` on `gravity`/`addforce` warns: their energy is not added to a potential energy (no granular fix tallies one in LIGGGHTS 3.8); `temp`, `press`, `virial` stop as in LIGGGHTS 3.8 (no granular fix computes a temperature or pressure)"),
         sim("compute", compute::compute, "the compute styles below"),
         sim("uncompute", compute::uncompute, "`ID`"),
+        sim("compute_modify", compute::compute_modify, "`extra N` (also `extra/dof`), `dynamic yes\\|no` (also `dynamic/dof`), `thermo yes\\|no`; `thermo_temp` and user computes")
+            .notes("`extra/dof`, `dynamic/dof` are later LAMMPS names LIGGGHTS 3.8 refuses; a keyword a style does not use is accepted with a warning"),
         sim("thermo", thermo::thermo, "`N`"),
         sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`")
-            .notes("`pe` is 0 (granular contacts store no potential energy)"),
+            .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8"),
+        sim("thermo_log", thermo::thermo_log, "`FILE [append]`, `none`: thermo's lines also go to FILE")
+            .notes("without a file name LIGGGHTS 3.8 writes to `log`; rdem asks for the name"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
         sim_atoi("run", run::run, "`N`, `N upto`"),
@@ -132,7 +140,6 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("log", "`FILE [append]`, `none`"),
         flow("echo", "`none\\|screen\\|log\\|both`"),
         flow("quit", "stops the script"),
-        Row::not_yet("clear", ""),
         Row::not_yet("shell", ""),
         Row::not_yet("bond_style", "bonds"),
         Row::not_yet("bond_coeff", "bonds"),

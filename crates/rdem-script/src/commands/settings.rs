@@ -117,6 +117,49 @@ pub(super) fn units(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// `dimension 3` (before the box, as LIGGGHTS); `dimension 2` is not supported yet.
+pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    if sim.world.is_some() {
+        return Err(a.error_cmd(
+            "dimension after the simulation box is defined",
+            Some("give dimension before create_box or read_data".into()),
+        ));
+    }
+    match a.word("dimension")? {
+        "3" => a.done(),
+        "2" => Err(a.error_prev(
+            "dimension 2 is not supported yet: rdem simulates in 3d",
+            Some("use 'dimension 3' (the default)".into()),
+        )),
+        d => Err(a.error_prev(
+            format!("dimension must be 2 or 3, not '{d}'"),
+            Some("rdem supports 'dimension 3'".into()),
+        )),
+    }
+}
+
+/// `clear`: everything back to the state after start-up (box, particles, fixes,
+/// computes, groups, regions, dumps, thermo settings, units, time step) except what
+/// LIGGGHTS 3.8 keeps: the variables, the screen and log, and the `thermo_log` file
+/// (checked there: after `clear`, `print ${a}` shows a variable defined before, and the
+/// next run's thermo lines go on into the same thermo log).
+pub(super) fn clear(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    a.done()?;
+    let out = std::mem::replace(&mut sim.outputs.out, crate::output::Output::captured());
+    let mut fresh = Sim::new(out);
+    fresh.outputs.progress = sim.outputs.progress.take();
+    fresh.outputs.warned = std::mem::take(&mut sim.outputs.warned);
+    let s = &mut sim.script;
+    let f = &mut fresh.script;
+    std::mem::swap(&mut f.vars, &mut s.vars);
+    f.here = s.here.take();
+    f.check = s.check;
+    f.threads = s.threads;
+    f.started = s.started;
+    *sim = fresh;
+    Ok(())
+}
+
 /// `newton on|off [on|off]` (accepted: rdem computes each pair once).
 pub(super) fn newton(_sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.keyword("newton setting", &["on", "off"])?;
@@ -146,7 +189,10 @@ pub(super) fn communicate(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
-/// `processors Px Py Pz`: the MPI processor grid (each a count or `*`).
+/// `processors Px Py Pz [grid onelevel] [map cart|cart/reorder|xyz]`: the MPI processor
+/// grid (each a count or `*`). A grid whose product does not fit the number of processes
+/// stops LIGGGHTS; rdem warns and keeps the counts that still fit (in x, y, z order),
+/// choosing the others, so a script written for 8 ranks runs on 1 (see [`fit_grid`]).
 pub(super) fn processors(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if sim.world.is_some() {
         return Err(a.error_cmd(
@@ -162,35 +208,91 @@ pub(super) fn processors(sim: &mut Sim, a: &mut Args) -> CmdResult {
             procs[k] = a.count(d)? as usize;
         }
     }
-    if !a.is_done() {
-        return Err(a.error_at(
-            a.pos(),
-            "processors keywords (grid, map, part, file) are not supported",
-            Some("give only 'processors Px Py Pz' (each a count or *)".into()),
-        ));
+    while !a.is_done() {
+        match a.keyword("processors keyword", &["grid", "map", "part", "file"])? {
+            "grid" => {
+                let g = a.keyword("grid style", &["onelevel", "twolevel", "numa", "custom"])?;
+                if g != "onelevel" {
+                    return Err(a.error_prev(
+                        format!("processors grid {g} is not supported yet"),
+                        Some("use 'grid onelevel' (the default) or leave the keyword out".into()),
+                    ));
+                }
+            }
+            "map" => {
+                let m = a.keyword(
+                    "map style",
+                    &["cart", "cart/reorder", "xyz", "xzy", "yxz", "yzx", "zxy", "zyx"],
+                )?;
+                if !matches!(m, "cart" | "cart/reorder" | "xyz") {
+                    return Err(a.error_prev(
+                        format!("processors map {m} is not supported yet"),
+                        Some("rdem places ranks in xyz order (x fastest); 'map xyz', 'cart' and 'cart/reorder' are accepted".into()),
+                    ));
+                }
+            }
+            k => {
+                return Err(a.error_prev(
+                    format!("processors {k} is not supported yet"),
+                    Some("rdem runs one partition and writes no grid file; give 'processors Px Py Pz' with grid/map only".into()),
+                ))
+            }
+        }
     }
     let nprocs = rdem::comm::process_rank_size().1;
-    if rdem::domain::least_surface_grid(nprocs, DVec3::ONE, procs).is_none() {
-        let shown: Vec<String> = procs
-            .iter()
-            .map(|&n| if n == 0 { "*".into() } else { n.to_string() })
-            .collect();
-        return Err(a.error_at(
-            1,
-            format!(
-                "no {} grid has {nprocs} process{} (the number this run was started with)",
-                shown.join(" x "),
+    let kept = fit_grid(nprocs, procs);
+    if kept != procs {
+        let show = |g: [usize; 3]| {
+            g.map(|n| {
+                if n == 0 {
+                    "*".to_string()
+                } else {
+                    n.to_string()
+                }
+            })
+            .join(" x ")
+        };
+        let used = if nprocs == 1 {
+            "1 x 1 x 1".to_string()
+        } else if kept.iter().all(|&n| n != 0) {
+            show(kept)
+        } else {
+            format!("{} (the * counts chosen when the box is made)", show(kept))
+        };
+        a.warn_at(
+            0,
+            &format!(
+                "processors {} does not fit the {nprocs} process{} of this run (LIGGGHTS stops here): rdem uses {used}",
+                show(procs),
                 if nprocs == 1 { "" } else { "es" }
             ),
-            Some(
-                "use 'processors * * *', or start rdem (built with --features mpi) \
-                     with mpirun -np N where N is the product of the counts"
-                    .into(),
-            ),
-        ));
+        );
     }
-    sim.setup.procs = procs;
+    sim.setup.procs = kept;
     Ok(())
+}
+
+/// The processor grid constraint rdem uses for the counts asked for (`0` = free) on
+/// `nprocs` processes: the counts as given if a grid fits them, else each given count
+/// in x, y, z order is kept while a grid with `nprocs` processes still fits it, and the
+/// others are freed.
+pub(crate) fn fit_grid(nprocs: usize, asked: [usize; 3]) -> [usize; 3] {
+    let fits = |g: [usize; 3]| rdem::domain::least_surface_grid(nprocs, DVec3::ONE, g).is_some();
+    if fits(asked) {
+        return asked;
+    }
+    let mut kept = [0; 3];
+    for k in 0..3 {
+        if asked[k] == 0 {
+            continue;
+        }
+        let mut g = kept;
+        g[k] = asked[k];
+        if fits(g) {
+            kept = g;
+        }
+    }
+    kept
 }
 
 /// `hard_particles yes|no`, `soft_particles yes|no` (accepted).
@@ -261,4 +363,20 @@ pub(super) fn reset_timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.done()?;
     sim.world_mut(a)?.step = n;
     Ok(())
+}
+
+#[cfg(test)]
+mod grid_tests {
+    use super::fit_grid;
+
+    #[test]
+    fn counts_that_fit_are_kept_the_others_freed() {
+        assert_eq!(fit_grid(8, [2, 2, 2]), [2, 2, 2]);
+        assert_eq!(fit_grid(1, [2, 2, 2]), [0, 0, 0]);
+        assert_eq!(fit_grid(4, [2, 2, 2]), [2, 2, 0]);
+        assert_eq!(fit_grid(4, [3, 2, 0]), [0, 2, 0]);
+        assert_eq!(fit_grid(6, [4, 3, 1]), [0, 3, 1]);
+        assert_eq!(fit_grid(2, [1, 1, 4]), [1, 1, 0]);
+        assert_eq!(fit_grid(1, [1, 1, 1]), [1, 1, 1]);
+    }
 }

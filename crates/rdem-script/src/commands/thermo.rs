@@ -163,3 +163,26 @@ pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     Ok(())
 }
+
+/// `thermo_log FILE [append]`, `thermo_log none`: thermo's header and rows also go to
+/// FILE (truncated unless `append`) from the next run on, until another `thermo_log`.
+/// LIGGGHTS 3.8 writes exactly the screen's thermo lines there (a header at each run);
+/// `none` closes the file (LIGGGHTS 3.8 then writes none). Without a file name
+/// LIGGGHTS 3.8 writes to a file named `log`; rdem asks for the name.
+pub(super) fn thermo_log(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let file = a.word("thermo log file name or none")?.to_string();
+    let append = !a.is_done() && a.keyword("thermo_log keyword", &["append"])? == "append";
+    a.done()?;
+    // Written by rank 0 only, and not under `rdem -check`.
+    let write = file != "none" && !sim.script.check && rdem::comm::process_rank_size().0 == 0;
+    sim.outputs
+        .out
+        .set_thermo_log(write.then_some(file.as_str()), append)
+        .map_err(|e| {
+            a.error_at(
+                1,
+                format!("cannot open thermo log file '{file}': {e}"),
+                None,
+            )
+        })
+}

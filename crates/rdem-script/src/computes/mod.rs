@@ -13,6 +13,7 @@ mod nbond_atom;
 mod property_atom;
 pub mod reduce;
 mod stress_atom;
+pub mod temp;
 
 use rdem::World;
 
@@ -105,6 +106,16 @@ pub trait ScriptCompute: std::fmt::Debug {
     fn needs_virial(&self) -> bool {
         false
     }
+
+    /// When a run is set up (LAMMPS' `init`): what the compute counts once per run.
+    fn init(&mut self, _w: &World, _c: &ComputeHead) {}
+
+    /// `compute_modify ID keyword ...`: reads the value(s) of `keyword` (already read) if
+    /// the style takes it and returns true; false leaves the keyword to `compute_modify`'s
+    /// generic handling.
+    fn modify(&mut self, _keyword: &str, _a: &mut Args) -> CmdResult<bool> {
+        Ok(false)
+    }
 }
 
 /// A compute's parser: reads the words after `compute ID group style` (all of them).
@@ -126,6 +137,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         stress_atom::ROW,
         bond_counter::ROW,
         nbond_atom::ROW,
+        temp::ROW,
         Row::not_yet("pair/gran/local", "contact output"),
         Row::not_yet("wall/gran/local", "contact output"),
         Row::not_yet("com", ""),

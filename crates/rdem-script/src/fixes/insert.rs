@@ -152,7 +152,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             ))
         }
     }
-    let seed = a.u64("seed")?;
+    let seed = a.seed()?;
     let mut dist = None;
     let (mut region, mut target, mut every, mut start) = (None, None, None, None);
     let (mut overlap, mut all_in, mut maxattempt, mut verbose) = (true, false, 50usize, true);

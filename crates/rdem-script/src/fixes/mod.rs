@@ -20,6 +20,7 @@ pub mod insert;
 mod insert_stream;
 mod massflow_mesh;
 mod mesh_surface;
+mod modify;
 mod move_mesh;
 mod particledistribution_discrete;
 mod particletemplate_sphere;
@@ -36,6 +37,7 @@ use crate::sim::Sim;
 
 pub use check_timestep_gran::timestep_limits;
 pub use insert::insertion_report;
+pub use modify::fix_modify;
 
 /// The stages a fix takes part in (LAMMPS' `setmask`): the run loop calls each stage only
 /// on the fixes that declare it, so a stage nobody uses costs nothing.
@@ -198,6 +200,19 @@ pub trait ScriptFix: AsAny {
         Ok(())
     }
 
+    /// `fix_modify ID keyword ...`: reads the value(s) of the style's own `keyword`
+    /// (already read) and returns true; false leaves the keyword to the generic ones
+    /// ([`fix_modify`]). The fix is out of `sim` while this runs (see [`with_fix`]).
+    fn modify(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        _keyword: &str,
+        _a: &mut Args,
+    ) -> CmdResult<bool> {
+        Ok(false)
+    }
+
     /// Whether `unfix` may remove the fix now.
     fn check_unfix(&self, _sim: &Sim, _head: &FixHead) -> Result<(), String> {
         Ok(())
@@ -313,6 +328,8 @@ pub struct FixEntry {
     pub stages: Stages,
     /// Where its style word stands, for errors of its stages during a run.
     pub origin: Option<crate::diagnostic::Origin>,
+    /// `fix_modify ID energy yes|no` (default no).
+    pub energy: bool,
     /// The fix.
     pub imp: Box<dyn ScriptFix>,
 }
@@ -360,6 +377,7 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
             head: FixHead::default(),
             stages: Stages::NONE,
             origin: None,
+            energy: false,
             imp: Box::new(Vacant),
         },
     )
@@ -449,6 +467,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         head,
         stages: row.stages,
         origin,
+        energy: false,
         imp,
     });
     Ok(())

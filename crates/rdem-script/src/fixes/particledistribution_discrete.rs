@@ -56,7 +56,7 @@ impl ScriptFix for DistributionFix {
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let (id, style) = (head.id.as_str(), head.style);
-    let seed = a.u64("seed")?;
+    let seed = a.seed()?;
     let n = a.count("number of templates")?;
     let mut parts = Vec::new();
     for _ in 0..n {

@@ -36,7 +36,7 @@ impl ScriptFix for Template {
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let id = head.id.as_str();
-    let seed = a.u64("seed")?;
+    let seed = a.seed()?;
     let (mut ty, mut density, mut radius) = (1u32, None, None);
     while !a.is_done() {
         match a.keyword(

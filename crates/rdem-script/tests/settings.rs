@@ -1,0 +1,326 @@
+//! The small commands every script has: `processors` on fewer ranks than asked for,
+//! `dimension`, `thermo_log`, seeds LIGGGHTS 3.8 refuses, `clear`, `units cgs|micro`.
+
+use rdem_script::{Interpreter, Output, Sim};
+
+mod common;
+use common::render;
+
+/// Runs `src` (a script named `in.t`) and returns the interpreter and its output.
+fn run(src: &str) -> (Interpreter, Result<(), String>, String) {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = i.run_source("in.t", src).map_err(|e| render(&e));
+    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    (i, r, out)
+}
+
+/// LIGGGHTS 3.8 stops at `processors 2 2 2` on one process ("ERROR: Specified processors
+/// != physical processors"); rdem warns, naming both grids, and runs on 1 x 1 x 1.
+#[test]
+fn processors_grid_that_does_not_fit_warns_and_runs() {
+    let (i, r, out) = run("processors 2 2 2 grid onelevel map cart\n\
+         region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n");
+    r.unwrap();
+    assert!(
+        out.contains(
+            "WARNING: line 1: processors 2 x 2 x 2 does not fit the 1 process of this run \
+             (LIGGGHTS stops here): rdem uses 1 x 1 x 1"
+        ),
+        "{out}"
+    );
+    assert_eq!(i.sim.setup.procs, [0, 0, 0]);
+    // A grid that fits is kept, without a warning.
+    let (i, r, out) = run("processors 1 * 1 map xyz\n");
+    r.unwrap();
+    assert!(!out.contains("WARNING"), "{out}");
+    assert_eq!(i.sim.setup.procs, [1, 0, 1]);
+    // Keywords rdem does not run are errors at the word.
+    for (src, msg) in [
+        (
+            "processors * * * grid numa\n",
+            "processors grid numa is not supported yet",
+        ),
+        (
+            "processors * * * part 1 2 multiple\n",
+            "processors part is not supported yet",
+        ),
+        (
+            "processors * * * file grid.txt\n",
+            "processors file is not supported yet",
+        ),
+        (
+            "processors * * * mapp xyz\n",
+            "unknown processors keyword 'mapp'",
+        ),
+    ] {
+        let (_, r, _) = run(src);
+        let e = r.unwrap_err();
+        assert!(e.contains(msg) && e.contains("in.t:1:"), "{e}");
+    }
+}
+
+const BOX: &str = "region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n";
+
+/// `fix_modify energy` is accepted on any fix (warning where LIGGGHTS would add an energy
+/// rdem does not); `temp`, `press`, `virial` and unknown keywords or IDs stop, at the word.
+#[test]
+fn fix_modify_generic_keywords() {
+    let src = format!(
+        "{BOX}fix gr all gravity 9.81 vector 0 0 -1\nfix integr all nve/sphere\n\
+         fix_modify integr energy yes\nfix_modify gr energy no\nfix_modify gr energy yes\n"
+    );
+    let (i, r, out) = run(&src);
+    r.unwrap();
+    let energy: Vec<bool> = i.sim.defs.fixes.iter().map(|f| f.energy).collect();
+    assert_eq!(energy, [true, true]);
+    assert_eq!(
+        out.matches("WARNING").count(),
+        1,
+        "one warning, for gravity:\n{out}"
+    );
+    assert!(
+        out.contains(
+            "line 7: fix_modify energy yes: rdem does not add the energy of fix gr (gravity)"
+        ),
+        "{out}"
+    );
+    for (tail, msg, col) in [
+        (
+            "fix_modify gr temp thermo_temp",
+            "fix gr (gravity) computes no temperature",
+            15,
+        ),
+        (
+            "fix_modify gr press thermo_temp",
+            "fix gr (gravity) computes no pressure",
+            15,
+        ),
+        (
+            "fix_modify gr virial yes",
+            "fix_modify virial is not a LIGGGHTS 3.8 keyword",
+            15,
+        ),
+        ("fix_modify gr energy maybe", "unknown energy 'maybe'", 22),
+        (
+            "fix_modify gr enrgy yes",
+            "unknown fix_modify keyword 'enrgy'",
+            15,
+        ),
+        ("fix_modify gravi energy yes", "no fix 'gravi'", 12),
+        ("fix_modify gr", "fix_modify: missing keyword", 14),
+    ] {
+        let (_, r, _) = run(&format!(
+            "{BOX}fix gr all gravity 9.81 vector 0 0 -1\n{tail}\n"
+        ));
+        let e = r.unwrap_err();
+        assert!(
+            e.contains(msg) && e.contains(&format!("in.t:4:{col}")),
+            "{tail}: {e}"
+        );
+    }
+}
+
+/// A style that takes its own `fix_modify` keyword (as the servo wall's `integrate
+/// start|stop` will): the hook sees it before the generic keywords.
+#[derive(Default)]
+struct Servo {
+    integrate: Option<bool>,
+}
+
+impl rdem_script::fixes::ScriptFix for Servo {
+    fn modify(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &rdem_script::fixes::FixHead,
+        keyword: &str,
+        a: &mut rdem_script::args::Args,
+    ) -> rdem_script::args::CmdResult<bool> {
+        if keyword != "integrate" {
+            return Ok(false);
+        }
+        self.integrate = Some(a.keyword("integrate", &["start", "stop"])? == "start");
+        Ok(true)
+    }
+
+    fn unfix(&mut self, _sim: &mut Sim, _head: &rdem_script::fixes::FixHead) {}
+}
+
+#[test]
+fn fix_modify_reaches_a_style_keyword_first() {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.sim.defs.fixes.push(rdem_script::fixes::FixEntry {
+        head: rdem_script::fixes::FixHead {
+            id: "servo".into(),
+            style: "servo",
+            groupbit: 1,
+        },
+        stages: rdem_script::fixes::Stages::NONE,
+        origin: None,
+        energy: false,
+        imp: Box::new(Servo::default()),
+    });
+    i.run_source("in.t", "fix_modify servo integrate stop energy yes\n")
+        .unwrap();
+    let f = &i.sim.defs.fixes[0];
+    assert_eq!(f.downcast::<Servo>().unwrap().integrate, Some(false));
+    assert!(f.energy);
+    let e = i
+        .run_source("in.t", "fix_modify servo integrate go\n")
+        .map_err(|e| render(&e))
+        .unwrap_err();
+    assert!(
+        e.contains("unknown integrate 'go'") && e.contains("in.t:1:28"),
+        "{e}"
+    );
+}
+
+/// `dimension 3` runs before the box; 2, other values and a late `dimension` stop at the
+/// word.
+#[test]
+fn dimension_three_only() {
+    let (_, r, _) = run(&format!("dimension 3\n{BOX}"));
+    r.unwrap();
+    for (src, msg, at) in [
+        (
+            "dimension 2\n".to_string(),
+            "dimension 2 is not supported yet",
+            "in.t:1:11",
+        ),
+        (
+            "dimension 4\n".to_string(),
+            "dimension must be 2 or 3, not '4'",
+            "in.t:1:11",
+        ),
+        (
+            format!("{BOX}dimension 3\n"),
+            "dimension after the simulation box is defined",
+            "in.t:3:1",
+        ),
+        ("dimension 3 x\n".to_string(), "", "in.t:1:13"),
+    ] {
+        let (_, r, _) = run(&src);
+        let e = r.unwrap_err();
+        assert!(e.contains(msg) && e.contains(at), "{src}: {e}");
+    }
+}
+
+/// `thermo_log` writes thermo's lines (a header per run) to its file, truncating it
+/// unless `append`, until `thermo_log none`: the files equal LIGGGHTS 3.8's byte for byte
+/// (tests/data/settings/thermo_log_*.liggghts.txt, made by regenerate.sh).
+#[test]
+fn thermo_log_files_as_liggghts() {
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/settings");
+    let dir = std::env::temp_dir().join(format!("rdem-thermo-log-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let d = dir.display().to_string();
+    let src = std::fs::read_to_string(format!("{data}/thermo_log.in"))
+        .unwrap()
+        .replace("include ../parity/", &format!("include {data}/../parity/"))
+        .replace(
+            "thermo_log thermo_log_",
+            &format!("thermo_log {d}/thermo_log_"),
+        );
+    let (_, r, out) = run(&src);
+    r.unwrap_or_else(|e| panic!("{e}\n{out}"));
+    for f in ["a", "b"] {
+        let got = std::fs::read_to_string(dir.join(format!("thermo_log_{f}.txt"))).unwrap();
+        let want = std::fs::read_to_string(format!("{data}/thermo_log_{f}.liggghts.txt")).unwrap();
+        assert_eq!(got, want, "thermo_log_{f}.txt");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    let (_, r, _) = run("thermo_log a.txt appnd\n");
+    let e = r.unwrap_err();
+    assert!(
+        e.contains("unknown thermo_log keyword 'appnd'") && e.contains("in.t:1:18"),
+        "{e}"
+    );
+    let (_, r, _) = run("thermo_log\n");
+    assert!(r.unwrap_err().contains("missing thermo log file name"));
+}
+
+/// Seeds LIGGGHTS 3.8 refuses (not a prime > 10000: "It is required that the random
+/// seed value is > 10000 and a prime number", for 12345 in each of these styles) run
+/// with a warning naming the line; 0 stops.
+#[test]
+fn seeds_liggghts_refuses_warn() {
+    let head = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/head.in"
+    ))
+    .unwrap();
+    let mat = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/mat.in"
+    ))
+    .unwrap();
+    let defs = "fix pts all particletemplate/sphere 12345 atom_type 1 density constant 2500 radius constant 0.0025\n\
+         fix pdd all particledistribution/discrete 9973 1 pts 1.0\n\
+         fix ins all insert/pack seed 32452867 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 5 region box\n\
+         fix ins2 all insert/pack seed 10008 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 5 region box\n";
+    let pre = format!("{head}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n{mat}");
+    let line0 = pre.lines().count();
+    let (_, r, out) = run(&format!("{pre}{defs}"));
+    r.unwrap();
+    assert_eq!(out.matches("WARNING").count(), 3, "{out}");
+    for (n, seed) in [(1, 12345), (2, 9973), (4, 10008)] {
+        let w = format!(
+            "WARNING: line {}: seed {seed} is not a prime > 10000: LIGGGHTS 3.8 refuses it, rdem takes it",
+            line0 + n
+        );
+        assert!(out.contains(&w), "{w}\n{out}");
+    }
+    let (_, r, _) = run(&format!(
+        "{pre}fix pts all particletemplate/sphere 0 atom_type 1 density constant 2500 radius constant 0.0025\n"
+    ));
+    let e = r.unwrap_err();
+    assert!(e.contains("seed must be a positive integer, not 0"), "{e}");
+    let (_, r, _) = run(&format!(
+        "{pre}fix pts all particletemplate/sphere -5 atom_type 1 density constant 2500 radius constant 0.0025\n"
+    ));
+    assert!(r
+        .unwrap_err()
+        .contains("seed must be a non-negative integer, not '-5'"));
+}
+
+/// `clear` empties everything a script defined but its variables (as LIGGGHTS 3.8: a
+/// variable defined before prints after `clear`), and the script goes on from scratch.
+#[test]
+fn clear_keeps_only_variables() {
+    let head = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/head.in"
+    ))
+    .unwrap();
+    let mat = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/parity/mat.in"
+    ))
+    .unwrap();
+    let setup = format!("{head}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n{mat}");
+    let src = format!(
+        "variable a equal 5\nprocessors * * 1\n{setup}create_atoms 1 single 0.2 0.2 0.2 units box\n\
+         group g region box\ncompute k all ke\nfix integr all nve/sphere\n\
+         thermo_style custom step c_k\ntimestep 0.001\n\
+         compute_modify thermo_temp extra 0\nclear\nprint \"a=${{a}}\"\n"
+    );
+    let (mut i, r, out) = run(&src);
+    r.unwrap_or_else(|e| panic!("{e}\n{out}"));
+    assert!(out.contains("a=5"), "{out}");
+    let s = &i.sim;
+    assert!(s.world.is_none());
+    assert_eq!(s.defs.groups.names(), ["all"]);
+    assert!(s.defs.regions.is_empty() && s.defs.fixes.is_empty() && s.defs.properties.is_empty());
+    let computes: Vec<&str> = s.defs.computes.iter().map(|c| c.id()).collect();
+    assert_eq!(computes, ["thermo_temp"]);
+    assert_eq!(s.outputs.thermo.columns, ["step", "atoms", "ke", "cpu"]);
+    assert_eq!((s.setup.dt, s.setup.procs), (1e-8, [0, 0, 0]));
+    // The same definitions run again.
+    i.run_source(
+        "in.t2",
+        &format!("{setup}create_atoms 1 single 0.2 0.2 0.2 units box\nrun 0\n"),
+    )
+    .unwrap();
+    assert_eq!(i.sim.natoms(), 1);
+    let (_, r, _) = run("clear now\n");
+    assert!(r.unwrap_err().contains("in.t:1:7"));
+}
