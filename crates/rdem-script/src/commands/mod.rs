@@ -12,6 +12,7 @@ mod group;
 mod pair;
 pub mod region;
 mod settings;
+mod shell;
 mod thermo;
 
 pub use crate::args::id_help;
@@ -106,8 +107,9 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("log", "`FILE [append]`, `none`"),
         flow("echo", "`none\\|screen\\|log\\|both`"),
         flow("quit", "stops the script"),
+        sim("shell", shell::shell, "`cd`, `mkdir [-p]`, `rm [-f]`, `rmdir`, `mv`, `putenv` done by rdem; any other command run by `/bin/sh -c`")
+            .notes("a failed action or a non-zero exit status is a warning (LIGGGHTS 3.8 says nothing); `mkdir -p` makes parents (LIGGGHTS 3.8 makes a folder named `-p`); under `rdem -check` only `cd` and `putenv` act"),
         Row::not_yet("clear", ""),
-        Row::not_yet("shell", ""),
         Row::not_yet("bond_style", "bonds"),
         Row::not_yet("bond_coeff", "bonds"),
         Row::not_yet("create_bonds", "bonds"),
