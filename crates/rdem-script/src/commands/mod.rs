@@ -102,7 +102,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("include", "a script file, run in place"),
         flow("label", "`ID`"),
         flow("jump", "`FILE\\|SELF [label]`"),
-        flow("next", "variables of `index` and `loop` styles"),
+        flow("next", "variables of `index`, `loop`, `file`, `universe`, `uloop` styles (one style per command, `universe` with `uloop`)"),
         flow("if", "`\"condition\" then \"command\" ... [elif ...] [else ...]`"),
         flow("log", "`FILE [append]`, `none`"),
         flow("echo", "`none\\|screen\\|log\\|both`"),
