@@ -5,6 +5,9 @@ use std::path::PathBuf;
 
 use rdem_script::{Interpreter, Output, Sim};
 
+mod common;
+use common::render;
+
 /// A 1 m box with one particle at rest and materials (the set-up of the LIGGGHTS runs).
 const HEAD: &str = "\
 atom_style granular
@@ -264,4 +267,33 @@ fn check_writes_nothing_and_finds_unknown_variables() {
     assert_eq!(c.problems.len(), 1, "{c:?}");
     let msg = c.problems[0].report.to_string();
     assert!(msg.contains("nope"), "{msg}");
+}
+
+/// A file that cannot be made is an error at its name when the fix is defined; a write
+/// that fails during the run (`/dev/full`) stops the run with an error at the fix.
+#[test]
+fn io_errors_are_located() {
+    let d = tmpdir("io");
+    std::fs::write(d.join("afile"), "x").unwrap();
+    let bad = d.join("afile/p.txt");
+    let script = format!("{HEAD}fix pr all print 1 \"x\" file {}\n", bad.display());
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = render(&i.run_source("in.fp", &script).unwrap_err());
+    let line = HEAD.lines().count() + 1;
+    assert!(r.contains(&format!("in.fp:{line}:29")), "{r}");
+    assert!(r.contains("afile"), "{r}");
+
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("no /dev/full: the failing write during a run is not tested");
+        return;
+    }
+    let script =
+        format!("{HEAD}fix pr all print 2 \"x\" append /dev/full title none\nrun 1\nrun 1\n");
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = render(&i.run_source("in.fp", &script).unwrap_err());
+    assert!(r.contains(&format!("in.fp:{line}:")), "{r}");
+    assert!(r.contains("/dev/full"), "{r}");
+    // The first run (step 1) printed nothing, so it ran through.
+    let s = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    assert_eq!(s.matches("Loop time").count(), 1, "{s}");
 }
