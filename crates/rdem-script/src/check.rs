@@ -13,9 +13,9 @@
 //!   on by N (so `run N upto`, `step` in variables and loops that count steps behave as in
 //!   a run), but nothing moves and nothing is inserted.
 //! - **No file is written.** Dumps, `write_dump`, `write_data`, `write_restart`,
-//!   `print ... file|append`, `log FILE` and `fix ave/time ... file` are checked but
-//!   write nothing, and `rdem -check` opens no `log.liggghts` (whatever `-log` says): the
-//!   script's folder stays as it was. `shell cd` and `shell putenv` act (they change
+//!   `print ... file|append`, `log FILE`, `fix print ... file|append` and `fix ave/time
+//!   ... file` are checked but write nothing, and `rdem -check` opens no `log.liggghts`
+//!   (whatever `-log` says): the script's folder stays as it was. `shell cd` and `shell putenv` act (they change
 //!   what later lines mean); `shell mkdir|rm|rmdir|mv` and other shell commands do
 //!   nothing.
 //! - **An error does not stop the script.** Its report is kept and the next command
