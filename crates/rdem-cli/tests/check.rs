@@ -90,9 +90,8 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// Left out as follow-ons: 93 `pair_coeff * *` (the pair style failed) and 135
 /// `dump_modify dmpdisp` (the dump failed).
 ///
-/// `24_fibers_cantilever_beam/in.liggghts` — 12 lines:
+/// `24_fibers_cantilever_beam/in.liggghts` — 10 lines:
 /// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
-/// - 70 `shell mkdir post`: rdem runs no shell commands;
 /// - 74 `pair_style gran ...` comes before `create_box` (line 82): LIGGGHTS refuses that too;
 /// - 76 `bond_style gran` and 97 `bond_coeff ...`: the fibre bond package's bonds;
 /// - 106 `compute bc all property/local batom1x ...`: no `compute property/local`;
@@ -101,11 +100,10 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
 /// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword;
 /// - 159 `dump bondforcechain all local ...`: no `dump local`;
-/// - 164 `fix outfile all print ...`: no `fix print`.
-///
 /// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
 /// `fix f1 freezed freeze` (groups whose lines failed), 170 `fix_modify bondcr every 0`
-/// (the fix whose line failed).
+/// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
+/// print ... file beam.csv` run (under `-check` nothing is made or written).
 ///
 /// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 5 lines:
 /// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
@@ -134,10 +132,10 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "24_fibers_cantilever_beam",
             "in.liggghts",
-            "in.liggghts: 12 lines rdem cannot run: atom_style hybrid (line 53), shell (70), \
+            "in.liggghts: 10 lines rdem cannot run: atom_style hybrid (line 53), \
              pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
              group (110), group (114), fix bond/create/gran (118), thermo_style custom (135), \
-             dump local (159), fix print (164)",
+             dump local (159)",
             &[94, 111, 170, 176][..],
         ),
         (

@@ -104,6 +104,27 @@ impl AppendFile {
         }
     }
 
+    /// The file at `path` opened for appending (created, with missing parent
+    /// directories, if it does not exist): records go after what it holds.
+    pub fn appending(path: impl Into<PathBuf>) -> Result<Self, IoError> {
+        let path = path.into();
+        create_parent_dir(&path)?;
+        let file = OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| IoError::new(&path, "open for appending", e))?;
+        let len = file
+            .metadata()
+            .map_err(|e| IoError::new(&path, "read the length of", e))?
+            .len();
+        Ok(Self {
+            path,
+            file: Some(file),
+            len,
+        })
+    }
+
     /// The file's path.
     pub fn path(&self) -> &Path {
         &self.path
@@ -143,6 +164,19 @@ mod tests {
         let d = std::env::temp_dir().join(format!("rdem-io-atomic-{}-{name}", std::process::id()));
         let _ = fs::remove_dir_all(&d);
         d
+    }
+
+    #[test]
+    fn appending_keeps_what_the_file_holds() {
+        let d = scratch("appending");
+        let p = d.join("sub/log.txt");
+        let mut f = AppendFile::appending(&p).unwrap();
+        f.append(b"one\n").unwrap();
+        drop(f);
+        let mut f = AppendFile::appending(&p).unwrap();
+        f.append(b"two\n").unwrap();
+        assert_eq!(fs::read_to_string(&p).unwrap(), "one\ntwo\n");
+        fs::remove_dir_all(&d).unwrap();
     }
 
     #[test]

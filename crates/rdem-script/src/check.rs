@@ -13,10 +13,11 @@
 //!   on by N (so `run N upto`, `step` in variables and loops that count steps behave as in
 //!   a run), but nothing moves and nothing is inserted.
 //! - **No file is written.** Dumps, `write_dump`, `write_data`, `write_restart`,
-//!   `print ... file|append`, `log FILE` and `fix ave/time ... file` are checked but
-//!   write nothing, and `rdem -check` opens no `log.liggghts` (whatever `-log` says): the
-//!   script's folder stays as it was. `shell` is never run (rdem does not support it, so
-//!   it is reported).
+//!   `print ... file|append`, `log FILE`, `fix print ... file|append` and `fix ave/time
+//!   ... file` are checked but write nothing, and `rdem -check` opens no `log.liggghts`
+//!   (whatever `-log` says): the script's folder stays as it was. `shell cd` and
+//!   `shell putenv` act (they change what later lines mean); `shell mkdir|rm|rmdir|mv`
+//!   and other shell commands do nothing.
 //! - **An error does not stop the script.** Its report is kept and the next command
 //!   runs. The same line failing again (a loop body on its next pass) is reported once.
 //! - **No cascades.** When a line that defines something fails — a fix, compute, dump,

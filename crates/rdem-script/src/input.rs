@@ -354,13 +354,16 @@ impl Interpreter {
                 if names.is_empty() {
                     return Err(a.error_at(1, "next: missing variable name", None));
                 }
-                let exhausted = self
+                let next = self
                     .sim
                     .script
                     .vars
                     .next(&names)
                     .map_err(|m| a.error_at(1, m, None))?;
-                if exhausted {
+                if let Some(line) = &next.message {
+                    self.sim.outputs.out.line(line);
+                }
+                if next.exhausted {
                     self.skip_jump = true;
                 }
             }

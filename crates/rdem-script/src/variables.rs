@@ -1,8 +1,15 @@
-//! The `variable` command's table: styles `index`, `loop`, `string`, `getenv`, `equal`
-//! and `atom`, the redefinition rules of the LIGGGHTS manual (an existing `index` or `loop`
-//! variable is not redefined, so `-var` on the command line wins; `string`, `getenv`,
-//! `equal`, `atom` are), `next`, `delete`, and the text a `${name}` turns into
-//! (an `equal` variable prints as C's `%.15g`).
+//! The `variable` command's table: styles `index`, `loop`, `file`, `universe`, `uloop`,
+//! `string`, `getenv`, `equal` and `atom`, the redefinition rules of the LIGGGHTS manual
+//! (an existing `index`, `loop`, `file`, `universe` or `uloop` variable is not redefined,
+//! so `-var` on the command line wins; `string`, `getenv`, `equal`, `atom` are), `next`,
+//! `delete`, and the text a `${name}` turns into (an `equal` variable prints as C's
+//! `%.15g`).
+//!
+//! rdem runs one partition (no `-partition`), so `universe` and `uloop` variables step
+//! through their values as `index` and `loop` do; each `next` of them prints
+//! `Increment via next: value K on partition 0` as LIGGGHTS 3.8 does on one partition
+//! (LIGGGHTS also keeps the shared count in a file `tmp.lammps.variable`, which rdem does
+//! not write).
 
 use crate::expr::{self, Context};
 use crate::registry::{Registry, Row};
@@ -19,6 +26,20 @@ pub enum Variable {
     },
     /// `loop N [pad]` / `loop N1 N2 [pad]`: integers as strings.
     Loop {
+        /// All values.
+        values: Vec<String>,
+        /// Current position.
+        pos: usize,
+    },
+    /// `file FILE`: the values of the file's lines (see [`file_values`]).
+    File {
+        /// All values.
+        values: Vec<String>,
+        /// Current position.
+        pos: usize,
+    },
+    /// `universe v1 v2 ...` or `uloop N [pad]` on one partition.
+    Universe {
         /// All values.
         values: Vec<String>,
         /// Current position.
@@ -43,20 +64,49 @@ pub static STYLES: Registry<()> = Registry {
         Row::runs("delete", (), "removes the variable"),
         Row::runs("index", (), "`v1 v2 ...`: the next one at each `next`"),
         Row::runs("loop", (), "`N`, `N1 N2`, `pad`: counts at each `next`"),
+        Row::runs("file", (), "`FILE`: the next line's first word at each `next`")
+            .notes("the file is read when the variable is defined; text from `#` on and blank lines are skipped; a value keeps the spaces before its word, as LIGGGHTS 3.8; no `next()` formula function"),
+        Row::runs("universe", (), "`v1 v2 ...`: the next one at each `next` (one partition)")
+            .notes("rdem runs one partition: as `index`, with LIGGGHTS' `Increment via next` line; no `tmp.lammps.variable` file"),
+        Row::runs("uloop", (), "`N [pad]`: counts at each `next` (one partition)")
+            .notes("as `universe`"),
         Row::runs("string", (), "one string"),
         Row::runs("getenv", (), "an environment variable"),
         Row::runs("equal", (), "a formula, evaluated when used")
             .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `x[ID]`, `vx[ID]`, ..."),
         Row::runs("atom", (), "a formula evaluated per particle"),
-        Row::not_yet("file", ""),
         Row::not_yet("atomfile", ""),
-        Row::not_yet("uloop", ""),
-        Row::not_yet("universe", ""),
         Row::not_yet("world", ""),
         Row::not_yet("format", ""),
         Row::not_yet("python", ""),
     ],
 };
+
+/// What a `next` command did.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct Next {
+    /// A variable ran out of values: the next `jump` is skipped.
+    pub exhausted: bool,
+    /// The line to print (`universe` and `uloop` variables).
+    pub message: Option<String>,
+}
+
+/// The values of a `file` variable's file, one per line that is not blank once the text
+/// from `#` on is removed. As LIGGGHTS 3.8 reads them (checked: the lines `alpha beta #
+/// c`, `  2.5e3`, `\tt1 x`, ` x#y` gave `alpha`, `  2.5e3`, `\tt1`, ` x`), a value is its
+/// line up to the end of the first word: the white space before the word is kept.
+pub fn file_values(text: &str) -> Vec<String> {
+    text.lines()
+        .filter_map(|line| {
+            let line = line.split('#').next().unwrap_or("");
+            let start = line.find(|c: char| !c.is_ascii_whitespace())?;
+            let end = line[start..]
+                .find(|c: char| c.is_ascii_whitespace())
+                .map_or(line.len(), |k| start + k);
+            Some(line[..end].to_string())
+        })
+        .collect()
+}
 
 /// A definition error: the message and which argument (0 = the style word) it is about.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -211,6 +261,79 @@ impl Variables {
                     .collect();
                 Variable::Loop { values, pos: 0 }
             }
+            "file" => {
+                let file = one("a file name")?;
+                if exists {
+                    return Ok(false);
+                }
+                let text = std::fs::read(&file).or_else(|e| {
+                    derr(
+                        format!("cannot open file variable file '{file}': {e}"),
+                        1,
+                        None,
+                    )
+                })?;
+                let values = file_values(&String::from_utf8_lossy(&text));
+                if values.is_empty() {
+                    return derr(
+                        format!("file variable could not read a value: '{file}' has no line that is not blank or a comment"),
+                        1,
+                        None,
+                    );
+                }
+                Variable::File { values, pos: 0 }
+            }
+            "universe" | "uloop" => {
+                let values = if style == "universe" {
+                    if args.is_empty() {
+                        return derr("style universe needs at least one value", 0, None);
+                    }
+                    args.to_vec()
+                } else {
+                    let pad = args.len() == 2 && args[1] == "pad";
+                    if args.len() != 1 && !pad {
+                        return derr("style uloop takes N, optionally followed by pad", 0, None);
+                    }
+                    let n: i64 = args[0]
+                        .parse()
+                        .or_else(|_| derr(format!("'{}' is not an integer", args[0]), 1, None))?;
+                    if n < 1 {
+                        return derr(format!("uloop {n} has no value (N >= 1)"), 1, None);
+                    }
+                    let width = n.to_string().len();
+                    (1..=n)
+                        .map(|k| {
+                            if pad {
+                                format!("{k:0width$}")
+                            } else {
+                                k.to_string()
+                            }
+                        })
+                        .collect()
+                };
+                if exists {
+                    return Ok(false);
+                }
+                // LIGGGHTS: "All universe/uloop variables must have same # of values".
+                if let Some((other, Variable::Universe { values: v, .. })) = self
+                    .vars
+                    .iter()
+                    .find(|(_, v)| matches!(v, Variable::Universe { .. }))
+                {
+                    if v.len() != values.len() {
+                        return derr(
+                            format!(
+                                "all universe and uloop variables must have the same number of values: '{other}' has {}, this one {}",
+                                v.len(),
+                                values.len()
+                            ),
+                            1,
+                            None,
+                        );
+                    }
+                }
+                Variable::Universe { values, pos: 0 }
+            }
             "string" => Variable::Str(one("one string")?),
             "getenv" => Variable::Getenv(one("the name of an environment variable")?),
             "equal" => Variable::Equal(self.formula(style, args)?),
@@ -245,31 +368,61 @@ impl Variables {
         }
     }
 
-    /// `next name…`: advances index and loop variables. Returns true when one of them was
-    /// exhausted (it is then deleted, and the `jump` that follows is skipped).
-    pub fn next(&mut self, names: &[String]) -> Result<bool, String> {
-        let mut exhausted = false;
+    /// `next name…`: advances `index`, `loop`, `file`, `universe` and `uloop` variables,
+    /// which must all be of one style (`universe` and `uloop` count as one). Returns
+    /// whether one of them was exhausted (they are then deleted, and the `jump` that
+    /// follows is skipped) and, for `universe`/`uloop`, the line LIGGGHTS prints.
+    pub fn next(&mut self, names: &[String]) -> Result<Next, String> {
+        let mut kind = None;
         for name in names {
-            match self.vars.iter_mut().find(|(n, _)| n == name) {
-                Some((_, Variable::Index { values, pos }))
-                | Some((_, Variable::Loop { values, pos })) => {
-                    *pos += 1;
-                    if *pos >= values.len() {
-                        exhausted = true;
-                    }
-                }
+            let k = match self.get(name) {
+                Some(Variable::Index { .. }) => "index",
+                Some(Variable::Loop { .. }) => "loop",
+                Some(Variable::File { .. }) => "file",
+                Some(Variable::Universe { .. }) => "universe",
                 Some(_) => {
                     return Err(format!(
-                        "variable '{name}' is not an index or loop variable"
+                        "variable '{name}' is not an index, loop, file, universe or uloop variable"
                     ))
                 }
                 None => return Err(format!("no variable '{name}'")),
+            };
+            match kind {
+                Some(first) if first != k => {
+                    return Err(format!(
+                        "all variables of one next command must be of the same style ('{name}' is {k}, '{}' is {first})",
+                        names[0]
+                    ))
+                }
+                _ => kind = Some(k),
             }
         }
-        if exhausted {
+        let mut out = Next::default();
+        for name in names {
+            if let Some((
+                _,
+                Variable::Index { values, pos }
+                | Variable::Loop { values, pos }
+                | Variable::File { values, pos }
+                | Variable::Universe { values, pos },
+            )) = self.vars.iter_mut().find(|(n, _)| n == name)
+            {
+                *pos += 1;
+                if *pos >= values.len() {
+                    out.exhausted = true;
+                }
+                if kind == Some("universe") {
+                    out.message = Some(format!(
+                        "Increment via next: value {} on partition 0",
+                        *pos + 1
+                    ));
+                }
+            }
+        }
+        if out.exhausted {
             self.vars.retain(|(n, _)| !names.contains(n));
         }
-        Ok(exhausted)
+        Ok(out)
     }
 
     /// The text `${name}` is replaced by. `equal` variables are evaluated with `ctx`
@@ -277,9 +430,12 @@ impl Variables {
     pub fn text(&self, name: &str, ctx: &mut dyn Context) -> Result<String, String> {
         match self.get(name) {
             None => Err(format!("no variable '{name}'")),
-            Some(Variable::Index { values, pos }) | Some(Variable::Loop { values, pos }) => {
-                Ok(values[*pos].clone())
-            }
+            Some(
+                Variable::Index { values, pos }
+                | Variable::Loop { values, pos }
+                | Variable::File { values, pos }
+                | Variable::Universe { values, pos },
+            ) => Ok(values[*pos].clone()),
             Some(Variable::Str(s)) => Ok(s.clone()),
             Some(Variable::Getenv(v)) => Ok(std::env::var(v).unwrap_or_default()),
             Some(Variable::Equal(f)) => {
@@ -413,7 +569,7 @@ mod tests {
         let mut seen = Vec::new();
         loop {
             seen.push(t.text("k", &mut Ctx(&Variables::new())).unwrap());
-            if t.next(&s(&["k"])).unwrap() {
+            if t.next(&s(&["k"])).unwrap().exhausted {
                 break;
             }
         }

@@ -177,10 +177,21 @@ variable f index alpha beta gamma
 variable k loop 8 10 pad
 label again
 print "I ${f} ${k}"
-next f k
+next f
+next k
 jump SELF again
 "#);
     assert_eq!(lines(&i, "I"), ["alpha 08", "beta 09", "gamma 10"]);
+    // One `next` of an index and a loop variable stops LIGGGHTS 3.8 ("All variables in
+    // next command must be same style"), and rdem.
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let e = i
+        .run_source(
+            "in.t",
+            "variable f index a b\nvariable k loop 2\nnext f k\n",
+        )
+        .unwrap_err();
+    assert!(e.to_string().contains("same style"), "{e}");
     // An index variable that exists is not redefined (so -var wins).
     let i = run("variable f index first\nvariable f index second\nprint \"X ${f}\"\n");
     assert_eq!(lines(&i, "X"), ["first"]);

@@ -12,6 +12,7 @@ mod group;
 mod pair;
 pub mod region;
 mod settings;
+mod shell;
 mod thermo;
 
 pub use crate::args::id_help;
@@ -135,12 +136,13 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("include", "a script file, run in place"),
         flow("label", "`ID`"),
         flow("jump", "`FILE\\|SELF [label]`"),
-        flow("next", "variables of `index` and `loop` styles"),
+        flow("next", "variables of `index`, `loop`, `file`, `universe`, `uloop` styles (one style per command, `universe` with `uloop`)"),
         flow("if", "`\"condition\" then \"command\" ... [elif ...] [else ...]`"),
         flow("log", "`FILE [append]`, `none`"),
         flow("echo", "`none\\|screen\\|log\\|both`"),
         flow("quit", "stops the script"),
-        Row::not_yet("shell", ""),
+        sim("shell", shell::shell, "`cd`, `mkdir [-p]`, `rm [-f]`, `rmdir`, `mv`, `putenv` done by rdem; any other command run by `/bin/sh -c`")
+            .notes("a failed action or a non-zero exit status is a warning (LIGGGHTS 3.8 says nothing); `mkdir -p` makes parents (LIGGGHTS 3.8 makes a folder named `-p`); under `rdem -check` only `cd` and `putenv` act"),
         Row::not_yet("bond_style", "bonds"),
         Row::not_yet("bond_coeff", "bonds"),
         Row::not_yet("create_bonds", "bonds"),

@@ -24,6 +24,7 @@ mod modify;
 mod move_mesh;
 mod particledistribution_discrete;
 mod particletemplate_sphere;
+mod print;
 mod property_global;
 mod wall_gran;
 
@@ -305,6 +306,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         adapt::ROW,
         check_timestep_gran::ROW,
         ave_time::ROW,
+        print::ROW,
         ave_euler::ROW,
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet("wall/gran/hooke/history", "old-style wall models"),
