@@ -84,3 +84,27 @@ fn displace_late_particle_and_ke_atom_dump() {
     assert_eq!(ours, theirs);
     let _ = std::fs::remove_file(&d);
 }
+
+/// Item 11: fix viscous with `scale 2 3.0` (type 2 gets γ = 1.5) and fix aveforce
+/// `NULL 0.2 0.0` on three of four particles under gravity: the velocities of all four
+/// and the aveforce vector (the group's total force before the fix: at step 0 its x
+/// component is the viscous force −(0.5 + 1.5 + 0.5)·0.1 = −0.25).
+#[test]
+fn viscous_scale_and_aveforce() {
+    let out = run_item("item11.in", &[]);
+    // LIGGGHTS' thermo rows (item11.liggghts.txt): step f_af[1..3] then vx vy vz of
+    // atoms 1-4.
+    check_row(
+        &out,
+        "0",
+        "0 -0.25 0.5 -22.9396972308354 0.1 -0.2 0.3 0.1 -0.2 0.3 0.1 -0.2 0.3 0.1 -0.2 0.3",
+        1e-9,
+    );
+    check_row(&out, "500", "500 -0.24779739064483 0.491991739794174 -22.7726908085923 0.0998091959666728 -0.198604535826893 0.270898613065867 0.0988871675999841 -0.197274484036901 0.243161353644271 0.0991196956308648 -0.193539517717098 0.16527135678642 0.0955196001264206 -0.191039200252841 0.238613817418323", 1e-9);
+    check_row(&out, "1000", "1000 -0.245615197958623 0.484033852739195 -22.6067348816483 0.0996187559947738 -0.197219241085266 0.242009302203688 0.0977867191472276 -0.19456883024466 0.186736918366575 0.0982471406118719 -0.18712611613549 0.0315245472392893 0.0912399398914008 -0.182479879782802 0.179977978656771", 1e-9);
+    // Atom 4 (type 2) is outside the aveforce group and touches nothing: vx decays as
+    // exp(−γ t / m) with γ = 1.5, m = 2500 · 4/3 π 0.025³, t = 0.01.
+    let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.025f64.powi(3);
+    let vx4 = thermo_row(&out, "1000")[13];
+    assert!((vx4 - 0.1 * (-1.5 * 0.01 / m).exp()).abs() < 1e-6, "{vx4}");
+}

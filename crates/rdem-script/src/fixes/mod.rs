@@ -287,6 +287,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_VISCOUS,
         engine::ROW_ADDFORCE,
         engine::ROW_SETFORCE,
+        engine::ROW_AVEFORCE,
         adapt::ROW,
         check_timestep_gran::ROW,
         ave_time::ROW,
