@@ -108,3 +108,49 @@ fn viscous_scale_and_aveforce() {
     let vx4 = thermo_row(&out, "1000")[13];
     assert!((vx4 - 0.1 * (-1.5 * 0.01 / m).exp()).abs() < 1e-6, "{vx4}");
 }
+
+/// The numbers of a text dump's rows (after each `ITEM: ATOMS` line), snapshot by snapshot.
+fn dump_rows(text: &str) -> Vec<Vec<f64>> {
+    let mut rows = Vec::new();
+    let mut lines = text.lines();
+    while let Some(l) = lines.next() {
+        if l.starts_with("ITEM: NUMBER OF ATOMS") {
+            let n: usize = lines.next().unwrap().trim().parse().unwrap();
+            let mut l = lines.next().unwrap();
+            while !l.starts_with("ITEM: ATOMS") {
+                l = lines.next().unwrap();
+            }
+            for _ in 0..n {
+                let row = lines.next().unwrap();
+                rows.push(row.split_whitespace().map(|w| w.parse().unwrap()).collect());
+            }
+        }
+    }
+    rows
+}
+
+/// Item 12: fix ave/atom of a position, a velocity, a force, a per-atom compute and an
+/// atom-style variable over 5 samples 10 steps apart every 100 steps on a group of two
+/// (0 for the third particle), and a second ave/atom (`Nrepeat` 1, so step 0 is sampled
+/// at the set-up) of the first one's column and vz, dumped every 100 steps: every value
+/// equals LIGGGHTS' to 1e-9.
+#[test]
+fn ave_atom_dump() {
+    let d = tmp("item12");
+    run_item("item12.in", &[("item12.dump", &d)]);
+    let ours = dump_rows(&std::fs::read_to_string(&d).unwrap());
+    let theirs =
+        dump_rows(&std::fs::read_to_string(format!("{DIR}/item12.liggghts.dump")).unwrap());
+    assert_eq!(ours.len(), theirs.len());
+    assert_eq!(ours.len(), 12);
+    for (r, l) in ours.iter().zip(&theirs) {
+        assert_eq!(r.len(), l.len());
+        for (a, b) in r.iter().zip(l) {
+            assert!(
+                (a - b).abs() <= 1e-9 * b.abs().max(1e-9),
+                "{r:?} vs LIGGGHTS {l:?}"
+            );
+        }
+    }
+    let _ = std::fs::remove_file(&d);
+}
