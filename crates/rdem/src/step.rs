@@ -29,7 +29,8 @@
 //! 8. reverse communication: ghost forces (and virial) onto their owners [Comm]
 //! 9. post-force fixes in definition order, each particle seeing them in that order:
 //!    walls (`wall/gran` primitive and mesh), gravity, addforce, setforce, viscous,
-//!    freeze [Modify]
+//!    freeze, aveforce (which needs the group's total force over all ranks, so the fixes
+//!    around it run in separate passes) [Modify]
 //! 10. held streamed particles: force and torque zeroed for the particles an
 //!     `insert/stream` still holds (they fly at their insertion velocity) [Modify]
 //! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
@@ -211,11 +212,12 @@ impl World {
         self.reverse_comm();
         let t3 = self.timers.lap(Stage::Comm, t2);
         let finite = crate::fix::post_force(
-            &self.fixes,
+            &mut self.fixes,
             &self.meshes,
             &mut self.particles,
             self.dt,
             update,
+            &*self.comm,
         );
         crate::insert::stream::hold_streamed(&mut self.particles, self.step);
         self.accumulate_mesh_stress(update);

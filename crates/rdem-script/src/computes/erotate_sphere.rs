@@ -1,4 +1,6 @@
-//! `compute ID group erotate/sphere`: Σ ½ I ω² over the group: a global scalar.
+//! `compute ID group erotate/sphere`: Σ ½ I ω² over the group: a global scalar; and
+//! `compute ID group erotate`, LIGGGHTS' sum over every particle shape, which for rdem's
+//! spheres is the same value.
 
 use super::kernels::erotate;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -10,6 +12,14 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
     "erotate/sphere",
     parse,
     "rotational kinetic energy of the group",
+);
+
+/// The registry row of `erotate` (LIGGGHTS sums spheres, superquadrics and multispheres;
+/// rdem has spheres only).
+pub(super) const ROW_ALL: ComputeRow = ComputeRow::runs(
+    "erotate",
+    parse,
+    "rotational kinetic energy of the group (spheres)",
 );
 
 fn parse(_sim: &Sim, _a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {

@@ -6,10 +6,14 @@
 
 mod bond_counter;
 mod contact_atom;
+mod displace_atom;
+mod energy_atom;
 mod erotate_sphere;
 mod ke;
 pub mod kernels;
 mod nbond_atom;
+mod pe;
+mod pressure;
 mod property_atom;
 pub mod reduce;
 mod stress_atom;
@@ -130,7 +134,13 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
     readme_prefix: "compute ",
     rows: &[
         erotate_sphere::ROW,
+        erotate_sphere::ROW_ALL,
+        energy_atom::ROW_EROTATE,
         ke::ROW,
+        energy_atom::ROW_KE,
+        pe::ROW,
+        pressure::ROW,
+        displace_atom::ROW,
         reduce::ROW,
         property_atom::ROW,
         contact_atom::ROW,

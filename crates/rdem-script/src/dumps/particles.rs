@@ -48,6 +48,39 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 ))
             }
         },
+        Some(('f', id, col)) => match sim.defs.fixes.iter().find(|f| f.id() == id) {
+            Some(f) => match f.imp.peratom_shape() {
+                Some((_, freq)) if dump_every(a).is_some_and(|n| n % freq != 0) => {
+                    Err(a.error_at(
+                        k,
+                        format!("fix {id} is not computed at compatible times: every {freq} steps, the dump every {}", dump_every(a).unwrap_or(0)),
+                        Some(format!("dump every multiple of {freq} steps, as LIGGGHTS requires")),
+                    ))
+                }
+                Some((n, _)) => match col {
+                    None if n == 0 => Ok(()),
+                    Some(j) if n > 0 && j >= 1 && j <= n => Ok(()),
+                    _ => Err(a.error_at(
+                        k,
+                        format!("'{arg}' does not match fix {id}'s columns"),
+                        None,
+                    )),
+                },
+                None => Err(a.error_at(
+                    k,
+                    format!("fix {id} computes no per-atom values"),
+                    Some("a dump column needs a per-atom fix (ave/atom)".into()),
+                )),
+            },
+            None => {
+                let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
+                Err(a.error_at(
+                    k,
+                    format!("no fix '{id}'"),
+                    Some(crate::args::id_help("fix", id, &ids)),
+                ))
+            }
+        },
         Some(('v', id, None)) => match sim.script.vars.get(id) {
             Some(Variable::Atom(_)) => Ok(()),
             Some(_) => Err(a.error_at(
@@ -73,6 +106,14 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
             Some(suggest(arg, &rdem_io::Field::NAMES)),
         )),
     }
+}
+
+/// The N of `dump ID group style N file ...` (`None` for `write_dump`, which writes once).
+fn dump_every(a: &Args) -> Option<u64> {
+    let w = a.words();
+    (w.first()?.text == "dump")
+        .then(|| w.get(4)?.text.parse().ok())
+        .flatten()
 }
 
 pub(super) fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {
@@ -106,6 +147,7 @@ pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String>
             }
             let values = match split_reference(arg) {
                 Some(('c', id, col)) => context::compute_peratom(sim, id, col)?,
+                Some(('f', id, col)) => crate::fixes::fix_peratom(sim, id, col)?,
                 Some(('v', id, None)) => match sim.script.vars.get(id) {
                     Some(Variable::Atom(f)) => context::eval_atom(sim, f)?,
                     _ => return Err(format!("variable {id} is not atom-style")),

@@ -1,5 +1,6 @@
 //! The fixes the engine runs every step, which the script only parses: `nve/sphere`
-//! (integration), `gravity`, `freeze`, `viscous`, `addforce`, `setforce` (post-force).
+//! (integration), `gravity`, `freeze`, `viscous`, `addforce`, `setforce`, `aveforce`
+//! (post-force).
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
 
@@ -32,7 +33,7 @@ pub(super) const ROW_VISCOUS: FixRow = style(
     "viscous",
     viscous,
     Stages::ENGINE,
-    "`gamma`: a drag force −γ v",
+    "`gamma [scale type ratio ...]`: a drag force −γ v, γ scaled per atom type",
 );
 /// The registry row of `addforce`.
 pub(super) const ROW_ADDFORCE: FixRow =
@@ -44,6 +45,15 @@ pub(super) const ROW_SETFORCE: FixRow = style(
     Stages::ENGINE,
     "`fx fy fz` (numbers or NULL)",
 );
+
+/// The registry row of `aveforce`.
+pub(super) const ROW_AVEFORCE: FixRow = style(
+    "aveforce",
+    aveforce,
+    Stages::ENGINE.and(Stages::VALUES),
+    "`fx fy fz` (numbers or NULL): the group's mean force plus these; `f_ID[1..3]` the total before",
+)
+.notes("`v_name` components and the `region` keyword are not supported yet (located errors)");
 
 /// A fix the engine runs: parsed into an engine [`Fix`], which [`ScriptFix::install`]
 /// hands to `World::fixes` (the one owner of its state from then on; the script's entry
@@ -61,6 +71,19 @@ impl ScriptFix for InEngine {
                 .map_err(|e| a.error_cmd(e.to_string(), None))?;
         }
         Ok(())
+    }
+
+    /// `fix aveforce`'s vector: the group's total force before the fix acted, at the last
+    /// force evaluation (0 before any).
+    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, String> {
+        let w = sim
+            .world
+            .as_ref()
+            .ok_or("the simulation box is not defined yet")?;
+        match w.fixes.iter().find(|f| f.id == head.id).map(|f| &f.kind) {
+            Some(FixKind::AveForce { total, .. }) => Ok(total.to_array().to_vec()),
+            _ => Err("computes no global values".into()),
+        }
     }
 
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
@@ -113,8 +136,53 @@ fn freeze(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFi
 
 fn viscous(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let gamma = a.non_negative("damping coefficient gamma")?;
-    a.done()?;
-    engine_fix(sim, a, head, FixKind::Viscous { gamma })
+    if a.is_done() {
+        return engine_fix(sim, a, head, FixKind::Viscous { gamma });
+    }
+    // `scale type ratio`, repeatable: γ of that type is γ · ratio (LIGGGHTS: a later
+    // scale of the same type replaces the earlier one).
+    let ntypes = sim.world_ref(a)?.materials.ntypes;
+    let mut per_type = vec![gamma; ntypes + 1];
+    while !a.is_done() {
+        a.keyword("viscous keyword", &["scale"])?;
+        let t = a.u64("atom type")?;
+        if t == 0 || t as usize > ntypes {
+            return Err(a.error_prev(
+                format!("atom type {t} is not a type of the box"),
+                Some(format!("types are 1..{ntypes} (create_box {ntypes} ...)")),
+            ));
+        }
+        let ratio = a.non_negative("scale ratio")?;
+        per_type[t as usize] = gamma * ratio;
+    }
+    engine_fix(sim, a, head, FixKind::ViscousScaled { gamma: per_type })
+}
+
+fn aveforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let mut v = [None; 3];
+    for (k, c) in v.iter_mut().enumerate() {
+        let what = ["fx", "fy", "fz"][k];
+        match a.peek() {
+            Some("NULL") => a.seek(a.pos() + 1),
+            Some(w) if w.starts_with("v_") => {
+                return Err(a.error_at(
+                    a.pos(),
+                    "aveforce with variables is not supported yet; give numbers or NULL",
+                    None,
+                ))
+            }
+            _ => *c = Some(a.f64(&format!("{what} (a number or NULL)"))?),
+        }
+    }
+    if !a.is_done() {
+        a.keyword("aveforce keyword", &["region"])?;
+        return Err(a.error_prev("aveforce region is not supported yet", None));
+    }
+    let kind = FixKind::AveForce {
+        force: v,
+        total: DVec3::ZERO,
+    };
+    engine_fix(sim, a, head, kind)
 }
 
 fn addforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {

@@ -12,6 +12,7 @@
 //! and group so that `unfix`, `f_ID` and redefinitions find them.
 
 mod adapt;
+mod ave_atom;
 pub mod ave_euler;
 mod ave_time;
 mod check_timestep_gran;
@@ -144,6 +145,17 @@ pub trait ScriptFix: AsAny {
     /// [`Stages::VALUES`]: the global values `f_ID[1..]` at the current step.
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Err("computes no global values".into())
+    }
+
+    /// Per-atom values: `Some((columns, every))` (0 columns: a vector) if the fix gives
+    /// them, valid on multiples of `every` steps.
+    fn peratom_shape(&self) -> Option<(usize, u64)> {
+        None
+    }
+
+    /// Per-atom values (column `col`, 1-based, of an array) for the owned particles.
+    fn peratom(&self, _sim: &Sim, head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, String> {
+        Err(format!("fix {} computes no per-atom values", head.id))
     }
 
     /// True if `thermo_modify norm yes` divides this fix's values by the atom count.
@@ -303,11 +315,14 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_VISCOUS,
         engine::ROW_ADDFORCE,
         engine::ROW_SETFORCE,
+        engine::ROW_AVEFORCE,
         adapt::ROW,
         check_timestep_gran::ROW,
         ave_time::ROW,
         print::ROW,
+        ave_atom::ROW,
         ave_euler::ROW,
+        Row::not_yet("ave/histo", "global histograms"),
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet("wall/gran/hooke/history", "old-style wall models"),
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
@@ -419,6 +434,17 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
             v.len()
         )),
     }
+}
+
+/// Per-atom values `f_ID` / `f_ID[i]` (1-based) of the owned particles.
+pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
+    let f = sim
+        .defs
+        .fixes
+        .iter()
+        .find(|f| f.head.id == id)
+        .ok_or_else(|| format!("no fix '{id}'"))?;
+    f.imp.peratom(sim, &f.head, col)
 }
 
 /// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.

@@ -30,6 +30,20 @@ pub enum FixKind {
         /// Damping coefficient (force/velocity).
         gamma: f64,
     },
+    /// `fix viscous gamma scale type ratio ...`: F −= γ_t v with γ per atom type.
+    ViscousScaled {
+        /// γ of each type, indexed by type (entry 0 unused).
+        gamma: Vec<f64>,
+    },
+    /// `fix aveforce fx fy fz`: every particle of the group gets the group's mean force
+    /// plus the given component (NULL components, `None`, are left alone).
+    AveForce {
+        /// Components added to the mean force.
+        force: [Option<f64>; 3],
+        /// The group's total force before the fix acted, at the last force evaluation
+        /// (summed over ranks): the fix's global vector `f_ID[1..3]`.
+        total: DVec3,
+    },
     /// `fix addforce fx fy fz`: adds a constant force.
     AddForce {
         /// Force added to every particle of the group.
@@ -71,6 +85,19 @@ impl Fix {
             }
             FixKind::Viscous { gamma } => {
                 check("viscous gamma", *gamma, *gamma >= 0.0, "must be >= 0")?;
+            }
+            FixKind::ViscousScaled { gamma } => {
+                for g in gamma {
+                    check("viscous gamma", *g, *g >= 0.0, "must be >= 0")?;
+                }
+            }
+            FixKind::AveForce { force, .. } => {
+                if force.iter().flatten().any(|v| !v.is_finite()) {
+                    return Err(Error::Invalid {
+                        what: "aveforce",
+                        reason: "components must be finite or NULL".into(),
+                    });
+                }
             }
             FixKind::AddForce { force } => {
                 if !force.is_finite() {
@@ -128,6 +155,7 @@ impl Fix {
             FixKind::Gravity { .. }
                 | FixKind::Freeze
                 | FixKind::Viscous { .. }
+                | FixKind::ViscousScaled { .. }
                 | FixKind::AddForce { .. }
                 | FixKind::SetForce { .. }
         )
@@ -171,6 +199,15 @@ impl Fix {
                     }
                 }
             }
+            FixKind::ViscousScaled { gamma } => {
+                let v = &p.v[lo..lo + n];
+                let ty = &p.ty[lo..lo + n];
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] -= gamma.get(ty[k] as usize).copied().unwrap_or(0.0) * v[k];
+                    }
+                }
+            }
             FixKind::AddForce { force } => {
                 for k in 0..n {
                     if mask[k] & bit != 0 {
@@ -189,7 +226,10 @@ impl Fix {
                     }
                 }
             }
-            FixKind::NveSphere | FixKind::WallGran(_) | FixKind::MeshWall(_) => {}
+            FixKind::NveSphere
+            | FixKind::AveForce { .. }
+            | FixKind::WallGran(_)
+            | FixKind::MeshWall(_) => {}
         }
     }
 }
@@ -199,7 +239,74 @@ impl Fix {
 /// caller finds which). Every fix acts on each particle alone, so the pass runs all fixes
 /// chunk by chunk in parallel (see [`crate::par`]): each particle sees the fixes in the
 /// same order whatever the thread count.
+///
+/// A `fix aveforce` needs the group's total force after the fixes before it, summed over
+/// ranks: the fixes between two aveforce fixes run as one pass, and each aveforce acts
+/// alone between the passes (in particle order, so its sum does not depend on the thread
+/// count).
 pub(crate) fn post_force(
+    fixes: &mut [Fix],
+    meshes: &[crate::wall::MeshSurface],
+    p: &mut Particles,
+    dt: f64,
+    update: bool,
+    comm: &dyn crate::comm::Comm,
+) -> bool {
+    let mut start = 0;
+    let mut ok = true;
+    for k in 0..fixes.len() {
+        if matches!(fixes[k].kind, FixKind::AveForce { .. }) {
+            if start < k {
+                ok &= post_force_pass(&fixes[start..k], meshes, p, dt, update);
+            }
+            fixes[k].apply_aveforce(p, comm);
+            start = k + 1;
+        }
+    }
+    // The last pass runs also without fixes: it checks that every force is finite.
+    ok & post_force_pass(&fixes[start..], meshes, p, dt, update)
+}
+
+impl Fix {
+    /// `fix aveforce`: the group's total force (summed over ranks) is recorded, and each
+    /// particle of the group gets the mean force plus the fix's components (NULL
+    /// components untouched); an empty group changes nothing.
+    fn apply_aveforce(&mut self, p: &mut Particles, comm: &dyn crate::comm::Comm) {
+        let FixKind::AveForce { force, total } = &mut self.kind else {
+            return;
+        };
+        let n = p.nlocal();
+        let bit = self.groupbit;
+        let mut sum = [0.0; 4];
+        for i in 0..n {
+            if p.mask[i] & bit != 0 {
+                sum[0] += p.f[i].x;
+                sum[1] += p.f[i].y;
+                sum[2] += p.f[i].z;
+                sum[3] += 1.0;
+            }
+        }
+        comm.sum_slice(&mut sum);
+        *total = DVec3::new(sum[0], sum[1], sum[2]);
+        if sum[3] == 0.0 {
+            return;
+        }
+        let mean = *total / sum[3];
+        for i in 0..n {
+            if p.mask[i] & bit != 0 {
+                for (a, value) in force.iter().enumerate() {
+                    if let Some(v) = value {
+                        p.f[i][a] = mean[a] + v;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The post-force fixes `fixes` (none of them `aveforce`) in one pass over the owned
+/// particles; false when some force or torque is then not finite.
+fn post_force_pass(
     fixes: &[Fix],
     meshes: &[crate::wall::MeshSurface],
     p: &mut Particles,

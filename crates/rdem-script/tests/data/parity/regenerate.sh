@@ -10,3 +10,5 @@ done
 for d in item4.dump item8.dump; do
   [ -f "$d" ] && mv "$d" "${d%.dump}.liggghts.dump"
 done
+[ -f item10.dump ] && mv item10.dump item10.liggghts.dump
+[ -f item12.dump ] && mv item12.dump item12.liggghts.dump
