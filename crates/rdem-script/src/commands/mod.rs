@@ -114,6 +114,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),
         Row::not_yet("displace_atoms", "displace_atoms"),
+        Row::not_yet("read_dump", "particles read from a dump file"),
         Row::not_yet("modify_timing", "per-fix timing"),
     ],
 };

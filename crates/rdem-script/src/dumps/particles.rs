@@ -48,6 +48,13 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 ))
             }
         },
+        Some(('f', id, col)) => crate::fixes::check_fix_peratom(sim, id, col).map_err(|m| {
+            a.error_at(
+                k,
+                m,
+                Some("a dump column needs per-atom values (fix property/atom)".into()),
+            )
+        }),
         Some(('v', id, None)) => match sim.script.vars.get(id) {
             Some(Variable::Atom(_)) => Ok(()),
             Some(_) => Err(a.error_at(
@@ -106,6 +113,7 @@ pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String>
             }
             let values = match split_reference(arg) {
                 Some(('c', id, col)) => context::compute_peratom(sim, id, col)?,
+                Some(('f', id, col)) => crate::fixes::fix_peratom(sim, id, col)?,
                 Some(('v', id, None)) => match sim.script.vars.get(id) {
                     Some(Variable::Atom(f)) => context::eval_atom(sim, f)?,
                     _ => return Err(format!("variable {id} is not atom-style")),

@@ -21,8 +21,10 @@ mod insert_stream;
 mod massflow_mesh;
 mod mesh_surface;
 mod move_mesh;
+mod move_particles;
 mod particledistribution_discrete;
 mod particletemplate_sphere;
+mod property_atom;
 mod property_global;
 mod wall_gran;
 
@@ -141,6 +143,24 @@ pub trait ScriptFix: AsAny {
     /// [`Stages::VALUES`]: the global values `f_ID[1..]` at the current step.
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Err("computes no global values".into())
+    }
+
+    /// Per-particle values (`f_ID` in atom-style variables, dumps and `compute reduce`):
+    /// `None` if the fix has none, `Some(0)` for one value per particle (`f_ID`),
+    /// `Some(n)` for `n` (`f_ID[1..n]`).
+    fn peratom_cols(&self) -> Option<usize> {
+        None
+    }
+
+    /// The per-particle values of column `col` (1-based; `None` for a single value) of
+    /// every owned particle, in storage order.
+    fn peratom(
+        &self,
+        _sim: &Sim,
+        _head: &FixHead,
+        _col: Option<usize>,
+    ) -> Result<Vec<f64>, String> {
+        Err("has no per-atom values".into())
     }
 
     /// True if `thermo_modify norm yes` divides this fix's values by the atom count.
@@ -267,11 +287,12 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
     readme_prefix: "fix ",
     rows: &[
         property_global::ROW,
-        property_atom_row(),
+        property_atom::ROW,
         mesh_surface::ROW,
         mesh_surface::ROW_PLANAR,
         mesh_surface::ROW_STRESS,
         move_mesh::ROW,
+        move_particles::ROW,
         wall_gran::ROW,
         particletemplate_sphere::ROW,
         particledistribution_discrete::ROW,
@@ -296,10 +317,6 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],
 };
-
-const fn property_atom_row() -> FixRow {
-    Row::not_yet("property/atom", "")
-}
 
 /// Index of the style word in `fix ID group style ...` (errors about the whole fix point
 /// at it).
@@ -399,6 +416,44 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
             v.len()
         )),
     }
+}
+
+/// The per-particle values `f_ID` / `f_ID[i]` (1-based) of every owned particle.
+pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
+    check_fix_peratom(sim, id, col)?;
+    let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
+    f.imp.peratom(sim, &f.head, col)
+}
+
+/// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
+pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), String> {
+    let Some(f) = sim.defs.fixes.iter().find(|f| f.head.id == id) else {
+        let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
+        return Err(format!(
+            "no fix '{id}' ({})",
+            crate::args::id_help("fix", id, &ids)
+        ));
+    };
+    match (f.imp.peratom_cols(), col) {
+        (None, _) => Err(format!(
+            "fix {id} ({}) has no per-atom values",
+            f.head.style
+        )),
+        (Some(0), None) => Ok(()),
+        (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
+        (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),
+        (Some(n), _) => Err(format!(
+            "fix {id} has {n} values per atom: use f_{id}[1..{n}]"
+        )),
+    }
+}
+
+/// True if fix `id` has per-particle values.
+pub fn is_peratom(sim: &Sim, id: &str) -> bool {
+    sim.defs
+        .fixes
+        .iter()
+        .any(|f| f.head.id == id && f.imp.peratom_cols().is_some())
 }
 
 /// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.

@@ -7,6 +7,6 @@ for f in item*.in; do
   b=${f%.in}
   liggghts -in "$f" -log none > "$b.liggghts.txt" 2>&1 || true
 done
-for d in item4.dump item8.dump; do
+for d in item4.dump item8.dump item9.dump; do
   [ -f "$d" ] && mv "$d" "${d%.dump}.liggghts.dump"
 done
