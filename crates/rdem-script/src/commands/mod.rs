@@ -68,7 +68,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
         sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `vx vy vz`, `omega`, `property/atom`")
             .notes("the mass follows diameter and density"),
-        sim("velocity", atoms::velocity, "`set` (NULL allowed), `zero linear\\|angular`, `ramp`, `create`; `sum`")
+        sim("velocity", atoms::velocity, "`set` (numbers, equal- or atom-style `v_name`, NULL), `zero linear\\|angular`, `ramp`, `create`; `sum`")
             .notes("`units box` only"),
         sim("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
         sim("neighbor", settings::neighbor, "`skin bin\\|nsq`"),
