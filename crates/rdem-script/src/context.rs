@@ -213,6 +213,16 @@ impl Context for Ctx<'_> {
                     compute_global(sim, id, *idx)
                 }
             }
+            Name::Fix(id, idx) if crate::fixes::is_peratom(sim, id) => {
+                if self.atom.is_none() {
+                    return Err(format!(
+                        "fix {id} is per-atom: use it in an atom-style variable or reduce it"
+                    ));
+                }
+                let (id, idx) = (id.clone(), *idx);
+                let key = format!("f_{id}[{idx:?}]");
+                self.atom_vector(&key, |s, _| crate::fixes::fix_peratom(s, &id, idx))
+            }
             Name::Fix(id, idx) => crate::fixes::fix_value(sim, id, *idx),
             Name::Atom(field, tag) => {
                 let w = world(sim)?;

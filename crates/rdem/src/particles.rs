@@ -225,11 +225,11 @@ impl Particles {
     /// for existing and future particles. Adding an existing name with the same width
     /// returns the existing handle.
     pub fn add_property(&mut self, name: &str, width: usize, default: &[f64]) -> Result<PropId> {
-        if width == 0 || default.len() != width {
+        if name.is_empty() || width == 0 || default.len() != width {
             return Err(Error::Invalid {
                 what: "per-particle property",
                 reason: format!(
-                    "'{name}' needs width >= 1 and one default per component (width {width}, {} defaults)",
+                    "'{name}' needs a name, width >= 1 and one default per component (width {width}, {} defaults)",
                     default.len()
                 ),
             });
@@ -262,7 +262,24 @@ impl Particles {
 
     /// Handle of the property called `name`.
     pub fn property(&self, name: &str) -> Option<PropId> {
+        if name.is_empty() {
+            return None;
+        }
         self.props.iter().position(|p| p.name == name).map(PropId)
+    }
+
+    /// Retires the property called `name` (`unfix` of the fix that defined it): no lookup
+    /// by name finds it any more, so the name can be defined afresh. Its values stay in
+    /// place with width and handle unchanged, because other properties' handles are
+    /// indices that engine fixes keep. Returns false if there was no such property.
+    pub fn retire_property(&mut self, name: &str) -> bool {
+        match self.property(name) {
+            Some(id) => {
+                self.props[id.0].name.clear();
+                true
+            }
+            None => false,
+        }
     }
 
     /// Validates and appends an owned particle; returns its index. Ghosts must be
@@ -765,6 +782,23 @@ mod tests {
         assert_eq!(p.tag, vec![3, 1, 2]);
         assert_eq!(p.props[id.0].data, vec![2.0, 20.0, 0.0, 0.0, 1.0, 10.0]);
         assert_eq!(p.x[0].x, 2.0);
+    }
+
+    #[test]
+    fn retired_properties_are_not_found_and_keep_handles() {
+        let mut p = three();
+        let a = p.add_property("a", 1, &[1.0]).unwrap();
+        let b = p.add_property("b", 2, &[2.0, 3.0]).unwrap();
+        assert!(p.retire_property("a"));
+        assert!(!p.retire_property("a"));
+        assert_eq!(p.property("a"), None);
+        assert_eq!(p.property("b"), Some(b));
+        assert_eq!(p.property(""), None);
+        let a2 = p.add_property("a", 1, &[7.0]).unwrap();
+        assert_ne!(a2, a);
+        assert_eq!(p.props[a2.0].data, vec![7.0; 3]);
+        assert_eq!(p.props[b.0].get(2), &[2.0, 3.0]);
+        assert!(p.add_property("", 1, &[0.0]).is_err());
     }
 
     #[test]

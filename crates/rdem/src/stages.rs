@@ -257,8 +257,18 @@ impl World {
     /// Step 2: the first half of velocity Verlet for each integrating fix.
     pub(crate) fn initial_integrate(&mut self) {
         for fix in &self.fixes {
-            if fix.integrates() {
-                integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt);
+            match &fix.kind {
+                FixKind::NveSphere => {
+                    integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt)
+                }
+                FixKind::Move(m) => m.initial_integrate(
+                    &mut self.particles,
+                    &self.domain,
+                    fix.groupbit,
+                    self.step,
+                    self.dt,
+                ),
+                _ => {}
             }
         }
     }
@@ -370,8 +380,12 @@ impl World {
     /// Step 13: the second half of velocity Verlet for each integrating fix.
     pub(crate) fn final_integrate(&mut self) {
         for fix in &self.fixes {
-            if fix.integrates() {
-                integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt);
+            match &fix.kind {
+                FixKind::NveSphere => {
+                    integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt)
+                }
+                FixKind::Move(m) => m.final_integrate(&mut self.particles, fix.groupbit, self.dt),
+                _ => {}
             }
         }
     }

@@ -13,7 +13,8 @@
 //!
 //! 0. a full set-up first if particles were added since the last one ([`World::setup`])
 //! 1. `step += 1`
-//! 2. initial integrate (`nve/sphere`: half kick, drift) [Modify]
+//! 2. initial integrate (`nve/sphere`: half kick, drift; `move`: the prescribed positions
+//!    and velocities, velocity Verlet for its NULL components) [Modify]
 //! 3. mesh motion (`move/mesh`) to the step's time [Modify]
 //! 4. [`StepHooks::pre_exchange`] (LIGGGHTS' `pre_exchange`: insertion); particles added
 //!    here are not moved this step, get their forces and the final half kick, and force
@@ -36,7 +37,7 @@
 //! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
 //!     [Modify]
 //! 12. finiteness check of forces and torques [Other]
-//! 13. final integrate (half kick) [Modify]
+//! 13. final integrate (half kick; `move`: its NULL components only) [Modify]
 //! 14. finiteness check of positions and velocities [Other]
 //! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
 //! 16. the front end's end-of-step fixes (rdem-script's `Stages::END_OF_STEP`:

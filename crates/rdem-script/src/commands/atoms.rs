@@ -220,21 +220,19 @@ pub(super) fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let bit = sim.group_bit(a, "group ID")?;
     let style = a.keyword("velocity style", &["set", "zero", "ramp", "create"])?;
     enum Op {
-        Set([Option<f64>; 3]),
+        Set([Option<Vec<f64>>; 3]),
         Zero(bool),
         Ramp(usize, f64, f64, usize, f64, f64),
         Create(f64, u64),
     }
-    let opt = |a: &mut Args, what: &str| -> CmdResult<Option<f64>> {
-        if a.peek() == Some("NULL") {
-            a.seek(a.pos() + 1);
-            Ok(None)
-        } else {
-            Ok(Some(a.f64(what)?))
-        }
-    };
     let op = match style {
-        "set" => Op::Set([opt(a, "vx")?, opt(a, "vy")?, opt(a, "vz")?]),
+        "set" => {
+            let mut comps: [Option<Vec<f64>>; 3] = Default::default();
+            for (d, c) in comps.iter_mut().enumerate() {
+                *c = set_component(sim, a, ["vx", "vy", "vz"][d])?;
+            }
+            Op::Set(comps)
+        }
         "zero" => Op::Zero(a.keyword("zero what", &["linear", "angular"])? == "angular"),
         "ramp" => {
             let vd = a.keyword("velocity component", &["vx", "vy", "vz"])?;
@@ -285,7 +283,10 @@ pub(super) fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
         Op::Set(v) => {
             for &i in &sel {
                 for (d, vd) in v.iter().enumerate() {
-                    if let Some(x) = *vd {
+                    if let Some(vals) = vd {
+                        // One value for a number or an equal-style variable, one per
+                        // particle for an atom-style variable.
+                        let x = if vals.len() == 1 { vals[0] } else { vals[i] };
                         p.v[i][d] = if sum { p.v[i][d] + x } else { x };
                     }
                 }
@@ -335,6 +336,48 @@ pub(super) fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     Ok(())
+}
+
+/// One component of `velocity set`: NULL (`None`), a number, or `v_name` of an
+/// equal-style (one value) or atom-style variable (one value per owned particle, as
+/// LAMMPS evaluates it for every particle of the group).
+fn set_component(sim: &Sim, a: &mut Args, what: &str) -> CmdResult<Option<Vec<f64>>> {
+    let w = a.word(&format!("{what} (a number, v_name or NULL)"))?;
+    if w == "NULL" {
+        return Ok(None);
+    }
+    let Some(name) = w.strip_prefix("v_") else {
+        a.seek(a.pos() - 1);
+        return Ok(Some(vec![
+            a.f64(&format!("{what} (a number, v_name or NULL)"))?
+        ]));
+    };
+    let values = match sim.script.vars.get(name) {
+        Some(crate::variables::Variable::Atom(f)) => {
+            sim.world_ref(a)?;
+            crate::context::eval_atom(sim, f)
+                .map_err(|m| a.error_prev(format!("variable {name}: {m}"), None))?
+        }
+        Some(crate::variables::Variable::Equal(f)) => vec![crate::context::eval_equal(sim, f)
+            .map_err(|e| a.error_prev(format!("variable {name}: {}", e.message), None))?],
+        Some(_) => {
+            return Err(a.error_prev(
+                format!("variable '{name}' is neither equal- nor atom-style"),
+                Some("velocity set takes equal- or atom-style variables".into()),
+            ))
+        }
+        None => {
+            return Err(a.error_prev(
+                format!("no variable '{name}'"),
+                Some(crate::args::id_help(
+                    "variable",
+                    name,
+                    &sim.script.vars.names(),
+                )),
+            ))
+        }
+    };
+    Ok(Some(values))
 }
 
 /// Mass-weighted mean velocity of the particles `sel` over all ranks (zero for no mass).

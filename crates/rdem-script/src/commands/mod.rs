@@ -97,7 +97,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
         sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `vx vy vz`, `omega`, `property/atom`")
             .notes("the mass follows diameter and density"),
-        sim("velocity", atoms::velocity, "`set` (NULL allowed), `zero linear\\|angular`, `ramp`, `create`; `sum`")
+        sim("velocity", atoms::velocity, "`set` (numbers, equal- or atom-style `v_name`, NULL), `zero linear\\|angular`, `ramp`, `create`; `sum`")
             .notes("`units box` only"),
         sim_atoi("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
         sim("neighbor", settings::neighbor, "`skin bin\\|nsq`"),
@@ -149,6 +149,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),
         Row::not_yet("displace_atoms", "displace_atoms"),
+        Row::not_yet("read_dump", "particles read from a dump file"),
         Row::not_yet("modify_timing", "per-fix timing"),
     ],
 };

@@ -1,5 +1,6 @@
 //! `compute ID group reduce mode input ...`: sums, extremes and means over the group of
-//! per-atom properties, per-atom computes (`c_ID`, `c_ID[i]`) and atom-style variables.
+//! per-atom properties, per-atom computes (`c_ID`, `c_ID[i]`), per-atom fix values (`f_ID`,
+//! `f_ID[i]`) and atom-style variables.
 
 use super::kernels::{field_values, reduce, REDUCE_MODES};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -13,7 +14,7 @@ use crate::variables::Variable;
 pub(super) const ROW: ComputeRow = ComputeRow::runs(
     "reduce",
     parse,
-    "`sum\\|min\\|max\\|ave\\|sumsq\\|avesq` of per-atom properties, `c_ID`, `c_ID[i]`, `v_name`",
+    "`sum\\|min\\|max\\|ave\\|sumsq\\|avesq` of per-atom properties, `c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]`, `v_name`",
 );
 
 /// One input.
@@ -25,6 +26,8 @@ pub enum Input {
     Compute(String, Option<usize>),
     /// `v_name` of an atom-style variable.
     Variable(String),
+    /// `f_ID` or `f_ID[i]` of a fix with per-atom values (`property/atom`).
+    Fix(String, Option<usize>),
 }
 
 /// The mode and the inputs.
@@ -57,6 +60,7 @@ impl ScriptCompute for Reduce {
         let values = match &self.inputs[k] {
             Input::Field(f) => field_values(w, f).ok_or_else(|| format!("bad field {f}"))?,
             Input::Compute(cid, col) => crate::context::compute_peratom(sim, cid, *col)?,
+            Input::Fix(fid, col) => crate::fixes::fix_peratom(sim, fid, *col)?,
             Input::Variable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
                 _ => return Err(format!("variable '{v}' is not atom-style")),
@@ -97,12 +101,17 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
                     }
                 },
                 Some(('v', v, None)) => Input::Variable(v.to_string()),
+                Some(('f', fid, col)) => {
+                    crate::fixes::check_fix_peratom(sim, fid, col)
+                        .map_err(|m| a.error_at(a.pos(), m, None))?;
+                    Input::Fix(fid.to_string(), col)
+                }
                 _ => {
                     return Err(a.error_at(
                         a.pos(),
                         format!("unknown reduce input '{w}'"),
                         Some(format!(
-                            "a per-atom property ({}), c_ID, c_ID[N] or v_name",
+                            "a per-atom property ({}), c_ID, c_ID[N], f_ID, f_ID[N] or v_name",
                             crate::atom_fields::NAMES.join(" ")
                         )),
                     ))

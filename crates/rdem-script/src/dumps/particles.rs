@@ -48,39 +48,29 @@ pub(super) fn check_column(sim: &Sim, a: &Args, k: usize, arg: &str) -> CmdResul
                 ))
             }
         },
-        Some(('f', id, col)) => match sim.defs.fixes.iter().find(|f| f.id() == id) {
-            Some(f) => match f.imp.peratom_shape() {
-                Some((_, freq)) if dump_every(a).is_some_and(|n| n % freq != 0) => {
-                    Err(a.error_at(
-                        k,
-                        format!("fix {id} is not computed at compatible times: every {freq} steps, the dump every {}", dump_every(a).unwrap_or(0)),
-                        Some(format!("dump every multiple of {freq} steps, as LIGGGHTS requires")),
-                    ))
-                }
-                Some((n, _)) => match col {
-                    None if n == 0 => Ok(()),
-                    Some(j) if n > 0 && j >= 1 && j <= n => Ok(()),
-                    _ => Err(a.error_at(
-                        k,
-                        format!("'{arg}' does not match fix {id}'s columns"),
-                        None,
-                    )),
-                },
-                None => Err(a.error_at(
+        Some(('f', id, col)) => {
+            let every = sim
+                .defs
+                .fixes
+                .iter()
+                .find(|f| f.id() == id)
+                .and_then(|f| f.imp.peratom_shape())
+                .map(|(_, freq)| freq);
+            match (every, dump_every(a)) {
+                (Some(freq), Some(n)) if n % freq != 0 => Err(a.error_at(
                     k,
-                    format!("fix {id} computes no per-atom values"),
-                    Some("a dump column needs a per-atom fix (ave/atom)".into()),
+                    format!("fix {id} is not computed at compatible times: every {freq} steps, the dump every {n}"),
+                    Some(format!("dump every multiple of {freq} steps, as LIGGGHTS requires")),
                 )),
-            },
-            None => {
-                let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
-                Err(a.error_at(
-                    k,
-                    format!("no fix '{id}'"),
-                    Some(crate::args::id_help("fix", id, &ids)),
-                ))
+                _ => crate::fixes::check_fix_peratom(sim, id, col).map_err(|m| {
+                    a.error_at(
+                        k,
+                        m,
+                        Some("a dump column needs per-atom values (fix ave/atom, fix property/atom)".into()),
+                    )
+                }),
             }
-        },
+        }
         Some(('v', id, None)) => match sim.script.vars.get(id) {
             Some(Variable::Atom(_)) => Ok(()),
             Some(_) => Err(a.error_at(

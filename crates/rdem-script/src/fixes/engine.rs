@@ -63,6 +63,13 @@ pub struct InEngine {
     fix: Option<Fix>,
 }
 
+impl InEngine {
+    /// The entry of `fix`, which [`ScriptFix::install`] hands to the world.
+    pub(super) fn new(fix: Fix) -> Self {
+        Self { fix: Some(fix) }
+    }
+}
+
 impl ScriptFix for InEngine {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
         if let Some(fix) = self.fix.take() {

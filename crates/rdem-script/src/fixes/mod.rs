@@ -23,9 +23,11 @@ mod massflow_mesh;
 mod mesh_surface;
 mod modify;
 mod move_mesh;
+mod move_particles;
 mod particledistribution_discrete;
 mod particletemplate_sphere;
 mod print;
+mod property_atom;
 mod property_global;
 mod wall_gran;
 
@@ -295,11 +297,12 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
     readme_prefix: "fix ",
     rows: &[
         property_global::ROW,
-        property_atom_row(),
+        property_atom::ROW,
         mesh_surface::ROW,
         mesh_surface::ROW_PLANAR,
         mesh_surface::ROW_STRESS,
         move_mesh::ROW,
+        move_particles::ROW,
         wall_gran::ROW,
         particletemplate_sphere::ROW,
         particledistribution_discrete::ROW,
@@ -328,10 +331,6 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],
 };
-
-const fn property_atom_row() -> FixRow {
-    Row::not_yet("property/atom", "")
-}
 
 /// Index of the style word in `fix ID group style ...` (errors about the whole fix point
 /// at it).
@@ -436,15 +435,42 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
     }
 }
 
-/// Per-atom values `f_ID` / `f_ID[i]` (1-based) of the owned particles.
+/// The per-particle values `f_ID` / `f_ID[i]` (1-based) of every owned particle.
 pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
-    let f = sim
-        .defs
+    check_fix_peratom(sim, id, col)?;
+    let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
+    f.imp.peratom(sim, &f.head, col)
+}
+
+/// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
+pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), String> {
+    let Some(f) = sim.defs.fixes.iter().find(|f| f.head.id == id) else {
+        let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
+        return Err(format!(
+            "no fix '{id}' ({})",
+            crate::args::id_help("fix", id, &ids)
+        ));
+    };
+    match (f.imp.peratom_shape().map(|(n, _)| n), col) {
+        (None, _) => Err(format!(
+            "fix {id} ({}) has no per-atom values",
+            f.head.style
+        )),
+        (Some(0), None) => Ok(()),
+        (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
+        (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),
+        (Some(n), _) => Err(format!(
+            "fix {id} has {n} values per atom: use f_{id}[1..{n}]"
+        )),
+    }
+}
+
+/// True if fix `id` has per-particle values.
+pub fn is_peratom(sim: &Sim, id: &str) -> bool {
+    sim.defs
         .fixes
         .iter()
-        .find(|f| f.head.id == id)
-        .ok_or_else(|| format!("no fix '{id}'"))?;
-    f.imp.peratom(sim, &f.head, col)
+        .any(|f| f.head.id == id && f.imp.peratom_shape().map(|(n, _)| n).is_some())
 }
 
 /// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.

@@ -2,6 +2,7 @@
 //! typed value built once from its command; the step calls it only in its stages.
 
 pub mod integrate;
+pub mod motion;
 
 use glam::DVec3;
 
@@ -54,6 +55,8 @@ pub enum FixKind {
         /// Components to impose.
         force: [Option<f64>; 3],
     },
+    /// `fix move`: a prescribed motion instead of integration.
+    Move(Box<motion::Move>),
     /// `fix wall/gran ... primitive ...`.
     WallGran(Box<PrimitiveWall>),
     /// `fix wall/gran ... mesh n_meshes k meshes ...`.
@@ -115,6 +118,7 @@ impl Fix {
                     });
                 }
             }
+            FixKind::Move(m) => check_motion(&m.style)?,
             FixKind::NveSphere | FixKind::Freeze | FixKind::WallGran(_) | FixKind::MeshWall(_) => {}
         }
         Ok(Self {
@@ -145,7 +149,7 @@ impl Fix {
 
     /// True if this fix integrates (acts in initial and final integrate).
     pub fn integrates(&self) -> bool {
-        matches!(self.kind, FixKind::NveSphere)
+        matches!(self.kind, FixKind::NveSphere | FixKind::Move(_))
     }
 
     /// True if this fix acts after the forces (post_force).
@@ -228,10 +232,39 @@ impl Fix {
             }
             FixKind::NveSphere
             | FixKind::AveForce { .. }
+            | FixKind::Move(_)
             | FixKind::WallGran(_)
             | FixKind::MeshWall(_) => {}
         }
     }
+}
+
+/// Checks the numbers of a `fix move` motion: finite, a rotation axis of unit length.
+fn check_motion(style: &motion::MoveStyle) -> Result<()> {
+    use motion::MoveStyle as S;
+    let bad = |reason: String| Error::Invalid {
+        what: "fix move",
+        reason,
+    };
+    match style {
+        S::Linear { v } => {
+            if v.iter().flatten().any(|c| !c.is_finite()) {
+                return Err(bad("velocity components must be finite or NULL".into()));
+            }
+        }
+        S::Wiggle { amplitude, omega } => {
+            if amplitude.iter().flatten().any(|c| !c.is_finite()) || !omega.is_finite() {
+                return Err(bad("amplitudes and period must be finite".into()));
+            }
+        }
+        S::Rotate { point, axis, omega } => {
+            if !point.is_finite() || !omega.is_finite() || (axis.length() - 1.0).abs() > 1e-12 {
+                return Err(bad("needs a finite point and period and a unit axis".into()));
+            }
+        }
+        S::Variable { .. } => {}
+    }
+    Ok(())
 }
 
 /// Step 9 of [`crate::step`]: the post-force fixes, walls included, in definition order on

@@ -1,0 +1,130 @@
+//! `fix ID group property/atom NAME scalar|vector restart ghost reverse defaults...`: a
+//! named per-particle value (or vector of values) held by the engine's particle container
+//! ([`rdem::Particles::add_property`]), so that it moves with its particle through
+//! re-neighboring, sorting, removal and migration between ranks, and engine code (heat
+//! transfer, for one) finds it by name. Existing and new particles get the defaults;
+//! `set ... property/atom NAME values` changes them; `f_ID` (scalar) and `f_ID[i]` (vector)
+//! read them in atom-style variables, dumps and `compute reduce`.
+//!
+//! As the LIGGGHTS manual says, the fix applies to all particles whatever its group. The
+//! three yes/no flags (restart, forward and reverse ghost communication) are read and
+//! checked: rdem writes no restart files, and ghosts carry the values when they are made
+//! (forward communication of a ghost's values each step is for the engine feature that
+//! needs it).
+
+use super::{count_error, style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "property/atom",
+    parse,
+    Stages::NONE,
+    "`NAME scalar\\|vector yes\\|no yes\\|no yes\\|no defaults...`: named per-particle values (`set property/atom`, `f_ID`, `f_ID[i]`)",
+)
+.notes("applies to all particles (as LIGGGHTS); no restart files; `set` needs no `run 0` after it (LIGGGHTS 3.8 asks for one)");
+
+/// A defined per-particle property: its values live in the world's particles under `name`.
+#[derive(Debug)]
+pub struct PropertyAtom {
+    /// The property's name in the particle container.
+    pub name: String,
+    /// `true` for style `vector` (`f_ID[i]`), `false` for `scalar` (`f_ID`).
+    pub vector: bool,
+    /// Values given to existing and new particles.
+    pub defaults: Vec<f64>,
+}
+
+impl ScriptFix for PropertyAtom {
+    fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+        sim.world_mut(a)?
+            .particles
+            .add_property(&self.name, self.defaults.len(), &self.defaults)
+            .map_err(|e| a.error_at(4, e.to_string(), None))?;
+        Ok(())
+    }
+
+    /// One column (`f_ID`) or one per default (`f_ID[i]`), valid at every step.
+    fn peratom_shape(&self) -> Option<(usize, u64)> {
+        Some((if self.vector { self.defaults.len() } else { 0 }, 1))
+    }
+
+    fn peratom(&self, sim: &Sim, _head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+        let w = sim.world.as_ref().ok_or("no simulation box")?;
+        let p = &w.particles;
+        let id = p
+            .property(&self.name)
+            .ok_or_else(|| format!("per-atom property '{}' is gone", self.name))?;
+        let prop = &p.props[id.0];
+        let k = col.map_or(0, |c| c - 1);
+        Ok((0..p.nlocal()).map(|i| prop.get(i)[k]).collect())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, _head: &FixHead) {
+        if let Some(w) = &mut sim.world {
+            w.particles.retire_property(&self.name);
+        }
+    }
+}
+
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let w = sim.world_ref(a)?;
+    let name = a.word("property name")?.to_string();
+    // A name another definition holds (a different fix, or a property of the engine's
+    // own) is an error; the fix being redefined gives its name up first.
+    let mine = sim.fix_index(&head.id).is_some_and(|k| {
+        sim.defs.fixes[k]
+            .downcast::<PropertyAtom>()
+            .is_some_and(|f| f.name == name)
+    });
+    if !mine && w.particles.property(&name).is_some() {
+        let owner = sim
+            .defs
+            .fixes
+            .iter()
+            .find(|f| f.downcast::<PropertyAtom>().is_some_and(|p| p.name == name))
+            .map(|f| format!("fix {}", f.id()));
+        return Err(a.error_prev(
+            format!(
+                "per-atom property '{name}' already exists ({})",
+                owner.unwrap_or_else(|| "used by rdem itself".into())
+            ),
+            Some("pick another name".into()),
+        ));
+    }
+    let vector = a.keyword("property/atom style", &["scalar", "vector"])? == "vector";
+    a.yes_no("restart value (yes or no)")?;
+    a.yes_no("communicate ghost value (yes or no)")?;
+    a.yes_no("communicate reverse ghost value (yes or no)")?;
+    let start = a.pos();
+    let mut defaults = Vec::new();
+    while !a.is_done() {
+        defaults.push(a.f64(&format!("{name} default value"))?);
+    }
+    if defaults.is_empty() {
+        return Err(a.error_at(
+            a.pos(),
+            format!("fix property/atom: missing the default value(s) of '{name}'"),
+            Some("scalar takes one default value, vector one per component".into()),
+        ));
+    }
+    if !vector && defaults.len() != 1 {
+        return Err(count_error(
+            a,
+            start,
+            1,
+            defaults.len(),
+            format!(
+                "{name} scalar takes one default value, got {}",
+                defaults.len()
+            ),
+            "use 'vector' for several values per particle".into(),
+        ));
+    }
+    Ok(Box::new(PropertyAtom {
+        name,
+        vector,
+        defaults,
+    }))
+}
