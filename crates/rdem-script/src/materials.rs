@@ -81,8 +81,18 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
             "coefficientAdhesionStiffness" => &mut m.adhesion_stiffness,
             "coefficientPlasticityDepth" => &mut m.plasticity_depth,
             "coefficientMaxElasticStiffness" => &mut m.max_elastic_stiffness,
+            "kn" => &mut m.kn,
+            "kt" => &mut m.kt,
+            "gamman" => &mut m.gamman,
+            "gammat" => &mut m.gammat,
+            "gamman_abs" => &mut m.gamman_abs,
+            "gammat_abs" => &mut m.gammat_abs,
             "characteristicVelocity" => {
                 m.characteristic_velocity = p.values.first().copied();
+                continue;
+            }
+            "rollingStiffness" => {
+                m.rolling_stiffness = p.values.first().copied();
                 continue;
             }
             _ => continue,

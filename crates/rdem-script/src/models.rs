@@ -16,12 +16,25 @@ pub const ORDER: [&str; 5] = [
 ];
 
 /// Switch keywords (after the model types, any order).
-pub const SWITCHES: [&str; 4] = [
+pub const SWITCHES: [&str; 5] = [
     "tangential_damping",
     "limitForce",
     "torsionTorque",
     "tangential_reduce",
+    "absolute_damping",
 ];
+
+/// Normal model names (`model ...`).
+pub const NORMAL_MODELS: [&str; 5] = [
+    "hertz",
+    "hooke",
+    "hooke/hysteresis",
+    "hertz/stiffness",
+    "hooke/stiffness",
+];
+
+/// Rolling friction model names (`rolling_friction ...`).
+pub const ROLLING_MODELS: [&str; 5] = ["off", "cdt", "epsd", "epsd2", "epsd3"];
 
 /// Keywords of `cohesion bond` (LIGGGHTS-INL), switches like [`SWITCHES`].
 pub const BOND_SWITCHES: [&str; 15] = [
@@ -75,12 +88,13 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
         a.seek(a.pos() + 1);
         match k {
             0 => {
-                m.normal =
-                    match a.keyword("normal model", &["hertz", "hooke", "hooke/hysteresis"])? {
-                        "hertz" => NormalKind::Hertz,
-                        "hooke" => NormalKind::Hooke,
-                        _ => NormalKind::HookeHysteresis,
-                    }
+                m.normal = match a.keyword("normal model", &NORMAL_MODELS)? {
+                    "hertz" => NormalKind::Hertz,
+                    "hooke" => NormalKind::Hooke,
+                    "hertz/stiffness" => NormalKind::HertzStiffness,
+                    "hooke/stiffness" => NormalKind::HookeStiffness,
+                    _ => NormalKind::HookeHysteresis,
+                }
             }
             1 => {
                 m.tangential = match a.keyword("tangential model", &["history", "no_history"])? {
@@ -89,6 +103,15 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                 }
             }
             2 => {
+                if let Some(w @ ("easo/capillary/viscous" | "washino/capillary/viscous")) = a.peek()
+                {
+                    // LIGGGHTS 3.8 has these liquid-bridge models; rdem does not yet.
+                    return Err(a.error_at(
+                        a.pos(),
+                        format!("cohesion {w} (liquid bridges) is not supported yet"),
+                        Some("supported cohesion models: off, sjkr, sjkr2, bond".into()),
+                    ));
+                }
                 m.cohesion = match a.keyword("cohesion model", &["off", "sjkr", "sjkr2", "bond"])? {
                     "sjkr" => CohesionKind::Sjkr,
                     "sjkr2" => CohesionKind::Sjkr2,
@@ -97,13 +120,13 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                 }
             }
             3 => {
-                m.rolling =
-                    match a.keyword("rolling friction model", &["off", "cdt", "epsd", "epsd2"])? {
-                        "cdt" => RollingKind::Cdt,
-                        "epsd" => RollingKind::Epsd,
-                        "epsd2" => RollingKind::Epsd2,
-                        _ => RollingKind::Off,
-                    }
+                m.rolling = match a.keyword("rolling friction model", &ROLLING_MODELS)? {
+                    "cdt" => RollingKind::Cdt,
+                    "epsd" => RollingKind::Epsd,
+                    "epsd2" => RollingKind::Epsd2,
+                    "epsd3" => RollingKind::Epsd3,
+                    _ => RollingKind::Off,
+                }
             }
             _ => {
                 a.keyword("surface model", &["default"])?;
@@ -197,11 +220,23 @@ fn parse_switches_while(
             }
             "tangential_damping" => m.flags.tangential_damping = on,
             "limitForce" => m.flags.limit_force = on,
+            "absolute_damping" => {
+                // LIGGGHTS 3.8 knows the keyword only in hooke/stiffness (for hertz/stiffness
+                // and the others it stops with "Unknown argument or wrong keyword order").
+                if m.normal != NormalKind::HookeStiffness {
+                    return Err(a.error_at(
+                        a.pos() - 2,
+                        "absolute_damping is a keyword of model hooke/stiffness only",
+                        Some("write 'model hooke/stiffness' or leave the keyword out".into()),
+                    ));
+                }
+                m.flags.absolute_damping = on
+            }
             "torsionTorque" => {
                 if on && m.rolling == RollingKind::Off {
                     return Err(a.error_at(
                         a.pos() - 2,
-                        "torsionTorque needs a rolling friction model (rolling_friction cdt, epsd or epsd2)",
+                        "torsionTorque needs a rolling friction model (rolling_friction cdt, epsd, epsd2 or epsd3)",
                         None,
                     ));
                 }
@@ -227,10 +262,12 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
     let w = &a.words()[k].text;
     // A model name without its type in front (`pair_style gran hertz ...`).
     let ty = match w.as_str() {
-        "hertz" | "hooke" | "hooke/hysteresis" => Some("model"),
+        "hertz" | "hooke" | "hooke/hysteresis" | "hertz/stiffness" | "hooke/stiffness" => {
+            Some("model")
+        }
         "history" | "no_history" => Some("tangential"),
         "sjkr" | "sjkr2" | "bond" => Some("cohesion"),
-        "cdt" | "epsd" | "epsd2" => Some("rolling_friction"),
+        "cdt" | "epsd" | "epsd2" | "epsd3" => Some("rolling_friction"),
         _ => None,
     };
     if let Some(ty) = ty {

@@ -270,6 +270,8 @@ fn parse_model(words: &[String]) -> (ContactModel, Option<(u32, WallShape)>) {
                     "hertz" => NormalKind::Hertz,
                     "hooke" => NormalKind::Hooke,
                     "hooke/hysteresis" => NormalKind::HookeHysteresis,
+                    "hertz/stiffness" => NormalKind::HertzStiffness,
+                    "hooke/stiffness" => NormalKind::HookeStiffness,
                     _ => panic!("model {v}"),
                 }
             }
@@ -285,6 +287,7 @@ fn parse_model(words: &[String]) -> (ContactModel, Option<(u32, WallShape)>) {
                     "cdt" => RollingKind::Cdt,
                     "epsd" => RollingKind::Epsd,
                     "epsd2" => RollingKind::Epsd2,
+                    "epsd3" => RollingKind::Epsd3,
                     _ => panic!("rolling_friction {v}"),
                 }
             }
@@ -299,6 +302,7 @@ fn parse_model(words: &[String]) -> (ContactModel, Option<(u32, WallShape)>) {
             "limitForce" => m.flags.limit_force = on(v),
             "torsionTorque" => m.flags.torsion_torque = on(v),
             "tangential_reduce" => m.flags.tangential_reduce = on(v),
+            "absolute_damping" => m.flags.absolute_damping = on(v),
             "primitive" => {
                 assert_eq!(v, "type");
                 let ty: u32 = words[i].parse().unwrap();
@@ -348,6 +352,13 @@ fn materials(s: &Script) -> Materials {
             "coefficientAdhesionStiffness" => m.adhesion_stiffness = v,
             "coefficientPlasticityDepth" => m.plasticity_depth = v,
             "coefficientMaxElasticStiffness" => m.max_elastic_stiffness = v,
+            "kn" => m.kn = v,
+            "kt" => m.kt = v,
+            "gamman" => m.gamman = v,
+            "gammat" => m.gammat = v,
+            "gamman_abs" => m.gamman_abs = v,
+            "gammat_abs" => m.gammat_abs = v,
+            "rollingStiffness" => m.rolling_stiffness = Some(v[0]),
             _ => panic!("property {name} not handled"),
         }
     }
@@ -540,6 +551,11 @@ golden!(
     wall_plane_hysteresis_overlap_start,
     wall_zcyl_hertz_history_cdt_sjkr,
     wall_zcyl_hooke_nohistory,
+    pair_hooke_stiffness_history_epsd3,
+    pair_hooke_stiffness_absdamp_nohistory_limitforce,
+    pair_hertz_stiffness_history,
+    wall_plane_hertz_stiffness_history_epsd3_torsion,
+    wall_plane_hooke_stiffness_absdamp_notdamp,
 );
 
 #[test]
@@ -868,6 +884,174 @@ fn scenarios_exercise_their_sub_models() {
             "wall_zcyl_hooke_nohistory",
             "friction +0.1 % (capped)",
             |_, m| scale_table(&mut m.friction, 1.001),
+        ),
+        ("pair_hooke_stiffness_history_epsd3", "kn +0.1 %", |c, m| {
+            let _ = (&c, &m);
+            scale_table(&mut m.kn, 1.001)
+        }),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "gamman +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gamman, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "gammat +0.1 % (sticking)",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gammat, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "friction +0.1 % (sliding)",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.friction, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "rollingStiffness +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                m.rolling_stiffness = m.rolling_stiffness.map(|k| k * 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "rolling damping +0.1 % (below the cap)",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.rolling_viscous_damping, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_history_epsd3",
+            "rolling friction +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.rolling_friction, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_absdamp_nohistory_limitforce",
+            "absolute_damping off (same numbers times m*)",
+            |c, m| {
+                let _ = (&c, &m);
+                c.flags.absolute_damping = false;
+                m.gamman = m.gamman_abs.clone();
+                m.gammat = m.gammat_abs.clone()
+            },
+        ),
+        (
+            "pair_hooke_stiffness_absdamp_nohistory_limitforce",
+            "limitForce off",
+            |c, m| {
+                let _ = (&c, &m);
+                c.flags.limit_force = false
+            },
+        ),
+        (
+            "pair_hooke_stiffness_absdamp_nohistory_limitforce",
+            "gamman_abs +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gamman_abs, 1.001)
+            },
+        ),
+        (
+            "pair_hooke_stiffness_absdamp_nohistory_limitforce",
+            "gammat_abs +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gammat_abs, 1.001)
+            },
+        ),
+        ("pair_hertz_stiffness_history", "kn +0.1 %", |c, m| {
+            let _ = (&c, &m);
+            scale_table(&mut m.kn, 1.001)
+        }),
+        ("pair_hertz_stiffness_history", "kt +0.1 %", |c, m| {
+            let _ = (&c, &m);
+            scale_table(&mut m.kt, 1.001)
+        }),
+        ("pair_hertz_stiffness_history", "gamman +0.1 %", |c, m| {
+            let _ = (&c, &m);
+            scale_table(&mut m.gamman, 1.001)
+        }),
+        ("pair_hertz_stiffness_history", "gammat +0.1 %", |c, m| {
+            let _ = (&c, &m);
+            scale_table(&mut m.gammat, 1.001)
+        }),
+        (
+            "wall_plane_hertz_stiffness_history_epsd3_torsion",
+            "torsionTorque off",
+            |c, m| {
+                let _ = (&c, &m);
+                c.flags.torsion_torque = false
+            },
+        ),
+        (
+            "wall_plane_hertz_stiffness_history_epsd3_torsion",
+            "rollingStiffness +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                m.rolling_stiffness = m.rolling_stiffness.map(|k| k * 1.001)
+            },
+        ),
+        (
+            "wall_plane_hertz_stiffness_history_epsd3_torsion",
+            "kt +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.kt, 1.001)
+            },
+        ),
+        (
+            "wall_plane_hertz_stiffness_history_epsd3_torsion",
+            "gammat +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gammat, 1.001)
+            },
+        ),
+        (
+            "wall_plane_hooke_stiffness_absdamp_notdamp",
+            "tangential_damping on",
+            |c, m| {
+                let _ = (&c, &m);
+                c.flags.tangential_damping = true
+            },
+        ),
+        (
+            "wall_plane_hooke_stiffness_absdamp_notdamp",
+            "absolute_damping off (same numbers times m*)",
+            |c, m| {
+                let _ = (&c, &m);
+                c.flags.absolute_damping = false;
+                m.gamman = m.gamman_abs.clone();
+                m.gammat = m.gammat_abs.clone()
+            },
+        ),
+        (
+            "wall_plane_hooke_stiffness_absdamp_notdamp",
+            "kt +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.kt, 1.001)
+            },
+        ),
+        (
+            "wall_plane_hooke_stiffness_absdamp_notdamp",
+            "gamman_abs +0.1 %",
+            |c, m| {
+                let _ = (&c, &m);
+                scale_table(&mut m.gamman_abs, 1.001)
+            },
         ),
     ];
     let mut unseen = Vec::new();

@@ -16,10 +16,18 @@
 //! dt = t_c/50 depends on where in a step the contact begins (up to 0.8 % at e = 0.5, seen
 //! in a scalar model of the same integrator); the restitution checks therefore use
 //! dt = t_c/200, where that error is below 0.05 %.
+//!
+//! The stiffness models take k_n, γ_n from the script. `hooke/stiffness` is the linear
+//! oscillator δ'' + 2b δ' + ω₀² δ = 0 with ω₀² = k_n/m* and b = γ_n/(2m*) (γ_n = gamman·m*,
+//! or gamman_abs with `absolute_damping on`): the contact lasts t_c = π/√(ω₀² − b²) and
+//! e = exp(−b t_c), for a pair and for a wall (m* = m). The half-step damping error is
+//! about 2b dt (0.9 % at dt = t_c/200 for b t_c = 0.89), so these run at dt = t_c/1000 and
+//! require 0.3 % for e, 0.5 % for t_c and the undamped δ_max = v √(m*/k_n).
+//! `hertz/stiffness` without damping is Hertz with 4/3 E* = kn.
 
 mod common;
 use common::*;
-use rdem::{Boundary, ContactModel, DVec3, NewParticle, NormalKind, WallShape, World};
+use rdem::{Boundary, ContactModel, DVec3, Materials, NewParticle, NormalKind, WallShape, World};
 
 struct Impact {
     contact_time: f64,
@@ -303,4 +311,105 @@ fn limit_force_never_pulls() {
     model.flags.limit_force = true;
     let got = restitution_case(model, 0.3, false);
     assert!(got > 0.35 && got < 0.45, "limitForce on: e 0.3 gave {got}");
+}
+
+/// Sets the `kn kt gamman gammat` tables (one type) and, with `abs`, the `_abs` ones.
+fn stiffness(m: &mut Materials, kn: f64, gamma: f64, abs: bool) {
+    m.kn = vec![kn];
+    m.kt = vec![0.8 * kn];
+    if abs {
+        m.gamman_abs = vec![gamma];
+        m.gammat_abs = vec![gamma];
+    } else {
+        m.gamman = vec![gamma];
+        m.gammat = vec![gamma];
+    }
+}
+
+#[test]
+fn hooke_stiffness_impact_is_the_damped_linear_oscillator() {
+    let kn = 5000.0;
+    // (absolute damping, γ as given): relative 1500 /s (γ_n = 1500 m*), absolute 0.7 kg/s.
+    for (abs, gamma) in [(false, 1500.0), (true, 0.7), (false, 0.0)] {
+        let mut model = ContactModel::hertz_history();
+        model.normal = NormalKind::HookeStiffness;
+        model.flags.absolute_damping = abs;
+        model.flags.limit_force = false;
+        for wall in [false, true] {
+            let (mut w, m_star) = if wall {
+                (sphere_on_wall(model, 0.5), mass(R))
+            } else {
+                (two_spheres(model, 0.5, R, R), 0.5 * mass(R))
+            };
+            // The stiffness models need no E, ν or e: drop them to show it.
+            w.materials.youngs_modulus.clear();
+            w.materials.poissons_ratio.clear();
+            w.materials.restitution.clear();
+            stiffness(&mut w.materials, kn, gamma, abs);
+            let b = if abs { gamma } else { gamma * m_star } / (2.0 * m_star);
+            let wd = (kn / m_star - b * b).sqrt();
+            let tc = std::f64::consts::PI / wd;
+            let e = (-b * tc).exp();
+            let im = if wall {
+                measure(&mut w, tc / 1000.0, wall_overlap, wall_rebound)
+            } else {
+                measure(&mut w, tc / 1000.0, pair_overlap, pair_separation_speed)
+            };
+            let got = im.rebound_speed / V;
+            let case = format!("abs {abs} gamma {gamma} wall {wall}");
+            assert!(rel(got, e) < 0.003, "{case}: e {got}, expected {e}");
+            assert!(
+                rel(im.contact_time, tc) < 0.005,
+                "{case}: t_c {}, expected {tc}",
+                im.contact_time
+            );
+            if gamma == 0.0 {
+                let dm = V * (m_star / kn).sqrt();
+                assert!(
+                    rel(im.delta_max, dm) < 0.005,
+                    "{case}: δ_max {}",
+                    im.delta_max
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn hertz_stiffness_without_damping_is_hertz_with_kn() {
+    let kn = 1.2e7;
+    let es = 0.75 * kn;
+    let mut model = ContactModel::hertz_history();
+    model.normal = NormalKind::HertzStiffness;
+    model.flags.limit_force = false;
+    for wall in [false, true] {
+        let (mut w, m_star, r_star) = if wall {
+            (sphere_on_wall(model, 0.5), mass(R), R)
+        } else {
+            (two_spheres(model, 0.5, R, R), 0.5 * mass(R), 0.5 * R)
+        };
+        stiffness(&mut w.materials, kn, 0.0, false);
+        let tc = hertz_tc(m_star, r_star, es, V);
+        let im = if wall {
+            measure(&mut w, tc / 50.0, wall_overlap, wall_rebound)
+        } else {
+            measure(&mut w, tc / 50.0, pair_overlap, pair_separation_speed)
+        };
+        assert!(
+            rel(im.contact_time, tc) < 0.005,
+            "wall {wall}: t_c {}",
+            im.contact_time
+        );
+        let dm = hertz_delta_max(m_star, r_star, es, V);
+        assert!(
+            rel(im.delta_max, dm) < 0.005,
+            "wall {wall}: δ_max {}",
+            im.delta_max
+        );
+        assert!(
+            rel(im.rebound_speed, V) < 1e-4,
+            "wall {wall}: {}",
+            im.rebound_speed
+        );
+    }
 }

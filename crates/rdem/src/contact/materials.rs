@@ -32,6 +32,21 @@ pub struct Materials {
     pub plasticity_depth: Vec<f64>,
     /// `coefficientMaxElasticStiffness` per type pair (hooke/hysteresis: k2max = value · k1).
     pub max_elastic_stiffness: Vec<f64>,
+    /// `kn` per type pair (`hertz/stiffness`, `hooke/stiffness`).
+    pub kn: Vec<f64>,
+    /// `kt` per type pair (stiffness models).
+    pub kt: Vec<f64>,
+    /// `gamman` per type pair (stiffness models; multiplied by m*).
+    pub gamman: Vec<f64>,
+    /// `gammat` per type pair (stiffness models; multiplied by m*).
+    pub gammat: Vec<f64>,
+    /// `gamman_abs` per type pair (`hooke/stiffness` with `absolute_damping on`).
+    pub gamman_abs: Vec<f64>,
+    /// `gammat_abs` per type pair (`hooke/stiffness` with `absolute_damping on`).
+    pub gammat_abs: Vec<f64>,
+    /// `rollingStiffness` scalar: the prefactor of the epsd3 rolling stiffness (the
+    /// LIGGGHTS 3.8 manual calls it `coeffRollingStiffness`, its code reads this name).
+    pub rolling_stiffness: Option<f64>,
     /// The `cohesion bond` coefficients that were given.
     pub bond: crate::bond::BondCoefficients,
 }
@@ -90,6 +105,17 @@ pub struct PairCoeff {
     pub phi_f: f64,
     /// Maximum unloading stiffness ratio k2max/k1 (hooke/hysteresis).
     pub k2max_ratio: f64,
+    /// Stiffness models: the given normal stiffness `kn`.
+    pub kn: f64,
+    /// Stiffness models: the given tangential stiffness `kt`.
+    pub kt: f64,
+    /// Stiffness models: the given normal damping (`gamman`, or `gamman_abs` with
+    /// `absolute_damping on`).
+    pub gamman: f64,
+    /// Stiffness models: the given tangential damping (`gammat` or `gammat_abs`).
+    pub gammat: f64,
+    /// Rolling stiffness prefactor: 2.25 for epsd, `rollingStiffness` for epsd3.
+    pub roll_stiffness: f64,
     /// −2√(5/6) β √(2E*): Hertz γ_n = this × √(√(R*δ) m*).
     pub hertz_damp_n: f64,
     /// −2√(5/6) β √(8G*): Hertz γ_t = this × √(√(R*δ) m*).
@@ -109,6 +135,13 @@ pub struct Needs {
     pub characteristic_velocity: bool,
     /// Hysteresis coefficients.
     pub hysteresis: bool,
+    /// The epsd3 rolling stiffness prefactor.
+    pub rolling_stiffness: bool,
+    /// A stiffness model (`hertz/stiffness`, `hooke/stiffness`): `Some(absolute_damping)`.
+    /// It needs `kn`, `kt` and the damping tables (`gamman_abs`, `gammat_abs` with
+    /// absolute damping, else `gamman`, `gammat`), and not Young's modulus, Poisson's
+    /// ratio or the coefficient of restitution.
+    pub stiffness: Option<bool>,
 }
 
 /// Mixed coefficients for every ordered type pair.
@@ -173,33 +206,15 @@ impl CoeffTable {
                 reason: "at least one atom type is needed".into(),
             });
         }
-        for (name, v) in [
-            ("youngsModulus", &m.youngs_modulus),
-            ("poissonsRatio", &m.poissons_ratio),
-        ] {
-            if v.len() != n {
-                return Err(Error::Invalid {
-                    what: name,
-                    reason: format!("needs one value per type ({n}), got {}", v.len()),
-                });
-            }
-        }
-        for &e in &m.youngs_modulus {
-            check("youngsModulus", e, e > 0.0, "must be > 0")?;
-        }
-        for &nu in &m.poissons_ratio {
-            check(
-                "poissonsRatio",
-                nu,
-                nu > -1.0 && nu < 0.5,
-                "must be in (-1, 0.5)",
-            )?;
+        let elastic = needs.stiffness.is_none();
+        if elastic {
+            Self::check_elastic(m)?;
         }
         let rest = pair_table(
             "coefficientRestitution",
             &m.restitution,
             n,
-            true,
+            elastic,
             |e| e > 0.0 && e <= 1.0,
             "must be in (0, 1]",
         )?;
@@ -259,6 +274,28 @@ impl CoeffTable {
             |v| v > 1.0,
             "must be > 1",
         )?;
+        let stiff = needs.stiffness.is_some();
+        let abs = needs.stiffness == Some(true);
+        let kn = pair_table("kn", &m.kn, n, stiff, |v| v > 0.0, "must be > 0")?;
+        let kt = pair_table("kt", &m.kt, n, stiff, |v| v >= 0.0, "must be >= 0")?;
+        let (gn_name, gn_table, gt_name, gt_table) = if abs {
+            ("gamman_abs", &m.gamman_abs, "gammat_abs", &m.gammat_abs)
+        } else {
+            ("gamman", &m.gamman, "gammat", &m.gammat)
+        };
+        let gn = pair_table(gn_name, gn_table, n, stiff, |v| v >= 0.0, "must be >= 0")?;
+        let gt = pair_table(gt_name, gt_table, n, stiff, |v| v >= 0.0, "must be >= 0")?;
+        let roll_stiffness = if needs.rolling_stiffness {
+            let v = m.rolling_stiffness.ok_or_else(|| Error::Invalid {
+                what: "rollingStiffness",
+                reason: "rolling_friction epsd3 needs fix property/global rollingStiffness scalar \
+                         (the name LIGGGHTS 3.8 reads; its manual says coeffRollingStiffness)"
+                    .into(),
+            })?;
+            check("rollingStiffness", v, v >= 0.0, "must be >= 0")?
+        } else {
+            2.25
+        };
         let vc = if needs.characteristic_velocity {
             let v = m.characteristic_velocity.ok_or_else(|| Error::Invalid {
                 what: "characteristicVelocity",
@@ -272,13 +309,20 @@ impl CoeffTable {
         let mut coeffs = Vec::with_capacity(n * n);
         for a in 0..n {
             for b in 0..n {
-                let (ea, eb) = (m.youngs_modulus[a], m.youngs_modulus[b]);
-                let (na, nb) = (m.poissons_ratio[a], m.poissons_ratio[b]);
-                let e_star = 1.0 / ((1.0 - na * na) / ea + (1.0 - nb * nb) / eb);
-                let g_star =
-                    1.0 / (2.0 * (2.0 - na) * (1.0 + na) / ea + 2.0 * (2.0 - nb) * (1.0 + nb) / eb);
+                let (e_star, g_star) = if elastic {
+                    let (ea, eb) = (m.youngs_modulus[a], m.youngs_modulus[b]);
+                    let (na, nb) = (m.poissons_ratio[a], m.poissons_ratio[b]);
+                    (
+                        1.0 / ((1.0 - na * na) / ea + (1.0 - nb * nb) / eb),
+                        1.0 / (2.0 * (2.0 - na) * (1.0 + na) / ea
+                            + 2.0 * (2.0 - nb) * (1.0 + nb) / eb),
+                    )
+                } else {
+                    (0.0, 0.0)
+                };
                 let k = a * n + b;
-                let ln_e = rest[k].ln();
+                // Without a restitution table (stiffness models) ln e = 0: β = 0.
+                let ln_e = if elastic { rest[k].ln() } else { 0.0 };
                 let beta =
                     ln_e / (ln_e * ln_e + std::f64::consts::PI * std::f64::consts::PI).sqrt();
                 let pi2 = std::f64::consts::PI * std::f64::consts::PI;
@@ -295,12 +339,45 @@ impl CoeffTable {
                     kc_ratio: kc[k],
                     phi_f: phi[k],
                     k2max_ratio: k2[k],
+                    kn: kn[k],
+                    kt: kt[k],
+                    gamman: gn[k],
+                    gammat: gt[k],
+                    roll_stiffness,
                     hertz_damp_n: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * e_star).sqrt(),
                     hertz_damp_t: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * g_star).sqrt(),
                 });
             }
         }
         Ok(Self { ntypes: n, coeffs })
+    }
+
+    /// Checks the per-type Young's modulus and Poisson's ratio.
+    fn check_elastic(m: &Materials) -> Result<()> {
+        let n = m.ntypes;
+        for (name, v) in [
+            ("youngsModulus", &m.youngs_modulus),
+            ("poissonsRatio", &m.poissons_ratio),
+        ] {
+            if v.len() != n {
+                return Err(Error::Invalid {
+                    what: name,
+                    reason: format!("needs one value per type ({n}), got {}", v.len()),
+                });
+            }
+        }
+        for &e in &m.youngs_modulus {
+            check("youngsModulus", e, e > 0.0, "must be > 0")?;
+        }
+        for &nu in &m.poissons_ratio {
+            check(
+                "poissonsRatio",
+                nu,
+                nu > -1.0 && nu < 0.5,
+                "must be in (-1, 0.5)",
+            )?;
+        }
+        Ok(())
     }
 
     /// Number of types.

@@ -1,6 +1,6 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
-//! hooke/hysteresis), tangential (history, no_history), rolling friction (off, cdt, epsd,
-//! epsd2) and cohesion (off, sjkr, sjkr2). Each sub-model is a zero-sized type; a
+//! hooke/hysteresis, hertz/stiffness, hooke/stiffness), tangential (history, no_history),
+//! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2). Each sub-model is a zero-sized type; a
 //! [`ContactModel`] value picks one of each and [`ContactModel::dispatch`] turns that
 //! choice into one monomorphized kernel per pass, so the per-contact code has no dynamic
 //! dispatch. Particle–particle and particle–wall contacts share [`contact`].
@@ -24,6 +24,20 @@ pub enum NormalKind {
     Hooke,
     /// `hooke/hysteresis` (Walton–Braun).
     HookeHysteresis,
+    /// `hertz/stiffness`: the per-type-pair `kn`, `kt`, `gamman`, `gammat` given directly,
+    /// each times √(R*δ) (the damping also times m*).
+    HertzStiffness,
+    /// `hooke/stiffness`: the per-type-pair `kn`, `kt` and damping given directly
+    /// (`gamman`, `gammat` times m*, or with `absolute_damping on` `gamman_abs`, `gammat_abs`).
+    HookeStiffness,
+}
+
+impl NormalKind {
+    /// True for the models whose stiffness and damping come from `kn`, `kt`, `gamman`,
+    /// `gammat` rather than from Young's modulus and the coefficient of restitution.
+    pub fn is_stiffness(self) -> bool {
+        matches!(self, Self::HertzStiffness | Self::HookeStiffness)
+    }
 }
 
 /// Tangential model (`tangential ...`).
@@ -46,6 +60,9 @@ pub enum RollingKind {
     Epsd,
     /// `epsd2`: Iwashita–Oda spring, no damping.
     Epsd2,
+    /// `epsd3`: as `epsd` with the rolling stiffness prefactor given by the user
+    /// (`rollingStiffness`) instead of 2.25.
+    Epsd3,
 }
 
 /// Cohesion model (`cohesion ...`).
@@ -73,6 +90,9 @@ pub struct Flags {
     pub torsion_torque: bool,
     /// `tangential_reduce on|off` (cohesion models, default off).
     pub tangential_reduce: bool,
+    /// `absolute_damping on|off` (`hooke/stiffness` only, default off): the damping
+    /// coefficients are `gamman_abs`, `gammat_abs` as given, not `gamman`, `gammat` times m*.
+    pub absolute_damping: bool,
 }
 
 impl Default for Flags {
@@ -82,6 +102,7 @@ impl Default for Flags {
             limit_force: false,
             torsion_torque: false,
             tangential_reduce: false,
+            absolute_damping: false,
         }
     }
 }
@@ -126,13 +147,19 @@ impl ContactModel {
     pub fn needs(&self) -> Needs {
         Needs {
             rolling_friction: self.rolling != RollingKind::Off,
-            rolling_damping: self.rolling == RollingKind::Epsd,
+            rolling_damping: matches!(self.rolling, RollingKind::Epsd | RollingKind::Epsd3),
+            rolling_stiffness: self.rolling == RollingKind::Epsd3,
             cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
             characteristic_velocity: matches!(
                 self.normal,
                 NormalKind::Hooke | NormalKind::HookeHysteresis
             ),
             hysteresis: self.normal == NormalKind::HookeHysteresis,
+            stiffness: if self.normal.is_stiffness() {
+                Some(self.flags.absolute_damping)
+            } else {
+                None
+            },
         }
     }
 
@@ -186,6 +213,8 @@ impl ContactModel {
             NormalKind::Hertz => self.d_tan::<normal::Hertz, V>(v),
             NormalKind::Hooke => self.d_tan::<normal::Hooke, V>(v),
             NormalKind::HookeHysteresis => self.d_tan::<normal::HookeHysteresis, V>(v),
+            NormalKind::HertzStiffness => self.d_tan::<normal::HertzStiffness, V>(v),
+            NormalKind::HookeStiffness => self.d_tan::<normal::HookeStiffness, V>(v),
         }
     }
     fn d_tan<N: normal::Normal, V: Visitor>(&self, v: V) -> V::Output {
@@ -200,6 +229,7 @@ impl ContactModel {
             RollingKind::Cdt => self.d_coh::<N, T, rolling::Cdt, V>(v),
             RollingKind::Epsd => self.d_coh::<N, T, rolling::Epsd, V>(v),
             RollingKind::Epsd2 => self.d_coh::<N, T, rolling::Epsd2, V>(v),
+            RollingKind::Epsd3 => self.d_coh::<N, T, rolling::Epsd3, V>(v),
         }
     }
     fn d_coh<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, V: Visitor>(

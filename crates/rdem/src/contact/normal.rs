@@ -134,3 +134,51 @@ impl Normal for HookeHysteresis {
         }
     }
 }
+
+/// `model hertz/stiffness` (LIGGGHTS 3.8): the given per-type-pair coefficients scaled by
+/// √(R*δ): k_n = kn √(R*δ), k_t = kt √(R*δ), γ_n = gamman m* √(R*δ), γ_t = gammat m* √(R*δ).
+/// LIGGGHTS 3.8 has no `absolute_damping` for this model (it stops on the keyword).
+pub struct HertzStiffness;
+
+impl Normal for HertzStiffness {
+    const HIST: usize = 0;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
+        let sq = (g.r_star * g.delta).sqrt();
+        let kn = c.kn * sq;
+        let msq = g.m_star * sq;
+        let fn_elastic = kn * g.delta;
+        NormalOut {
+            fn_contact: finish(fn_elastic, -c.gamman * msq * vn, flags),
+            fn_elastic,
+            kn,
+            kt: c.kt * sq,
+            gamma_t: c.gammat * msq,
+        }
+    }
+}
+
+/// `model hooke/stiffness` (LIGGGHTS 3.8): constant k_n = kn, k_t = kt; γ_n = gamman m*,
+/// γ_t = gammat m*, or with `absolute_damping on` γ_n = gamman_abs, γ_t = gammat_abs
+/// (the table holds whichever the flag selects).
+pub struct HookeStiffness;
+
+impl Normal for HookeStiffness {
+    const HIST: usize = 0;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
+        let m = if flags.absolute_damping {
+            1.0
+        } else {
+            g.m_star
+        };
+        let fn_elastic = c.kn * g.delta;
+        NormalOut {
+            fn_contact: finish(fn_elastic, -c.gamman * m * vn, flags),
+            fn_elastic,
+            kn: c.kn,
+            kt: c.kt,
+            gamma_t: c.gammat * m,
+        }
+    }
+}

@@ -101,9 +101,32 @@ fn spring_torque(
     (m, elastic)
 }
 
-/// `rolling_friction epsd` (Ai et al. 2011): k_r = 2.25 k_n μ_r² R*², spring torque capped
-/// at μ_r R* |F_n|, plus viscous torque −C_r w_r while below the cap, with
-/// C_r = η_r · 2√(I_r k_r) and 1/I_r = 1/(I_i + m_i r_i²) + 1/(I_j + m_j r_j²).
+/// The epsd and epsd3 torque for rolling stiffness prefactor `k`: k_r = k k_n μ_r² R*²,
+/// spring torque capped at μ_r R* · load, plus viscous torque −C_r w_r while below the cap,
+/// with C_r = η_r · 2√(I_r k_r) and 1/I_r = 1/(I_i + m_i r_i²) + 1/(I_j + m_j r_j²).
+#[inline(always)]
+fn epsd_torque(
+    g: &Geom,
+    c: &PairCoeff,
+    k: f64,
+    no: &NormalOut,
+    load: f64,
+    flags: Flags,
+    hist: &mut [f64],
+) -> DVec3 {
+    let wr = without_torsion(relative_rotation(g), g, flags);
+    let kr = k * no.kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
+    let (m, elastic) = spring_torque(g, c, kr, wr, load, hist);
+    if elastic {
+        let ir = 1.0 / (1.0 / g.inertia_i + 1.0 / g.inertia_j);
+        let cr = c.eta_r * 2.0 * (ir * kr).sqrt();
+        m - cr * wr
+    } else {
+        m
+    }
+}
+
+/// `rolling_friction epsd` (Ai et al. 2011): [`epsd_torque`] with the prefactor 2.25.
 pub struct Epsd;
 
 impl Rolling for Epsd {
@@ -117,16 +140,26 @@ impl Rolling for Epsd {
         flags: Flags,
         hist: &mut [f64],
     ) -> DVec3 {
-        let wr = without_torsion(relative_rotation(g), g, flags);
-        let kr = 2.25 * no.kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
-        let (m, elastic) = spring_torque(g, c, kr, wr, load, hist);
-        if elastic {
-            let ir = 1.0 / (1.0 / g.inertia_i + 1.0 / g.inertia_j);
-            let cr = c.eta_r * 2.0 * (ir * kr).sqrt();
-            m - cr * wr
-        } else {
-            m
-        }
+        epsd_torque(g, c, 2.25, no, load, flags, hist)
+    }
+}
+
+/// `rolling_friction epsd3`: [`epsd_torque`] with the prefactor `rollingStiffness`
+/// ([`PairCoeff::roll_stiffness`]).
+pub struct Epsd3;
+
+impl Rolling for Epsd3 {
+    const HIST: usize = 3;
+    #[inline(always)]
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        load: f64,
+        flags: Flags,
+        hist: &mut [f64],
+    ) -> DVec3 {
+        epsd_torque(g, c, c.roll_stiffness, no, load, flags, hist)
     }
 }
 

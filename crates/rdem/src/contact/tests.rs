@@ -2,6 +2,7 @@
 //! LIGGGHTS 3.8 sub-model definitions.
 
 use super::cohesion::Cohesion;
+use super::normal::Normal;
 use super::*;
 use glam::DVec3;
 
@@ -175,6 +176,75 @@ fn epsd_spring_damper_and_cap() {
     let out = K::contact(&g, &c, Flags::default(), &mut h);
     let cap = c.mu_r * g.r_star * kn * g.delta;
     assert!((out.t_i.z + cap).abs() < 1e-12 * cap);
+}
+
+#[test]
+fn epsd3_is_epsd_with_the_given_stiffness_prefactor() {
+    type K3 = Kernel<normal::HookeStiffness, tangential::NoHistory, rolling::Epsd3, cohesion::Off>;
+    let mut c = coeff(1.0, 0.5);
+    c.kn = 5000.0;
+    c.kt = 4000.0;
+    c.roll_stiffness = 1.7;
+    let mut g = geom(1e-4);
+    g.wi = DVec3::new(0.0, 0.0, 1.0);
+    let mut h = [0.0; 3];
+    let out = K3::contact(&g, &c, Flags::default(), &mut h);
+    // k_r = rollingStiffness · k_n μ_r² R*², the spring gains −k_r w_r dt, plus the dashpot.
+    let kr = 1.7 * c.kn * c.mu_r * c.mu_r * g.r_star * g.r_star;
+    assert!((h[2] + kr * g.dt).abs() < 1e-12 * kr * g.dt);
+    let ir = 1.0 / (1.0 / g.inertia_i + 1.0 / g.inertia_j);
+    let cr = c.eta_r * 2.0 * (ir * kr).sqrt();
+    assert!((out.t_i.z - (-kr * g.dt - cr)).abs() < 1e-12 * cr);
+    // On the cap μ_r R* F_n (F_n = k_n δ here, no normal damping at rest): no dashpot.
+    let mut h = [0.0, 0.0, -1.0];
+    let out = K3::contact(&g, &c, Flags::default(), &mut h);
+    let cap = c.mu_r * g.r_star * c.kn * g.delta;
+    assert!((out.t_i.z + cap).abs() < 1e-12 * cap);
+    // With the prefactor 2.25 it is epsd, bit for bit.
+    type KE = Kernel<normal::Hertz, tangential::History, rolling::Epsd, cohesion::Off>;
+    type KE3 = Kernel<normal::Hertz, tangential::History, rolling::Epsd3, cohesion::Off>;
+    c.roll_stiffness = 2.25;
+    g.vr = DVec3::new(-0.1, 0.05, 0.0);
+    let (mut h1, mut h2) = ([0.0; 6], [0.0; 6]);
+    for _ in 0..5 {
+        assert_eq!(
+            KE::contact(&g, &c, Flags::default(), &mut h1),
+            KE3::contact(&g, &c, Flags::default(), &mut h2)
+        );
+    }
+    assert_eq!(h1, h2);
+}
+
+#[test]
+fn stiffness_models_use_the_given_coefficients() {
+    let mut c = coeff(1.0, 0.5);
+    (c.kn, c.kt, c.gamman, c.gammat) = (1.2e7, 9e6, 1.5e6, 1e6);
+    let mut g = geom(1e-4);
+    g.vr = DVec3::new(-0.3, 0.2, 0.0); // approaching, sliding along y
+    let sq = (g.r_star * g.delta).sqrt();
+    let no = normal::HertzStiffness::normal(&g, &c, -0.3, Flags::default(), &mut []);
+    assert_eq!(no.kn, c.kn * sq);
+    assert_eq!(no.kt, c.kt * sq);
+    assert!((no.gamma_t - c.gammat * g.m_star * sq).abs() < 1e-12 * no.gamma_t);
+    let f = c.kn * sq * g.delta + c.gamman * g.m_star * sq * 0.3;
+    assert!((no.fn_contact - f).abs() < 1e-12 * f);
+    (c.kn, c.kt, c.gamman, c.gammat) = (5000.0, 4000.0, 0.7, 0.4);
+    let mut flags = Flags::default();
+    let rel = normal::HookeStiffness::normal(&g, &c, -0.3, flags, &mut []);
+    flags.absolute_damping = true;
+    let abs = normal::HookeStiffness::normal(&g, &c, -0.3, flags, &mut []);
+    assert_eq!(
+        (rel.kn, rel.kt, abs.kn, abs.kt),
+        (5000.0, 4000.0, 5000.0, 4000.0)
+    );
+    assert!((rel.fn_contact - (5000.0 * g.delta + 0.7 * g.m_star * 0.3)).abs() < 1e-12);
+    assert!((abs.fn_contact - (5000.0 * g.delta + 0.7 * 0.3)).abs() < 1e-12);
+    assert!((rel.gamma_t - 0.4 * g.m_star).abs() < 1e-15);
+    assert_eq!(abs.gamma_t, 0.4);
+    // limitForce: separating fast, the damping would pull; the force is clamped at 0.
+    flags.limit_force = true;
+    let lf = normal::HookeStiffness::normal(&g, &c, 10.0, flags, &mut []);
+    assert_eq!(lf.fn_contact, 0.0);
 }
 
 #[test]
