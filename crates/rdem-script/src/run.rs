@@ -108,6 +108,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
             st.ntypes = ntypes;
         }
         w.neighbor.settings = sim.setup.neighbor;
+        w.neighbor.exclude.clone_from(&sim.setup.exclude);
         w.sort = sim.setup.sort;
         w.lost_policy = sim.setup.lost;
         w.timers.reset();

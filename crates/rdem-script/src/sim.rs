@@ -84,6 +84,8 @@ pub struct Setup {
     pub boundary: [[Boundary; 2]; 3],
     /// `neighbor` / `neigh_modify`.
     pub neighbor: NeighborSettings,
+    /// `neigh_modify exclude`: pairs that never interact.
+    pub exclude: rdem::Exclusions,
     /// `timestep` before the box exists (then the world's [`World::dt`] is the one
     /// value: read it with [`Sim::dt`], set it with [`Sim::set_timestep`]).
     pub dt: f64,
@@ -100,6 +102,7 @@ impl Default for Setup {
         Self {
             boundary: [[Boundary::Periodic; 2]; 3],
             neighbor: NeighborSettings::default(),
+            exclude: rdem::Exclusions::default(),
             // LIGGGHTS' default for SI units.
             dt: 1e-8,
             sort: rdem::SortSettings::default(),

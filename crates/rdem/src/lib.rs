@@ -40,7 +40,7 @@ pub use contact::{
 pub use domain::{Boundary, Domain};
 pub use error::{Error, Result};
 pub use fix::{Fix, FixKind};
-pub use neighbor::NeighborSettings;
+pub use neighbor::{Exclusions, NeighborSettings};
 pub use pair::PairGran;
 pub use particles::{NewParticle, Particles, Tag};
 pub use step::{HookMask, NoHooks, StepHooks};

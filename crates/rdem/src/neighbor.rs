@@ -86,6 +86,36 @@ impl NeighborSettings {
     }
 }
 
+/// Pairs that `neigh_modify exclude` leaves out of the neighbor list, so that they never
+/// interact (LAMMPS' and LIGGGHTS' exclusion lists): by type pair and by group pair.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Exclusions {
+    /// `exclude type M N`: a pair of types M and N (either way round).
+    pub types: Vec<(u32, u32)>,
+    /// `exclude group G1 G2` as group bit masks: one particle in G1, the other in G2.
+    pub groups: Vec<(u32, u32)>,
+}
+
+impl Exclusions {
+    /// True when nothing is excluded.
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty() && self.groups.is_empty()
+    }
+
+    /// True when the pair (i, j) is excluded.
+    pub fn excludes(&self, p: &Particles, i: usize, j: usize) -> bool {
+        let (ti, tj) = (p.ty[i], p.ty[j]);
+        let (mi, mj) = (p.mask[i], p.mask[j]);
+        self.types
+            .iter()
+            .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
+            || self
+                .groups
+                .iter()
+                .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
+    }
+}
+
 /// A half neighbor list in compressed rows: the partners of local particle `i` are
 /// `partner[first[i]..first[i + 1]]`, and pair `k` owns `hist[k * width..(k + 1) * width]`.
 #[derive(Debug, Clone, Default)]
@@ -869,6 +899,8 @@ pub struct Neighbor {
     /// Centre distance below which every pair is listed whatever its radii: the longest
     /// bond (`cohesion bond`), 0 without bonds.
     pub reach: f64,
+    /// Pairs left out of the list (`neigh_modify exclude`); takes effect at the next build.
+    pub exclude: Exclusions,
     last_build: u64,
     /// True from a build until the history is saved: the list's indices still refer to
     /// the particles (ghosts included) it was built for.
@@ -1052,10 +1084,34 @@ impl Neighbor {
             return;
         }
         self.bins.search(p, cut, skin, self.reach, &mut self.list);
+        if !self.exclude.is_empty() {
+            self.drop_excluded(p);
+        }
         let w = self.list.width;
         self.list.hist.resize(self.list.partner.len() * w, 0.0);
         self.store.restore(&mut self.list, &p.tag, nlocal);
         self.store.clear();
+    }
+
+    /// Removes the excluded pairs from the freshly searched list (before histories are
+    /// attached), keeping the rows compressed.
+    fn drop_excluded(&mut self, p: &Particles) {
+        let list = &mut self.list;
+        let nrows = list.first.len() - 1;
+        let mut out = 0usize;
+        for i in 0..nrows {
+            let (start, end) = (list.first[i] as usize, list.first[i + 1] as usize);
+            list.first[i] = out as u32;
+            for k in start..end {
+                let j = list.partner[k];
+                if !self.exclude.excludes(p, i, j as usize) {
+                    list.partner[out] = j;
+                    out += 1;
+                }
+            }
+        }
+        list.first[nrows] = out as u32;
+        list.partner.truncate(out);
     }
 
     /// Positions at the last build (for tests and diagnostics).

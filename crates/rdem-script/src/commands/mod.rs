@@ -101,7 +101,7 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("`units box` only"),
         sim_atoi("group", group::group, "`region`, `type`, `id` (ranges `a:b`), `union`, `subtract`, `intersect`, `delete`"),
         sim("neighbor", settings::neighbor, "`skin bin\\|nsq`"),
-        sim("neigh_modify", settings::neigh_modify, "`delay`, `every`, `check` (`one`, `page`, `binsize`, `contact_distance_factor` accepted)"),
+        sim("neigh_modify", settings::neigh_modify, "`delay`, `every`, `check`, `exclude type M N\\|group G1 G2\\|none` (`one`, `page`, `binsize`, `contact_distance_factor` accepted)"),
         sim("pair_style", pair::pair_style, "`gran` with `model hertz\\|hooke\\|hooke/hysteresis\\|hertz/stiffness\\|hooke/stiffness`, `tangential history\\|no_history`, `cohesion off\\|sjkr\\|sjkr2\\|bond`, `rolling_friction off\\|cdt\\|epsd\\|epsd2\\|epsd3`, `surface default`, then `tangential_damping`, `limitForce`, `torsionTorque`, `tangential_reduce`, `absolute_damping` (hooke/stiffness), and with `cohesion bond` its switches (see [Bonded particles](#bonded-particles))")
             .notes("the model types must come in LIGGGHTS' order; a misplaced one gets an error stating it. The stiffness models read `kn`, `kt`, `gamman`, `gammat` (`gamman_abs`, `gammat_abs` with `absolute_damping on`) per type pair and need no E, ν or e. epsd3 reads its prefactor from `rollingStiffness` (scalar), the name LIGGGHTS 3.8 reads; its manual says `coeffRollingStiffness`. `cohesion easo/capillary/viscous` and `washino/capillary/viscous` (liquid bridges) are not supported yet"),
         sim("pair_coeff", pair::pair_coeff, "`* *`"),

@@ -319,7 +319,9 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("delay, every, check".into()),
         ));
     }
-    let s = &mut sim.setup.neighbor;
+    // Read everything first: a wrong word changes nothing.
+    let mut s = sim.setup.neighbor;
+    let mut exclude = sim.setup.exclude.clone();
     while !a.is_done() {
         match a.keyword(
             "neigh_modify keyword",
@@ -344,10 +346,47 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "binsize" | "contact_distance_factor" => {
                 a.non_negative("value")?;
             }
+            "exclude" => exclude_pairs(sim, a, &mut exclude)?,
             k => return Err(a.error_prev(format!("neigh_modify {k} is not supported yet"), None)),
         }
     }
-    s.validate().map_err(|e| a.error_cmd(e.to_string(), None))
+    s.validate().map_err(|e| a.error_cmd(e.to_string(), None))?;
+    sim.setup.neighbor = s;
+    sim.setup.exclude = exclude;
+    Ok(())
+}
+
+/// `exclude type M N | group G1 G2 | none` (LAMMPS' `molecule` form needs molecules,
+/// which granular atoms do not have: an error).
+fn exclude_pairs(sim: &Sim, a: &mut Args, ex: &mut rdem::Exclusions) -> CmdResult {
+    match a.keyword("exclude style", &["type", "group", "none", "molecule"])? {
+        "type" => {
+            let mut t = [0u32; 2];
+            for (k, tk) in t.iter_mut().enumerate() {
+                let v = a.count(["type M", "type N"][k])?;
+                let n = sim.ntypes();
+                if sim.world.is_some() && v as usize > n {
+                    return Err(a.error_prev(
+                        format!("atom type {v} is out of range: the box has {n} type(s)"),
+                        None,
+                    ));
+                }
+                *tk = v as u32;
+            }
+            ex.types.push((t[0], t[1]));
+        }
+        "group" => {
+            let g1 = sim.group_bit(a, "group ID")?;
+            let g2 = sim.group_bit(a, "group ID")?;
+            ex.groups.push((g1, g2));
+        }
+        "none" => *ex = rdem::Exclusions::default(),
+        _ => return Err(a.error_prev(
+            "neigh_modify exclude molecule needs molecule IDs, which granular atoms do not have",
+            Some("exclude pairs by 'type M N' or 'group G1 G2'".into()),
+        )),
+    }
+    Ok(())
 }
 
 /// `timestep dt`.
