@@ -8,6 +8,7 @@ mod atom_vtk;
 mod custom;
 mod custom_vtk;
 mod euler_vtk;
+mod local;
 mod mesh_stl;
 mod mesh_vtk;
 pub(crate) mod particles;
@@ -117,7 +118,7 @@ pub static REGISTRY: Registry<DumpParse> = Registry {
         mesh_vtk::ROW_OLD_NAME,
         Row::not_yet("mesh/vtm", ""),
         Row::not_yet("local/gran/vtk", "contact output"),
-        Row::not_yet("local", "contact output"),
+        local::ROW,
         Row::not_yet("atom", ""),
     ],
 };
