@@ -112,6 +112,12 @@ pub trait ScriptCompute: std::fmt::Debug {
         None
     }
 
+    /// The named groups of its local columns, in order: (name, first column, width), as
+    /// `dump local/gran/vtk` writes them (`pos`, `vel`, `id`, `force`, ...).
+    fn local_groups(&self) -> Vec<(&'static str, usize, usize)> {
+        Vec::new()
+    }
+
     /// Its local (per-contact) rows on this rank: `local_cols` values per row.
     fn local(&self, _sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
         Err(format!("compute {} does not compute local values", c.id))

@@ -101,6 +101,30 @@ impl ScriptCompute for PairGranLocal {
         Some(self.ncols())
     }
 
+    fn local_groups(&self) -> Vec<(&'static str, usize, usize)> {
+        let c = &self.cols;
+        let mut out = Vec::new();
+        let mut at = 0;
+        for (on, name, n) in [
+            (c.pos, "pos", 6),
+            (c.vel, "vel", 6),
+            (c.id, "id", 3),
+            (c.force, "force", 3),
+            (c.force_normal, "force_normal", 3),
+            (c.force_tangential, "force_tangential", 3),
+            (c.torque, "torque", 3),
+            (c.history, "history", self.hist_width),
+            (c.contact_area, "contactArea", 1),
+            (c.delta, "delta", 1),
+        ] {
+            if on {
+                out.push((name, at, n));
+                at += n;
+            }
+        }
+        out
+    }
+
     fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
         let w = super::world(sim)?;
         let Some(pair) = &w.pair else {
@@ -123,8 +147,10 @@ impl ScriptCompute for PairGranLocal {
             let d = p.x[i] - p.x[j];
             let dist = d.length();
             let f = rec.f[k];
+            // Along the unit vector from i to j, as LIGGGHTS takes it (the same value; the
+            // sign of a zero component follows it: LIGGGHTS writes −0 there).
             let fnorm = if dist > 0.0 {
-                let n = d / dist;
+                let n = -d / dist;
                 n * f.dot(n)
             } else {
                 f
