@@ -98,7 +98,7 @@ impl DumpStyle for LocalGranVtk {
         let Some(data) = data else {
             return Ok(Vec::new());
         };
-        let nrows = if n == 0 { 0 } else { data.len() / n };
+        let nrows = data.len().checked_div(n).unwrap_or(0);
         let g = Printf::default_float();
         let dbl = Printf::parse("%.11g").expect("a valid format");
         let mut out = String::from(
