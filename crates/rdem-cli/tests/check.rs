@@ -81,16 +81,14 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 
 /// Three real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
 ///
-/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 3 lines:
+/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 1 line:
 /// - 92 `pair_style gran model hertz tangential incremental_history ...`: the tangential
-///   model `incremental_history` is LIGGGHTS-PFM's;
-/// - 131 `compute pgl all pair/gran/local ...`: no per-contact computes;
-/// - 134 `dump dmpdisp all local ...`: no `dump local`.
+///   model `incremental_history` is LIGGGHTS-PFM's.
 ///
-/// Left out as follow-ons: 93 `pair_coeff * *` (the pair style failed) and 135
-/// `dump_modify dmpdisp` (the dump failed).
+/// Left out as a follow-on: 93 `pair_coeff * *` (the pair style failed). (131 `compute
+/// pair/gran/local`, 134 `dump local` and 135 its `dump_modify pad` run.)
 ///
-/// `24_fibers_cantilever_beam/in.liggghts` — 10 lines:
+/// `24_fibers_cantilever_beam/in.liggghts` — 9 lines:
 /// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
 /// - 74 `pair_style gran ...` comes before `create_box` (line 82): LIGGGHTS refuses that too;
 /// - 76 `bond_style gran` and 97 `bond_coeff ...`: the fibre bond package's bonds;
@@ -98,11 +96,11 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// - 110 `group bonded id >= 1` and 114 `group freezed id == 1`: no comparison forms of
 ///   `group id`;
 /// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
-/// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword;
-/// - 159 `dump bondforcechain all local ...`: no `dump local`.
+/// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword.
 ///
 /// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
-/// `fix f1 freezed freeze` (groups whose lines failed), 170 `fix_modify bondcr every 0`
+/// `fix f1 freezed freeze` (groups whose lines failed), 159 `dump bondforcechain all
+/// local ... c_bc[1] ...` (its compute's line failed), 170 `fix_modify bondcr every 0`
 /// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
 /// print ... file beam.csv` run (under `-check` nothing is made or written).
 ///
@@ -126,18 +124,16 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "12_pfm_chung_normal_impact",
             "in.elastic_normal_impact_2_spheres",
-            "in.elastic_normal_impact_2_spheres: 3 lines rdem cannot run: pair_style gran (line 92), \
-             compute pair/gran/local (131), dump local (134)",
-            &[93, 135][..],
+            "in.elastic_normal_impact_2_spheres: 1 line rdem cannot run: pair_style gran (line 92)",
+            &[93][..],
         ),
         (
             "24_fibers_cantilever_beam",
             "in.liggghts",
-            "in.liggghts: 10 lines rdem cannot run: atom_style hybrid (line 53), \
+            "in.liggghts: 9 lines rdem cannot run: atom_style hybrid (line 53), \
              pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
-             group (110), group (114), fix bond/create/gran (118), thermo_style custom (135), \
-             dump local (159)",
-            &[94, 111, 170, 176][..],
+             group (110), group (114), fix bond/create/gran (118), thermo_style custom (135)",
+            &[94, 111, 159, 170, 176][..],
         ),
         (
             "40_2x_conveyor_surface_vel_heat",

@@ -21,6 +21,9 @@ use crate::neighbor::{Neighbor, NeighborList};
 use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
 
+mod local;
+pub use local::PairContacts;
+
 /// Fraction of the skin that the near list adds to r_i + r_j.
 const NEAR_MARGIN: f64 = 0.1;
 

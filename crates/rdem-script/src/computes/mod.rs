@@ -12,6 +12,7 @@ mod erotate_sphere;
 mod ke;
 pub mod kernels;
 mod nbond_atom;
+mod pair_gran_local;
 mod pe;
 mod pressure;
 mod property_atom;
@@ -106,6 +107,22 @@ pub trait ScriptCompute: std::fmt::Debug {
         false
     }
 
+    /// Number of columns of its local (per-contact) array, if it gives one.
+    fn local_cols(&self) -> Option<usize> {
+        None
+    }
+
+    /// The named groups of its local columns, in order: (name, first column, width), as
+    /// `dump local/gran/vtk` writes them (`pos`, `vel`, `id`, `force`, ...).
+    fn local_groups(&self) -> Vec<(&'static str, usize, usize)> {
+        Vec::new()
+    }
+
+    /// Its local (per-contact) rows on this rank: `local_cols` values per row.
+    fn local(&self, _sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+        Err(format!("compute {} does not compute local values", c.id))
+    }
+
     /// True if it needs the engine's per-particle contact virial at every step.
     fn needs_virial(&self) -> bool {
         false
@@ -148,7 +165,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         bond_counter::ROW,
         nbond_atom::ROW,
         temp::ROW,
-        Row::not_yet("pair/gran/local", "contact output"),
+        pair_gran_local::ROW,
         Row::not_yet("wall/gran/local", "contact output"),
         Row::not_yet("com", ""),
         Row::not_yet("msd", ""),

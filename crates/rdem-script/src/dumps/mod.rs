@@ -8,6 +8,8 @@ mod atom_vtk;
 mod custom;
 mod custom_vtk;
 mod euler_vtk;
+mod local;
+mod local_gran_vtk;
 mod mesh_stl;
 mod mesh_vtk;
 pub(crate) mod particles;
@@ -116,8 +118,8 @@ pub static REGISTRY: Registry<DumpParse> = Registry {
         mesh_vtk::ROW,
         mesh_vtk::ROW_OLD_NAME,
         Row::not_yet("mesh/vtm", ""),
-        Row::not_yet("local/gran/vtk", "contact output"),
-        Row::not_yet("local", "contact output"),
+        local_gran_vtk::ROW,
+        local::ROW,
         Row::not_yet("atom", ""),
     ],
 };

@@ -1,0 +1,250 @@
+//! `compute ID group pair/gran/local [keywords]`: one row per particle pair in contact
+//! (both particles in the group), with the columns the keywords select, in LIGGGHTS
+//! 3.8's order whatever the order of the keywords: pos (6), vel (6), id (3), force (3),
+//! force_normal (3), force_tangential (3), torque (3), history (the contact law's
+//! history values), contactArea (1), delta (1). Without keywords: pos, vel, id, force,
+//! torque, history and contactArea.
+//!
+//! Values as LIGGGHTS 3.8 gives them (checked against its output in
+//! `crates/rdem-cli/tests/local_dump.rs`): positions and velocities of i then j; the two
+//! IDs and 1 when j is a periodic image (0 otherwise); the contact force on i; its
+//! components along and across the line of centres; the contact law's torque on i
+//! (without rolling friction, which LIGGGHTS leaves out too); the contact area of the
+//! two spheres' geometric intersection, π a²; the overlap r_i + r_j − |x_i − x_j|.
+//! The contact law is evaluated from the state when the compute is invoked, as
+//! LIGGGHTS does ([`rdem::pair::PairContacts`]).
+
+use std::f64::consts::PI;
+
+use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: ComputeRow = ComputeRow::runs(
+    "pair/gran/local",
+    parse,
+    "per-contact values of the pair contacts (`dump local`, `dump local/gran/vtk`)",
+)
+.notes("`heatFlux`, `contactPoint` and `ms_id` are not supported yet");
+
+/// The keywords, in LIGGGHTS' column order.
+const KEYWORDS: [&str; 13] = [
+    "pos",
+    "vel",
+    "id",
+    "force",
+    "force_normal",
+    "force_tangential",
+    "torque",
+    "history",
+    "contactArea",
+    "delta",
+    "heatFlux",
+    "contactPoint",
+    "ms_id",
+];
+
+/// Which column groups it gives.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Columns {
+    pos: bool,
+    vel: bool,
+    id: bool,
+    force: bool,
+    force_normal: bool,
+    force_tangential: bool,
+    torque: bool,
+    history: bool,
+    contact_area: bool,
+    delta: bool,
+}
+
+/// The compute.
+#[derive(Debug)]
+pub struct PairGranLocal {
+    cols: Columns,
+    /// History values per contact (from the pair style when defined).
+    hist_width: usize,
+}
+
+impl PairGranLocal {
+    fn ncols(&self) -> usize {
+        let c = &self.cols;
+        let n = |b: bool, k: usize| if b { k } else { 0 };
+        n(c.pos, 6)
+            + n(c.vel, 6)
+            + n(c.id, 3)
+            + n(c.force, 3)
+            + n(c.force_normal, 3)
+            + n(c.force_tangential, 3)
+            + n(c.torque, 3)
+            + n(c.history, self.hist_width)
+            + n(c.contact_area, 1)
+            + n(c.delta, 1)
+    }
+}
+
+/// Area π a² of the circle where spheres of radii `ri`, `rj` at centre distance `d`
+/// intersect.
+fn contact_area(ri: f64, rj: f64, d: f64) -> f64 {
+    let x = (d * d + ri * ri - rj * rj) / (2.0 * d);
+    PI * (ri * ri - x * x).max(0.0)
+}
+
+impl ScriptCompute for PairGranLocal {
+    fn shape(&self) -> Shape {
+        Shape::default()
+    }
+
+    fn local_cols(&self) -> Option<usize> {
+        Some(self.ncols())
+    }
+
+    fn local_groups(&self) -> Vec<(&'static str, usize, usize)> {
+        let c = &self.cols;
+        let mut out = Vec::new();
+        let mut at = 0;
+        for (on, name, n) in [
+            (c.pos, "pos", 6),
+            (c.vel, "vel", 6),
+            (c.id, "id", 3),
+            (c.force, "force", 3),
+            (c.force_normal, "force_normal", 3),
+            (c.force_tangential, "force_tangential", 3),
+            (c.torque, "torque", 3),
+            (c.history, "history", self.hist_width),
+            (c.contact_area, "contactArea", 1),
+            (c.delta, "delta", 1),
+        ] {
+            if on {
+                out.push((name, at, n));
+                at += n;
+            }
+        }
+        out
+    }
+
+    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+        let w = super::world(sim)?;
+        let Some(pair) = &w.pair else {
+            return Err(format!(
+                "compute {} (pair/gran/local) needs a granular pair style",
+                c.id
+            ));
+        };
+        let p = &w.particles;
+        let rec = pair.contacts(p, &w.neighbor.list, w.dt);
+        let cols = &self.cols;
+        let nlocal = p.nlocal();
+        let mut out = Vec::with_capacity(rec.len() * self.ncols());
+        let hw = rec.width.min(self.hist_width);
+        for k in 0..rec.len() {
+            let (i, j) = (rec.i[k] as usize, rec.j[k] as usize);
+            if p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {
+                continue;
+            }
+            let d = p.x[i] - p.x[j];
+            let dist = d.length();
+            let f = rec.f[k];
+            // Along the unit vector from i to j, as LIGGGHTS takes it (the same value; the
+            // sign of a zero component follows it: LIGGGHTS writes −0 there).
+            let fnorm = if dist > 0.0 {
+                let n = -d / dist;
+                n * f.dot(n)
+            } else {
+                f
+            };
+            let mut push3 = |v: rdem::DVec3| out.extend_from_slice(&[v.x, v.y, v.z]);
+            if cols.pos {
+                push3(p.x[i]);
+                push3(p.x[j]);
+            }
+            if cols.vel {
+                push3(p.v[i]);
+                push3(p.v[j]);
+            }
+            if cols.id {
+                // A ghost outside the box is a periodic image.
+                let periodic = j >= nlocal && !w.domain.is_in_domain(p.x[j]);
+                let flag = if periodic { 1.0 } else { 0.0 };
+                push3(rdem::DVec3::new(p.tag[i] as f64, p.tag[j] as f64, flag));
+            }
+            if cols.force {
+                push3(f);
+            }
+            if cols.force_normal {
+                push3(fnorm);
+            }
+            if cols.force_tangential {
+                push3(f - fnorm);
+            }
+            if cols.torque {
+                push3(rec.t_i[k]);
+            }
+            if cols.history {
+                out.extend_from_slice(&rec.hist[k * rec.width..k * rec.width + hw]);
+                out.extend(std::iter::repeat_n(0.0, self.hist_width - hw));
+            }
+            if cols.contact_area {
+                out.push(contact_area(p.radius[i], p.radius[j], dist));
+            }
+            if cols.delta {
+                out.push(rec.delta[k]);
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// `compute ID group pair/gran/local [keywords]`.
+fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
+    let mut c = Columns::default();
+    while !a.is_done() {
+        match a.keyword("pair/gran/local keyword", &KEYWORDS)? {
+            "pos" => c.pos = true,
+            "vel" => c.vel = true,
+            "id" => c.id = true,
+            "force" => c.force = true,
+            "force_normal" => c.force_normal = true,
+            "force_tangential" => c.force_tangential = true,
+            "torque" => c.torque = true,
+            "history" => c.history = true,
+            "contactArea" => c.contact_area = true,
+            "delta" => c.delta = true,
+            other => {
+                return Err(a.error_prev(
+                    format!("pair/gran/local: keyword '{other}' is not supported yet"),
+                    Some(match other {
+                        "heatFlux" => "rdem has no heat transfer yet".to_string(),
+                        _ => "use pos, vel, id, force, force_normal, force_tangential, \
+                              torque, history, contactArea or delta"
+                            .to_string(),
+                    }),
+                ))
+            }
+        }
+    }
+    if c == Columns::default() {
+        // LIGGGHTS' default: all but force_normal, force_tangential and delta.
+        c = Columns {
+            pos: true,
+            vel: true,
+            id: true,
+            force: true,
+            torque: true,
+            history: true,
+            contact_area: true,
+            ..c
+        };
+    }
+    let hist_width = sim
+        .world
+        .as_ref()
+        .and_then(|w| w.pair.as_ref())
+        .map_or(0, |p| p.model.contact_history_width());
+    Ok(Box::new(PairGranLocal {
+        cols: c,
+        hist_width,
+    }))
+}

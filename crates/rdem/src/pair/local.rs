@@ -1,0 +1,129 @@
+//! The contacts of the pair style one by one, for per-contact output (`compute
+//! pair/gran/local`). As LIGGGHTS 3.8 does when such a compute is invoked, the contact
+//! model is evaluated again from the current positions, velocities and stored history,
+//! without changing the history ([`crate::contact::Geom::update`] off): at the end of a
+//! step this is the state the output describes. Nothing is done on steps without output.
+
+use glam::DVec3;
+
+use super::{PairGran, Phase1};
+use crate::bond::{self, BondEvents};
+use crate::contact::{ContactKernel, Visitor};
+use crate::neighbor::NeighborList;
+use crate::particles::Particles;
+
+/// The pair contacts of the owned particles: one entry per touching pair (i owned, j
+/// owned or ghost), in neighbor-list order.
+#[derive(Debug, Clone, Default)]
+pub struct PairContacts {
+    /// Local index of i (owned).
+    pub i: Vec<u32>,
+    /// Local index of j (owned or ghost).
+    pub j: Vec<u32>,
+    /// Contact force on i (the contact law's; bonds not included).
+    pub f: Vec<DVec3>,
+    /// Torque on i from the contact law.
+    pub t_i: Vec<DVec3>,
+    /// Overlap r_i + r_j − |x_i − x_j|.
+    pub delta: Vec<f64>,
+    /// Contact history values of the contact law, [`PairContacts::width`] per contact.
+    pub hist: Vec<f64>,
+    /// History values per contact.
+    pub width: usize,
+}
+
+impl PairContacts {
+    /// Number of contacts.
+    pub fn len(&self) -> usize {
+        self.i.len()
+    }
+
+    /// True without contacts.
+    pub fn is_empty(&self) -> bool {
+        self.i.is_empty()
+    }
+}
+
+impl PairGran {
+    /// The touching pairs of the near list (current after a force pass) and what the
+    /// contact law gives for each, evaluated again without changing the history. Ghost
+    /// velocities must be current (as for a force pass).
+    pub fn contacts(&self, p: &Particles, list: &NeighborList, dt: f64) -> PairContacts {
+        let model = self.model;
+        model.dispatch(Records {
+            pair: self,
+            p,
+            list,
+            dt,
+        })
+    }
+}
+
+struct Records<'a> {
+    pair: &'a PairGran,
+    p: &'a Particles,
+    list: &'a NeighborList,
+    dt: f64,
+}
+
+impl Visitor for Records<'_> {
+    type Output = PairContacts;
+    fn visit<K: ContactKernel>(self) -> PairContacts {
+        let Records { pair, p, list, dt } = self;
+        let nlocal = p.nlocal();
+        let events = BondEvents::default();
+        let mut out = PairContacts {
+            width: K::HIST,
+            ..PairContacts::default()
+        };
+        if pair.near.first.len() != nlocal + 1 {
+            return out;
+        }
+        let ph1 = Phase1 {
+            near: &pair.near,
+            table: &pair.table,
+            flags: pair.model.flags,
+            list_first: &list.first,
+            width: list.width,
+            nlocal,
+            x: &p.x,
+            v: &p.v,
+            omega: &p.omega,
+            radius: &p.radius,
+            rmass: &p.rmass,
+            ty: &p.ty,
+            dt,
+            update: false,
+            bond: pair.bond.as_ref(),
+            bond_flags: pair.model.bond,
+            create_now: false,
+            events: &events,
+        };
+        // The contact law's values sit after the bond's vectors when there are bonds.
+        let off = if pair.bond.is_some() { bond::VEC } else { 0 };
+        let w = list.width;
+        let mut scratch = vec![0.0; K::HIST];
+        let near = &pair.near;
+        for i in 0..nlocal {
+            let coeff_row = pair.table.row(p.ty[i]);
+            let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
+            for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+                let (j, slot) = (j as usize, slot as usize);
+                let d = p.x[i] - p.x[j];
+                let rsq = d.length_squared();
+                let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
+                scratch.copy_from_slice(h);
+                let Some(c) = ph1.contact::<K>(i, j, coeff_row, &mut scratch, d, rsq) else {
+                    continue;
+                };
+                out.i.push(i as u32);
+                out.j.push(j as u32);
+                out.f.push(c.f_i);
+                out.t_i.push(c.t_i);
+                out.delta.push(p.radius[i] + p.radius[j] - rsq.sqrt());
+                out.hist.extend_from_slice(h);
+            }
+        }
+        out
+    }
+}
