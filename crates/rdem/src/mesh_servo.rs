@@ -108,7 +108,7 @@ mod tests {
         for n in 1..=3 {
             s.control(DVec3::ZERO, 1e-5);
             assert!(
-                (s.vel.z + 2.0 - 0.004 * n as f64).abs() < 1e-12,
+                (s.vel.z + 2.0 + 0.004 * n as f64).abs() < 1e-12,
                 "{}",
                 s.vel.z
             );
