@@ -100,6 +100,7 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
 /// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword;
 /// - 159 `dump bondforcechain all local ...`: no `dump local`;
+///
 /// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
 /// `fix f1 freezed freeze` (groups whose lines failed), 170 `fix_modify bondcr every 0`
 /// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
