@@ -18,6 +18,7 @@ pub mod insert;
 pub mod massflow;
 pub mod mesh;
 pub mod mesh_motion;
+pub mod mesh_servo;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;
 pub mod neighbor;

@@ -238,7 +238,7 @@ impl World {
     pub(crate) fn build_wall_candidates(&mut self) {
         let skin = self.neighbor.settings.skin;
         for m in &mut self.meshes {
-            if m.motion.is_moving() {
+            if m.is_moving() {
                 m.motion.built.clone_from(&m.mesh.verts);
             }
         }
@@ -281,6 +281,60 @@ impl World {
         }
     }
 
+    /// Step 3b: the servo meshes (`mesh/surface/stress/servo`) translated by the velocity
+    /// their controller set at the end of the previous step (LIGGGHTS'
+    /// `initial_integrate`), with their centre of mass and stress reference point; their
+    /// vertices carry that velocity for the wall contacts, even while the servo is stopped.
+    pub(crate) fn move_servo_meshes(&mut self) {
+        let dt = self.dt;
+        for m in &mut self.meshes {
+            let Some(servo) = &mut m.servo else { continue };
+            let d = servo.displacement(dt);
+            // A stopped servo does not move, but its vertices keep the last velocity
+            // for the contacts, as in LIGGGHTS 3.8 (a lid stopped while rising pulls
+            // on the particle it touches through the contact damping).
+            let vel = servo.vel;
+            servo.com += d;
+            if d != DVec3::ZERO {
+                m.mesh.transform(|p| p + d);
+            }
+            if let Some(st) = &mut m.stress {
+                st.reference_point += d;
+            }
+            m.motion.vel.clear();
+            m.motion.vel.resize(m.mesh.verts.len(), vel);
+        }
+    }
+
+    /// Step 13b: each active servo's controller fed with the total force on its mesh
+    /// (summed over the ranks, so that every rank moves the mesh alike; LIGGGHTS'
+    /// `final_integrate`).
+    pub(crate) fn control_servos(&mut self) {
+        let dt = self.dt;
+        for m in &mut self.meshes {
+            let (Some(servo), Some(st)) = (&mut m.servo, &m.stress) else {
+                continue;
+            };
+            if !servo.active {
+                continue;
+            }
+            let f = st.total_force;
+            let f = if self.comm.size() > 1 {
+                let mut s = [f.x, f.y, f.z];
+                self.comm.sum_slice(&mut s);
+                DVec3::from_array(s)
+            } else {
+                f
+            };
+            servo.control(f, dt);
+            // The vertices take the new velocity at once (LIGGGHTS 3.8: the next run's
+            // set-up forces already see it).
+            let vel = servo.vel;
+            m.motion.vel.clear();
+            m.motion.vel.resize(m.mesh.verts.len(), vel);
+        }
+    }
+
     /// Step 5: whether particles were added (on any rank), and whether the neighbor
     /// lists must be rebuilt: particles added or removed, the list's own decision, or a
     /// moving mesh that drifted half a skin since the wall candidates were built (every
@@ -297,7 +351,7 @@ impl World {
         let mesh_far = self
             .meshes
             .iter()
-            .any(|m| m.motion.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
+            .any(|m| m.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
         let rebuild = added
             || removed
             || self

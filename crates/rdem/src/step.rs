@@ -15,7 +15,9 @@
 //! 1. `step += 1`
 //! 2. initial integrate (`nve/sphere`: half kick, drift; `move`: the prescribed positions
 //!    and velocities, velocity Verlet for its NULL components) [Modify]
-//! 3. mesh motion (`move/mesh`) to the step's time [Modify]
+//! 3. mesh motion (`move/mesh`) to the step's time; servo meshes
+//!    (`mesh/surface/stress/servo`) translated by the velocity their controller set at
+//!    the end of the previous step (LIGGGHTS moves them in `initial_integrate`) [Modify]
 //! 4. [`StepHooks::pre_exchange`] (LIGGGHTS' `pre_exchange`: insertion); particles added
 //!    here are not moved this step, get their forces and the final half kick, and force
 //!    step 5's rebuild [Modify]
@@ -37,7 +39,11 @@
 //! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
 //!     [Modify]
 //! 12. finiteness check of forces and torques [Other]
-//! 13. final integrate (half kick; `move`: its NULL components only) [Modify]
+//! 13. final integrate (half kick; `move`: its NULL components only); then the servo
+//!     controllers: each active servo
+//!     reads its mesh's total force of step 11 (summed over ranks) and sets the wall
+//!     velocity for the next step (LIGGGHTS' `final_integrate`, after the force pass)
+//!     [Modify]
 //! 14. finiteness check of positions and velocities [Other]
 //! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
 //! 16. the front end's end-of-step fixes (rdem-script's `Stages::END_OF_STEP`:
@@ -171,6 +177,7 @@ impl World {
         self.step += 1;
         self.initial_integrate();
         self.move_meshes();
+        self.move_servo_meshes();
         if mask.pre_exchange {
             hooks.pre_exchange(self)?;
         }
@@ -189,6 +196,7 @@ impl World {
         self.compute_forces(true)?;
         let t2 = Instant::now();
         self.final_integrate();
+        self.control_servos();
         let t3 = self.timers.lap(Stage::Modify, t2);
         let p = &self.particles;
         self.check_finite(["position", "velocity"], &p.x, &p.v, None)?;

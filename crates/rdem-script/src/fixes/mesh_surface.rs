@@ -32,10 +32,10 @@ pub(super) const ROW_STRESS: FixRow = style(
     "as `mesh/surface`, and `stress on\\|off`, `wear finnie\\|off`, `reference_point`",
 );
 
-fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     sim.world_ref(a)?;
     let mut notes = Notes::default();
-    let mesh = mesh_surface(a, &head.id, head.style, &mut notes)?;
+    let mesh = mesh_surface(sim, a, &head.id, head.style, &mut notes)?;
     Ok(Box::new(Mesh {
         parsed: Some((mesh, notes)),
     }))
@@ -68,6 +68,21 @@ impl ScriptFix for Mesh {
         Ok(vec![fo.x, fo.y, fo.z, to.x, to.y, to.z, r.x, r.y, r.z])
     }
 
+    /// `fix_modify` of a servo mesh ([`super::mesh_servo::modify`]).
+    fn modify(
+        &mut self,
+        sim: &mut Sim,
+        head: &FixHead,
+        keyword: &str,
+        a: &mut Args,
+    ) -> CmdResult<bool> {
+        if head.style == "mesh/surface/stress/servo" {
+            super::mesh_servo::modify(sim, head, keyword, a)
+        } else {
+            Ok(false)
+        }
+    }
+
     // The mesh stays in the world (LIGGGHTS keeps a mesh that walls may still use).
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
 }
@@ -77,12 +92,15 @@ impl ScriptFix for Mesh {
 /// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
 /// triangles, and `surface_vel` for a conveyor belt.
 fn mesh_surface(
+    sim: &Sim,
     a: &mut Args,
     id: &str,
     style: &str,
     notes: &mut Notes,
 ) -> CmdResult<rdem::wall::MeshSurface> {
-    let stress_style = style == "mesh/surface/stress";
+    let servo_style = style == "mesh/surface/stress/servo";
+    let stress_style = style == "mesh/surface/stress" || servo_style;
+    let mut servo = super::mesh_servo::ServoWords::default();
     let (mut stress_on, mut finnie, mut reference_point) = (true, false, rdem::DVec3::ZERO);
     a.keyword("mesh/surface keyword", &["file"])?;
     let file_at = a.pos();
@@ -123,6 +141,19 @@ fn mesh_surface(
                 format!("mesh/surface keyword '{w}' is not supported by this rdem release yet"),
                 Some(format!("supported: {}", KEYS.join(", "))),
             ));
+        }
+        if super::mesh_servo::KEYS.contains(&w) {
+            if !servo_style {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("'{w}' is a keyword of fix mesh/surface/stress/servo"),
+                    Some(format!(
+                        "use fix {id} all mesh/surface/stress/servo ... {w} ..."
+                    )),
+                ));
+            }
+            servo.read(a, w)?;
+            continue;
         }
         if STRESS_KEYS.contains(&w) {
             if !stress_style {
@@ -242,13 +273,30 @@ fn mesh_surface(
             ));
         }
     }
+    let servo = if servo_style {
+        if !stress_on {
+            return Err(a.error_at(
+                STYLE_WORD,
+                "mesh/surface/stress/servo measures its force with the stress: 'stress off' does not apply",
+                None,
+            ));
+        }
+        Some(servo.finish(sim, a)?)
+    } else {
+        None
+    };
     let ntri = mesh.tris.len();
     let mut surface = rdem::wall::MeshSurface::new(id, mesh, wall_type);
     if stress_style && (stress_on || finnie) {
         let mut st = rdem::wall::mesh_stress::MeshStress::new(ntri, finnie);
         st.reference_point = reference_point;
+        if let Some(servo) = &servo {
+            // LIGGGHTS 3.8 reports the centre of mass as the servo's reference point.
+            st.reference_point = servo.com;
+        }
         surface.stress = Some(st);
     }
+    surface.servo = servo;
     surface.surface_vel = surface_vel;
     surface.surface_ang_vel = surface_ang_vel;
     surface.coplanar_cos = coplanar_cos;

@@ -20,6 +20,7 @@ mod engine;
 pub mod insert;
 mod insert_stream;
 mod massflow_mesh;
+mod mesh_servo;
 mod mesh_surface;
 mod modify;
 mod move_mesh;
@@ -301,6 +302,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         mesh_surface::ROW,
         mesh_surface::ROW_PLANAR,
         mesh_surface::ROW_STRESS,
+        mesh_servo::ROW,
         move_mesh::ROW,
         move_particles::ROW,
         wall_gran::ROW,

@@ -68,6 +68,16 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
     use rdem::mesh_motion::Motion;
     a.keyword("move/mesh keyword", &["mesh"])?;
     let mesh = mesh_ref(sim, a, "mesh ID (a fix mesh/surface)")?;
+    if sim
+        .world
+        .as_ref()
+        .is_some_and(|w| w.meshes[mesh].servo.is_some())
+    {
+        return Err(a.error_prev(
+            "a servo mesh (mesh/surface/stress/servo) cannot also be moved by move/mesh",
+            Some("LIGGGHTS 3.8's manual forbids it: the servo sets the motion".into()),
+        ));
+    }
     const STYLES: [&str; 6] = ["linear", "wiggle", "rotate", "riggle", "viblin", "vibrot"];
     const LATER_STYLES: [&str; 3] = ["linear/variable", "rotate/variable", "file"];
     if let Some(w) = a.peek() {

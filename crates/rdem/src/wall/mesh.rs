@@ -72,6 +72,8 @@ pub struct MeshSurface {
     pub motion: crate::mesh_motion::MeshMotion,
     /// `fix mesh/surface/stress`: per-triangle forces and wear.
     pub stress: Option<crate::wall::mesh_stress::MeshStress>,
+    /// `fix mesh/surface/stress/servo`: the controller that moves the mesh.
+    pub servo: Option<crate::mesh_servo::Servo>,
     /// Cosine of the `curvature` angle: two triangles sharing a corner whose normals
     /// are closer than this belong to one flat surface, which touches a sphere once.
     pub coplanar_cos: f64,
@@ -125,6 +127,11 @@ impl MeshSurface {
         }
     }
 
+    /// True if the mesh moves (`move/mesh` motions or a servo).
+    pub fn is_moving(&self) -> bool {
+        self.motion.is_moving() || self.servo.is_some()
+    }
+
     /// Mesh `id` of material type `wall_type`, at rest.
     pub fn new(id: &str, mesh: TriMesh, wall_type: u32) -> Self {
         Self {
@@ -135,6 +142,7 @@ impl MeshSurface {
             surface_ang_vel: None,
             motion: Default::default(),
             stress: None,
+            servo: None,
             coplanar_cos: COPLANAR_COS,
         }
     }
