@@ -354,6 +354,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "14_pfm_stress_box_euler",
     "16_pfm_rotary_kiln_init",
     "36_thesis_screw_conveyor",
+    "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",
 ];
 
