@@ -27,8 +27,10 @@ pub struct AveTime {
     pub inputs: Vec<String>,
     /// `ave running`.
     pub running: bool,
-    /// Output file.
-    pub file: Option<std::io::BufWriter<std::fs::File>>,
+    /// `file F`: its name and word (none under `rdem -check`, which writes no file).
+    pub path: Option<(String, usize)>,
+    /// The output file, made when the fix is installed.
+    pub file: Option<rdem_io::AppendFile>,
     /// Sums of the current window.
     pub sum: Vec<f64>,
     /// Samples in the window.
@@ -90,19 +92,14 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
             None,
         ));
     }
-    let (mut running, mut file) = (false, None);
+    let (mut running, mut path) = (false, None);
     while !a.is_done() {
         match a.keyword("ave/time keyword", &["file", "ave", "mode"])? {
             "file" => {
                 let f = a.word("file name")?;
-                if sim.script.check {
-                    continue; // rdem -check writes no file
+                if !sim.script.check {
+                    path = Some((f.to_string(), a.pos() - 1));
                 }
-                rdem_io::atomic::create_parent_dir(std::path::Path::new(f))
-                    .map_err(|e| a.error_prev(e.to_string(), None))?;
-                file = Some(std::io::BufWriter::new(std::fs::File::create(f).map_err(
-                    |e| a.error_prev(format!("cannot create '{f}': {e}"), None),
-                )?));
             }
             "ave" => running = a.keyword("ave", &["one", "running"])? == "running",
             _ => {
@@ -111,29 +108,41 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
         }
     }
     let n = inputs.len();
-    let mut ave = AveTime {
+    let ave = AveTime {
         nevery,
         nrepeat,
         nfreq,
         inputs,
         running,
-        file,
+        path,
+        file: None,
         sum: vec![0.0; n],
         count: 0,
         values: vec![0.0; n],
         running_sum: vec![0.0; n],
         windows: 0,
     };
-    if let Some(f) = &mut ave.file {
-        use std::io::Write;
-        let id = a.words()[1].text.clone();
-        let _ = writeln!(f, "# Time-averaged data for fix {id}");
-        let _ = writeln!(f, "# TimeStep {}", ave.inputs.join(" "));
-    }
     Ok(Box::new(ave))
 }
 
 impl ScriptFix for AveTime {
+    /// Makes the `file` (its folder too) with its two header lines.
+    fn install(&mut self, _sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        let Some((path, at)) = &self.path else {
+            return Ok(());
+        };
+        let mut f = rdem_io::AppendFile::new(path);
+        let header = format!(
+            "# Time-averaged data for fix {}\n# TimeStep {}\n",
+            head.id,
+            self.inputs.join(" ")
+        );
+        f.append(header.as_bytes())
+            .map_err(|e| a.error_at(*at, e.to_string(), None))?;
+        self.file = Some(f);
+        Ok(())
+    }
+
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Ok(self.values.clone())
     }
@@ -174,14 +183,13 @@ impl ScriptFix for AveTime {
             self.sum.iter_mut().for_each(|s| *s = 0.0);
             self.count = 0;
             if let Some(f) = &mut self.file {
-                use std::io::Write;
                 let row: Vec<String> = self
                     .values
                     .iter()
                     .map(|v| crate::variables::format_g(*v, 6))
                     .collect();
-                writeln!(f, "{step} {}", row.join(" ")).map_err(|e| e.to_string())?;
-                f.flush().map_err(|e| e.to_string())?;
+                f.append(format!("{step} {}\n", row.join(" ")).as_bytes())
+                    .map_err(|e| e.to_string())?;
             }
         }
         Ok(())

@@ -2,7 +2,7 @@
 //! towards `vec_side`, optionally deleting them; `f_ID[1..6]` gives totals and rates;
 //! `file`/`append` write one line per counted particle.
 
-use std::io::Write;
+use rdem_io::AppendFile;
 
 use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
@@ -43,8 +43,8 @@ pub struct FlowFile {
     pub word: usize,
     /// `writeTime`.
     pub write_time: bool,
-    /// The open file (on the rank that writes files; none under `rdem -check`).
-    pub writer: Option<std::io::BufWriter<std::fs::File>>,
+    /// The file (on the rank that writes files; none under `rdem -check`).
+    pub writer: Option<AppendFile>,
 }
 
 impl FlowFile {
@@ -179,24 +179,27 @@ impl ScriptFix for MassFlowFix {
         let Some(f) = self.out.as_mut().filter(|_| root && !sim.script.check) else {
             return Ok(());
         };
-        let opened = std::fs::OpenOptions::new()
-            .write(true)
-            .create(true)
-            .append(f.append)
-            .truncate(!f.append)
-            .open(&f.path)
-            .and_then(|file| {
-                let mut w = std::io::BufWriter::new(file);
-                w.write_all(f.header().as_bytes())?;
-                w.flush()?;
-                Ok(w)
-            });
-        match opened {
-            Ok(w) => f.writer = Some(w),
-            Err(e) => {
-                return Err(a.error_at(f.word, format!("cannot write {}: {e}", f.path), None))
-            }
+        // Unlike `fix print`, a missing folder is not made (the file is opened as it
+        // always was here).
+        let path = std::path::Path::new(&f.path);
+        if path
+            .parent()
+            .is_some_and(|d| !d.as_os_str().is_empty() && !d.is_dir())
+        {
+            return Err(a.error_at(
+                f.word,
+                format!("cannot write {}: its folder does not exist", f.path),
+                None,
+            ));
         }
+        let mut file = if f.append {
+            AppendFile::appending(path).map_err(|e| a.error_at(f.word, e.to_string(), None))?
+        } else {
+            AppendFile::new(path)
+        };
+        file.append(f.header().as_bytes())
+            .map_err(|e| a.error_at(f.word, e.to_string(), None))?;
+        f.writer = Some(file);
         Ok(())
     }
 
@@ -246,9 +249,7 @@ impl ScriptFix for MassFlowFix {
         };
         let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();
         if let Some(file) = &mut out.writer {
-            file.write_all(text.as_bytes())
-                .and_then(|_| file.flush())
-                .map_err(|e| format!("cannot write {}: {e}", out.path))?;
+            file.append(text.as_bytes()).map_err(|e| e.to_string())?;
         }
         Ok(())
     }
