@@ -75,40 +75,12 @@ impl Output {
 
     /// Opens (or appends to) the log file; `None` closes it.
     pub fn set_log(&mut self, path: Option<&str>, append: bool) -> std::io::Result<()> {
-        if let Some(l) = &mut self.log {
-            l.flush()?;
-        }
-        self.log = match path {
-            None => None,
-            Some(p) => Some(BufWriter::new(
-                std::fs::OpenOptions::new()
-                    .create(true)
-                    .write(true)
-                    .append(append)
-                    .truncate(!append)
-                    .open(p)?,
-            )),
-        };
-        Ok(())
+        reopen(&mut self.log, path, append)
     }
 
     /// Opens (or appends to) the thermo log file (`thermo_log`); `None` closes it.
     pub fn set_thermo_log(&mut self, path: Option<&str>, append: bool) -> std::io::Result<()> {
-        if let Some(l) = &mut self.thermo_log {
-            l.flush()?;
-        }
-        self.thermo_log = match path {
-            None => None,
-            Some(p) => Some(BufWriter::new(
-                std::fs::OpenOptions::new()
-                    .create(true)
-                    .write(true)
-                    .append(append)
-                    .truncate(!append)
-                    .open(p)?,
-            )),
-        };
-        Ok(())
+        reopen(&mut self.thermo_log, path, append)
     }
 
     /// Writes a thermo header or row to the screen, the log and the thermo log (flushed,
@@ -192,4 +164,28 @@ impl Output {
             let _ = l.flush();
         }
     }
+}
+
+/// Flushes and closes the file in `slot`, then opens `path` there (truncated, or appended
+/// to with `append`); `None` leaves it closed. The log and the thermo log use it.
+fn reopen(
+    slot: &mut Option<BufWriter<std::fs::File>>,
+    path: Option<&str>,
+    append: bool,
+) -> std::io::Result<()> {
+    if let Some(l) = slot {
+        l.flush()?;
+    }
+    *slot = match path {
+        None => None,
+        Some(p) => Some(BufWriter::new(
+            std::fs::OpenOptions::new()
+                .create(true)
+                .write(true)
+                .append(append)
+                .truncate(!append)
+                .open(p)?,
+        )),
+    };
+    Ok(())
 }
