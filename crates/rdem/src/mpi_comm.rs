@@ -26,7 +26,7 @@ use mpi::traits::*;
 use crate::comm::{Carried, Comm};
 use crate::domain::{least_surface_grid, Domain};
 use crate::error::{Error, Result};
-use crate::particles::{Particles, Tag, FORWARD_LEN};
+use crate::particles::{Particles, Tag};
 
 /// One ghost swap: particles `send` go to rank `send_to` (or are copied here when
 /// `here`), and `nrecv` ghosts arrive from rank `recv_from` as indices `first..`.
@@ -345,6 +345,7 @@ impl Comm for MpiComm {
 
     fn forward(&mut self, p: &mut Particles) {
         let swaps = std::mem::take(&mut self.swaps);
+        let len = p.forward_len();
         for s in &swaps {
             if s.here {
                 for (k, &i) in s.send.iter().enumerate() {
@@ -360,13 +361,13 @@ impl Comm for MpiComm {
                 }
             }
             let n = if s.recv_from.is_some() {
-                s.nrecv * FORWARD_LEN
+                s.nrecv * len
             } else {
                 0
             };
             self.send_recv(s.send_to, &buf, s.recv_from, Some(n));
             self.buf = buf;
-            for (k, c) in self.rbuf.chunks_exact(FORWARD_LEN).enumerate() {
+            for (k, c) in self.rbuf.chunks_exact(len).enumerate() {
                 p.unpack_forward(s.first + k, c);
             }
         }

@@ -28,6 +28,11 @@ pub struct Property {
     pub default: Vec<f64>,
     /// `width * len` values, particle-major.
     pub data: Vec<f64>,
+    /// Whether forward communication refreshes ghosts' values every step (LIGGGHTS'
+    /// `comm_ghost_value yes`), for values that change during a run and that pair
+    /// computations read on ghosts (a temperature, a liquid content). Ghosts always get
+    /// every property's values when they are made.
+    pub forward: bool,
 }
 
 impl Property {
@@ -256,8 +261,27 @@ impl Particles {
             width,
             default: default.to_vec(),
             data,
+            forward: false,
         });
         Ok(PropId(self.props.len() - 1))
+    }
+
+    /// Makes forward communication refresh ghosts' values of property `id` every step
+    /// (see [`Property::forward`]); once set it stays set.
+    pub fn set_forward(&mut self, id: PropId) {
+        self.props[id.0].forward = true;
+    }
+
+    /// Values per particle in [`Particles::pack_forward`]: [`FORWARD_LEN`] plus the
+    /// widths of the properties forwarded every step.
+    pub fn forward_len(&self) -> usize {
+        FORWARD_LEN
+            + self
+                .props
+                .iter()
+                .filter(|p| p.forward)
+                .map(|p| p.width)
+                .sum::<usize>()
     }
 
     /// Handle of the property called `name`.
@@ -454,7 +478,8 @@ impl Particles {
     }
 
     /// Appends what forward communication refreshes of particle `i` (position displaced
-    /// by `shift`, velocity, angular velocity, radius, mass: [`FORWARD_LEN`] values).
+    /// by `shift`, velocity, angular velocity, radius, mass: [`FORWARD_LEN`] values; then
+    /// the values of the forwarded properties: [`Particles::forward_len`] in all).
     pub fn pack_forward(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
         let (x, v, w) = (self.x[i] + shift, self.v[i], self.omega[i]);
         buf.extend_from_slice(&[
@@ -470,6 +495,9 @@ impl Particles {
             self.radius[i],
             self.rmass[i],
         ]);
+        for prop in self.props.iter().filter(|p| p.forward) {
+            buf.extend_from_slice(prop.get(i));
+        }
     }
 
     /// Sets ghost `g` from values packed by [`Particles::pack_forward`].
@@ -479,6 +507,12 @@ impl Particles {
         self.omega[g] = DVec3::new(c[6], c[7], c[8]);
         self.radius[g] = c[9];
         self.rmass[g] = c[10];
+        let mut k = FORWARD_LEN;
+        for prop in self.props.iter_mut().filter(|p| p.forward) {
+            let w = prop.width;
+            prop.get_mut(g).copy_from_slice(&c[k..k + w]);
+            k += w;
+        }
     }
 
     /// Refreshes ghost `g` from particle `i` of this process (a periodic image displaced
@@ -489,6 +523,10 @@ impl Particles {
         self.omega[g] = self.omega[i];
         self.radius[g] = self.radius[i];
         self.rmass[g] = self.rmass[i];
+        for prop in self.props.iter_mut().filter(|p| p.forward) {
+            let w = prop.width;
+            prop.data.copy_within(i * w..(i + 1) * w, g * w);
+        }
     }
 
     /// The rank owning ghost `g` when it copies another rank's particle.
@@ -799,6 +837,30 @@ mod tests {
         assert_eq!(p.props[a2.0].data, vec![7.0; 3]);
         assert_eq!(p.props[b.0].get(2), &[2.0, 3.0]);
         assert!(p.add_property("", 1, &[0.0]).is_err());
+    }
+
+    #[test]
+    fn forwarded_properties_refresh_ghosts() {
+        let mut p = three();
+        let t = p.add_property("t", 1, &[1.0]).unwrap();
+        let q = p.add_property("q", 2, &[2.0, 3.0]).unwrap();
+        p.set_forward(q);
+        assert_eq!(p.forward_len(), FORWARD_LEN + 2);
+        let g = p.push_ghost(1, DVec3::ZERO);
+        p.props[t.0].get_mut(1)[0] = 5.0;
+        p.props[q.0].get_mut(1).copy_from_slice(&[6.0, 7.0]);
+        // A copy on this process: only the forwarded property follows.
+        p.copy_forward(g, 1, DVec3::X);
+        assert_eq!(p.props[q.0].get(g), &[6.0, 7.0]);
+        assert_eq!(p.props[t.0].get(g), &[1.0]);
+        assert_eq!(p.x[g], p.x[1] + DVec3::X);
+        // Across ranks: packed and unpacked.
+        p.props[q.0].get_mut(1).copy_from_slice(&[8.0, 9.0]);
+        let mut buf = Vec::new();
+        p.pack_forward(1, DVec3::ZERO, &mut buf);
+        assert_eq!(buf.len(), p.forward_len());
+        p.unpack_forward(g, &buf);
+        assert_eq!(p.props[q.0].get(g), &[8.0, 9.0]);
     }
 
     #[test]

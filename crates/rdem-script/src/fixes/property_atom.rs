@@ -8,9 +8,9 @@
 //!
 //! As the LIGGGHTS manual says, the fix applies to all particles whatever its group. The
 //! three yes/no flags (restart, forward and reverse ghost communication) are read and
-//! checked: rdem writes no restart files, and ghosts carry the values when they are made
-//! (forward communication of a ghost's values each step is for the engine feature that
-//! needs it).
+//! checked: rdem writes no restart files; ghosts carry the values when they are made, and
+//! with the second flag `yes` forward communication refreshes them every step too (as
+//! LIGGGHTS does for a temperature that pair computations read on ghosts).
 
 use super::{count_error, style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
@@ -34,14 +34,19 @@ pub struct PropertyAtom {
     pub vector: bool,
     /// Values given to existing and new particles.
     pub defaults: Vec<f64>,
+    /// Ghost values refreshed every step (the `comm_ghost_value` flag).
+    pub forward: bool,
 }
 
 impl ScriptFix for PropertyAtom {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
-        sim.world_mut(a)?
-            .particles
+        let p = &mut sim.world_mut(a)?.particles;
+        let id = p
             .add_property(&self.name, self.defaults.len(), &self.defaults)
             .map_err(|e| a.error_at(4, e.to_string(), None))?;
+        if self.forward {
+            p.set_forward(id);
+        }
         Ok(())
     }
 
@@ -95,7 +100,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     }
     let vector = a.keyword("property/atom style", &["scalar", "vector"])? == "vector";
     a.yes_no("restart value (yes or no)")?;
-    a.yes_no("communicate ghost value (yes or no)")?;
+    let forward = a.yes_no("communicate ghost value (yes or no)")?;
     a.yes_no("communicate reverse ghost value (yes or no)")?;
     let start = a.pos();
     let mut defaults = Vec::new();
@@ -126,5 +131,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         name,
         vector,
         defaults,
+        forward,
     }))
 }
