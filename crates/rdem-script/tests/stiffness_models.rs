@@ -79,31 +79,26 @@ fn check(name: &str) {
 }
 
 #[test]
-#[ignore = "rdem's `set` has no omegax/omegay/omegaz yet (the scenarios set spins); un-ignore when it has"]
 fn pair_hooke_stiffness_history_epsd3() {
     check("pair_hooke_stiffness_history_epsd3");
 }
 
 #[test]
-#[ignore = "rdem's `set` has no omegax/omegay/omegaz yet (the scenarios set spins); un-ignore when it has"]
 fn pair_hooke_stiffness_absdamp_nohistory_limitforce() {
     check("pair_hooke_stiffness_absdamp_nohistory_limitforce");
 }
 
 #[test]
-#[ignore = "rdem's `set` has no omegax/omegay/omegaz yet (the scenarios set spins); un-ignore when it has"]
 fn pair_hertz_stiffness_history() {
     check("pair_hertz_stiffness_history");
 }
 
 #[test]
-#[ignore = "rdem's `set` has no omegax/omegay/omegaz yet (the scenarios set spins); un-ignore when it has"]
 fn wall_plane_hertz_stiffness_history_epsd3_torsion() {
     check("wall_plane_hertz_stiffness_history_epsd3_torsion");
 }
 
 #[test]
-#[ignore = "rdem's `set` has no omegax/omegay/omegaz yet (the scenarios set spins); un-ignore when it has"]
 fn wall_plane_hooke_stiffness_absdamp_notdamp() {
     check("wall_plane_hooke_stiffness_absdamp_notdamp");
 }

@@ -109,7 +109,10 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_at(
             a.pos(),
             "set: missing keyword",
-            Some("type, diameter, density, mass, vx, vy, vz, omega, property/atom".into()),
+            Some(
+                "type, diameter, density, mass, x, y, z, vx, vy, vz, omegax, omegay, omegaz, omega, property/atom"
+                    .into(),
+            ),
         ));
     }
     sim.outputs.out.line("Setting atom values ...");
@@ -121,13 +124,37 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 "diameter",
                 "density",
                 "mass",
+                "x",
+                "y",
+                "z",
                 "vx",
                 "vy",
                 "vz",
+                "omegax",
+                "omegay",
+                "omegaz",
                 "omega",
                 "property/atom",
             ],
         )?;
+        // A per-particle component: a number, or an equal- or atom-style variable (as the
+        // LIGGGHTS manual allows), read before the particles are borrowed.
+        let component = match kw {
+            "x" | "y" | "z" | "vx" | "vy" | "vz" | "omegax" | "omegay" | "omegaz" => {
+                let at = a.pos();
+                match set_component(sim, a, kw)? {
+                    Some(vals) => Some(vals),
+                    None => {
+                        return Err(a.error_at(
+                            at,
+                            format!("set {kw}: NULL is not a value"),
+                            Some("give a number or v_name".into()),
+                        ))
+                    }
+                }
+            }
+            _ => None,
+        };
         let ntypes = sim.ntypes();
         let w = sim.world.as_mut().expect("select checked");
         w.neighbor.save_history(&w.particles);
@@ -173,11 +200,18 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     count += 1;
                 }
             }
-            "vx" | "vy" | "vz" => {
-                let v = a.f64(kw)?;
-                let d = (kw.as_bytes()[1] - b'x') as usize;
+            "x" | "y" | "z" | "vx" | "vy" | "vz" | "omegax" | "omegay" | "omegaz" => {
+                let vals = component.expect("read above");
+                let d = (kw.as_bytes()[kw.len() - 1] - b'x') as usize;
                 for i in (0..p.nlocal()).filter(|&i| sel[i]) {
-                    p.v[i][d] = v;
+                    // One value for a number or an equal-style variable, one per owned
+                    // particle for an atom-style variable.
+                    let x = if vals.len() == 1 { vals[0] } else { vals[i] };
+                    match kw.len() {
+                        1 => p.x[i][d] = x,
+                        2 => p.v[i][d] = x,
+                        _ => p.omega[i][d] = x,
+                    }
                     count += 1;
                 }
             }

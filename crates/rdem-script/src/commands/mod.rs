@@ -95,7 +95,7 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("no `add`/`offset`"),
         sim("write_data", data_files::write_data, "the particles and the box as a LAMMPS data file (`nocoeff`, `nofix` accepted)"),
         sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
-        sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `vx vy vz`, `omega`, `property/atom`")
+        sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `x y z`, `vx vy vz`, `omegax omegay omegaz` (numbers or equal-/atom-style `v_name`), `omega`, `property/atom`")
             .notes("the mass follows diameter and density"),
         sim("velocity", atoms::velocity, "`set` (numbers, equal- or atom-style `v_name`, NULL), `zero linear\\|angular`, `ramp`, `create`; `sum`")
             .notes("`units box` only"),
