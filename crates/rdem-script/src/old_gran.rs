@@ -118,7 +118,8 @@ pub fn read_keyword(a: &mut Args, m: &mut ContactModel) -> CmdResult {
     let k = a.keyword("model keyword", &KEYWORDS)?;
     match k {
         "tangential_damping" => {
-            m.flags.tangential_damping = a.keyword("tangential_damping setting", &["on", "off"])? == "on";
+            m.flags.tangential_damping =
+                a.keyword("tangential_damping setting", &["on", "off"])? == "on";
         }
         "cohesion" => {
             m.cohesion = match a.keyword("cohesion model", &["off", "sjkr"])? {

@@ -184,9 +184,7 @@ impl ScriptFix for Gravity {
                 Value::Var(name) => match sim.script.vars.get(name) {
                     Some(Variable::Equal(f)) => context::eval_equal(sim, f)
                         .map_err(|e| format!("variable {name}: {}", e.message)),
-                    Some(_) => Err(format!(
-                        "fix gravity: variable '{name}' is not equal-style"
-                    )),
+                    Some(_) => Err(format!("fix gravity: variable '{name}' is not equal-style")),
                     None => Err(format!("fix gravity: no variable '{name}'")),
                 },
             })

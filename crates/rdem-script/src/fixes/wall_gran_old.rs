@@ -121,8 +121,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 (FixKind::WallGran(Box::new(w)), words)
             }
             Wall::Mesh { meshes, words } => {
-                let w = MeshWall::new(&id, m, meshes)
-                    .map_err(|e| a.error_cmd(e.to_string(), None))?;
+                let w =
+                    MeshWall::new(&id, m, meshes).map_err(|e| a.error_cmd(e.to_string(), None))?;
                 (FixKind::MeshWall(Box::new(w)), words)
             }
         };
