@@ -3,6 +3,9 @@
 //! `liggghts -in in.x -log none` in a scratch folder; the numbers are copied from its
 //! thermo rows, printed with `thermo_modify format float %.17g`).
 
+// The LIGGGHTS figures are kept with the 17 digits it printed.
+#![allow(clippy::excessive_precision)]
+
 use rdem_script::{Interpreter, Output, Sim};
 
 mod common;

@@ -76,7 +76,7 @@ fn accel(style: Style, g: f64, args: &[f64]) -> Option<DVec3> {
         Style::Vector => {
             let d = DVec3::new(args[0], args[1], args[2]);
             let len = d.length();
-            if !(len > 0.0) {
+            if len.is_nan() || len <= 0.0 {
                 return None;
             }
             // As rdem's `Fix::gravity` has always computed it: (g d) / |d|.
