@@ -79,7 +79,7 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
     out
 }
 
-/// Three real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
+/// Five real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
 ///
 /// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 1 line:
 /// - 92 `pair_style gran model hertz tangential incremental_history ...`: the tangential
@@ -104,19 +104,36 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
 /// print ... file beam.csv` run (under `-check` nothing is made or written).
 ///
-/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 5 lines:
+/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 3 lines:
 /// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
-/// - 30 `pair_style gran/hertz/history`: the pre-3.0 pair syntax;
 /// - 38 `fix c1 all mesh/surface ... temperature 600 surface_vel ...`: no mesh
 ///   temperature;
-/// - 42 `fix wall all wall/gran/hertz/history ...`: the pre-3.0 wall syntax;
 /// - 69 `dump dmp all custom ... f_Temp[0]`: no per-particle temperature (`fix heat/gran`
 ///   would make `Temp`; rdem cannot know that, so the line is listed).
 ///
-/// Left out as follow-ons: 31 `pair_coeff` and 62 `thermo_style ... f_heattransfer`.
-/// (Line 46, `fix pdd1 all particledistribution/discrete 1. 1 pts1 1.0`, runs: the seed
-/// `1.` is read as LIGGGHTS reads it, with a warning; so do 52, the insertion that uses
-/// `pdd1`, and 74, its `unfix`.)
+/// Left out as a follow-on: 62 `thermo_style ... f_heattransfer`. (Line 30 `pair_style
+/// gran/hertz/history` and line 42 `fix wall all wall/gran/hertz/history mesh n_meshes 3
+/// meshes c1 hood spoon` run in their 3.x translation; line 46, `fix pdd1 all
+/// particledistribution/discrete 1. 1 pts1 1.0`, runs: the seed `1.` is read as LIGGGHTS
+/// reads it, with a warning; so do 52, the insertion that uses `pdd1`, and 74, its
+/// `unfix`.)
+///
+/// `44_1x_giacomp_pour/in.giacomp` (LIGGGHTS 1.x syntax) — 1 line:
+/// - 82 `fix ins nve_group pour ...`: LAMMPS' and LIGGGHTS 1.x's `fix pour`.
+///
+/// Left out as a follow-on: 113 `unfix ins`. (The 1.x `pair_style gran/hertz/history 1 0`
+/// and the walls `wall/gran/hertz/history 1 0 zplane 0.0 NULL 1`, `xplane 0.0 0.06 1`,
+/// `yplane ...` run in their 3.x translation.)
+///
+/// `56_2x_chute_cylinder_obstacle/in.test` (LIGGGHTS 2.x syntax) — 4 lines:
+/// - 57 and 76 `fix ... wall/gran/hertz/history primitive ... store_force yes ...`: the
+///   wall force per particle (`f_force_ID`) is not stored yet;
+/// - 83 and 92 `dump ... f_force_cyl[1] ...`: the values of that `store_force`.
+///
+/// Left out as a follow-on: 93 `dump_modify dmp3 region dumpreg` (its dump's line
+/// failed). (Line 44, `pair_style gran/hertz/history tangential_damping on cohesion off
+/// rolling_friction off viscous off`, runs in its 3.x translation, and line 67, `fix
+/// gravi all gravity 9.81 chute 0.0`, runs.)
 #[test]
 fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     let Some(root) = wild() else { return };
@@ -138,10 +155,22 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "40_2x_conveyor_surface_vel_heat",
             "in.surface_vel",
-            "in.surface_vel: 5 lines rdem cannot run: fix heat/gran (line 27), \
-             pair_style gran/hertz/history (30), fix mesh/surface (38), \
-             fix wall/gran/hertz/history (42), dump custom (69)",
-            &[31, 62][..],
+            "in.surface_vel: 3 lines rdem cannot run: fix heat/gran (line 27), \
+             fix mesh/surface (38), dump custom (69)",
+            &[62][..],
+        ),
+        (
+            "44_1x_giacomp_pour",
+            "in.giacomp",
+            "in.giacomp: 1 line rdem cannot run: fix pour (line 82)",
+            &[113][..],
+        ),
+        (
+            "56_2x_chute_cylinder_obstacle",
+            "in.test",
+            "in.test: 4 lines rdem cannot run: fix wall/gran/hertz/history (line 57), \
+             fix wall/gran/hertz/history (76), dump custom (83), dump custom (92)",
+            &[93][..],
         ),
     ];
     for (case, main, want, left_out) in cases {

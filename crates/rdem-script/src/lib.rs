@@ -23,6 +23,7 @@ pub mod lattice;
 pub mod lexer;
 pub mod materials;
 pub mod models;
+pub mod old_gran;
 pub mod output;
 pub mod registry;
 pub mod run;

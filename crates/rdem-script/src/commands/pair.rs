@@ -4,6 +4,7 @@ use rdem::{ContactModel, PairGran};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::models;
+use crate::old_gran;
 use crate::sim::Sim;
 
 pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
@@ -15,15 +16,7 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             sim.world_mut(a)?.pair = None;
             return Ok(());
         }
-        s if s.starts_with("gran/") => {
-            return Err(a.error_prev(
-                format!("pair_style {s} is the pre-3.0 syntax, which rdem does not take"),
-                Some(
-                    "write 'pair_style gran model hertz tangential history' (LIGGGHTS 3.x syntax)"
-                        .into(),
-                ),
-            ))
-        }
+        s if s.starts_with("gran/") => return old_pair_style(sim, a, s),
         s => {
             return Err(a.error_prev(
                 format!("unknown pair style '{s}'"),
@@ -38,6 +31,33 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     models::parse_switches(a, &mut m)?;
     sim.world_mut(a)?.pair = Some(PairGran::new(m));
     sim.defs.pair_coeff_set = false;
+    Ok(())
+}
+
+/// `pair_style gran/hertz/history ...` and the other pre-3.0 names (LIGGGHTS 1.x and
+/// 2.x syntax, see [`old_gran`]): the 3.x model they mean, with a note line saying so.
+fn old_pair_style(sim: &mut Sim, a: &mut Args, style: &str) -> CmdResult {
+    let Some(mut m) = old_gran::base_model(&style["gran/".len()..]) else {
+        let names = old_gran::old_names("gran/");
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        return Err(a.error_prev(
+            format!("pair_style {style} is not a LIGGGHTS pair style rdem knows"),
+            Some(format!(
+                "write 'pair_style gran model hertz tangential history' (LIGGGHTS 3.x syntax); the pre-3.0 names rdem translates: {}",
+                suggest(style, &names)
+            )),
+        ));
+    };
+    let form = old_gran::read_pair_words(a, &mut m)?;
+    let note = format!(
+        "pair_style {} ({} syntax) runs as: pair_style gran {}",
+        old_gran::text_from(a, 1),
+        form.label(),
+        old_gran::model_words(&m)
+    );
+    sim.world_mut(a)?.pair = Some(PairGran::new(m));
+    sim.defs.pair_coeff_set = false;
+    sim.outputs.out.line(&note);
     Ok(())
 }
 

@@ -1,5 +1,5 @@
 //! The fixes the engine runs every step, which the script only parses: `nve/sphere`
-//! (integration), `gravity`, `freeze`, `viscous`, `addforce`, `setforce`, `aveforce`
+//! (integration), `freeze`, `viscous`, `addforce`, `setforce`, `aveforce`
 //! (post-force).
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
@@ -18,9 +18,6 @@ pub(super) const ROW_NVE: FixRow = style(
     Stages::ENGINE,
     "velocity Verlet for spheres (translation and rotation)",
 );
-/// The registry row of `gravity`.
-pub(super) const ROW_GRAVITY: FixRow =
-    style("gravity", gravity, Stages::ENGINE, "`G vector x y z`");
 /// The registry row of `freeze`.
 pub(super) const ROW_FREEZE: FixRow = style(
     "freeze",
@@ -122,18 +119,6 @@ fn nve_sphere(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scri
         ));
     }
     engine_fix(sim, a, head, FixKind::NveSphere)
-}
-
-fn gravity(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let g = a.f64("gravity magnitude")?;
-    let how = a.keyword("gravity direction style", &["vector"])?;
-    debug_assert_eq!(how, "vector");
-    let d = a.vec3("gravity vector")?;
-    a.done()?;
-    sim.world_ref(a)?;
-    let fix = Fix::gravity(&head.id, head.groupbit, g, d)
-        .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    Ok(Box::new(InEngine { fix: Some(fix) }))
 }
 
 fn freeze(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {

@@ -17,6 +17,7 @@ pub mod ave_euler;
 mod ave_time;
 mod check_timestep_gran;
 mod engine;
+mod gravity;
 pub mod insert;
 mod insert_stream;
 mod massflow_mesh;
@@ -31,6 +32,7 @@ mod print;
 mod property_atom;
 mod property_global;
 mod wall_gran;
+mod wall_gran_old;
 
 use std::any::Any;
 
@@ -306,6 +308,9 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         move_mesh::ROW,
         move_particles::ROW,
         wall_gran::ROW,
+        wall_gran_old::ROW_HERTZ,
+        wall_gran_old::ROW_HOOKE_HISTORY,
+        wall_gran_old::ROW_HOOKE,
         particletemplate_sphere::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,
@@ -315,7 +320,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         insert_stream::ROW,
         massflow_mesh::ROW,
         engine::ROW_NVE,
-        engine::ROW_GRAVITY,
+        gravity::ROW,
         engine::ROW_FREEZE,
         engine::ROW_VISCOUS,
         engine::ROW_ADDFORCE,
@@ -329,7 +334,10 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_euler::ROW,
         Row::not_yet("ave/histo", "global histograms"),
         Row::not_yet("bond/gran", "bonds"),
-        Row::not_yet("wall/gran/hooke/history", "old-style wall models"),
+        Row::not_yet(
+            "pour",
+            "the particle pouring of LAMMPS and LIGGGHTS 1.x; use fix insert/pack or insert/rate/region",
+        ),
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],
 };

@@ -1,0 +1,217 @@
+//! `fix ID group gravity magnitude style args`: an acceleration on every particle of the
+//! group, along `vector x y z`, `chute angle` or `spherical phi theta`, as LIGGGHTS 3.8
+//! (LAMMPS' fix gravity) defines them:
+//!
+//! - `chute θ`: (sin θ, 0, −cos θ), the tilt away from −z towards +x (degrees);
+//! - `spherical φ θ`: (sin θ cos φ, sin θ sin φ, cos θ), φ from +x, θ from +z (degrees);
+//! - `vector x y z`: the direction of (x, y, z), its length ignored.
+//!
+//! Any value may be an equal-style variable `v_name`, evaluated before each step (and
+//! before a run's set-up forces) at that step, as LIGGGHTS evaluates it in its post-force
+//! stage. `gradient`, which LIGGGHTS 3.8's manual names without arguments, stops there with
+//! "Illegal fix gravity command" (checked on LIGGGHTS 3.8), and here with an error.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+use rdem::{Fix, FixKind};
+
+use super::engine::InEngine;
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use crate::args::{Args, CmdResult};
+use crate::context;
+use crate::sim::Sim;
+use crate::variables::Variable;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "gravity",
+    parse,
+    Stages::ENGINE.and(Stages::PRE_STEP),
+    "`G vector x y z`, `G chute angle`, `G spherical phi theta` (degrees); any value an equal-style `v_name`, evaluated every step",
+)
+.notes("`gradient` stops with an error, as in LIGGGHTS 3.8 (its manual names it, its code refuses it)");
+
+/// A number, or an equal-style variable evaluated every step.
+#[derive(Clone, Debug)]
+enum Value {
+    Num(f64),
+    Var(String),
+}
+
+/// How the direction is given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Style {
+    Vector,
+    Chute,
+    Spherical,
+}
+
+/// A `fix gravity`: the engine fix, and the values that are variables.
+pub struct Gravity {
+    inner: InEngine,
+    style: Style,
+    /// Magnitude, then the style's arguments.
+    values: Vec<Value>,
+}
+
+/// The acceleration of `style` with magnitude `g` and arguments `args`, computed as
+/// LAMMPS' fix gravity does (chute and spherical from degrees, vector normalised); `None`
+/// for a vector of zero length.
+fn accel(style: Style, g: f64, args: &[f64]) -> Option<DVec3> {
+    let rad = PI / 180.0;
+    let dir = match style {
+        Style::Chute => {
+            let t = rad * args[0];
+            DVec3::new(t.sin(), 0.0, -t.cos())
+        }
+        Style::Spherical => {
+            let (phi, theta) = (rad * args[0], rad * args[1]);
+            DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            )
+        }
+        Style::Vector => {
+            let d = DVec3::new(args[0], args[1], args[2]);
+            let len = d.length();
+            if len.is_nan() || len <= 0.0 {
+                return None;
+            }
+            // As rdem's `Fix::gravity` has always computed it: (g d) / |d|.
+            return Some(g * d / len);
+        }
+    };
+    Some(g * dir)
+}
+
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let mut values = vec![value(a, "gravity magnitude")?];
+    let style_at = a.pos();
+    if a.peek() == Some("gradient") {
+        return Err(a.error_at(
+            style_at,
+            "gravity style 'gradient' is not supported: LIGGGHTS 3.8 refuses it too (\"Illegal fix gravity command\")",
+            Some("use 'chute', 'spherical' or 'vector', with v_name values for a field that changes in time".into()),
+        ));
+    }
+    let style = match a.keyword("gravity style", &["vector", "chute", "spherical"])? {
+        "chute" => {
+            values.push(value(a, "chute angle (degrees)")?);
+            Style::Chute
+        }
+        "spherical" => {
+            values.push(value(a, "phi (degrees from +x)")?);
+            values.push(value(a, "theta (degrees from +z)")?);
+            Style::Spherical
+        }
+        _ => {
+            for c in ["x", "y", "z"] {
+                values.push(value(a, &format!("gravity vector {c}"))?);
+            }
+            Style::Vector
+        }
+    };
+    a.done()?;
+    sim.world_ref(a)?;
+    // With variables the acceleration is set before each step; until then it is zero.
+    let nums: Option<Vec<f64>> = values
+        .iter()
+        .map(|v| match v {
+            Value::Num(x) => Some(*x),
+            Value::Var(_) => None,
+        })
+        .collect();
+    let acc = match nums {
+        Some(n) => accel(style, n[0], &n[1..]).ok_or_else(|| {
+            a.error_at(
+                style_at + 1,
+                "the gravity vector has no direction (length 0)",
+                None,
+            )
+        })?,
+        None => DVec3::ZERO,
+    };
+    let fix = Fix::new(&head.id, head.groupbit, FixKind::Gravity { accel: acc })
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(Box::new(Gravity {
+        inner: InEngine::new(fix),
+        style,
+        values,
+    }))
+}
+
+/// A number or `v_name`.
+fn value(a: &mut Args, what: &str) -> CmdResult<Value> {
+    match a.peek() {
+        Some(w) if w.starts_with("v_") && w.len() > 2 => {
+            a.seek(a.pos() + 1);
+            Ok(Value::Var(w[2..].to_string()))
+        }
+        _ => Ok(Value::Num(a.f64(what)?)),
+    }
+}
+
+impl ScriptFix for Gravity {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        self.inner.install(sim, a, head)
+    }
+
+    /// With variables: the acceleration of the coming step (or of the set-up), from the
+    /// variables evaluated at that step.
+    fn pre_step(
+        &mut self,
+        sim: &mut Sim,
+        head: &FixHead,
+        step: u64,
+        _setup: bool,
+    ) -> Result<(), String> {
+        if self.values.iter().all(|v| matches!(v, Value::Num(_))) {
+            return Ok(());
+        }
+        let w = sim
+            .world
+            .as_mut()
+            .ok_or("fix gravity needs a simulation box")?;
+        let now = w.step;
+        w.step = step;
+        let nums: Result<Vec<f64>, String> = self
+            .values
+            .iter()
+            .map(|v| match v {
+                Value::Num(x) => Ok(*x),
+                Value::Var(name) => match sim.script.vars.get(name) {
+                    Some(Variable::Equal(f)) => context::eval_equal(sim, f)
+                        .map_err(|e| format!("variable {name}: {}", e.message)),
+                    Some(_) => Err(format!("fix gravity: variable '{name}' is not equal-style")),
+                    None => Err(format!("fix gravity: no variable '{name}'")),
+                },
+            })
+            .collect();
+        let w = sim.world.as_mut().expect("checked");
+        w.step = now;
+        let nums = nums?;
+        let acc = accel(self.style, nums[0], &nums[1..])
+            .filter(|g| g.is_finite())
+            .ok_or_else(|| {
+                format!(
+                    "fix gravity: the variables give no finite direction ({:?})",
+                    &nums[1..]
+                )
+            })?;
+        let fix = w
+            .fixes
+            .iter_mut()
+            .find(|f| f.id == head.id)
+            .ok_or("fix gravity is not in the engine")?;
+        if let FixKind::Gravity { accel } = &mut fix.kind {
+            *accel = acc;
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        self.inner.unfix(sim, head);
+    }
+}
