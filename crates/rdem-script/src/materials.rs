@@ -70,6 +70,9 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
             }
             continue;
         }
+        if liquid_property(&mut m, name, p, n).is_some() {
+            continue;
+        }
         let slot = match name.as_str() {
             "youngsModulus" => &mut m.youngs_modulus,
             "poissonsRatio" => &mut m.poissons_ratio,
@@ -117,4 +120,35 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
         *slot = p.values.clone();
     }
     Ok(m)
+}
+
+/// Reads the liquid-bridge property `name` (`cohesion easo/capillary/viscous`) into `m`, if
+/// it is one: `contactAngle` per type, the others scalars. One of another style or count
+/// (another model's property of the same name) is left out: the bridge model, if used,
+/// then stops the run saying which property it needs and how.
+fn liquid_property(
+    m: &mut Materials,
+    name: &str,
+    p: &crate::sim::Property,
+    n: usize,
+) -> Option<()> {
+    let l = &mut m.liquid;
+    let slot = match name {
+        "surfaceLiquidContentInitial" => &mut l.content_initial,
+        "surfaceTension" => &mut l.surface_tension,
+        "fluidViscosity" => &mut l.fluid_viscosity,
+        "minSeparationDistanceRatio" => &mut l.min_separation,
+        "maxSeparationDistanceRatio" => &mut l.max_separation,
+        "contactAngle" => {
+            if p.style == "peratomtype" && p.values.len() == n {
+                l.contact_angle = p.values.clone();
+            }
+            return Some(());
+        }
+        _ => return None,
+    };
+    if p.style == "scalar" {
+        *slot = p.values.first().copied();
+    }
+    Some(())
 }

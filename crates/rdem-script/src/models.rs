@@ -33,6 +33,9 @@ pub const NORMAL_MODELS: [&str; 5] = [
     "hooke/stiffness",
 ];
 
+/// Cohesion model names (`cohesion ...`).
+pub const COHESION_MODELS: [&str; 5] = ["off", "sjkr", "sjkr2", "bond", "easo/capillary/viscous"];
+
 /// Rolling friction model names (`rolling_friction ...`).
 pub const ROLLING_MODELS: [&str; 5] = ["off", "cdt", "epsd", "epsd2", "epsd3"];
 
@@ -103,19 +106,22 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                 }
             }
             2 => {
-                if let Some(w @ ("easo/capillary/viscous" | "washino/capillary/viscous")) = a.peek()
-                {
-                    // LIGGGHTS 3.8 has these liquid-bridge models; rdem does not yet.
+                if let Some(w @ "washino/capillary/viscous") = a.peek() {
+                    // LIGGGHTS 3.8 has this liquid-bridge model; rdem does not yet.
                     return Err(a.error_at(
                         a.pos(),
                         format!("cohesion {w} (liquid bridges) is not supported yet"),
-                        Some("supported cohesion models: off, sjkr, sjkr2, bond".into()),
+                        Some(format!(
+                            "supported cohesion models: {}",
+                            COHESION_MODELS.join(", ")
+                        )),
                     ));
                 }
-                m.cohesion = match a.keyword("cohesion model", &["off", "sjkr", "sjkr2", "bond"])? {
+                m.cohesion = match a.keyword("cohesion model", &COHESION_MODELS)? {
                     "sjkr" => CohesionKind::Sjkr,
                     "sjkr2" => CohesionKind::Sjkr2,
                     "bond" => CohesionKind::Bond,
+                    "easo/capillary/viscous" => CohesionKind::Easo,
                     _ => CohesionKind::Off,
                 }
             }
@@ -243,10 +249,15 @@ fn parse_switches_while(
                 m.flags.torsion_torque = on
             }
             _ => {
-                if on && !matches!(m.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2) {
+                if on
+                    && !matches!(
+                        m.cohesion,
+                        CohesionKind::Sjkr | CohesionKind::Sjkr2 | CohesionKind::Easo
+                    )
+                {
                     return Err(a.error_at(
                         a.pos() - 2,
-                        "tangential_reduce needs a contact cohesion model (cohesion sjkr or sjkr2)",
+                        "tangential_reduce needs a contact cohesion model (cohesion sjkr, sjkr2 or easo/capillary/viscous)",
                         None,
                     ));
                 }
@@ -266,7 +277,7 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
             Some("model")
         }
         "history" | "no_history" => Some("tangential"),
-        "sjkr" | "sjkr2" | "bond" => Some("cohesion"),
+        "sjkr" | "sjkr2" | "bond" | "easo/capillary/viscous" => Some("cohesion"),
         "cdt" | "epsd" | "epsd2" | "epsd3" => Some("rolling_friction"),
         _ => None,
     };

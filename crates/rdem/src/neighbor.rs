@@ -2,8 +2,9 @@
 //! check`), and contact history that lives beside each listed pair and is carried across
 //! rebuilds by particle tag.
 //!
-//! The list holds every pair closer than max(r_i + r_j, reach) + skin once (the reach is
-//! the longest bond with `cohesion bond`, else 0): a local pair (i, j) with
+//! The list holds every pair closer than max((r_i + r_j)·f, reach) + skin once (the reach
+//! is the longest bond with `cohesion bond`, else 0; f is the contact distance factor,
+//! 1.1·maxSeparationDistanceRatio with liquid bridges, else 1): a local pair (i, j) with
 //! j > i, and a pair of a local i with a ghost g when g lies "above" i (larger z, then y,
 //! then x), which picks exactly one of the two periodic images of a pair across a
 //! periodic face. The order of the partners within a row follows the bin traversal; it is
@@ -493,6 +494,7 @@ impl Bins {
         cut: f64,
         skin: f64,
         bond_reach: f64,
+        factor: f64,
         list: &mut NeighborList,
     ) {
         let n = p.len();
@@ -657,6 +659,7 @@ impl Bins {
             ghosts,
             skin,
             reach: bond_reach,
+            factor,
             sx,
             sy,
             nx,
@@ -766,6 +769,7 @@ struct Search<'a> {
     ghosts: bool,
     skin: f64,
     reach: f64,
+    factor: f64,
     sx: usize,
     sy: usize,
     nx: usize,
@@ -790,6 +794,7 @@ impl Search<'_> {
             ghosts,
             skin,
             reach,
+            factor,
             sx,
             sy,
             nx,
@@ -847,7 +852,7 @@ impl Search<'_> {
                     let i = index[s];
                     let mut local = |t: usize| {
                         let o = slots[t];
-                        let rc = (ri + o.r).max(reach) + skin;
+                        let rc = ((ri + o.r) * factor).max(reach) + skin;
                         let hit = (o.x - xi).length_squared() < rc * rc;
                         let j = index[t];
                         buf[np] = (i.min(j), i.max(j));
@@ -865,7 +870,7 @@ impl Search<'_> {
                     for &(a, e) in granges.iter() {
                         for t in a..e {
                             let o = slots[t];
-                            let rc = (ri + o.r).max(reach) + skin;
+                            let rc = ((ri + o.r) * factor).max(reach) + skin;
                             let hit = above(xi, o.x) & ((o.x - xi).length_squared() < rc * rc);
                             buf[np] = (i, index[t]);
                             np += hit as usize;
@@ -899,6 +904,10 @@ pub struct Neighbor {
     /// Centre distance below which every pair is listed whatever its radii: the longest
     /// bond (`cohesion bond`), 0 without bonds.
     pub reach: f64,
+    /// LIGGGHTS' contact distance factor: pairs are listed up to (r_i + r_j)·factor + skin
+    /// (liquid bridges reach beyond contact; values below 1, the default 0 included,
+    /// count as 1).
+    pub contact_factor: f64,
     /// Pairs left out of the list (`neigh_modify exclude`); takes effect at the next build.
     pub exclude: Exclusions,
     last_build: u64,
@@ -981,10 +990,15 @@ impl Neighbor {
         }
     }
 
-    /// The neighbor cutoff for particles of largest radius `rmax`: max(2·rmax, reach) +
-    /// skin.
+    /// The neighbor cutoff for particles of largest radius `rmax`: max(2·rmax·f, reach) +
+    /// skin (f the contact distance factor).
     pub fn cutoff_for(&self, rmax: f64) -> f64 {
-        (2.0 * rmax).max(self.reach) + self.settings.skin
+        (2.0 * rmax * self.factor()).max(self.reach) + self.settings.skin
+    }
+
+    /// The contact distance factor in use (at least 1).
+    pub fn factor(&self) -> f64 {
+        self.contact_factor.max(1.0)
     }
 
     /// LAMMPS' decision at step `step`: rebuild when at least `delay` steps have passed
@@ -1083,7 +1097,9 @@ impl Neighbor {
             self.list.first.push(0);
             return;
         }
-        self.bins.search(p, cut, skin, self.reach, &mut self.list);
+        let factor = self.factor();
+        self.bins
+            .search(p, cut, skin, self.reach, factor, &mut self.list);
         if !self.exclude.is_empty() {
             self.drop_excluded(p);
         }

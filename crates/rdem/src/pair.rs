@@ -12,6 +12,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
+use crate::contact::cohesion::Bridge;
+use crate::contact::liquid::Separated;
 use crate::contact::{
     clear_history, CoeffTable, ContactForce, ContactKernel, ContactModel, Geom, Materials,
     PairCoeff, Visitor,
@@ -21,7 +23,12 @@ use crate::neighbor::{Neighbor, NeighborList};
 use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
 
+mod liquid;
 mod local;
+pub use liquid::{
+    BridgeBreak, LiquidState, CONTENT as LIQUID_CONTENT, FLUX as LIQUID_FLUX,
+    SOURCE as LIQUID_SOURCE,
+};
 pub use local::PairContacts;
 
 /// Fraction of the skin that the near list adds to r_i + r_j.
@@ -46,6 +53,8 @@ struct NearList {
     growth_ref: f64,
     /// Centre distance below which a pair is listed whatever its radii (the bond reach).
     reach: f64,
+    /// Contact distance factor: pairs within (r_i + r_j)·factor are listed.
+    factor: f64,
 }
 
 /// The granular pair style: a contact model, its mixed coefficients and the near list.
@@ -70,6 +79,8 @@ pub struct PairGran {
     pub step: u64,
     /// Whether the "no bond will be created" warning was given.
     pub(crate) ts_warned: bool,
+    /// With liquid bridges: the per-particle liquid properties and this pass's breaks.
+    pub(crate) liquid: Option<LiquidState>,
 }
 
 impl PairGran {
@@ -86,6 +97,7 @@ impl PairGran {
             bond_events: BondEvents::default(),
             step: 0,
             ts_warned: false,
+            liquid: None,
         }
     }
 
@@ -132,7 +144,10 @@ impl PairGran {
     /// decides for its own list without asking the others.
     pub fn near_list_stale(&self, x: &[DVec3], neighbor: &Neighbor) -> bool {
         let near = &self.near;
-        if near.built_for != neighbor.nbuilds || near.xref.len() != x.len() {
+        if near.built_for != neighbor.nbuilds
+            || near.xref.len() != x.len()
+            || near.factor != neighbor.factor()
+        {
             return true;
         }
         // Radius growth since the build eats into the margin as in `Neighbor::moved_too_far`.
@@ -157,7 +172,9 @@ impl PairGran {
         near.built_for = neighbor.nbuilds;
         near.growth_ref = neighbor.growth;
         near.reach = self.bond.as_ref().map_or(0.0, |b| b.pair_reach);
+        near.factor = neighbor.factor();
         let reach = near.reach;
+        let factor = near.factor;
         let nlocal = p.nlocal();
         near.xref.clear();
         near.xref.extend_from_slice(&p.x);
@@ -179,7 +196,7 @@ impl PairGran {
                 let ri = p.radius[i];
                 for k in list.first[i] as usize..list.first[i + 1] as usize {
                     let j = list.partner[k] as usize;
-                    let rc = (ri + p.radius[j]).max(reach) + margin;
+                    let rc = ((ri + p.radius[j]) * factor).max(reach) + margin;
                     if (p.x[j] - xi).length_squared() < rc * rc {
                         partner.push(j as u32);
                         slot.push(k as u32);
@@ -237,6 +254,7 @@ impl PairGran {
     /// bit-identical whatever its size (see [`PairPass`]).
     pub fn compute(&mut self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
         debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
+        self.begin_liquid(p, update);
         let model = self.model;
         model.dispatch(PairPass {
             pair: self,
@@ -246,6 +264,7 @@ impl PairGran {
             update,
             virial: None,
         });
+        self.end_liquid(p);
     }
 
     /// [`PairGran::compute`] that also adds each contact's virial to `virial` (one entry
@@ -263,6 +282,7 @@ impl PairGran {
     ) {
         debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
         assert!(virial.len() >= p.len(), "one virial entry per particle");
+        self.begin_liquid(p, update);
         let model = self.model;
         model.dispatch(PairPass {
             pair: self,
@@ -272,6 +292,7 @@ impl PairGran {
             update,
             virial: Some(virial),
         });
+        self.end_liquid(p);
     }
 }
 
@@ -354,6 +375,10 @@ struct Phase1<'a> {
     /// Whether bonds are created in this pass.
     create_now: bool,
     events: &'a BondEvents,
+    /// Liquid contents of all particles (liquid bridges; else empty).
+    lq: &'a [f64],
+    /// Where liquid bridges record their breaks (liquid bridges only).
+    breaks: Option<&'a liquid::Breaks>,
 }
 
 impl Phase1<'_> {
@@ -421,7 +446,7 @@ impl Phase1<'_> {
                 } else {
                     &mut empty
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist) else {
                     res[r] = PairOut::default();
                     if VIRIAL {
                         rv[r] = [0.0; 6];
@@ -457,6 +482,7 @@ impl Phase1<'_> {
         &self,
         i: usize,
         j: usize,
+        k: usize,
         coeff_row: &[PairCoeff],
         hist: &mut [f64],
     ) -> Option<(DVec3, ContactForce)> {
@@ -464,12 +490,12 @@ impl Phase1<'_> {
         let rsq = d.length_squared();
         if !BOND {
             return self
-                .contact::<K>(i, j, coeff_row, hist, d, rsq)
+                .contact::<K>(i, j, k, coeff_row, hist, d, rsq)
                 .map(|o| (d, o));
         }
         let (vecs, rest) = hist.split_at_mut(bond::VEC);
         let (hc, tail) = rest.split_at_mut(K::HIST);
-        let mut out = self.contact::<K>(i, j, coeff_row, hc, d, rsq);
+        let mut out = self.contact::<K>(i, j, k, coeff_row, hc, d, rsq);
         let table = self.bond.expect("bond table");
         let (ti, tj) = (self.ty[i], self.ty[j]);
         let c = table.get(ti, tj);
@@ -506,13 +532,17 @@ impl Phase1<'_> {
         out.map(|o| (d, o))
     }
 
-    /// The contact of owned particle `i` with `j` at r = `d` (`rsq` = |d|²): `None`, with
-    /// the history `hist` cleared, when they do not touch; else the kernel's output.
+    /// The contact of owned particle `i` with `j` (near-list position `k`) at r = `d`
+    /// (`rsq` = |d|²): `None`, with the history `hist` cleared, when they do not touch
+    /// (a liquid bridge between them keeps its own history and may still pull, or break);
+    /// else the kernel's output.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn contact<K: ContactKernel>(
         &self,
         i: usize,
         j: usize,
+        k: usize,
         coeff_row: &[PairCoeff],
         hist: &mut [f64],
         d: DVec3,
@@ -528,6 +558,9 @@ impl Phase1<'_> {
         // a broken particle does not poison its neighbours (it is reported by tag).
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(rsq < radsum * radsum) {
+            if K::BRIDGE {
+                return self.apart::<K>(i, j, k, coeff_row, hist, d, rsq);
+            }
             if !hist.is_empty() {
                 clear_history(hist);
             }
@@ -562,9 +595,63 @@ impl Phase1<'_> {
             inertia_i: (INERTIA_SPHERE + 1.0) * mi * ri * ri,
             inertia_j: (INERTIA_SPHERE + 1.0) * mj * rj * rj,
             dt,
+            lq_i: if K::BRIDGE { self.lq[i] } else { 0.0 },
+            lq_j: if K::BRIDGE { self.lq[j] } else { 0.0 },
             update,
         };
         Some(K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist))
+    }
+
+    /// A pair that does not touch, with a liquid-bridge kernel: the contact's history is
+    /// cleared, the bridge's kept; a bridge pulls (`Some`) or breaks (its liquid flux
+    /// recorded for pair `k`).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn apart<K: ContactKernel>(
+        &self,
+        i: usize,
+        j: usize,
+        k: usize,
+        coeff_row: &[PairCoeff],
+        hist: &mut [f64],
+        d: DVec3,
+        rsq: f64,
+    ) -> Option<ContactForce> {
+        let (h_contact, h_bridge) = hist.split_at_mut(K::HIST - K::BRIDGE_HIST);
+        if !h_contact.is_empty() {
+            clear_history(h_contact);
+        }
+        if h_bridge.iter().all(|&h| h == 0.0) || !rsq.is_finite() {
+            return None;
+        }
+        let s = Separated {
+            d,
+            r: rsq.sqrt(),
+            ri: self.radius[i],
+            rj: self.radius[j],
+            vr: self.v[i] - self.v[j],
+            wi: self.omega[i],
+            wj: self.omega[j],
+            lq_i: self.lq[i],
+            lq_j: self.lq[j],
+            dt: self.dt,
+        };
+        match K::separated(&s, &coeff_row[self.ty[j] as usize - 1], h_bridge) {
+            Bridge::None => None,
+            Bridge::Force(f) => Some(f),
+            Bridge::Breaks { flux_i, flux_j } => {
+                if let Some(b) = self.breaks {
+                    b.push(BridgeBreak {
+                        k: k as u32,
+                        i: i as u32,
+                        j: j as u32,
+                        flux_i,
+                        flux_j,
+                    });
+                }
+                None
+            }
+        }
     }
     /// The whole pass on the calling thread, fused (no per-pair buffer): the serial pass
     /// whose sums phase 2 repeats, so its result is the two-phase pass's, bit for bit.
@@ -586,14 +673,14 @@ impl Phase1<'_> {
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
             let mut fi = DVec3::ZERO;
             let mut tqi = DVec3::ZERO;
-            for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+            for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
                 let (j, slot) = (j as usize, slot as usize - h0);
                 let hist: &mut [f64] = if w > 0 {
                     &mut hist[slot * w..(slot + 1) * w]
                 } else {
                     &mut empty
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist) else {
                     continue;
                 };
                 if VIRIAL {
@@ -754,6 +841,7 @@ impl PairPass<'_> {
             bond_events,
             step,
             ts_warned: _,
+            liquid,
         } = pair;
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
@@ -778,6 +866,10 @@ impl PairPass<'_> {
             bond_flags: model.bond,
             create_now,
             events: bond_events,
+            lq: liquid
+                .as_ref()
+                .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
+            breaks: liquid.as_ref().map(|l| &l.breaks),
         };
         if rayon::current_num_threads() == 1 {
             let (f, torque) = (&mut p.f, &mut p.torque);

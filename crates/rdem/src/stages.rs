@@ -43,9 +43,11 @@ impl World {
         let Some(pair) = &mut self.pair else {
             self.neighbor.set_history_layout(0, 0);
             self.neighbor.reach = 0.0;
+            self.neighbor.contact_factor = 1.0;
             return Ok(());
         };
         pair.setup(&self.materials)?;
+        self.neighbor.contact_factor = pair.setup_liquid(&mut self.particles, &self.materials)?;
         let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
         self.neighbor.set_history_layout(w, odd);
         self.neighbor.reach = pair.reach();
@@ -411,6 +413,9 @@ impl World {
     /// Step 8: ghost forces (and the virial, when wanted) added to their owners.
     pub(crate) fn reverse_comm(&mut self) {
         self.comm.reverse(&mut self.particles);
+        if let Some(pair) = &self.pair {
+            pair.reverse_liquid(&mut self.particles, &*self.comm);
+        }
         if self.want_virial {
             self.comm.reverse_virial(&self.particles, &mut self.virial);
             self.virial.truncate(self.particles.nlocal());
@@ -431,7 +436,8 @@ impl World {
         }
     }
 
-    /// Step 13: the second half of velocity Verlet for each integrating fix.
+    /// Step 13: the second half of velocity Verlet for each integrating fix; then the
+    /// liquid transport of liquid bridges.
     pub(crate) fn final_integrate(&mut self) {
         for fix in &self.fixes {
             match &fix.kind {
@@ -441,6 +447,9 @@ impl World {
                 FixKind::Move(m) => m.final_integrate(&mut self.particles, fix.groupbit, self.dt),
                 _ => {}
             }
+        }
+        if let Some(pair) = &self.pair {
+            pair.integrate_liquid(&mut self.particles, self.dt);
         }
     }
 

@@ -29,7 +29,8 @@
 //! 6. force clear; walls told the step (bonds are created at a given step) [Other]
 //! 7. pair forces (particle–particle contacts, bonds; the near list refreshed when
 //!    stale; the per-particle virial when wanted) [Pair]
-//! 8. reverse communication: ghost forces (and virial) onto their owners [Comm]
+//! 8. reverse communication: ghost forces (and virial, liquid flux) onto their owners
+//!    [Comm]
 //! 9. post-force fixes in definition order, each particle seeing them in that order:
 //!    walls (`wall/gran` primitive and mesh), gravity, addforce, setforce, viscous,
 //!    freeze, aveforce (which needs the group's total force over all ranks, so the fixes
@@ -39,7 +40,8 @@
 //! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
 //!     [Modify]
 //! 12. finiteness check of forces and torques [Other]
-//! 13. final integrate (half kick; `move`: its NULL components only); then the servo
+//! 13. final integrate (half kick; `move`: its NULL components only); the liquid
+//!     transport of liquid bridges (content += (flux + source)·dt); then the servo
 //!     controllers: each active servo
 //!     reads its mesh's total force of step 11 (summed over ranks) and sets the wall
 //!     velocity for the next step (LIGGGHTS' `final_integrate`, after the force pass)

@@ -1,6 +1,6 @@
 //! `pair_style gran` and `pair_coeff * *`: the particle–particle contact model.
 
-use rdem::{ContactModel, PairGran};
+use rdem::{CohesionKind, ContactModel, PairGran};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::models;
@@ -30,6 +30,9 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     models::parse_switches(a, &mut m)?;
     sim.world_mut(a)?.pair = Some(PairGran::new(m));
+    if m.cohesion == CohesionKind::Easo {
+        crate::fixes::liquid::define(sim);
+    }
     sim.defs.pair_coeff_set = false;
     Ok(())
 }

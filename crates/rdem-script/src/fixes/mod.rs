@@ -20,6 +20,7 @@ mod engine;
 mod gravity;
 pub mod insert;
 mod insert_stream;
+pub(crate) mod liquid;
 mod massflow_mesh;
 mod mesh_servo;
 mod mesh_surface;
@@ -449,7 +450,8 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
 pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
     check_fix_peratom(sim, id, col)?;
     let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
-    f.imp.peratom(sim, &f.head, col)
+    // `f_ID[0]` of a fix with one value per atom is `f_ID`, as in LIGGGHTS.
+    f.imp.peratom(sim, &f.head, col.filter(|&c| c != 0))
 }
 
 /// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
@@ -466,7 +468,8 @@ pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), 
             "fix {id} ({}) has no per-atom values",
             f.head.style
         )),
-        (Some(0), None) => Ok(()),
+        // LIGGGHTS takes `f_ID[0]` for `f_ID` (scripts write f_surfaceLiquidContent[0]).
+        (Some(0), None | Some(0)) => Ok(()),
         (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
         (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),
         (Some(n), _) => Err(format!(

@@ -35,7 +35,19 @@ enum Wall {
 }
 
 fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
+    let start = a.pos();
     let mut model = models::parse_types(a)?;
+    if model.cohesion == rdem::CohesionKind::Easo {
+        let k = (start..a.pos())
+            .find(|&k| a.words()[k].text == "easo/capillary/viscous")
+            .unwrap_or(start);
+        // LIGGGHTS 3.8 runs it with a warning ("only supports dry walls").
+        return Err(a.error_at(
+            k,
+            "cohesion easo/capillary/viscous is not supported for walls: its manual allows it in pair_style gran only",
+            Some("leave the cohesion model out of fix wall/gran".into()),
+        ));
+    }
     models::parse_leading_switches(a, &mut model)?;
     let style_at = a.pos();
     match a.peek() {

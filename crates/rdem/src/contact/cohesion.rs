@@ -1,11 +1,53 @@
-//! Cohesion sub-models: an attractive normal force k·A with k the cohesion energy density.
+//! Cohesion sub-models: an attractive normal force k·A with k the cohesion energy density
+//! (`sjkr`, `sjkr2`), and the liquid bridges of `easo/capillary/viscous` ([`super::liquid`]).
+
+use glam::DVec3;
 
 use super::{Geom, PairCoeff};
 
-/// A cohesion law: magnitude of the attractive normal force.
+/// A cohesion law: the attractive normal force of a touching pair and, for liquid
+/// bridges, the forces of a bridged pair that no longer touches.
 pub trait Cohesion {
-    /// Attractive force (≥ 0).
+    /// History values of the cohesion model (after the others').
+    const HIST: usize = 0;
+    /// True for a liquid-bridge model: it reads the particles' liquid contents, adds a
+    /// tangential force, and acts on pairs that do not touch ([`Cohesion::separated`]).
+    const BRIDGE: bool = false;
+
+    /// Attractive force (≥ 0) of a touching pair.
     fn force(g: &Geom, c: &PairCoeff) -> f64;
+
+    /// Touching pair, bridge models: the attractive normal force (≥ 0 pulls; a repulsive
+    /// viscous force is negative) and the tangential force on i, given the relative
+    /// tangential velocity of the contact points `vt_rel`; `hist` is the model's history.
+    #[inline(always)]
+    fn touching(g: &Geom, c: &PairCoeff, _vt_rel: DVec3, _hist: &mut [f64]) -> (f64, DVec3) {
+        (Self::force(g, c), DVec3::ZERO)
+    }
+
+    /// A pair of the neighbor list that does not touch (bridge models only): the bridge's
+    /// force, its end, or nothing. `hist` is the model's history.
+    #[inline(always)]
+    fn separated(_s: &super::liquid::Separated, _c: &PairCoeff, _hist: &mut [f64]) -> Bridge {
+        Bridge::None
+    }
+}
+
+/// What a bridged pair that does not touch does this step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bridge {
+    /// No bridge.
+    None,
+    /// The bridge holds: force on i, torques on i and j.
+    Force(super::ContactForce),
+    /// The bridge breaks: the liquid goes back to the particles; the rates of change of
+    /// their liquid contents (per time) are `flux_i`, `flux_j`.
+    Breaks {
+        /// Liquid flux into i (content per time).
+        flux_i: f64,
+        /// Liquid flux into j.
+        flux_j: f64,
+    },
 }
 
 /// No cohesion.

@@ -49,6 +49,94 @@ pub struct Materials {
     pub rolling_stiffness: Option<f64>,
     /// The `cohesion bond` coefficients that were given.
     pub bond: crate::bond::BondCoefficients,
+    /// The liquid-bridge properties that were given (`cohesion easo/capillary/viscous`).
+    pub liquid: LiquidProperties,
+}
+
+/// The properties of `cohesion easo/capillary/viscous`, as a script gives them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LiquidProperties {
+    /// `surfaceLiquidContentInitial` scalar: every particle's liquid content at the start.
+    pub content_initial: Option<f64>,
+    /// `surfaceTension` scalar (N/m).
+    pub surface_tension: Option<f64>,
+    /// `fluidViscosity` scalar (Pa s).
+    pub fluid_viscosity: Option<f64>,
+    /// `contactAngle` per type, in degrees.
+    pub contact_angle: Vec<f64>,
+    /// `minSeparationDistanceRatio` scalar.
+    pub min_separation: Option<f64>,
+    /// `maxSeparationDistanceRatio` scalar.
+    pub max_separation: Option<f64>,
+}
+
+impl LiquidProperties {
+    /// A scalar property that must be given.
+    fn need(v: Option<f64>, name: &'static str) -> Result<f64> {
+        v.ok_or_else(|| Error::Invalid {
+            what: name,
+            reason: format!(
+                "cohesion easo/capillary/viscous needs fix property/global {name} scalar"
+            ),
+        })
+    }
+
+    /// The initial liquid content (checked: ≥ 0).
+    pub fn initial_content(&self) -> Result<f64> {
+        let v = Self::need(self.content_initial, "surfaceLiquidContentInitial")?;
+        check("surfaceLiquidContentInitial", v, v >= 0.0, "must be >= 0")
+    }
+
+    /// The bridge's neighbor-distance factor, as LIGGGHTS 3.8 registers it:
+    /// 1.1 · maxSeparationDistanceRatio (checked: the ratio ≥ 1).
+    pub fn contact_distance_factor(&self) -> Result<f64> {
+        let v = Self::need(self.max_separation, "maxSeparationDistanceRatio")?;
+        check(
+            "maxSeparationDistanceRatio",
+            v,
+            v >= 1.0,
+            "must be >= 1 (LIGGGHTS 3.8 requires it)",
+        )?;
+        Ok(1.1 * v)
+    }
+
+    /// The mixed coefficients of types `a`, `b` (0-based) for `ntypes` types.
+    fn coeff(&self, a: usize, b: usize, ntypes: usize) -> Result<super::liquid::LiquidCoeff> {
+        let gamma = Self::need(self.surface_tension, "surfaceTension")?;
+        let visc = Self::need(self.fluid_viscosity, "fluidViscosity")?;
+        let min = Self::need(self.min_separation, "minSeparationDistanceRatio")?;
+        check("surfaceTension", gamma, gamma >= 0.0, "must be >= 0")?;
+        check("fluidViscosity", visc, visc >= 0.0, "must be >= 0")?;
+        check("minSeparationDistanceRatio", min, min > 0.0, "must be > 0")?;
+        let max = self.contact_distance_factor()? / 1.1;
+        let angles = &self.contact_angle;
+        if angles.len() != ntypes {
+            return Err(Error::Invalid {
+                what: "contactAngle",
+                reason: format!(
+                    "cohesion easo/capillary/viscous needs fix property/global contactAngle peratomtype with one value per type ({ntypes}), got {}",
+                    angles.len()
+                ),
+            });
+        }
+        for &t in angles {
+            check(
+                "contactAngle",
+                t,
+                (0.0..=180.0).contains(&t),
+                "must be in [0, 180] degrees",
+            )?;
+        }
+        let rad = |t: f64| t * std::f64::consts::PI / 180.0;
+        Ok(super::liquid::LiquidCoeff {
+            surface_tension: gamma,
+            viscosity: visc,
+            angle: 0.5 * rad(angles[a]) * rad(angles[b]),
+            min_sep: min,
+            max_sep: max,
+            ln_inv_min: (1.0 / min).ln(),
+        })
+    }
 }
 
 impl Materials {
@@ -120,6 +208,8 @@ pub struct PairCoeff {
     pub hertz_damp_n: f64,
     /// −2√(5/6) β √(8G*): Hertz γ_t = this × √(√(R*δ) m*).
     pub hertz_damp_t: f64,
+    /// Liquid-bridge coefficients (`cohesion easo/capillary/viscous`).
+    pub liquid: super::liquid::LiquidCoeff,
 }
 
 /// Which optional properties a contact model needs.
@@ -131,6 +221,8 @@ pub struct Needs {
     pub rolling_damping: bool,
     /// Cohesion energy density.
     pub cohesion: bool,
+    /// The liquid-bridge properties (`cohesion easo/capillary/viscous`).
+    pub liquid: bool,
     /// Characteristic velocity.
     pub characteristic_velocity: bool,
     /// Hysteresis coefficients.
@@ -326,6 +418,11 @@ impl CoeffTable {
                 let beta =
                     ln_e / (ln_e * ln_e + std::f64::consts::PI * std::f64::consts::PI).sqrt();
                 let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+                let liquid = if needs.liquid {
+                    m.liquid.coeff(a, b, n)?
+                } else {
+                    Default::default()
+                };
                 coeffs.push(PairCoeff {
                     e_star,
                     g_star,
@@ -346,6 +443,7 @@ impl CoeffTable {
                     roll_stiffness,
                     hertz_damp_n: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * e_star).sqrt(),
                     hertz_damp_t: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * g_star).sqrt(),
+                    liquid,
                 });
             }
         }

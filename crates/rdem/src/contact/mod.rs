@@ -1,11 +1,13 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
 //! hooke/hysteresis, hertz/stiffness, hooke/stiffness), tangential (history, no_history),
-//! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2). Each sub-model is a zero-sized type; a
+//! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
+//! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
 //! [`ContactModel`] value picks one of each and [`ContactModel::dispatch`] turns that
 //! choice into one monomorphized kernel per pass, so the per-contact code has no dynamic
 //! dispatch. Particle–particle and particle–wall contacts share [`contact`].
 
 pub mod cohesion;
+pub mod liquid;
 pub mod materials;
 pub mod normal;
 pub mod rolling;
@@ -13,7 +15,7 @@ pub mod tangential;
 
 use glam::DVec3;
 
-pub use materials::{CoeffTable, Materials, Needs, PairCoeff};
+pub use materials::{CoeffTable, LiquidProperties, Materials, Needs, PairCoeff};
 
 /// Normal force model (`model ...`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -77,6 +79,8 @@ pub enum CohesionKind {
     /// `bond`: the parallel-bond model ([`crate::bond`]); the contact itself has no
     /// cohesion.
     Bond,
+    /// `easo/capillary/viscous`: liquid bridges ([`liquid`]).
+    Easo,
 }
 
 /// Model keywords that are plain switches.
@@ -150,6 +154,7 @@ impl ContactModel {
             rolling_damping: matches!(self.rolling, RollingKind::Epsd | RollingKind::Epsd3),
             rolling_stiffness: self.rolling == RollingKind::Epsd3,
             cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
+            liquid: self.cohesion == CohesionKind::Easo,
             characteristic_velocity: matches!(
                 self.normal,
                 NormalKind::Hooke | NormalKind::HookeHysteresis
@@ -240,6 +245,7 @@ impl ContactModel {
             CohesionKind::Off | CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
             CohesionKind::Sjkr => v.visit::<Kernel<N, T, R, cohesion::Sjkr>>(),
             CohesionKind::Sjkr2 => v.visit::<Kernel<N, T, R, cohesion::Sjkr2>>(),
+            CohesionKind::Easo => v.visit::<Kernel<N, T, R, liquid::Easo>>(),
         }
     }
 }
@@ -304,6 +310,10 @@ pub struct Geom {
     pub inertia_j: f64,
     /// Timestep.
     pub dt: f64,
+    /// Surface liquid content of i (liquid-bridge models; 0 otherwise).
+    pub lq_i: f64,
+    /// Surface liquid content of j (0 for a wall).
+    pub lq_j: f64,
     /// Whether this evaluation advances the contact history. False for the force
     /// evaluation of a run's set-up, as in LIGGGHTS: the tangential spring is used as
     /// stored, rolling springs add their increment without storing it, and hysteresis
@@ -346,6 +356,8 @@ impl Geom {
             inertia_i: (crate::particles::INERTIA_SPHERE + 1.0) * m * r * r,
             inertia_j: f64::INFINITY,
             dt,
+            lq_i: 0.0,
+            lq_j: 0.0,
             update,
         }
     }
@@ -385,8 +397,17 @@ pub trait ContactKernel {
     const HIST: usize;
     /// Leading history values that flip sign when i and j swap.
     const HIST_ODD: usize;
+    /// True for a liquid-bridge model: it reads the liquid contents ([`Geom::lq_i`]) and
+    /// acts on pairs that do not touch ([`ContactKernel::separated`]); its history is the
+    /// last [`ContactKernel::BRIDGE_HIST`] values, which a separation does not clear.
+    const BRIDGE: bool;
+    /// History values of the bridge (at the end of the history).
+    const BRIDGE_HIST: usize;
     /// Force and torques of one contact; `hist` has `HIST` values.
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce;
+    /// A listed pair that does not touch (only for `BRIDGE` kernels): `hist` is the
+    /// bridge's history.
+    fn separated(s: &liquid::Separated, c: &PairCoeff, hist: &mut [f64]) -> cohesion::Bridge;
 }
 
 /// The kernel made of normal model `N`, tangential `T`, rolling `R` and cohesion `C`.
@@ -395,13 +416,21 @@ pub struct Kernel<N, T, R, C>(std::marker::PhantomData<(N, T, R, C)>);
 impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohesion::Cohesion>
     ContactKernel for Kernel<N, T, R, C>
 {
-    // Layout: [tangential | rolling | normal]; the first two are vectors tied to i→j.
-    const HIST: usize = T::HIST + R::HIST + N::HIST;
+    // Layout: [tangential | rolling | normal | cohesion]; the first two are vectors tied
+    // to i→j.
+    const HIST: usize = T::HIST + R::HIST + N::HIST + C::HIST;
     const HIST_ODD: usize = T::HIST + R::HIST;
+    const BRIDGE: bool = C::BRIDGE;
+    const BRIDGE_HIST: usize = C::HIST;
 
     #[inline(always)]
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce {
         contact::<N, T, R, C>(g, c, flags, hist)
+    }
+
+    #[inline(always)]
+    fn separated(s: &liquid::Separated, c: &PairCoeff, hist: &mut [f64]) -> cohesion::Bridge {
+        C::separated(s, c, hist)
     }
 }
 
@@ -430,13 +459,20 @@ pub fn contact<
     hist: &mut [f64],
 ) -> ContactForce {
     let (h_tan, rest) = hist.split_at_mut(T::HIST);
-    let (h_roll, h_norm) = rest.split_at_mut(R::HIST);
+    let (h_roll, rest) = rest.split_at_mut(R::HIST);
+    let (h_norm, h_coh) = rest.split_at_mut(N::HIST);
     let vn = g.vr.dot(g.n);
     let vt = g.vr - vn * g.n;
     // Relative tangential velocity of the contact points.
     let vt_rel = vt - (g.ci * g.wi + g.cj * g.wj).cross(g.n);
     let no = N::normal(g, c, vn, flags, h_norm);
-    let f_coh = C::force(g, c);
+    // A liquid bridge adds a viscous tangential force (on the same lever arms as the
+    // tangential model's); the other cohesion models only pull.
+    let (f_coh, ft_coh) = if C::BRIDGE {
+        C::touching(g, c, vt_rel, h_coh)
+    } else {
+        (C::force(g, c), DVec3::ZERO)
+    };
     // The normal load that sets the Coulomb and rolling limits: the normal model's force
     // (damping included); with `tangential_reduce on` the cohesive pull is added to it and
     // the magnitude taken, as LIGGGHTS 3.8 does (its manual words it the other way round).
@@ -445,7 +481,10 @@ pub fn contact<
     } else {
         no.fn_contact.abs()
     };
-    let ft = T::force(g, c, &no, load, vt_rel, flags, h_tan);
+    let mut ft = T::force(g, c, &no, load, vt_rel, flags, h_tan);
+    if C::BRIDGE {
+        ft += ft_coh;
+    }
     let fn_total = no.fn_contact - f_coh;
     let f_i = fn_total * g.n + ft;
     let nxft = g.n.cross(ft);

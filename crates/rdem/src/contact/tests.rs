@@ -42,6 +42,8 @@ fn geom(delta: f64) -> Geom {
         inertia_i: 1.4 * m * ri * ri,
         inertia_j: 1.4 * m * rj * rj,
         dt: 1e-6,
+        lq_i: 0.0,
+        lq_j: 0.0,
         update: true,
     }
 }

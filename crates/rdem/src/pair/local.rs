@@ -13,7 +13,8 @@ use crate::neighbor::NeighborList;
 use crate::particles::Particles;
 
 /// The pair contacts of the owned particles: one entry per touching pair (i owned, j
-/// owned or ghost), in neighbor-list order.
+/// owned or ghost), and per liquid bridge that pulls on particles apart, in
+/// neighbor-list order.
 #[derive(Debug, Clone, Default)]
 pub struct PairContacts {
     /// Local index of i (owned).
@@ -98,6 +99,11 @@ impl Visitor for Records<'_> {
             bond_flags: pair.model.bond,
             create_now: false,
             events: &events,
+            lq: pair
+                .liquid
+                .as_ref()
+                .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
+            breaks: None,
         };
         // The contact law's values sit after the bond's vectors when there are bonds.
         let off = if pair.bond.is_some() { bond::VEC } else { 0 };
@@ -107,13 +113,14 @@ impl Visitor for Records<'_> {
         for i in 0..nlocal {
             let coeff_row = pair.table.row(p.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-            for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+            for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
                 let (j, slot) = (j as usize, slot as usize);
                 let d = p.x[i] - p.x[j];
                 let rsq = d.length_squared();
                 let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
                 scratch.copy_from_slice(h);
-                let Some(c) = ph1.contact::<K>(i, j, coeff_row, &mut scratch, d, rsq) else {
+                let Some(c) = ph1.contact::<K>(i, j, s + kk, coeff_row, &mut scratch, d, rsq)
+                else {
                     continue;
                 };
                 out.i.push(i as u32);
