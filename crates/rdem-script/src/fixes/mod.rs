@@ -17,6 +17,7 @@ pub mod ave_euler;
 mod ave_time;
 mod check_timestep_gran;
 mod engine;
+mod heat_gran;
 pub mod insert;
 mod insert_stream;
 mod massflow_mesh;
@@ -327,6 +328,8 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         print::ROW,
         ave_atom::ROW,
         ave_euler::ROW,
+        heat_gran::ROW,
+        heat_gran::ROW_ALIAS,
         Row::not_yet("ave/histo", "global histograms"),
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet("wall/gran/hooke/history", "old-style wall models"),
@@ -441,6 +444,7 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
 pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
     check_fix_peratom(sim, id, col)?;
     let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
+    let col = col.filter(|&c| c != 0);
     f.imp.peratom(sim, &f.head, col)
 }
 
@@ -458,7 +462,9 @@ pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), 
             "fix {id} ({}) has no per-atom values",
             f.head.style
         )),
-        (Some(0), None) => Ok(()),
+        // `f_ID[0]`: LIGGGHTS' old spelling of a per-atom vector (its manual's
+        // `f_Temp[0]`), accepted by LIGGGHTS 3.8 as `f_ID`.
+        (Some(0), None | Some(0)) => Ok(()),
         (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
         (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),
         (Some(n), _) => Err(format!(
