@@ -104,16 +104,14 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
 /// print ... file beam.csv` run (under `-check` nothing is made or written).
 ///
-/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 5 lines:
-/// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
+/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 2 lines:
 /// - 30 `pair_style gran/hertz/history`: the pre-3.0 pair syntax;
-/// - 38 `fix c1 all mesh/surface ... temperature 600 surface_vel ...`: no mesh
-///   temperature;
-/// - 42 `fix wall all wall/gran/hertz/history ...`: the pre-3.0 wall syntax;
-/// - 69 `dump dmp all custom ... f_Temp[0]`: no per-particle temperature (`fix heat/gran`
-///   would make `Temp`; rdem cannot know that, so the line is listed).
+/// - 42 `fix wall all wall/gran/hertz/history ...`: the pre-3.0 wall syntax.
 ///
-/// Left out as follow-ons: 31 `pair_coeff` and 62 `thermo_style ... f_heattransfer`.
+/// Left out as follow-ons: 31 `pair_coeff`, and the runs 68 and 73 (`fix heat/gran`
+/// needs the granular pair style of line 30). Its heat lines run: 27 `fix heattransfer
+/// all heat/gran ...`, 38 `fix c1 all mesh/surface ... temperature 600 ...`, 62
+/// `thermo_style ... f_heattransfer` and 69 `dump dmp all custom ... f_Temp[0]`.
 /// (Line 46, `fix pdd1 all particledistribution/discrete 1. 1 pts1 1.0`, runs: the seed
 /// `1.` is read as LIGGGHTS reads it, with a warning; so do 52, the insertion that uses
 /// `pdd1`, and 74, its `unfix`.)
@@ -138,10 +136,9 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "40_2x_conveyor_surface_vel_heat",
             "in.surface_vel",
-            "in.surface_vel: 5 lines rdem cannot run: fix heat/gran (line 27), \
-             pair_style gran/hertz/history (30), fix mesh/surface (38), \
-             fix wall/gran/hertz/history (42), dump custom (69)",
-            &[31, 62][..],
+            "in.surface_vel: 2 lines rdem cannot run: pair_style gran/hertz/history (line 30), \
+             fix wall/gran/hertz/history (42)",
+            &[31, 68, 73][..],
         ),
     ];
     for (case, main, want, left_out) in cases {
@@ -178,8 +175,9 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     }
 }
 
-/// Every LIGGGHTS tutorial the tutorial tests run (`tutorials.rs`, `mesh_tutorials.rs`):
-/// `-check` reports nothing, exits 0 and writes nothing.
+/// Every LIGGGHTS tutorial the tutorial tests run (`tutorials.rs`, `mesh_tutorials.rs`),
+/// and the two heat transfer tutorials: `-check` reports nothing, exits 0 and writes
+/// nothing.
 #[test]
 fn tutorials_check_clean() {
     let cases = [
@@ -194,6 +192,8 @@ fn tutorials_check_clean() {
         ("meshGran", "in.meshGran"),
         ("movingMeshGran", "in.movingMeshGran"),
         ("chute_wear", "in.chute_wear"),
+        ("heatTransfer_1", "in.heatGran"),
+        ("heatTransfer_2", "in.heatGran"),
     ];
     for (dir, file) in cases {
         let src = Path::new(TUTORIALS).join(dir);
@@ -251,7 +251,7 @@ fix m1 all property/global youngsModulus peratomtype 5e6
 fix m2 all property/global poissonsRatio peratomtype 0.45
 fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-fix heat all heat/gran initial_temperature 300
+fix heat all heat/gran/radiation initial_temperature 300
 pair_style gran model hertz tangential history
 unfix heat
 pair_coeff * *
@@ -267,7 +267,7 @@ write_dump all custom one.txt id x
 write_data data.out
 write_restart restart.out
 ";
-    let want = "in.test: 2 lines rdem cannot run: neighbr (line 9), fix heat/gran (14)";
+    let want = "in.test: 2 lines rdem cannot run: neighbr (line 9), fix heat/gran/radiation (14)";
     for args in [
         &["-check", "in.test"][..],
         &["--check", "in.test"],
@@ -279,14 +279,14 @@ write_restart restart.out
         assert_eq!(summary(&out), want, "{args:?}: {stderr}");
         assert!(stderr.contains("unknown command 'neighbr'"), "{stderr}");
         assert!(stderr.contains("in.test:9:1"), "{stderr}");
-        assert!(stderr.contains("unknown fix style 'heat/gran'"), "{stderr}");
+        assert!(stderr.contains("unknown fix style 'heat/gran/radiation'"), "{stderr}");
         assert!(stderr.contains("in.test:14:"), "{stderr}");
         assert!(!stderr.contains("in.test:16:"), "{stderr}");
     }
     // -var reaches the script; the fixed script checks clean.
     let fixed = script
         .replace("neighbr", "neighbor")
-        .replace("fix heat all heat/gran initial_temperature 300\n", "")
+        .replace("fix heat all heat/gran/radiation initial_temperature 300\n", "")
         .replace("unfix heat\n", "")
         + "unfix ${f}\n";
     let out = check_script(&fixed, &[], &["-check", "in.test", "-var", "f", "ave"]);
