@@ -279,14 +279,20 @@ write_restart restart.out
         assert_eq!(summary(&out), want, "{args:?}: {stderr}");
         assert!(stderr.contains("unknown command 'neighbr'"), "{stderr}");
         assert!(stderr.contains("in.test:9:1"), "{stderr}");
-        assert!(stderr.contains("unknown fix style 'heat/gran/radiation'"), "{stderr}");
+        assert!(
+            stderr.contains("unknown fix style 'heat/gran/radiation'"),
+            "{stderr}"
+        );
         assert!(stderr.contains("in.test:14:"), "{stderr}");
         assert!(!stderr.contains("in.test:16:"), "{stderr}");
     }
     // -var reaches the script; the fixed script checks clean.
     let fixed = script
         .replace("neighbr", "neighbor")
-        .replace("fix heat all heat/gran/radiation initial_temperature 300\n", "")
+        .replace(
+            "fix heat all heat/gran/radiation initial_temperature 300\n",
+            "",
+        )
         .replace("unfix heat\n", "")
         + "unfix ${f}\n";
     let out = check_script(&fixed, &[], &["-check", "in.test", "-var", "f", "ave"]);

@@ -116,10 +116,16 @@ fn frozen_packing_as_liggghts() {
         assert_eq!(got.len(), 256);
         for (tag, w) in want {
             let g = &got[tag];
-            assert!((g[2] - w[2]).abs() <= 1e-12 * w[2], "step {step} tag {tag}: T {g:?} vs {w:?}");
+            assert!(
+                (g[2] - w[2]).abs() <= 1e-12 * w[2],
+                "step {step} tag {tag}: T {g:?} vs {w:?}"
+            );
             if *step > 0 {
                 let tol = (1e-9 * w[3].abs()).max(1e-12);
-                assert!((g[3] - w[3]).abs() <= tol, "step {step} tag {tag}: Q {g:?} vs {w:?}");
+                assert!(
+                    (g[3] - w[3]).abs() <= tol,
+                    "step {step} tag {tag}: Q {g:?} vs {w:?}"
+                );
             }
         }
     }
@@ -142,11 +148,21 @@ fn settling_packing_as_liggghts() {
         assert_eq!(got.len(), want.len());
         for (tag, w) in want {
             let g = &got[tag];
-            assert!((g[2] - w[2]).abs() <= 0.05, "step {step} tag {tag}: T {g:?} vs {w:?}");
+            assert!(
+                (g[2] - w[2]).abs() <= 0.05,
+                "step {step} tag {tag}: T {g:?} vs {w:?}"
+            );
         }
     }
     // The heat reached the particles: the bottom layer warmed by more than 5 K.
     let last = &dump[&5000];
-    let bottom: Vec<f64> = last.values().filter(|v| v[1] < 0.008).map(|v| v[2]).collect();
-    assert!(!bottom.is_empty() && bottom.iter().all(|&t| t > 305.0), "{bottom:?}");
+    let bottom: Vec<f64> = last
+        .values()
+        .filter(|v| v[1] < 0.008)
+        .map(|v| v[2])
+        .collect();
+    assert!(
+        !bottom.is_empty() && bottom.iter().all(|&t| t > 305.0),
+        "{bottom:?}"
+    );
 }

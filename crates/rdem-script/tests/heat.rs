@@ -53,7 +53,9 @@ fn interp(src: &str) -> Interpreter {
 /// The error a script stops with, rendered.
 fn error_of(src: &str) -> String {
     let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let e = i.run_source("in.heat", src).expect_err("the script must fail");
+    let e = i
+        .run_source("in.heat", src)
+        .expect_err("the script must fail");
     let mut out = String::new();
     miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
         .with_width(10_000)
@@ -66,7 +68,9 @@ fn error_of(src: &str) -> String {
 fn prop(i: &Interpreter, name: &str) -> Vec<f64> {
     let w = i.sim.world.as_ref().unwrap();
     let p = &w.particles;
-    let id = p.property(name).unwrap_or_else(|| panic!("no property {name}"));
+    let id = p
+        .property(name)
+        .unwrap_or_else(|| panic!("no property {name}"));
     let mut v: Vec<(u64, f64)> = (0..p.nlocal())
         .map(|k| (p.tag[k] as u64, p.props[id.0].get(k)[0]))
         .collect();
@@ -267,7 +271,11 @@ fn group_outside_keeps_its_temperature() {
     let h = pair_h(100.0, 50.0, 0.005, 0.0095);
     let discrete = 100.0 * (1.0 - h * 1e-3 / (m1 * 10.0)).powi(n);
     assert_eq!(t[1], 300.0);
-    assert!(close(t[0] - 300.0, discrete, 1e-10), "{} vs {discrete}", t[0]);
+    assert!(
+        close(t[0] - 300.0, discrete, 1e-10),
+        "{} vs {discrete}",
+        t[0]
+    );
 }
 
 /// A `fix Temp all property/atom Temp ...` defined before heat/gran is replaced and its
@@ -300,7 +308,7 @@ fn temp_property_defined_before() {
 #[test]
 fn errors() {
     for (tail, want) in [
-        ("fix h all heat/gran 300.", "expected heat/gran keyword"),
+        ("fix h all heat/gran 300.", "unknown heat/gran keyword '300.'"),
         (
             "fix h all heat/gran initial_temperature 300. bogus 3",
             "bogus",

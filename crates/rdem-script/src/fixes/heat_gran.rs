@@ -231,9 +231,7 @@ impl ScriptFix for HeatGran {
             // The stress–strain exponent of the contact model: δ ~ F^(1/p).
             let p = match pair.model.normal {
                 NormalKind::Hertz | NormalKind::HertzStiffness => 1.5,
-                NormalKind::Hooke | NormalKind::HookeHysteresis | NormalKind::HookeStiffness => {
-                    1.0
-                }
+                NormalKind::Hooke | NormalKind::HookeHysteresis | NormalKind::HookeStiffness => 1.0,
             };
             let y = per_type(sim, "youngsModulus", n)?;
             let nu = per_type(sim, "poissonsRatio", n)?;

@@ -316,7 +316,10 @@ pub(super) fn wall_temperature(a: &mut Args) -> CmdResult<f64> {
         return Err(a.error_at(
             at,
             format!("wall temperature {t} is negative"),
-            Some("give an absolute temperature >= 0 (LIGGGHTS 3.8 would silently conduct no heat)".into()),
+            Some(
+                "give an absolute temperature >= 0 (LIGGGHTS 3.8 would silently conduct no heat)"
+                    .into(),
+            ),
         ));
     }
     Ok(t)
