@@ -329,7 +329,7 @@ impl HeatConduction {
                         if !wall.meshes.iter().any(|&m| meshes[m].temperature.is_some()) {
                             continue;
                         }
-                        for i in 0..n {
+                        for (i, fi) in flow[..n].iter_mut().enumerate() {
                             wall.for_each_contact(meshes, p, i, |surface, dist| {
                                 if let Some(tw) = surface.temperature {
                                     let r = p.radius[i];
@@ -339,7 +339,7 @@ impl HeatConduction {
                                         surface.wall_type,
                                         r - dist,
                                     );
-                                    flow[i] += (tw - temp[i]) * h;
+                                    *fi += (tw - temp[i]) * h;
                                 }
                             });
                         }
@@ -360,13 +360,13 @@ impl HeatConduction {
             }
         }
         let fl = &mut p.props[self.props.flux.0].data;
-        for i in 0..n {
-            fl[i] += flow[i];
+        for (f, q) in fl[..n].iter_mut().zip(&flow) {
+            *f += q;
         }
         let dl = &mut p.props[self.props.dir_flux.0].data;
-        for i in 0..n {
-            for a in 0..3 {
-                dl[3 * i + a] += dir[i][a];
+        for (d, q) in dl[..3 * n].chunks_exact_mut(3).zip(&dir) {
+            for (a, v) in d.iter_mut().enumerate() {
+                *v += q[a];
             }
         }
         self.flow = flow;
