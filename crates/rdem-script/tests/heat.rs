@@ -6,6 +6,9 @@
 //! f_heatFlux` every step with `%.17g`. LIGGGHTS 3.8 needs a `run 0` between the
 //! definition of `heat/gran` and a `set ... property/atom Temp` (rdem does not).
 
+// LIGGGHTS' figures are kept with the 17 digits it printed.
+#![allow(clippy::excessive_precision)]
+
 use rdem_script::{Interpreter, Output, Sim};
 
 /// Two atom types (conductivity 100 and 50, capacity 10 and 20), Hertz contacts, dt 1 ms,
@@ -72,7 +75,7 @@ fn prop(i: &Interpreter, name: &str) -> Vec<f64> {
         .property(name)
         .unwrap_or_else(|| panic!("no property {name}"));
     let mut v: Vec<(u64, f64)> = (0..p.nlocal())
-        .map(|k| (p.tag[k] as u64, p.props[id.0].get(k)[0]))
+        .map(|k| (p.tag[k], p.props[id.0].get(k)[0]))
         .collect();
     v.sort_by_key(|e| e.0);
     v.into_iter().map(|e| e.1).collect()
