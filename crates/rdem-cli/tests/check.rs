@@ -208,8 +208,9 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     }
 }
 
-/// Every LIGGGHTS tutorial the tutorial tests run (`tutorials.rs`, `mesh_tutorials.rs`):
-/// `-check` reports nothing, exits 0 and writes nothing.
+/// Every LIGGGHTS tutorial the tutorial tests run (`tutorials.rs`, `mesh_tutorials.rs`),
+/// and the two heat transfer tutorials: `-check` reports nothing, exits 0 and writes
+/// nothing.
 #[test]
 fn tutorials_check_clean() {
     let cases = [
@@ -224,6 +225,8 @@ fn tutorials_check_clean() {
         ("meshGran", "in.meshGran"),
         ("movingMeshGran", "in.movingMeshGran"),
         ("chute_wear", "in.chute_wear"),
+        ("heatTransfer_1", "in.heatGran"),
+        ("heatTransfer_2", "in.heatGran"),
     ];
     for (dir, file) in cases {
         let src = Path::new(TUTORIALS).join(dir);
@@ -281,7 +284,7 @@ fix m1 all property/global youngsModulus peratomtype 5e6
 fix m2 all property/global poissonsRatio peratomtype 0.45
 fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-fix heat all heat/gran initial_temperature 300
+fix heat all heat/gran/radiation initial_temperature 300
 pair_style gran model hertz tangential history
 unfix heat
 pair_coeff * *
@@ -297,7 +300,7 @@ write_dump all custom one.txt id x
 write_data data.out
 write_restart restart.out
 ";
-    let want = "in.test: 2 lines rdem cannot run: neighbr (line 9), fix heat/gran (14)";
+    let want = "in.test: 2 lines rdem cannot run: neighbr (line 9), fix heat/gran/radiation (14)";
     for args in [
         &["-check", "in.test"][..],
         &["--check", "in.test"],
@@ -309,14 +312,20 @@ write_restart restart.out
         assert_eq!(summary(&out), want, "{args:?}: {stderr}");
         assert!(stderr.contains("unknown command 'neighbr'"), "{stderr}");
         assert!(stderr.contains("in.test:9:1"), "{stderr}");
-        assert!(stderr.contains("unknown fix style 'heat/gran'"), "{stderr}");
+        assert!(
+            stderr.contains("unknown fix style 'heat/gran/radiation'"),
+            "{stderr}"
+        );
         assert!(stderr.contains("in.test:14:"), "{stderr}");
         assert!(!stderr.contains("in.test:16:"), "{stderr}");
     }
     // -var reaches the script; the fixed script checks clean.
     let fixed = script
         .replace("neighbr", "neighbor")
-        .replace("fix heat all heat/gran initial_temperature 300\n", "")
+        .replace(
+            "fix heat all heat/gran/radiation initial_temperature 300\n",
+            "",
+        )
         .replace("unfix heat\n", "")
         + "unfix ${f}\n";
     let out = check_script(&fixed, &[], &["-check", "in.test", "-var", "f", "ave"]);

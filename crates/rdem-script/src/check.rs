@@ -205,7 +205,8 @@ impl State {
         }
         if self.pair_failed
             && (message.contains("pair_coeff before pair_style")
-                || message.contains("pair coefficients are not set"))
+                || message.contains("pair coefficients are not set")
+                || message.contains("needs a granular pair style"))
         {
             return true;
         }
@@ -378,7 +379,7 @@ mod tests {
             "units si\n\
              region box block 0 1 0 1 0 1 units box\n\
              create_box 1 box\n\
-             fix heat all heat/gran initial_temperature 300\n\
+             fix heat all ave/histo 1 1 1 0 1 10 x\n\
              unfix heat\n\
              bogus_command 1\n\
              variable i loop 3\n\
@@ -391,7 +392,7 @@ mod tests {
         assert_eq!(lines, vec![4, 6, 9], "{c:?}");
         assert_eq!(
             c.summary("in.t"),
-            "in.t: 3 lines rdem cannot run: fix heat/gran (line 4), bogus_command (6), modify_timing (9)"
+            "in.t: 3 lines rdem cannot run: fix ave/histo (line 4), bogus_command (6), modify_timing (9)"
         );
         assert_eq!(c.notes.len(), 1, "{:?}", c.notes);
     }

@@ -14,6 +14,7 @@ pub mod domain;
 pub mod error;
 pub mod euler;
 pub mod fix;
+pub mod heat;
 pub mod insert;
 pub mod massflow;
 pub mod mesh;

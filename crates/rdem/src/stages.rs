@@ -100,6 +100,28 @@ impl World {
                 wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
             }
         }
+        if self.heat.is_none() {
+            // A wall at a fixed temperature conducts into the particles' temperatures.
+            for fix in &self.fixes {
+                let hot = match &fix.kind {
+                    FixKind::WallGran(wall) => wall.temperature.is_some(),
+                    FixKind::MeshWall(wall) => wall
+                        .meshes
+                        .iter()
+                        .any(|&m| self.meshes.get(m).is_some_and(|m| m.temperature.is_some())),
+                    _ => false,
+                };
+                if hot {
+                    return Err(Error::Invalid {
+                        what: "wall temperature",
+                        reason: format!(
+                            "wall {} has a temperature but the particles have none: define fix heat/gran first",
+                            fix.id
+                        ),
+                    });
+                }
+            }
+        }
         Ok(())
     }
 }
@@ -256,8 +278,12 @@ impl World {
 
 /// Timestep stages.
 impl World {
-    /// Step 2: the first half of velocity Verlet for each integrating fix.
+    /// Step 2: the first half of velocity Verlet for each integrating fix; the heat
+    /// flows of the heat conduction group zeroed.
     pub(crate) fn initial_integrate(&mut self) {
+        if let Some(heat) = &self.heat {
+            heat.reset_flux(&mut self.particles);
+        }
         for fix in &self.fixes {
             match &fix.kind {
                 FixKind::NveSphere => {
@@ -423,6 +449,23 @@ impl World {
         }
     }
 
+    /// Step 9b: the heat flows of this step's contacts (pairs and walls at a fixed
+    /// temperature), not at a run's set-up (`update` false), as in LIGGGHTS.
+    pub(crate) fn conduct_heat(&mut self, update: bool) {
+        if !update {
+            return;
+        }
+        if let Some(heat) = &mut self.heat {
+            heat.conduct(
+                &mut self.particles,
+                &self.neighbor.list,
+                &self.fixes,
+                &self.meshes,
+                &*self.comm,
+            );
+        }
+    }
+
     /// Step 11: the wall contacts of this evaluation summed per triangle of the meshes
     /// that track stress ([`crate::wall::mesh_stress::accumulate`]).
     pub(crate) fn accumulate_mesh_stress(&mut self, update: bool) {
@@ -436,9 +479,12 @@ impl World {
         }
     }
 
-    /// Step 13: the second half of velocity Verlet for each integrating fix; then the
-    /// liquid transport of liquid bridges.
+    /// Step 13: the temperatures of heat conduction; the second half of velocity Verlet
+    /// for each integrating fix; then the liquid transport of liquid bridges.
     pub(crate) fn final_integrate(&mut self) {
+        if let Some(heat) = &self.heat {
+            heat.integrate(&mut self.particles, self.dt);
+        }
         for fix in &self.fixes {
             match &fix.kind {
                 FixKind::NveSphere => {

@@ -14,7 +14,8 @@
 //! 0. a full set-up first if particles were added since the last one ([`World::setup`])
 //! 1. `step += 1`
 //! 2. initial integrate (`nve/sphere`: half kick, drift; `move`: the prescribed positions
-//!    and velocities, velocity Verlet for its NULL components) [Modify]
+//!    and velocities, velocity Verlet for its NULL components; heat conduction: the heat
+//!    flows zeroed) [Modify]
 //! 3. mesh motion (`move/mesh`) to the step's time; servo meshes
 //!    (`mesh/surface/stress/servo`) translated by the velocity their controller set at
 //!    the end of the previous step (LIGGGHTS moves them in `initial_integrate`) [Modify]
@@ -35,13 +36,16 @@
 //!    walls (`wall/gran` primitive and mesh), gravity, addforce, setforce, viscous,
 //!    freeze, aveforce (which needs the group's total force over all ranks, so the fixes
 //!    around it run in separate passes) [Modify]
+//!    9b. heat conduction (`heat/gran`): the heat flows of the step's pair and wall
+//!    contacts (see [`crate::heat`]; not at a run's set-up) [Modify]
 //! 10. held streamed particles: force and torque zeroed for the particles an
 //!     `insert/stream` still holds (they fly at their insertion velocity) [Modify]
 //! 11. mesh stress: the wall contacts summed per triangle (`mesh/surface/stress`, wear)
 //!     [Modify]
 //! 12. finiteness check of forces and torques [Other]
-//! 13. final integrate (half kick; `move`: its NULL components only); the liquid
-//!     transport of liquid bridges (content += (flux + source)·dt); then the servo
+//! 13. final integrate (the temperatures of heat conduction: T += (Q + Q_source) dt / (m c);
+//!     half kick; `move`: its NULL components only); the liquid transport of liquid
+//!     bridges (content += (flux + source)·dt); then the servo
 //!     controllers: each active servo
 //!     reads its mesh's total force of step 11 (summed over ranks) and sets the wall
 //!     velocity for the next step (LIGGGHTS' `final_integrate`, after the force pass)
@@ -230,6 +234,7 @@ impl World {
             update,
             &*self.comm,
         );
+        self.conduct_heat(update);
         crate::insert::stream::hold_streamed(&mut self.particles, self.step);
         self.accumulate_mesh_stress(update);
         let t4 = self.timers.lap(Stage::Modify, t3);

@@ -95,6 +95,8 @@ pub struct World {
     /// Step at which [`World::virial`] was computed (`None`: never, or stale since
     /// particles were added).
     pub virial_step: Option<u64>,
+    /// Heat conduction through contacts (`fix heat/gran/conduction`), if any.
+    pub heat: Option<crate::heat::HeatConduction>,
     pub(crate) next_sort: u64,
     pub(crate) needs_reneighbor: bool,
     /// Particles were removed: the next step re-neighbors (no set-up needed).
@@ -123,6 +125,7 @@ impl World {
             want_virial: false,
             virial: Vec::new(),
             virial_step: None,
+            heat: None,
             next_sort: 0,
             needs_reneighbor: true,
             rebuild_next: false,

@@ -216,7 +216,9 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
                 return Err(a.error_prev(
                     format!("pair/gran/local: keyword '{other}' is not supported yet"),
                     Some(match other {
-                        "heatFlux" => "rdem has no heat transfer yet".to_string(),
+                        "heatFlux" => {
+                            "per-contact heat flows of fix heat/gran are not output yet".to_string()
+                        }
                         _ => "use pos, vel, id, force, force_normal, force_tangential, \
                               torque, history, contactArea or delta"
                             .to_string(),

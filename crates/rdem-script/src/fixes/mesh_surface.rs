@@ -12,9 +12,9 @@ pub(super) const ROW: FixRow = style(
     "mesh/surface",
     parse,
     Stages::NONE,
-    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate axis ax ay az angle deg` (in the order given), `surface_vel vx vy vz`, `surface_ang_vel origin .. axis .. omega w`, `precision`, `heal auto_remove_duplicates`; `curvature`, `curvature_tolerant`, `verbose` accepted; `/stress`: `stress on\\|off`, `wear finnie\\|off` (with `property/global k_finnie peratomtypepair`), `reference_point`",
+    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate axis ax ay az angle deg` (in the order given), `surface_vel vx vy vz`, `surface_ang_vel origin .. axis .. omega w`, `precision`, `heal auto_remove_duplicates`, `temperature T` (a wall at fixed temperature for `fix heat/gran`); `curvature`, `curvature_tolerant`, `verbose` accepted; `/stress`: `stress on\\|off`, `wear finnie\\|off` (with `property/global k_finnie peratomtypepair`), `reference_point`",
 )
-.notes("`curvature` changes nothing in rdem: edges and corners count once whatever their angle; `/planar` refuses a mesh that is not planar; `/stress`: per-triangle force summed in particle order (the same on any thread count), `f_ID[1..9]` total force, torque about the reference point, the point; `surface_vel` is used as given (LIGGGHTS projects it onto each face); `temperature`, `element_exclusion_list`, `extrude_planar` stop with an error");
+.notes("`curvature` changes nothing in rdem: edges and corners count once whatever their angle; `/planar` refuses a mesh that is not planar; `/stress`: per-triangle force summed in particle order (the same on any thread count), `f_ID[1..9]` total force, torque about the reference point, the point; `surface_vel` is used as given (LIGGGHTS projects it onto each face); `mass_temperature`, `element_exclusion_list`, `extrude_planar` stop with an error; a negative `temperature` is an error (LIGGGHTS 3.8 silently conducts no heat)");
 
 /// The registry row of `mesh/surface/planar`.
 pub(super) const ROW_PLANAR: FixRow = style(
@@ -113,7 +113,8 @@ fn mesh_surface(
     let mut surface_vel = rdem::DVec3::ZERO;
     let mut surface_ang_vel = None;
     let mut coplanar_cos = rdem::wall::mesh::COPLANAR_COS;
-    const KEYS: [&str; 11] = [
+    let mut temperature = None;
+    const KEYS: [&str; 12] = [
         "surface_ang_vel",
         "type",
         "precision",
@@ -125,11 +126,11 @@ fn mesh_surface(
         "surface_vel",
         "curvature",
         "curvature_tolerant",
+        "temperature",
     ];
-    const LATER_KEYS: [&str; 5] = [
+    const LATER_KEYS: [&str; 4] = [
         "element_exclusion_list",
         "min_feature_length",
-        "temperature",
         "mass_temperature",
         "extrude_planar",
     ];
@@ -208,6 +209,7 @@ fn mesh_surface(
             "curvature_tolerant" => {
                 a.yes_no("curvature_tolerant")?;
             }
+            "temperature" => temperature = Some(wall_temperature(a)?),
             "scale" => {
                 let f = a.positive("scale factor")?;
                 for t in &mut soup {
@@ -298,7 +300,27 @@ fn mesh_surface(
     }
     surface.servo = servo;
     surface.surface_vel = surface_vel;
+    surface.temperature = temperature;
     surface.surface_ang_vel = surface_ang_vel;
     surface.coplanar_cos = coplanar_cos;
     Ok(surface)
+}
+
+/// The value of a wall's `temperature` keyword (`fix mesh/surface`, `fix wall/gran`): a
+/// temperature ≥ 0. LIGGGHTS 3.8 takes a negative one as "no temperature" and conducts no
+/// heat, silently; rdem stops instead.
+pub(super) fn wall_temperature(a: &mut Args) -> CmdResult<f64> {
+    let at = a.pos();
+    let t = a.f64("wall temperature")?;
+    if t < 0.0 {
+        return Err(a.error_at(
+            at,
+            format!("wall temperature {t} is negative"),
+            Some(
+                "give an absolute temperature >= 0 (LIGGGHTS 3.8 would silently conduct no heat)"
+                    .into(),
+            ),
+        ));
+    }
+    Ok(t)
 }

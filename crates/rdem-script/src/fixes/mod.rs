@@ -18,6 +18,7 @@ mod ave_time;
 mod check_timestep_gran;
 mod engine;
 mod gravity;
+mod heat_gran;
 pub mod insert;
 mod insert_stream;
 pub(crate) mod liquid;
@@ -333,6 +334,8 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         print::ROW,
         ave_atom::ROW,
         ave_euler::ROW,
+        heat_gran::ROW,
+        heat_gran::ROW_ALIAS,
         Row::not_yet("ave/histo", "global histograms"),
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet(
@@ -468,7 +471,8 @@ pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), 
             "fix {id} ({}) has no per-atom values",
             f.head.style
         )),
-        // LIGGGHTS takes `f_ID[0]` for `f_ID` (scripts write f_surfaceLiquidContent[0]).
+        // `f_ID[0]`: LIGGGHTS' old spelling of a per-atom vector (its manual's
+        // `f_Temp[0]`), accepted by LIGGGHTS 3.8 as `f_ID`.
         (Some(0), None | Some(0)) => Ok(()),
         (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
         (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),

@@ -16,7 +16,7 @@ pub(super) const ROW: FixRow = style(
     "wall/gran",
     parse,
     Stages::ENGINE,
-    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
+    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `temperature T` (a wall at fixed temperature for `fix heat/gran`); `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
 )
 .notes("with `cohesion bond`, particle–wall bonds (on mesh walls anchored to a triangle, so they go with `fix move/mesh` and `surface_vel`); mesh walls: one contact per shared edge or corner and per flat surface (`curvature`), history that follows a sphere to the next triangle; the wall's velocity at the contact point (`surface_vel`, `surface_ang_vel`, `fix move/mesh`) enters the contact");
 
@@ -76,6 +76,13 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
                 };
                 meshes.push(m);
             }
+            if a.peek() == Some("temperature") {
+                return Err(a.error_at(
+                    a.pos(),
+                    "wall/gran: a mesh wall takes its temperature from its fix mesh/surface",
+                    Some("write 'temperature T' in the fix mesh/surface line (LIGGGHTS 3.8 ignores it here)".into()),
+                ));
+            }
             if models::at_switch(a) {
                 models::parse_switches(a, &mut model)?;
             } else if !a.is_done() {
@@ -128,6 +135,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
         },
     };
     let mut velocity = DVec3::ZERO;
+    let mut temperature = None;
     while let Some(w) = a.peek() {
         if models::at_switch(a) {
             models::parse_switches(a, &mut model)?;
@@ -140,17 +148,28 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
                 let v = a.f64("shear velocity")?;
                 velocity[(d.as_bytes()[0] - b'x') as usize] = v;
             }
+            "temperature" => {
+                a.seek(a.pos() + 1);
+                temperature = Some(super::mesh_surface::wall_temperature(a)?);
+            }
             "store_force" | "store_force_contact" => {
                 a.seek(a.pos() + 1);
                 if a.yes_no(w)? {
                     return Err(a.error_prev(format!("{w} yes is not supported yet"), None));
                 }
             }
-            _ => return Err(models::unknown(a, a.pos(), &["shear", "store_force"])),
+            _ => {
+                return Err(models::unknown(
+                    a,
+                    a.pos(),
+                    &["shear", "temperature", "store_force"],
+                ))
+            }
         }
     }
     let mut wall = PrimitiveWall::new(id, model, wall_type, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     wall.velocity = velocity;
+    wall.temperature = temperature;
     Ok(Wall::Primitive(wall))
 }

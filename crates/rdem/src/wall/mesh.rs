@@ -77,6 +77,8 @@ pub struct MeshSurface {
     /// Cosine of the `curvature` angle: two triangles sharing a corner whose normals
     /// are closer than this belong to one flat surface, which touches a sphere once.
     pub coplanar_cos: f64,
+    /// Fixed temperature of the mesh for heat conduction (`temperature T`), if any.
+    pub temperature: Option<f64>,
 }
 
 /// Default [`MeshSurface::coplanar_cos`]: normals within about 0.26° (LIGGGHTS' default).
@@ -144,6 +146,7 @@ impl MeshSurface {
             stress: None,
             servo: None,
             coplanar_cos: COPLANAR_COS,
+            temperature: None,
         }
     }
 }
@@ -376,6 +379,43 @@ impl MeshWall {
             }
             self.cand.extend_from_slice(&found);
             self.cand_first.push(self.cand.len() as u32);
+        }
+    }
+
+    /// Calls `f(surface, distance)` for each contact of owned particle `i` that the last
+    /// force pass with history update recorded in its slots (the feature touched and the
+    /// distance from its centre to that feature now).
+    pub(crate) fn for_each_contact(
+        &self,
+        all: &[MeshSurface],
+        p: &Particles,
+        i: usize,
+        mut f: impl FnMut(&MeshSurface, f64),
+    ) {
+        let Some(id) = self.hist else { return };
+        let prop = &p.props[id.0];
+        let h = &prop.data[i * prop.width..i * prop.width + SLOTS * self.stride];
+        let x = p.x[i];
+        for s in 0..SLOTS {
+            let Some((mi, feature)) = unkey(h[s * self.stride]) else {
+                break;
+            };
+            let surface = &all[self.meshes[mi as usize]];
+            let m = &surface.mesh;
+            let dist = match feature {
+                Feature::Face(t) => {
+                    let v0 = m.verts[m.tris[t as usize][0] as usize];
+                    (x - v0).dot(m.normals[t as usize]).abs()
+                }
+                Feature::Edge(e) => {
+                    let [a, b] = m.edges[e as usize].map(|v| m.verts[v as usize]);
+                    let ab = b - a;
+                    let u = ((x - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+                    (x - (a + u * ab)).length()
+                }
+                Feature::Vertex(v) => (x - m.verts[v as usize]).length(),
+            };
+            f(surface, dist);
         }
     }
 

@@ -126,6 +126,8 @@ pub struct PrimitiveWall {
     pub velocity: DVec3,
     /// Name of the per-particle history property.
     pub history_name: String,
+    /// Fixed temperature of the wall for heat conduction (`temperature T`), if any.
+    pub temperature: Option<f64>,
     table: CoeffTable,
     hist: Option<PropId>,
     /// Owned particles of the group within r + skin of the wall at the last
@@ -157,6 +159,7 @@ impl PrimitiveWall {
             shape,
             velocity: DVec3::ZERO,
             history_name: format!("wallhist_{id}"),
+            temperature: None,
             table: CoeffTable::default(),
             hist: None,
             candidates: Vec::new(),
@@ -164,6 +167,12 @@ impl PrimitiveWall {
             bond_events: BondEvents::default(),
             step: 0,
         })
+    }
+
+    /// The owned particles that may touch the wall until the next re-neighboring (listed
+    /// by [`PrimitiveWall::build_candidates`]).
+    pub fn candidate_list(&self) -> &[u32] {
+        &self.candidates
     }
 
     /// Mixes the material table and registers the history property; called before a run.

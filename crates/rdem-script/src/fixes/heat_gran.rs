@@ -1,0 +1,297 @@
+//! `fix ID group heat/gran/conduction initial_temperature T0 [contact_area overlap|
+//! projection|constant A] [area_correction yes|no] [store_contact_data no]` (and its alias
+//! `heat/gran`): heat conduction through the contacts, and from walls with a
+//! `temperature`, computed by the engine ([`rdem::heat`], which states the model).
+//!
+//! What the definition brings, as in LIGGGHTS 3.8: the per-particle properties `Temp`
+//! (default T0, forwarded to ghosts every step), `heatFlux`, `heatSource` and
+//! `directionalHeatFlux` (3 values), each as a `fix property/atom` whose ID is its name,
+//! so that `f_Temp`, `f_heatFlux`, `set ... property/atom Temp 350` and the like work. A
+//! `fix Temp all property/atom Temp ...` defined before is replaced, its values reset to T0
+//! (LIGGGHTS 3.8 does the same: measured, all temperatures T0 after the definition); the
+//! same name held by a fix of another ID is an error (LIGGGHTS: "there is already a fix
+//! that registers a variable of the same name"). The per-type `thermalConductivity` and
+//! `thermalCapacity` (`fix property/global ... peratomtype`) are read when a run starts;
+//! `area_correction yes` also reads `youngsModulus`, `poissonsRatio` and
+//! `youngsModulusOriginal`.
+//!
+//! `f_ID` is the thermal energy Σ m c T of *all* particles (LIGGGHTS 3.8's sum runs over
+//! every particle whatever the fix's group); `f_ID` per atom (and `f_ID[0]`, LIGGGHTS' old
+//! spelling) is the temperature.
+
+use rdem::heat::{self, ContactArea, HeatConduction, HeatProps};
+use rdem::NormalKind;
+
+use super::property_atom::PropertyAtom;
+use super::{style, FixEntry, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+const HELP: &str = "`initial_temperature T0`, `contact_area overlap\\|projection\\|constant A`, `area_correction yes\\|no`, `store_contact_data no`: conduction through the contacts and from walls with a `temperature`; per-type `thermalConductivity`, `thermalCapacity`; `Temp`, `heatFlux`, `heatSource`, `directionalHeatFlux` per particle; `f_ID` the thermal energy Σ m c T";
+const NOTES: &str = "an unknown keyword is an error (LIGGGHTS 3.8's `heat/gran` ignores the rest of the line); `store_contact_data yes` is not supported yet; `projection` uses the larger radius, as LIGGGHTS 3.8's code (its manual says the smaller); `unfix` stops conduction and the temperature update (LIGGGHTS keeps integrating the heat sources)";
+
+/// The registry row of `heat/gran/conduction`.
+pub(super) const ROW: FixRow = style(
+    "heat/gran/conduction",
+    parse,
+    Stages::PRE_STEP.and(Stages::VALUES),
+    HELP,
+)
+.notes(NOTES);
+
+/// The registry row of the alias `heat/gran`.
+pub(super) const ROW_ALIAS: FixRow = style(
+    "heat/gran",
+    parse,
+    Stages::PRE_STEP.and(Stages::VALUES),
+    "as `heat/gran/conduction`",
+);
+
+/// The per-particle properties the fix defines: name, number of values, forwarded.
+const PROPS: [(&str, usize, bool); 4] = [
+    (heat::TEMP, 1, true),
+    (heat::HEAT_FLUX, 1, false),
+    (heat::HEAT_SOURCE, 1, false),
+    (heat::DIRECTIONAL_HEAT_FLUX, 3, false),
+];
+
+/// A defined `heat/gran`: the engine's [`HeatConduction`] lives in `World::heat`.
+#[derive(Debug)]
+pub struct HeatGran {
+    /// Initial temperature, as LIGGGHTS passes it on (printed with `%f`).
+    pub t0: f64,
+    /// Contact area of particle pairs.
+    pub area: ContactArea,
+    /// `area_correction yes`.
+    pub area_correction: bool,
+}
+
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let w = sim.world_ref(a)?;
+    a.keyword("heat/gran keyword", &["initial_temperature"])?;
+    let t0 = a.f64("initial temperature T0")?;
+    // LIGGGHTS hands T0 on as the text of "%f": six decimals.
+    let t0 = format!("{t0:.6}").parse::<f64>().unwrap_or(t0);
+    let mut area = ContactArea::Overlap;
+    let mut area_correction = false;
+    let mut correction_at = None;
+    let mut area_at = None;
+    while !a.is_done() {
+        match a.keyword(
+            "heat/gran keyword",
+            &["contact_area", "area_correction", "store_contact_data"],
+        )? {
+            "contact_area" => {
+                area_at = Some(a.pos());
+                area = match a.keyword("contact_area", &["overlap", "projection", "constant"])? {
+                    "overlap" => ContactArea::Overlap,
+                    "projection" => ContactArea::Projection,
+                    _ => ContactArea::Constant(a.positive("contact area")?),
+                };
+            }
+            "area_correction" => {
+                correction_at = Some(a.pos());
+                area_correction = a.yes_no("area_correction")?;
+            }
+            _ => {
+                if a.yes_no("store_contact_data")? {
+                    return Err(a.error_prev(
+                        "heat/gran: store_contact_data yes is not supported yet",
+                        Some("leave it out (the default is no)".into()),
+                    ));
+                }
+            }
+        }
+    }
+    if area_correction && area != ContactArea::Overlap {
+        return Err(a.error_at(
+            correction_at.or(area_at).unwrap_or(STYLE_WORD),
+            "heat/gran: area_correction works only with contact_area overlap",
+            None,
+        ));
+    }
+    // Only one heat conduction per script (a redefinition of the same ID replaces it).
+    if w.heat.is_some() && sim.fix_index(&head.id).is_none() {
+        let other = sim
+            .defs
+            .fixes
+            .iter()
+            .find(|f| f.downcast::<HeatGran>().is_some())
+            .map_or("another fix".to_string(), |f| format!("fix {}", f.id()));
+        return Err(a.error_at(
+            STYLE_WORD,
+            format!("heat/gran: there is already a heat conduction fix ({other})"),
+            Some("one heat/gran per script, as LIGGGHTS".into()),
+        ));
+    }
+    // The properties it defines: replaced when a property/atom of the same ID holds them,
+    // an error when another fix does.
+    for (name, _, _) in PROPS {
+        if w.particles.property(name).is_none() {
+            continue;
+        }
+        let owner = sim
+            .defs
+            .fixes
+            .iter()
+            .find(|f| f.downcast::<PropertyAtom>().is_some_and(|p| p.name == name));
+        match owner {
+            Some(f) if f.id() == name => {}
+            Some(f) => {
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    format!("heat/gran defines the per-atom property '{name}' (as fix {name}), but fix {} already holds one of that name", f.id()),
+                    Some(format!("name the property/atom fix '{name}' (heat/gran then replaces it) or leave it out")),
+                ))
+            }
+            None => {
+                return Err(a.error_at(
+                    STYLE_WORD,
+                    format!("heat/gran: the per-atom property '{name}' is already used by rdem itself"),
+                    None,
+                ))
+            }
+        }
+    }
+    Ok(Box::new(HeatGran {
+        t0,
+        area,
+        area_correction,
+    }))
+}
+
+impl ScriptFix for HeatGran {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        for (name, width, forward) in PROPS {
+            if sim
+                .fix_index(name)
+                .is_some_and(|k| sim.defs.fixes[k].downcast::<PropertyAtom>().is_some())
+            {
+                super::unfix_id(sim, name);
+            }
+            let defaults = if name == heat::TEMP {
+                vec![self.t0]
+            } else {
+                vec![0.0; width]
+            };
+            let mut imp = PropertyAtom {
+                name: name.to_string(),
+                vector: width > 1,
+                defaults,
+                forward,
+            };
+            let phead = FixHead {
+                id: name.to_string(),
+                style: "property/atom",
+                groupbit: 1,
+            };
+            imp.install(sim, a, &phead)?;
+            let origin = sim.origin(a, STYLE_WORD);
+            sim.defs.fixes.push(FixEntry {
+                head: phead,
+                stages: Stages::NONE,
+                origin,
+                energy: false,
+                imp: Box::new(imp),
+            });
+        }
+        let w = sim.world_mut(a)?;
+        let props = HeatProps::register(&mut w.particles, self.t0)
+            .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))?;
+        let heat = HeatConduction::new(head.groupbit, self.area, props)
+            .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))?;
+        w.heat = Some(heat);
+        Ok(())
+    }
+
+    /// At a run's set-up: the per-type tables from the `fix property/global` values.
+    fn pre_step(
+        &mut self,
+        sim: &mut Sim,
+        _head: &FixHead,
+        _step: u64,
+        setup: bool,
+    ) -> Result<(), String> {
+        if !setup {
+            return Ok(());
+        }
+        let n = sim.ntypes();
+        let k = per_type(sim, "thermalConductivity", n)?;
+        if let Some(bad) = k.iter().find(|k| **k < 0.0) {
+            return Err(format!(
+                "heat/gran: thermal conductivity must not be < 0 (thermalConductivity has {bad})"
+            ));
+        }
+        let c = per_type(sim, "thermalCapacity", n)?;
+        let w = sim.world.as_ref().ok_or("no simulation box")?;
+        let Some(pair) = &w.pair else {
+            return Err("heat/gran needs a granular pair style (pair_style gran ...)".into());
+        };
+        let ratio = if self.area_correction {
+            // The stress–strain exponent of the contact model: δ ~ F^(1/p).
+            let p = match pair.model.normal {
+                NormalKind::Hertz | NormalKind::HertzStiffness => 1.5,
+                NormalKind::Hooke | NormalKind::HookeHysteresis | NormalKind::HookeStiffness => 1.0,
+            };
+            let y = per_type(sim, "youngsModulus", n)?;
+            let nu = per_type(sim, "poissonsRatio", n)?;
+            let yo = per_type(sim, "youngsModulusOriginal", n)?;
+            let mut r = Vec::with_capacity(n * n);
+            for i in 0..n {
+                for j in 0..n {
+                    let eff = |y: &[f64]| {
+                        1.0 / ((1.0 - nu[i] * nu[i]) / y[i] + (1.0 - nu[j] * nu[j]) / y[j])
+                    };
+                    r.push((eff(&y) / eff(&yo)).powf(1.0 / p));
+                }
+            }
+            Some(r)
+        } else {
+            None
+        };
+        let w = sim.world.as_mut().ok_or("no simulation box")?;
+        let heat = w.heat.as_mut().ok_or("heat conduction is gone")?;
+        heat.set_coefficients(k, c, ratio)
+            .map_err(|e| format!("heat/gran: {e}"))
+    }
+
+    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+        let w = sim.world.as_ref().ok_or("no simulation box")?;
+        let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
+        Ok(vec![w.comm.sum(heat.thermal_energy(&w.particles))])
+    }
+
+    /// One value per atom (the temperature), at every step.
+    fn peratom_shape(&self) -> Option<(usize, u64)> {
+        Some((0, 1))
+    }
+
+    fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, String> {
+        let w = sim.world.as_ref().ok_or("no simulation box")?;
+        let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
+        let t = &w.particles.props[heat.props.temp.0].data;
+        Ok(t[..w.particles.nlocal()].to_vec())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, _head: &FixHead) {
+        if let Some(w) = &mut sim.world {
+            w.heat = None;
+        }
+    }
+}
+
+/// The first `n` values of the `peratomtype` property `name`.
+fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, String> {
+    let p = sim.defs.properties.get(name).ok_or_else(|| {
+        format!("heat/gran needs 'fix ID all property/global {name} peratomtype' with {n} value(s) (one per atom type)")
+    })?;
+    if p.style != "peratomtype" || p.values.len() < n {
+        return Err(format!(
+            "property {name} (fix {}) must be peratomtype with {n} value(s) (one per atom type), not {} with {}",
+            p.fix_id,
+            p.style,
+            p.values.len()
+        ));
+    }
+    Ok(p.values[..n].to_vec())
+}
