@@ -126,8 +126,9 @@ fn a_pulled_chain_dumps_each_bond_force_as_kn_area_elongation() {
             "bond {}-{}: F_x on i {fx:e}, k_n A (d - d0) {want:e}",
             ti, tj
         );
-        // d is read from 6-digit positions (1e-9 m of 3.2e-6 m elongation).
-        assert!((fx - want).abs() < 2e-3 * want.abs(), "{fx} vs {want}");
+        // d is read from 6-digit positions (each ±5e-9 m, so d ±1e-8 m of the 3.2e-6 m
+        // elongation: 3.1e-3).
+        assert!((fx - want).abs() < 5e-3 * want.abs(), "{fx} vs {want}");
         assert!((fx.abs() - F).abs() < 0.01 * F, "carries F: {fx}");
         // force_normal = force, force_tangential and the torques zero.
         for c in 0..3 {
@@ -177,7 +178,8 @@ fn bond_local_takes_no_keywords_and_needs_bonds() {
 /// bent far. At rest the part of the chain beyond each bond balances the tip load, so,
 /// whatever the deflection, each dumped bond gives i the force ±P x̂ and the moment
 /// ±P (z_tip − z_i) ŷ (+ when i is the sphere nearer the clamp), all of it bending
-/// (torque_normal 0): 1e-3 relative (6-digit dump), the force 1e-4.
+/// (torque_normal 0): the moment within 1e-4 of P times the chain's length (3 mm; rdem
+/// is off by 8e-8 N m at most, the chain still swaying slightly), the force within 1e-4.
 #[test]
 fn a_bent_cantilever_dumps_the_statics_of_a_tip_load() {
     let dir = common::scratch_dir("bonds_local");
