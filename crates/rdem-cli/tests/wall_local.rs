@@ -121,7 +121,7 @@ fn wall_local_needs_a_mesh_wall() {
         String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout);
     assert!(!out.status.success());
     assert!(
-        text.contains("needs a fix wall/gran with mesh walls defined before it"),
+        text.contains("needs a fix wall/gran with mesh walls"),
         "{text}"
     );
     assert!(
