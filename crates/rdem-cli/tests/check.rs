@@ -392,6 +392,8 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "10_pfm_servo_wall",
     "14_pfm_stress_box_euler",
     "16_pfm_rotary_kiln_init",
+    "18_inl_chain_bending_bond_counter",
+    "20_inl_chain_test_plate",
     "36_thesis_screw_conveyor",
     "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",

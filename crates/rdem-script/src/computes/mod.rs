@@ -13,12 +13,14 @@ mod ke;
 pub mod kernels;
 mod nbond_atom;
 mod pair_gran_local;
+mod pair_gran_local_bond;
 mod pe;
 mod pressure;
 mod property_atom;
 pub mod reduce;
 mod stress_atom;
 pub mod temp;
+mod wall_gran_local;
 
 use rdem::World;
 
@@ -166,7 +168,8 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         nbond_atom::ROW,
         temp::ROW,
         pair_gran_local::ROW,
-        Row::not_yet("wall/gran/local", "contact output"),
+        pair_gran_local_bond::ROW,
+        wall_gran_local::ROW,
         Row::not_yet("com", ""),
         Row::not_yet("msd", ""),
         Row::not_yet("rdf", ""),

@@ -45,19 +45,19 @@ const KEYWORDS: [&str; 13] = [
     "ms_id",
 ];
 
-/// Which column groups it gives.
+/// Which column groups it gives (shared with `compute wall/gran/local`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Columns {
-    pos: bool,
-    vel: bool,
-    id: bool,
-    force: bool,
-    force_normal: bool,
-    force_tangential: bool,
-    torque: bool,
-    history: bool,
-    contact_area: bool,
-    delta: bool,
+pub(super) struct Columns {
+    pub(super) pos: bool,
+    pub(super) vel: bool,
+    pub(super) id: bool,
+    pub(super) force: bool,
+    pub(super) force_normal: bool,
+    pub(super) force_tangential: bool,
+    pub(super) torque: bool,
+    pub(super) history: bool,
+    pub(super) contact_area: bool,
+    pub(super) delta: bool,
 }
 
 /// The compute.
@@ -68,20 +68,42 @@ pub struct PairGranLocal {
     hist_width: usize,
 }
 
+impl Columns {
+    /// The groups it gives, in LIGGGHTS' order, with `hist_width` history values:
+    /// (name, first column, width).
+    pub(super) fn groups(&self, hist_width: usize) -> Vec<(&'static str, usize, usize)> {
+        let c = self;
+        let mut out = Vec::new();
+        let mut at = 0;
+        for (on, name, n) in [
+            (c.pos, "pos", 6),
+            (c.vel, "vel", 6),
+            (c.id, "id", 3),
+            (c.force, "force", 3),
+            (c.force_normal, "force_normal", 3),
+            (c.force_tangential, "force_tangential", 3),
+            (c.torque, "torque", 3),
+            (c.history, "history", hist_width),
+            (c.contact_area, "contactArea", 1),
+            (c.delta, "delta", 1),
+        ] {
+            if on {
+                out.push((name, at, n));
+                at += n;
+            }
+        }
+        out
+    }
+
+    /// Number of columns with `hist_width` history values.
+    pub(super) fn count(&self, hist_width: usize) -> usize {
+        self.groups(hist_width).iter().map(|g| g.2).sum()
+    }
+}
+
 impl PairGranLocal {
     fn ncols(&self) -> usize {
-        let c = &self.cols;
-        let n = |b: bool, k: usize| if b { k } else { 0 };
-        n(c.pos, 6)
-            + n(c.vel, 6)
-            + n(c.id, 3)
-            + n(c.force, 3)
-            + n(c.force_normal, 3)
-            + n(c.force_tangential, 3)
-            + n(c.torque, 3)
-            + n(c.history, self.hist_width)
-            + n(c.contact_area, 1)
-            + n(c.delta, 1)
+        self.cols.count(self.hist_width)
     }
 }
 
@@ -102,27 +124,7 @@ impl ScriptCompute for PairGranLocal {
     }
 
     fn local_groups(&self) -> Vec<(&'static str, usize, usize)> {
-        let c = &self.cols;
-        let mut out = Vec::new();
-        let mut at = 0;
-        for (on, name, n) in [
-            (c.pos, "pos", 6),
-            (c.vel, "vel", 6),
-            (c.id, "id", 3),
-            (c.force, "force", 3),
-            (c.force_normal, "force_normal", 3),
-            (c.force_tangential, "force_tangential", 3),
-            (c.torque, "torque", 3),
-            (c.history, "history", self.hist_width),
-            (c.contact_area, "contactArea", 1),
-            (c.delta, "delta", 1),
-        ] {
-            if on {
-                out.push((name, at, n));
-                at += n;
-            }
-        }
-        out
+        self.cols.groups(self.hist_width)
     }
 
     fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
@@ -199,9 +201,24 @@ impl ScriptCompute for PairGranLocal {
 
 /// `compute ID group pair/gran/local [keywords]`.
 fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
+    let c = parse_columns(a, "pair/gran/local")?;
+    let hist_width = sim
+        .world
+        .as_ref()
+        .and_then(|w| w.pair.as_ref())
+        .map_or(0, |p| p.model.contact_history_width());
+    Ok(Box::new(PairGranLocal {
+        cols: c,
+        hist_width,
+    }))
+}
+
+/// The keywords of `compute pair/gran/local` or `wall/gran/local` (`style`), LIGGGHTS'
+/// default when there are none.
+pub(super) fn parse_columns(a: &mut Args, style: &str) -> CmdResult<Columns> {
     let mut c = Columns::default();
     while !a.is_done() {
-        match a.keyword("pair/gran/local keyword", &KEYWORDS)? {
+        match a.keyword(&format!("{style} keyword"), &KEYWORDS)? {
             "pos" => c.pos = true,
             "vel" => c.vel = true,
             "id" => c.id = true,
@@ -214,7 +231,7 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
             "delta" => c.delta = true,
             other => {
                 return Err(a.error_prev(
-                    format!("pair/gran/local: keyword '{other}' is not supported yet"),
+                    format!("{style}: keyword '{other}' is not supported yet"),
                     Some(match other {
                         "heatFlux" => {
                             "per-contact heat flows of fix heat/gran are not output yet".to_string()
@@ -240,13 +257,5 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
             ..c
         };
     }
-    let hist_width = sim
-        .world
-        .as_ref()
-        .and_then(|w| w.pair.as_ref())
-        .map_or(0, |p| p.model.contact_history_width());
-    Ok(Box::new(PairGranLocal {
-        cols: c,
-        hist_width,
-    }))
+    Ok(c)
 }

@@ -1,5 +1,7 @@
 //! `dump ID group local/gran/vtk N file c_ID`: force chains for ParaView, one line cell
-//! per contact of a `compute pair/gran/local` that gives `pos`, as LIGGGHTS 3.8 writes
+//! per contact of a `compute pair/gran/local` that gives `pos` (or per bond of a `compute
+//! pair/gran/local/bond`, whose torque_normal and torque_tangential arrays follow torque,
+//! as LIGGGHTS-INL names them), as LIGGGHTS 3.8 writes
 //! them (legacy VTK 5.1 ASCII polydata): the two particle centres as points (`%g` of
 //! the single-precision value), and
 //! per line the compute's other groups as `double` field arrays (`%.11g`), named and
@@ -24,7 +26,7 @@ pub(super) const ROW: DumpRow = DumpRow::runs(
     parse,
     "force chains (legacy .vtk lines) from a `compute pair/gran/local` with `pos`",
 )
-.notes("legacy `.vtk` only (`.vtp`/`.pvtu` not supported yet); no bond output yet");
+.notes("legacy `.vtk` only (`.vtp`/`.pvtu` not supported yet); bonds through `compute pair/gran/local/bond`");
 
 /// The compute's index, or why it cannot be dumped.
 fn compute_of(sim: &Sim, id: &str) -> Result<usize, String> {

@@ -3,6 +3,10 @@
 //! model is evaluated again from the current positions, velocities and stored history,
 //! without changing the history ([`crate::contact::Geom::update`] off): at the end of a
 //! step this is the state the output describes. Nothing is done on steps without output.
+//!
+//! [`PairGran::bonds`] does the same for the intact bonds of `cohesion bond` (`compute
+//! pair/gran/local/bond` of LIGGGHTS-INL): one entry per bonded pair, with the whole force
+//! and torque the pair gives i (contact law and bond) and the pair's whole history row.
 
 use glam::DVec3;
 
@@ -56,6 +60,27 @@ impl PairGran {
             p,
             list,
             dt,
+            bonds: false,
+        })
+    }
+
+    /// The intact bonds of the near list (none without `cohesion bond`), each with the
+    /// force and torque on i of the contact law and the bond together, evaluated as a
+    /// force pass that does not advance the history would give them (the bond's
+    /// incremental loads include one increment from the current velocities, as at a run's
+    /// set-up), and the pair's whole history row (`hist`, [`PairContacts::width`] values:
+    /// the bond's [`bond::VEC`] vectors, the contact law's values, flag and d₀).
+    pub fn bonds(&self, p: &Particles, list: &NeighborList, dt: f64) -> PairContacts {
+        if self.bond.is_none() {
+            return PairContacts::default();
+        }
+        let model = self.model;
+        model.dispatch(Records {
+            pair: self,
+            p,
+            list,
+            dt,
+            bonds: true,
         })
     }
 }
@@ -65,16 +90,24 @@ struct Records<'a> {
     p: &'a Particles,
     list: &'a NeighborList,
     dt: f64,
+    /// Bonded pairs (through [`Phase1::eval`]) instead of touching ones.
+    bonds: bool,
 }
 
 impl Visitor for Records<'_> {
     type Output = PairContacts;
     fn visit<K: ContactKernel>(self) -> PairContacts {
-        let Records { pair, p, list, dt } = self;
+        let Records {
+            pair,
+            p,
+            list,
+            dt,
+            bonds,
+        } = self;
         let nlocal = p.nlocal();
         let events = BondEvents::default();
         let mut out = PairContacts {
-            width: K::HIST,
+            width: if bonds { list.width } else { K::HIST },
             ..PairContacts::default()
         };
         if pair.near.first.len() != nlocal + 1 {
@@ -108,6 +141,9 @@ impl Visitor for Records<'_> {
         // The contact law's values sit after the bond's vectors when there are bonds.
         let off = if pair.bond.is_some() { bond::VEC } else { 0 };
         let w = list.width;
+        if bonds {
+            return bond_records::<K>(&ph1, pair, p, list, out);
+        }
         let mut scratch = vec![0.0; K::HIST];
         let near = &pair.near;
         for i in 0..nlocal {
@@ -133,4 +169,40 @@ impl Visitor for Records<'_> {
         }
         out
     }
+}
+
+/// The bonded pairs of the near list for [`PairGran::bonds`].
+fn bond_records<K: ContactKernel>(
+    ph1: &Phase1,
+    pair: &PairGran,
+    p: &Particles,
+    list: &NeighborList,
+    mut out: PairContacts,
+) -> PairContacts {
+    let w = list.width;
+    let flag = w - bond::PAIR_TAIL;
+    let mut scratch = vec![0.0; w];
+    let near = &pair.near;
+    for i in 0..p.nlocal() {
+        let coeff_row = pair.table.row(p.ty[i]);
+        let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
+        for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+            let (j, slot) = (j as usize, slot as usize);
+            let h = &list.hist[slot * w..(slot + 1) * w];
+            if !bond::is_bonded(&h[flag..]) {
+                continue;
+            }
+            scratch.copy_from_slice(h);
+            let Some((d, c)) = ph1.eval::<K, true>(i, j, coeff_row, &mut scratch) else {
+                continue;
+            };
+            out.i.push(i as u32);
+            out.j.push(j as u32);
+            out.f.push(c.f_i);
+            out.t_i.push(c.t_i);
+            out.delta.push(p.radius[i] + p.radius[j] - d.length());
+            out.hist.extend_from_slice(h);
+        }
+    }
+    out
 }

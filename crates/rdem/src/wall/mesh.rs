@@ -424,6 +424,11 @@ impl MeshWall {
         &self.cand[self.cand_first[i] as usize..self.cand_first[i + 1] as usize]
     }
 
+    /// True when the candidates cover the first `n` particles (after a re-neighboring).
+    pub(super) fn has_candidates_for(&self, n: usize) -> bool {
+        self.cand_first.len() > n
+    }
+
     /// Adds the wall forces on particles `lo..lo + f.len()`; `hist` (the history
     /// property's values) starts at particle `lo`.
     #[allow(clippy::too_many_arguments)]
@@ -452,6 +457,7 @@ impl MeshWall {
             hist,
             dt,
             update,
+            rec: None,
         });
     }
 }
@@ -549,16 +555,19 @@ impl Grid {
     }
 }
 
-struct MeshPass<'a> {
-    wall: &'a MeshWall,
-    all: &'a [MeshSurface],
-    view: &'a View<'a>,
-    lo: usize,
-    f: &'a mut [DVec3],
-    torque: &'a mut [DVec3],
-    hist: &'a mut [f64],
-    dt: f64,
-    update: bool,
+/// The force pass of a mesh wall over a range of owned particles.
+pub(super) struct MeshPass<'a> {
+    pub(super) wall: &'a MeshWall,
+    pub(super) all: &'a [MeshSurface],
+    pub(super) view: &'a View<'a>,
+    pub(super) lo: usize,
+    pub(super) f: &'a mut [DVec3],
+    pub(super) torque: &'a mut [DVec3],
+    pub(super) hist: &'a mut [f64],
+    pub(super) dt: f64,
+    pub(super) update: bool,
+    /// Where each contact is recorded, for per-contact output (`None` in a force pass).
+    pub(super) rec: Option<&'a mut super::mesh_local::WallContacts>,
 }
 
 impl Visitor for MeshPass<'_> {
@@ -657,6 +666,7 @@ impl MeshPass<'_> {
             hist,
             dt,
             update,
+            mut rec,
         } = self;
         let hw = K::HIST;
         let extra = wall.extra;
@@ -824,12 +834,26 @@ impl MeshPass<'_> {
                     hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
                 }
                 let surface = &surfaces[wall.meshes[t.mesh as usize]];
-                let vr = p.v[i] - surface.wall_velocity(t.tri, t.q);
+                let v_wall = surface.wall_velocity(t.tri, t.q);
+                let vr = p.v[i] - v_wall;
                 let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
                 f[k] += out.f_i;
                 torque[k] += out.t_i;
+                if let Some(rec) = rec.as_deref_mut() {
+                    rec.push(
+                        i,
+                        t.mesh,
+                        t.tri,
+                        t.q,
+                        t.n,
+                        t.dist,
+                        v_wall,
+                        &out,
+                        &hs[1..1 + hw],
+                    );
+                }
                 if extra > 0 {
                     if let Some(st) = &surface.stress {
                         crate::wall::mesh_stress::record(

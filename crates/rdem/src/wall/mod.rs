@@ -2,10 +2,12 @@
 //! the contact kernel's [`crate::contact::Geom`].
 
 pub mod mesh;
+pub mod mesh_local;
 pub mod mesh_stress;
 pub mod primitive;
 
 pub use mesh::{MeshSurface, MeshWall};
+pub use mesh_local::{WallContact, WallContacts};
 pub use primitive::{PrimitiveWall, WallShape};
 
 /// Whether each owned particle holds an intact wall bond, read from the wall's history
