@@ -45,7 +45,7 @@ pub fn thermo_temp() -> super::Compute {
 }
 
 /// `compute temp`.
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct Temp {
     /// Degrees of freedom subtracted from d N (`compute_modify extra`); `None`: d, the
     /// dimension (3, or 2 after `dimension 2`, as LIGGGHTS 3.8 counts).
@@ -57,15 +57,6 @@ pub struct Temp {
     counted: Option<u64>,
 }
 
-impl Default for Temp {
-    fn default() -> Self {
-        Self {
-            extra_dof: None,
-            dynamic: false,
-            counted: None,
-        }
-    }
-}
 
 /// Number of owned particles in the group, summed over ranks.
 fn group_count(w: &World, groupbit: u32) -> u64 {
