@@ -57,7 +57,6 @@ pub struct Temp {
     counted: Option<u64>,
 }
 
-
 /// Number of owned particles in the group, summed over ranks.
 fn group_count(w: &World, groupbit: u32) -> u64 {
     let p = &w.particles;
