@@ -30,6 +30,7 @@ pub mod run;
 pub mod sim;
 pub mod source;
 pub mod thermo;
+pub mod units;
 pub mod variables;
 
 pub use diagnostic::{ScriptError, ScriptReport};

@@ -179,6 +179,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
             thermo_row(sim)?;
         }
         crate::dumps::write_due(sim, step, false)?;
+        crate::commands::restart::write_due(sim, step)?;
         if let Some(w) = &mut sim.world {
             w.timers.lap(Stage::Output, t_out);
         }

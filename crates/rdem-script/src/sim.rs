@@ -95,6 +95,11 @@ pub struct Setup {
     pub lost: rdem::LostPolicy,
     /// `processors Px Py Pz` (0 = `*`, free).
     pub procs: [usize; 3],
+    /// `units` (SI unless the script says otherwise).
+    pub units: crate::units::Units,
+    /// `dimension` (3, or 2 for a plane in x and y: the temperature counts 2 degrees of
+    /// freedom per particle and `fix enforce2d` keeps the particles in their plane).
+    pub dimension: u8,
 }
 
 impl Default for Setup {
@@ -108,6 +113,8 @@ impl Default for Setup {
             sort: rdem::SortSettings::default(),
             lost: rdem::LostPolicy::Error,
             procs: [0; 3],
+            units: crate::units::Units::Si,
+            dimension: 3,
         }
     }
 }
@@ -150,6 +157,9 @@ pub struct Outputs {
     pub progress: Option<Box<dyn FnMut(u64, u64)>>,
     /// Warnings already printed (see [`Outputs::warn_once`]).
     pub warned: std::collections::BTreeSet<String>,
+    /// `restart N ...`: periodic restart files (none by default; at most one schedule
+    /// with one name and one with two).
+    pub restart: Vec<crate::commands::restart::RestartSchedule>,
 }
 
 impl Outputs {
@@ -170,8 +180,6 @@ pub struct ScriptState {
     pub here: Option<crate::diagnostic::SourceFile>,
     /// `rdem -check`: runs no step and writes no file (see `crate::check`).
     pub check: bool,
-    /// `units si` was given.
-    pub units_set: bool,
     /// Number of threads asked for (`--threads`); the force pass runs on a rayon pool of
     /// that size, which the caller sets up.
     pub threads: usize,
@@ -220,12 +228,12 @@ impl Sim {
                 out,
                 progress: None,
                 warned: Default::default(),
+                restart: Vec::new(),
             },
             script: ScriptState {
                 vars: Variables::new(),
                 here: None,
                 check: false,
-                units_set: false,
                 threads: 1,
                 started: Instant::now(),
                 run_first: 0,

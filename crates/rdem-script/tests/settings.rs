@@ -174,18 +174,13 @@ fn fix_modify_reaches_a_style_keyword_first() {
     );
 }
 
-/// `dimension 3` runs before the box; 2, other values and a late `dimension` stop at the
-/// word.
+/// `dimension 3` runs before the box; other values than 2 and 3 and a late `dimension`
+/// stop at the word (2d runs: tests/dim2.rs).
 #[test]
-fn dimension_three_only() {
+fn dimension_two_or_three() {
     let (_, r, _) = run(&format!("dimension 3\n{BOX}"));
     r.unwrap();
     for (src, msg, at) in [
-        (
-            "dimension 2\n".to_string(),
-            "dimension 2 is not supported yet",
-            "in.t:1:11",
-        ),
         (
             "dimension 4\n".to_string(),
             "dimension must be 2 or 3, not '4'",

@@ -155,7 +155,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
             _ => None,
         };
-        let ntypes = sim.ntypes();
+        let (ntypes, dim) = (sim.ntypes(), sim.setup.dimension);
         let w = sim.world.as_mut().expect("select checked");
         w.neighbor.save_history(&w.particles);
         w.particles.clear_ghosts();
@@ -196,7 +196,14 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 let m = a.positive("mass")?;
                 for i in (0..p.nlocal()).filter(|&i| sel[i]) {
                     p.rmass[i] = m;
-                    p.density[i] = m / (4.0 / 3.0 * std::f64::consts::PI * p.radius[i].powi(3));
+                    // Mass per volume, or per area in 2d (see settings::disc_masses).
+                    let r = p.radius[i];
+                    let size = if dim == 2 {
+                        std::f64::consts::PI * r * r
+                    } else {
+                        4.0 / 3.0 * std::f64::consts::PI * r.powi(3)
+                    };
+                    p.density[i] = m / size;
                     count += 1;
                 }
             }
@@ -242,6 +249,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 }
             }
         }
+        super::settings::disc_masses(sim);
         let count = sim.world_ref(a)?.comm.sum_count(count as u64);
         sim.outputs
             .out
@@ -310,6 +318,21 @@ pub(super) fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     }
+    // LIGGGHTS 3.8 in 2d: "Cannot set non-zero z velocity for 2d simulation".
+    if sim.setup.dimension == 2 {
+        let z_set = match &op {
+            Op::Set(v) => v[2].as_ref().is_some_and(|z| z.iter().any(|&x| x != 0.0)),
+            Op::Ramp(vd, vlo, vhi, ..) => *vd == 2 && (*vlo != 0.0 || *vhi != 0.0),
+            _ => false,
+        };
+        if z_set {
+            return Err(a.error_cmd(
+                "cannot set a non-zero z velocity in a 2d simulation",
+                Some("dimension 2: give vz as 0 or NULL".into()),
+            ));
+        }
+    }
+    let (boltzmann, dim) = (sim.setup.units.boltzmann(), sim.setup.dimension);
     let w = sim.world_mut(a)?;
     let p = &mut w.particles;
     let sel: Vec<usize> = (0..p.nlocal()).filter(|&i| p.mask[i] & bit != 0).collect();
@@ -355,12 +378,15 @@ pub(super) fn velocity(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 let mut rng = rand_pcg::Pcg64::seed_from_u64(
                     seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ p.tag[i],
                 );
-                let s = (1.3806504e-23 * t / p.rmass[i]).sqrt();
-                let g: [f64; 3] = [
+                let s = (boltzmann * t / p.rmass[i]).sqrt();
+                let mut g: [f64; 3] = [
                     normal.sample(&mut rng),
                     normal.sample(&mut rng),
                     normal.sample(&mut rng),
                 ];
+                if dim == 2 {
+                    g[2] = 0.0;
+                }
                 p.v[i] = DVec3::from_array(g) * s;
             }
             let vcm = group_vcm(&*w.comm, p, &sel);

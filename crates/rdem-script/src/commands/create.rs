@@ -40,8 +40,9 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if (0..3).any(|d| lo[d] <= -1e299 || hi[d] >= 1e299) {
         return Err(a.error_at(2, "create_box needs a region with finite bounds", None));
     }
-    let domain = Domain::with_faces(lo, hi, sim.setup.boundary)
-        .map_err(|e| a.error_at(2, e.to_string(), None))?;
+    let boundary = super::settings::box_boundary(sim, a, 2)?;
+    let domain =
+        Domain::with_faces(lo, hi, boundary).map_err(|e| a.error_at(2, e.to_string(), None))?;
     sim.outputs.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
         crate::variables::g(lo.x),
@@ -147,6 +148,7 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             .map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
     w.extend_tags();
+    super::settings::disc_masses(sim);
     sim.outputs.out.line(&format!("Created {n} atoms"));
     Ok(())
 }

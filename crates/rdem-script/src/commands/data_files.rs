@@ -21,9 +21,10 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if sim.world.is_some() {
         return Err(a.error_cmd("read_data: the simulation box is already defined", None));
     }
+    let boundary = super::settings::box_boundary(sim, a, 0)?;
     let data = rdem_io::read_data(std::path::Path::new(file))
         .map_err(|e| a.error_at(1, e.to_string(), None))?;
-    let domain = Domain::with_faces(data.lo, data.hi, sim.setup.boundary)
+    let domain = Domain::with_faces(data.lo, data.hi, boundary)
         .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
     sim.outputs.out.line(&format!(
         "Created orthogonal box = ({} {} {}) to ({} {} {})",
@@ -67,6 +68,7 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     w.materials.ntypes = data.ntypes as usize;
     sim.world = Some(w);
+    super::settings::disc_masses(sim);
     Ok(())
 }
 
@@ -81,23 +83,32 @@ pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
             a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
         }
     }
-    let ntypes = sim.ntypes() as u32;
-    let w = sim.world_ref(a)?;
-    let f = f.replace('*', &w.step.to_string());
+    let step = sim.world_ref(a)?.step;
+    let f = f.replace('*', &step.to_string());
+    write_restart_file(sim, &f).map_err(|m| a.error_at(1, m, None))
+}
+
+/// Writes the particles and the box (and the step, in the title line) to `path` as a
+/// data file, which `read_data` and `read_restart` read: the writer of `write_data`,
+/// `write_restart` and `restart`. Every rank sends its owned particles; rank 0 writes
+/// them all, sorted by tag, under a temporary name renamed to `path` when complete
+/// (`rdem_io`'s atomic writes). Under `rdem -check` nothing is written.
+pub(crate) fn write_restart_file(sim: &Sim, path: &str) -> Result<(), String> {
     if sim.script.check {
-        return Ok(()); // rdem -check writes no file
+        return Ok(());
     }
-    // Every rank sends its owned particles; rank 0 writes them all, sorted by tag.
+    let ntypes = sim.ntypes() as u32;
+    let w = sim.world.as_ref().ok_or("no simulation box")?;
     let all: Vec<usize> = (0..w.particles.nlocal()).collect();
     if let Some(g) = dumps::gather_owned(&*w.comm, &w.particles, &all, &[]) {
         rdem_io::write_data(
-            std::path::Path::new(&f),
+            std::path::Path::new(path),
             &g.particles,
             &w.domain,
             ntypes,
             w.step,
         )
-        .map_err(|e| a.error_at(1, e.to_string(), None))?;
+        .map_err(|e| e.to_string())?;
     }
     Ok(())
 }

@@ -11,6 +11,7 @@ mod data_files;
 mod group;
 mod pair;
 pub mod region;
+pub mod restart;
 mod settings;
 mod shell;
 mod thermo;
@@ -75,9 +76,10 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same)"),
         sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
         sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box"),
-        sim("dimension", settings::dimension, "`3`").notes("before the box; `dimension 2` is not supported yet"),
+        sim("dimension", settings::dimension, "`3`, `2` (with `fix enforce2d`)").notes("before the box; in 2d, as in LIGGGHTS 3.8: the box must be periodic in z, z velocities must be 0, masses are discs' (π r² ρ) with a sphere's moment of inertia, `fix gravity` takes its direction in the xy plane, the temperature counts 2 degrees of freedom per particle, particle templates (insertion) stop with an error. rdem makes no z images (as LAMMPS in 2d) by giving the engine fixed z faces. `fix adapt` in 2d: not supported yet"),
         sim("clear", settings::clear, "everything back to the start, except variables, screen, log and `thermo_log`"),
-        sim("units", settings::units, "`si`").notes("other unit systems: an error"),
+        sim("units", settings::units, "`si`, `cgs`, `micro`, with their default `timestep` and skin")
+            .notes("before the box; without `units` rdem works in `si` (LIGGGHTS' default is `lj`); `lj`, `real`, `metal`, `electron`, `nano`: an error. LIGGGHTS 3.8's `youngsModulus` range check (`si`, `cgs`) is not made"),
         sim("newton", settings::newton, "accepted").notes("tuning only"),
         sim("communicate", settings::communicate, "accepted").notes("tuning only"),
         sim("hard_particles", settings::hard_particles, "accepted").notes("tuning only"),
@@ -129,6 +131,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("write_dump", dumps::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
         sim("write_restart", data_files::write_data, "file name")
             .notes("rdem's restart file is a portable LAMMPS data file (box, particles with velocities and spins, the step in its title line): `read_restart` continues from it in a new script. Contact histories and fix states are not saved"),
+        sim("restart", restart::restart, "`0`, `N root` (`*` in the name replaced by the step, else `.STEP` appended), `N file1 file2` (in turn)")
+            .notes("the files are `write_restart`'s; `v_name` for N, `%` in names, `fileper`, `nfile`: not supported yet"),
         sim("read_restart", data_files::read_data, "file name")
             .notes("reads rdem's restart files; LIGGGHTS' binary restart files cannot be read"),
         flow("variable", "the variable styles below"),

@@ -6,6 +6,7 @@ use rdem::Boundary;
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::sim::Sim;
+use crate::units::Units;
 
 pub(super) fn atom_style(_sim: &mut Sim, a: &mut Args) -> CmdResult {
     let s = a.word("atom style")?;
@@ -103,21 +104,36 @@ pub(super) fn boundary(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
-/// `units si`.
+/// `units si|cgs|micro` (before the box, as LIGGGHTS): sets the unit system and, as
+/// LIGGGHTS 3.8 does, the default time step and neighbor skin of that system (see
+/// [`crate::units`]).
 pub(super) fn units(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    let u = a.word("unit style")?;
-    if u != "si" {
-        return Err(a.error_prev(
-            format!("units {u} is not supported: rdem works in SI units"),
-            Some("use 'units si' (metres, kilograms, seconds)".into()),
+    if sim.world.is_some() {
+        return Err(a.error_cmd(
+            "units after the simulation box is defined",
+            Some("give units before create_box or read_data".into()),
         ));
     }
+    let u = a.word("unit style")?;
+    let Some(units) = Units::from_name(u) else {
+        let help = format!("rdem supports {}", crate::diagnostic::one_of(&Units::NAMES));
+        let msg = if ["lj", "real", "metal", "electron", "nano"].contains(&u) {
+            format!("units {u} is not supported by rdem yet")
+        } else {
+            format!("unknown unit style '{u}'")
+        };
+        return Err(a.error_prev(msg, Some(help)));
+    };
     a.done()?;
-    sim.script.units_set = true;
+    sim.setup.units = units;
+    sim.setup.dt = units.default_timestep();
+    sim.setup.neighbor.skin = units.default_skin();
     Ok(())
 }
 
-/// `dimension 3` (before the box, as LIGGGHTS); `dimension 2` is not supported yet.
+/// `dimension 2|3` (before the box, as LIGGGHTS). In 2d the box must be periodic in z
+/// (checked when it is made), z velocities must stay 0, the temperature counts 2 degrees
+/// of freedom per particle and `fix enforce2d` keeps the particles in their plane.
 pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if sim.world.is_some() {
         return Err(a.error_cmd(
@@ -125,17 +141,59 @@ pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("give dimension before create_box or read_data".into()),
         ));
     }
-    match a.word("dimension")? {
-        "3" => a.done(),
-        "2" => Err(a.error_prev(
-            "dimension 2 is not supported yet: rdem simulates in 3d",
-            Some("use 'dimension 3' (the default)".into()),
-        )),
-        d => Err(a.error_prev(
-            format!("dimension must be 2 or 3, not '{d}'"),
-            Some("rdem supports 'dimension 3'".into()),
-        )),
+    let d = match a.word("dimension")? {
+        "3" => 3,
+        "2" => 2,
+        d => {
+            return Err(a.error_prev(
+                format!("dimension must be 2 or 3, not '{d}'"),
+                Some("'dimension 3' (the default) or 'dimension 2'".into()),
+            ))
+        }
+    };
+    a.done()?;
+    sim.setup.dimension = d;
+    Ok(())
+}
+
+/// In 2d, LIGGGHTS 3.8 gives a particle of density ρ the mass of a disc, π r² ρ (density
+/// is mass per area, "ρ σ^dim" in the `units` manual; checked there: after
+/// `set atom 1 diameter 0.01 density 2500` the mass is 0.196349540849362, and a new atom
+/// of diameter 1 and density 1 has 0.785398163397448), while the moment of inertia stays
+/// a sphere's, 2/5 m r². The engine makes sphere masses: this sets the disc masses of
+/// the owned particles after the commands that make particles or change their size or
+/// density (`create_atoms`, `read_data`, `set`). Nothing in 3d.
+pub(crate) fn disc_masses(sim: &mut Sim) {
+    if sim.setup.dimension != 2 {
+        return;
     }
+    if let Some(w) = &mut sim.world {
+        let p = &mut w.particles;
+        for i in 0..p.nlocal() {
+            p.rmass[i] = std::f64::consts::PI * p.radius[i] * p.radius[i] * p.density[i];
+        }
+    }
+}
+
+/// The boundaries the engine's box gets, after LIGGGHTS 3.8's check of a 2d box: it must
+/// be periodic in z (its error "Cannot run 2d simulation with nonperiodic Z dimension";
+/// errors point at word `k`). LAMMPS makes no ghost images along z in 2d, so the z slab
+/// may be thinner than the contact distance; rdem's engine gives the 2d box fixed z faces,
+/// which make no images either (the particles, kept at their z by `fix enforce2d`, never
+/// reach them; one that leaves the slab without enforce2d is lost instead of wrapped).
+pub(super) fn box_boundary(sim: &Sim, a: &Args, k: usize) -> CmdResult<[[Boundary; 2]; 3]> {
+    let mut b = sim.setup.boundary;
+    if sim.setup.dimension == 2 {
+        if b[2][0] != Boundary::Periodic {
+            return Err(a.error_at(
+                k,
+                "a 2d simulation needs a periodic z boundary",
+                Some("dimension 2: give 'boundary x y p'".into()),
+            ));
+        }
+        b[2] = [Boundary::Fixed; 2];
+    }
+    Ok(b)
 }
 
 /// `clear`: everything back to the state after start-up (box, particles, fixes,

@@ -1,6 +1,7 @@
 //! `compute ID group temp`: the translational temperature of the group, a global scalar,
-//! T = Σ m v² / (dof k_B) with dof = 3 N − extra (`extra` 3 by default, changed by
-//! `compute_modify ID extra N`), T = 0 when dof ≤ 0. Every script has one implicitly,
+//! T = Σ m v² / (dof k_B) with dof = d N − extra in d dimensions (`extra` d by default,
+//! changed by `compute_modify ID extra N`; k_B of the `units` system), T = 0 when
+//! dof ≤ 0. Every script has one implicitly,
 //! `thermo_temp` on group `all` (see [`thermo_temp`]), as LIGGGHTS 3.8 creates it at
 //! start-up.
 //!
@@ -18,9 +19,6 @@ use super::kernels::kinetic;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
-
-/// Boltzmann constant in SI units as LIGGGHTS has it (J/K).
-pub const BOLTZ_SI: f64 = 1.3806504e-23;
 
 /// The registry row.
 pub(super) const ROW: ComputeRow = ComputeRow::runs(
@@ -47,25 +45,16 @@ pub fn thermo_temp() -> super::Compute {
 }
 
 /// `compute temp`.
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct Temp {
-    /// Degrees of freedom subtracted from 3 N (`compute_modify extra`).
-    pub extra_dof: i64,
+    /// Degrees of freedom subtracted from d N (`compute_modify extra`); `None`: d, the
+    /// dimension (3, or 2 after `dimension 2`, as LIGGGHTS 3.8 counts).
+    pub extra_dof: Option<i64>,
     /// Count N at each evaluation (`compute_modify dynamic yes`).
     pub dynamic: bool,
     /// N counted at the last run set-up (None before the first run: counted when
     /// evaluated).
     counted: Option<u64>,
-}
-
-impl Default for Temp {
-    fn default() -> Self {
-        Self {
-            extra_dof: 3,
-            dynamic: false,
-            counted: None,
-        }
-    }
 }
 
 /// Number of owned particles in the group, summed over ranks.
@@ -78,9 +67,10 @@ fn group_count(w: &World, groupbit: u32) -> u64 {
 }
 
 impl Temp {
-    /// The degrees of freedom for `n` particles.
-    pub fn dof(&self, n: u64) -> f64 {
-        3.0 * n as f64 - self.extra_dof as f64
+    /// The degrees of freedom for `n` particles in `dim` dimensions.
+    pub fn dof(&self, n: u64, dim: u8) -> f64 {
+        let extra = self.extra_dof.unwrap_or(i64::from(dim));
+        f64::from(dim) * n as f64 - extra as f64
     }
 }
 
@@ -99,9 +89,9 @@ impl ScriptCompute for Temp {
             Some(n) if !self.dynamic => n,
             _ => group_count(w, c.groupbit),
         };
-        let dof = self.dof(n);
+        let dof = self.dof(n, sim.setup.dimension);
         Ok(if dof > 0.0 {
-            2.0 * kinetic(w, c.groupbit) / (dof * BOLTZ_SI)
+            2.0 * kinetic(w, c.groupbit) / (dof * sim.setup.units.boltzmann())
         } else {
             0.0
         })
@@ -116,12 +106,12 @@ impl ScriptCompute for Temp {
             "extra" | "extra/dof" => {
                 let w = a.word("number of extra degrees of freedom")?;
                 // LIGGGHTS 3.8 reads an integer (`extra 4.5` is an error there).
-                self.extra_dof = w.parse().map_err(|_| {
+                self.extra_dof = Some(w.parse().map_err(|_| {
                     a.error_prev(
                         format!("{keyword} must be an integer, not '{w}'"),
                         Some("LIGGGHTS 3.8 reads a whole number here (negative adds degrees of freedom)".into()),
                     )
-                })?;
+                })?);
             }
             "dynamic" | "dynamic/dof" => self.dynamic = a.yes_no(keyword)?,
             _ => return Ok(false),

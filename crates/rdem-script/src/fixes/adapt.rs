@@ -31,6 +31,13 @@ pub struct Adapt {
 }
 
 fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    if sim.setup.dimension == 2 {
+        return Err(a.error_at(
+            super::STYLE_WORD,
+            "fix adapt in a 2d simulation is not supported yet",
+            Some("2d particles have disc masses, which fix adapt does not keep yet".into()),
+        ));
+    }
     let every = a.count("N (adapt every N steps)")?;
     match a.keyword("adapt attribute", &["atom", "pair"])? {
         "atom" => {}

@@ -51,15 +51,27 @@ enum Style {
 pub struct Gravity {
     inner: InEngine,
     style: Style,
+    /// `dimension 2`: the direction lies in the xy plane.
+    flat: bool,
     /// Magnitude, then the style's arguments.
     values: Vec<Value>,
 }
 
 /// The acceleration of `style` with magnitude `g` and arguments `args`, computed as
 /// LAMMPS' fix gravity does (chute and spherical from degrees, vector normalised); `None`
-/// for a vector of zero length.
-fn accel(style: Style, g: f64, args: &[f64]) -> Option<DVec3> {
+/// for a vector of zero length. In 2d (`flat`) the direction lies in the xy plane, as
+/// LAMMPS takes it: a vector's z component is dropped before it is normalised (checked on
+/// LIGGGHTS 3.8: `vector 0 -1 0.3` in 2d moves as `vector 0 -1 0`, tests/dim2.rs); chute
+/// and spherical give (sin θ, cos θ, 0) of their polar angle.
+fn accel(style: Style, g: f64, args: &[f64], flat: bool) -> Option<DVec3> {
     let rad = PI / 180.0;
+    if flat && style != Style::Vector {
+        let theta = match style {
+            Style::Chute => rad * (180.0 - args[0]),
+            _ => rad * args[1],
+        };
+        return Some(g * DVec3::new(theta.sin(), theta.cos(), 0.0));
+    }
     let dir = match style {
         Style::Chute => {
             let t = rad * args[0];
@@ -74,7 +86,7 @@ fn accel(style: Style, g: f64, args: &[f64]) -> Option<DVec3> {
             )
         }
         Style::Vector => {
-            let d = DVec3::new(args[0], args[1], args[2]);
+            let d = DVec3::new(args[0], args[1], if flat { 0.0 } else { args[2] });
             let len = d.length();
             if len.is_nan() || len <= 0.0 {
                 return None;
@@ -115,6 +127,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     };
     a.done()?;
     sim.world_ref(a)?;
+    let flat = sim.setup.dimension == 2;
     // With variables the acceleration is set before each step; until then it is zero.
     let nums: Option<Vec<f64>> = values
         .iter()
@@ -124,7 +137,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         })
         .collect();
     let acc = match nums {
-        Some(n) => accel(style, n[0], &n[1..]).ok_or_else(|| {
+        Some(n) => accel(style, n[0], &n[1..], flat).ok_or_else(|| {
             a.error_at(
                 style_at + 1,
                 "the gravity vector has no direction (length 0)",
@@ -138,6 +151,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     Ok(Box::new(Gravity {
         inner: InEngine::new(fix),
         style,
+        flat,
         values,
     }))
 }
@@ -192,7 +206,7 @@ impl ScriptFix for Gravity {
         let w = sim.world.as_mut().expect("checked");
         w.step = now;
         let nums = nums?;
-        let acc = accel(self.style, nums[0], &nums[1..])
+        let acc = accel(self.style, nums[0], &nums[1..], self.flat)
             .filter(|g| g.is_finite())
             .ok_or_else(|| {
                 format!(

@@ -328,6 +328,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_ADDFORCE,
         engine::ROW_SETFORCE,
         engine::ROW_AVEFORCE,
+        engine::ROW_ENFORCE2D,
         adapt::ROW,
         check_timestep_gran::ROW,
         ave_time::ROW,

@@ -35,6 +35,14 @@ impl ScriptFix for Template {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    // LIGGGHTS 3.8 stops too: "this fix is for 3D simulations only".
+    if sim.setup.dimension == 2 {
+        return Err(a.error_at(
+            super::STYLE_WORD,
+            "particletemplate/sphere is for 3d simulations only",
+            Some("in 2d, place particles with create_atoms or read_data".into()),
+        ));
+    }
     let id = head.id.as_str();
     let seed = a.seed()?;
     let (mut ty, mut density, mut radius) = (1u32, None, None);

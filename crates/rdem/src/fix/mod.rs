@@ -55,6 +55,9 @@ pub enum FixKind {
         /// Components to impose.
         force: [Option<f64>; 3],
     },
+    /// `fix enforce2d`: zero z velocity and force, x and y angular velocity and torque
+    /// (LAMMPS' `post_force`, in definition order with the other post-force fixes).
+    Enforce2d,
     /// `fix move`: a prescribed motion instead of integration.
     Move(Box<motion::Move>),
     /// `fix wall/gran ... primitive ...`.
@@ -119,7 +122,11 @@ impl Fix {
                 }
             }
             FixKind::Move(m) => check_motion(&m.style)?,
-            FixKind::NveSphere | FixKind::Freeze | FixKind::WallGran(_) | FixKind::MeshWall(_) => {}
+            FixKind::NveSphere
+            | FixKind::Freeze
+            | FixKind::Enforce2d
+            | FixKind::WallGran(_)
+            | FixKind::MeshWall(_) => {}
         }
         Ok(Self {
             id: id.to_string(),
@@ -232,6 +239,7 @@ impl Fix {
             }
             FixKind::NveSphere
             | FixKind::AveForce { .. }
+            | FixKind::Enforce2d
             | FixKind::Move(_)
             | FixKind::WallGran(_)
             | FixKind::MeshWall(_) => {}
@@ -273,6 +281,9 @@ fn check_motion(style: &motion::MoveStyle) -> Result<()> {
 /// chunk by chunk in parallel (see [`crate::par`]): each particle sees the fixes in the
 /// same order whatever the thread count.
 ///
+/// A `fix enforce2d` changes velocities as well as forces: it acts alone between the
+/// passes, in the same way.
+///
 /// A `fix aveforce` needs the group's total force after the fixes before it, summed over
 /// ranks: the fixes between two aveforce fixes run as one pass, and each aveforce acts
 /// alone between the passes (in particle order, so its sum does not depend on the thread
@@ -288,11 +299,15 @@ pub(crate) fn post_force(
     let mut start = 0;
     let mut ok = true;
     for k in 0..fixes.len() {
-        if matches!(fixes[k].kind, FixKind::AveForce { .. }) {
+        if matches!(fixes[k].kind, FixKind::AveForce { .. } | FixKind::Enforce2d) {
             if start < k {
                 ok &= post_force_pass(&fixes[start..k], meshes, p, dt, update);
             }
-            fixes[k].apply_aveforce(p, comm);
+            if matches!(fixes[k].kind, FixKind::Enforce2d) {
+                fixes[k].apply_enforce2d(p);
+            } else {
+                fixes[k].apply_aveforce(p, comm);
+            }
             start = k + 1;
         }
     }
@@ -301,6 +316,22 @@ pub(crate) fn post_force(
 }
 
 impl Fix {
+    /// `fix enforce2d`: the group's owned particles lose their z velocity and force and
+    /// their x and y angular velocity and torque, so that they stay in their plane.
+    fn apply_enforce2d(&self, p: &mut Particles) {
+        let bit = self.groupbit;
+        for i in 0..p.nlocal() {
+            if p.mask[i] & bit != 0 {
+                p.v[i].z = 0.0;
+                p.f[i].z = 0.0;
+                p.omega[i].x = 0.0;
+                p.omega[i].y = 0.0;
+                p.torque[i].x = 0.0;
+                p.torque[i].y = 0.0;
+            }
+        }
+    }
+
     /// `fix aveforce`: the group's total force (summed over ranks) is recorded, and each
     /// particle of the group gets the mean force plus the fix's components (NULL
     /// components untouched); an empty group changes nothing.
