@@ -186,14 +186,14 @@ fn bond_records<K: ContactKernel>(
     for i in 0..p.nlocal() {
         let coeff_row = pair.table.row(p.ty[i]);
         let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-        for (&j, &slot) in near.partner[s..e].iter().zip(&near.slot[s..e]) {
+        for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
             let (j, slot) = (j as usize, slot as usize);
             let h = &list.hist[slot * w..(slot + 1) * w];
             if !bond::is_bonded(&h[flag..]) {
                 continue;
             }
             scratch.copy_from_slice(h);
-            let Some((d, c)) = ph1.eval::<K, true>(i, j, coeff_row, &mut scratch) else {
+            let Some((d, c)) = ph1.eval::<K, true>(i, j, s + kk, coeff_row, &mut scratch) else {
                 continue;
             };
             out.i.push(i as u32);
