@@ -104,21 +104,6 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
 /// print ... file beam.csv` run (under `-check` nothing is made or written).
 ///
-/// `40_2x_conveyor_surface_vel_heat/in.surface_vel` (LIGGGHTS 2.x syntax) — 3 lines:
-/// - 27 `fix heattransfer all heat/gran ...`: no heat transfer;
-/// - 38 `fix c1 all mesh/surface ... temperature 600 surface_vel ...`: no mesh
-///   temperature;
-/// - 69 `dump dmp all custom ... f_Temp[0]`: no per-particle temperature (`fix heat/gran`
-///   would make `Temp`; rdem cannot know that, so the line is listed).
-///
-/// Left out as follow-ons: 42 `fix wall all wall/gran/hertz/history mesh n_meshes 3 meshes
-/// c1 hood spoon` (mesh `c1` failed; the old wall syntax itself is translated) and 62
-/// `thermo_style ... f_heattransfer`. (Line 30 `pair_style gran/hertz/history` runs in its
-/// 3.x translation; line 46, `fix pdd1 all
-/// particledistribution/discrete 1. 1 pts1 1.0`, runs: the seed `1.` is read as LIGGGHTS
-/// reads it, with a warning; so do 52, the insertion that uses `pdd1`, and 74, its
-/// `unfix`.)
-///
 /// `44_1x_giacomp_pour/in.giacomp` (LIGGGHTS 1.x syntax) — 1 line:
 /// - 82 `fix ins nve_group pour ...`: LAMMPS' and LIGGGHTS 1.x's `fix pour`.
 ///
@@ -152,13 +137,6 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
              pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
              group (110), group (114), fix bond/create/gran (118), thermo_style custom (135)",
             &[94, 111, 159, 170, 176][..],
-        ),
-        (
-            "40_2x_conveyor_surface_vel_heat",
-            "in.surface_vel",
-            "in.surface_vel: 3 lines rdem cannot run: fix heat/gran (line 27), \
-             fix mesh/surface (38), dump custom (69)",
-            &[42, 62][..],
         ),
         (
             "44_1x_giacomp_pour",
@@ -395,8 +373,10 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "18_inl_chain_bending_bond_counter",
     "20_inl_chain_test_plate",
     "36_thesis_screw_conveyor",
+    "40_2x_conveyor_surface_vel_heat",
     "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",
+    "50_capillary_heat_init/DEM",
 ];
 
 /// `rdem -check` on every case of `../shared/wild`: exactly the cases of

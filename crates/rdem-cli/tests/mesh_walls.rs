@@ -180,10 +180,6 @@ fn bad_mesh_input_is_a_located_error() {
             "needs 'type T'",
         ),
         (
-            "fix cad all mesh/surface file floor.stl type 1 temperature 300",
-            "temperature' is not supported",
-        ),
-        (
             "fix cad all mesh/surface file floor.stl type 1 wear finnie",
             "'wear' is a keyword of fix mesh/surface/stress",
         ),

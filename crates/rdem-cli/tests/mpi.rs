@@ -223,13 +223,13 @@ fn an_error_is_reported_once_and_every_rank_stops() {
         return;
     }
     let script = format!(
-        "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 omegaz 3\nrun 10\n"
+        "{HEAD}create_atoms 1 single 0.05 0.01 0.01 units box\nset atom 1 charge 3\nrun 10\n"
     );
     let out = common::run_script_raw(&script, Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert_eq!(
-        err.matches("unknown set keyword 'omegaz'").count(),
+        err.matches("unknown set keyword 'charge'").count(),
         1,
         "{err}"
     );
