@@ -258,6 +258,29 @@ fix heattransfer all heat/gran initial_temperature 300.
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// An empty box's thermal energy prints as `0`.
+#[test]
+fn no_particles_print_zero_not_minus_zero() {
+    // LIGGGHTS 3.8 prints `0` for the thermal energy of an empty box (wild case 50's
+    // first thermo row).
+    let i = interp(&format!(
+        "{HEAD}fix heattransfer all heat/gran initial_temperature 300\n\
+         thermo_style custom step atoms f_heattransfer\nrun 0\n"
+    ));
+    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let row = out
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("Step"))
+        .nth(1)
+        .unwrap_or_default()
+        .to_string();
+    assert_eq!(
+        row.split_whitespace().collect::<Vec<_>>(),
+        ["0", "0", "0"],
+        "{out}"
+    );
+}
+
 /// Only the group's temperatures change; a pair with one particle in the group still
 /// conducts, so particle 1 approaches particle 2's fixed temperature at h/C1.
 #[test]

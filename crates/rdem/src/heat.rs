@@ -395,8 +395,10 @@ impl HeatConduction {
     /// the fix: not only the group's), before the sum over ranks.
     pub fn thermal_energy(&self, p: &Particles) -> f64 {
         let temp = &p.props[self.props.temp.0].data;
+        // A fold from +0.0 (`sum` starts from −0.0): no particles print `0`, as in
+        // LIGGGHTS, not `-0`; any other sum is unchanged.
         (0..p.nlocal())
             .map(|i| self.c(p.ty[i]) * p.rmass[i] * temp[i])
-            .sum()
+            .fold(0.0, |s, x| s + x)
     }
 }
