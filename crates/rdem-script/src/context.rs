@@ -42,6 +42,42 @@ pub fn eval_equal(sim: &Sim, formula: &str) -> Result<f64, expr::ExprError> {
     )
 }
 
+/// The equal-style variables `names` (`None`: no variable, `None` back) evaluated as at
+/// step `step`: the world's step is set for the evaluation and restored after it. For
+/// the values a fix takes before a step (`fix gravity`, `fix move variable`), which
+/// LAMMPS evaluates with the step counter already on the coming step. Errors name the
+/// fix `who`; `hint` follows the message for a variable of another style. Stops at the
+/// first error.
+pub fn eval_equal_at(
+    sim: &mut Sim,
+    step: u64,
+    names: &[Option<&str>],
+    who: &str,
+    hint: &str,
+) -> Result<Vec<Option<f64>>, String> {
+    let w = sim
+        .world
+        .as_mut()
+        .ok_or_else(|| format!("{who} needs a simulation box"))?;
+    let now = w.step;
+    w.step = step;
+    let vals: Result<Vec<Option<f64>>, String> = names
+        .iter()
+        .map(|name| {
+            let Some(name) = name else { return Ok(None) };
+            match sim.script.vars.get(name) {
+                Some(Variable::Equal(f)) => eval_equal(sim, f)
+                    .map(Some)
+                    .map_err(|e| format!("variable {name}: {}", e.message)),
+                Some(_) => Err(format!("{who}: variable '{name}' is not equal-style{hint}")),
+                None => Err(format!("{who}: no variable '{name}'")),
+            }
+        })
+        .collect();
+    sim.world.as_mut().expect("checked").step = now;
+    vals
+}
+
 /// Text of `${name}` / `$x`.
 pub fn variable_text(sim: &Sim, name: &str) -> Result<String, String> {
     sim.script.vars.text(

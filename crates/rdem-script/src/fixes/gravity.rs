@@ -21,7 +21,6 @@ use super::{style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
 use crate::context;
 use crate::sim::Sim;
-use crate::variables::Variable;
 
 /// The registry row.
 pub(super) const ROW: FixRow = style(
@@ -184,28 +183,25 @@ impl ScriptFix for Gravity {
         if self.values.iter().all(|v| matches!(v, Value::Num(_))) {
             return Ok(());
         }
-        let w = sim
-            .world
-            .as_mut()
-            .ok_or("fix gravity needs a simulation box")?;
-        let now = w.step;
-        w.step = step;
-        let nums: Result<Vec<f64>, String> = self
+        let names: Vec<Option<&str>> = self
             .values
             .iter()
             .map(|v| match v {
-                Value::Num(x) => Ok(*x),
-                Value::Var(name) => match sim.script.vars.get(name) {
-                    Some(Variable::Equal(f)) => context::eval_equal(sim, f)
-                        .map_err(|e| format!("variable {name}: {}", e.message)),
-                    Some(_) => Err(format!("fix gravity: variable '{name}' is not equal-style")),
-                    None => Err(format!("fix gravity: no variable '{name}'")),
-                },
+                Value::Num(_) => None,
+                Value::Var(name) => Some(name.as_str()),
             })
             .collect();
-        let w = sim.world.as_mut().expect("checked");
-        w.step = now;
-        let nums = nums?;
+        let vars = context::eval_equal_at(sim, step, &names, "fix gravity", "")?;
+        let nums: Vec<f64> = self
+            .values
+            .iter()
+            .zip(vars)
+            .map(|(v, x)| match v {
+                Value::Num(n) => *n,
+                Value::Var(_) => x.expect("evaluated"),
+            })
+            .collect();
+        let w = sim.world.as_mut().expect("eval_equal_at checked");
         let acc = accel(self.style, nums[0], &nums[1..], self.flat)
             .filter(|g| g.is_finite())
             .ok_or_else(|| {

@@ -55,38 +55,16 @@ impl ScriptFix for FixMove {
         if setup {
             return Ok(());
         }
-        let w = sim
-            .world
-            .as_mut()
-            .ok_or("fix move needs a simulation box")?;
-        let now = w.step;
-        w.step = step;
-        let mut vals = [None; 6];
-        let mut err = None;
-        for (k, name) in vars.iter().enumerate() {
-            let Some(name) = name else { continue };
-            let r = match sim.script.vars.get(name) {
-                Some(Variable::Equal(f)) => {
-                    context::eval_equal(sim, f).map_err(|e| format!("variable {name}: {}", e.message))
-                }
-                Some(_) => Err(format!(
-                    "fix move: variable '{name}' is not equal-style (atom-style is not supported yet)"
-                )),
-                None => Err(format!("fix move: no variable '{name}'")),
-            };
-            match r {
-                Ok(v) => vals[k] = Some(v),
-                Err(e) => {
-                    err = Some(e);
-                    break;
-                }
-            }
-        }
-        let w = sim.world.as_mut().expect("checked");
-        w.step = now;
-        if let Some(e) = err {
-            return Err(e);
-        }
+        let names: Vec<Option<&str>> = vars.iter().map(|n| n.as_deref()).collect();
+        let v = context::eval_equal_at(
+            sim,
+            step,
+            &names,
+            "fix move",
+            " (atom-style is not supported yet)",
+        )?;
+        let vals: [Option<f64>; 6] = [v[0], v[1], v[2], v[3], v[4], v[5]];
+        let w = sim.world.as_mut().expect("eval_equal_at checked");
         let fix = w
             .fixes
             .iter_mut()

@@ -112,28 +112,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
     }
     a.keyword("primitive keyword", &["type"])?;
     let wall_type = a.count("wall atom type")? as u32;
-    let shape = match a.keyword(
-        "primitive wall",
-        &[
-            "xplane",
-            "yplane",
-            "zplane",
-            "xcylinder",
-            "ycylinder",
-            "zcylinder",
-        ],
-    )? {
-        p @ ("xplane" | "yplane" | "zplane") => WallShape::Plane {
-            axis: (p.as_bytes()[0] - b'x') as usize,
-            pos: a.f64("plane position")?,
-        },
-        c => WallShape::Cylinder {
-            axis: (c.as_bytes()[0] - b'x') as usize,
-            radius: a.positive("cylinder radius")?,
-            c1: a.f64("axis coordinate c1")?,
-            c2: a.f64("axis coordinate c2")?,
-        },
-    };
+    let shape = primitive_shape(a)?.0;
     let mut velocity = DVec3::ZERO;
     let mut temperature = None;
     while let Some(w) = a.peek() {
@@ -172,4 +151,39 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
     wall.velocity = velocity;
     wall.temperature = temperature;
     Ok(Wall::Primitive(wall))
+}
+
+/// A primitive wall's shape, `xplane|yplane|zplane POS` or `xcylinder|ycylinder|zcylinder
+/// R C1 C2`, and its words as a 3.x script writes them (for the note line of the pre-3.0
+/// walls).
+pub(super) fn primitive_shape(a: &mut Args) -> CmdResult<(WallShape, String)> {
+    let style = a.keyword(
+        "primitive wall",
+        &[
+            "xplane",
+            "yplane",
+            "zplane",
+            "xcylinder",
+            "ycylinder",
+            "zcylinder",
+        ],
+    )?;
+    let axis = (style.as_bytes()[0] - b'x') as usize;
+    Ok(if style.ends_with("plane") {
+        let pos = a.f64("plane position")?;
+        (WallShape::Plane { axis, pos }, format!("{style} {pos}"))
+    } else {
+        let radius = a.positive("cylinder radius")?;
+        let c1 = a.f64("axis coordinate c1")?;
+        let c2 = a.f64("axis coordinate c2")?;
+        (
+            WallShape::Cylinder {
+                axis,
+                radius,
+                c1,
+                c2,
+            },
+            format!("{style} {radius} {c1} {c2}"),
+        )
+    })
 }

@@ -308,38 +308,8 @@ fn v2_wall(sim: &Sim, a: &mut Args, m: &mut ContactModel) -> CmdResult<(Wall, Sh
             "primitive" => {
                 a.keyword("primitive keyword", &["type"])?;
                 let ty = wall_type(a)?;
-                let style = a.keyword(
-                    "primitive wall",
-                    &[
-                        "xplane",
-                        "yplane",
-                        "zplane",
-                        "xcylinder",
-                        "ycylinder",
-                        "zcylinder",
-                    ],
-                )?;
-                let axis = (style.as_bytes()[0] - b'x') as usize;
-                let (shape, words) = if style.ends_with("plane") {
-                    let pos = a.f64("plane position")?;
-                    (
-                        WallShape::Plane { axis, pos },
-                        format!("primitive type {ty} {style} {pos}"),
-                    )
-                } else {
-                    let radius = a.positive("cylinder radius")?;
-                    let c1 = a.f64("axis coordinate c1")?;
-                    let c2 = a.f64("axis coordinate c2")?;
-                    (
-                        WallShape::Cylinder {
-                            axis,
-                            radius,
-                            c1,
-                            c2,
-                        },
-                        format!("primitive type {ty} {style} {radius} {c1} {c2}"),
-                    )
-                };
+                let (shape, args) = super::wall_gran::primitive_shape(a)?;
+                let words = format!("primitive type {ty} {args}");
                 wall = Some(Wall::Primitive { ty, shape, words });
             }
             "mesh" => {
