@@ -10,6 +10,7 @@ mod create;
 mod data_files;
 mod group;
 mod pair;
+mod read_dump;
 pub mod region;
 pub mod restart;
 mod settings;
@@ -95,6 +96,8 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("new atoms have diameter 1 and density 1, as in LIGGGHTS; use `set`"),
         sim("read_data", data_files::read_data, "granular `Atoms` lines (`id type diameter density x y z [ix iy iz]`), `Velocities`")
             .notes("no `add`/`offset`"),
+        sim("read_dump", read_dump::read_dump, "`file Nstep` fields `x y z vx vy vz ix iy iz radius` (radius required); `box`, `replace`, `purge`, `trim`, `add yes\\|no`, `label`, `scaled`, `wrapped`, `format native`")
+            .notes("native text dumps (`dump custom`); as LIGGGHTS 3.8: replaced particles keep their mass, added ones get new IDs, the dump's type, density 1 and the mass of a radius-0.5 sphere (use `set density` after), added ones outside a fixed face are dropped. `format xyz`, gzipped files, triclinic boxes: not supported yet"),
         sim("write_data", data_files::write_data, "the particles and the box as a LAMMPS data file (`nocoeff`, `nofix` accepted)"),
         sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
         sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `x y z`, `vx vy vz`, `omegax omegay omegaz` (numbers or equal-/atom-style `v_name`), `omega`, `property/atom`")
@@ -153,7 +156,6 @@ pub static REGISTRY: Registry<Command> = Registry {
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),
         Row::not_yet("displace_atoms", "displace_atoms"),
-        Row::not_yet("read_dump", "particles read from a dump file"),
         Row::not_yet("modify_timing", "per-fix timing"),
     ],
 };

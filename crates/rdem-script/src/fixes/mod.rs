@@ -14,6 +14,7 @@
 mod adapt;
 mod ave_atom;
 pub mod ave_euler;
+mod ave_histo;
 mod ave_time;
 mod check_timestep_gran;
 mod engine;
@@ -334,10 +335,10 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_time::ROW,
         print::ROW,
         ave_atom::ROW,
+        ave_histo::ROW,
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
-        Row::not_yet("ave/histo", "global histograms"),
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet(
             "pour",

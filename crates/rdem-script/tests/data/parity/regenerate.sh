@@ -12,3 +12,6 @@ for d in item4.dump item8.dump item13.dump; do
 done
 [ -f item10.dump ] && mv item10.dump item10.liggghts.dump
 [ -f item12.dump ] && mv item12.dump item12.liggghts.dump
+for h in item*-*.histo; do
+  case "$h" in *.liggghts.histo) ;; *) mv "$h" "${h%.histo}.liggghts.histo" ;; esac
+done
