@@ -105,3 +105,67 @@ fn scalar_running_overwrite_start_window() {
 fn ignore_empty_group_atom_variable_compute() {
     check_item(18, 5);
 }
+
+/// Words LIGGGHTS 3.8 refuses stop with an error at the word (checked there:
+/// `overwrite` without `ave running` is "Illegal fix ave/histo command", `x` without
+/// `mode vector` "cannot input per-atom values in scalar mode").
+#[test]
+fn bad_words_are_located_errors() {
+    let read = |f: &str| std::fs::read_to_string(format!("{DIR}/{f}")).unwrap();
+    let src = read("item16.in")
+        .replace("include head.in\n", &read("head.in"))
+        .replace("include mat.in\n", &read("mat.in"));
+    let setup = &src[..src.find("fix h1").unwrap()];
+    for (line, word, expect) in [
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 x mode vector overwrite",
+            "overwrite",
+            "needs ave running",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 x",
+            "x",
+            "needs mode vector",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 1 0 4 v_xx mode vector",
+            "0",
+            "must be above lo",
+        ),
+        (
+            "fix h all ave/histo 10 11 100 0 1 4 x mode vector",
+            "100",
+            "Nfreq",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 x c_nope mode vector",
+            "c_nope",
+            "no compute 'nope'",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 x beyond far mode vector",
+            "far",
+            "ignore",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 x mode vector ave sliding",
+            "sliding",
+            "window",
+        ),
+    ] {
+        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let e = i
+            .run_source("item.in", &format!("{setup}{line}\n"))
+            .err()
+            .unwrap_or_else(|| panic!("{line} ran"));
+        let text = format!("{:?}", miette::Report::new(*e));
+        assert!(text.contains(expect), "{line}: {text}");
+        // The caret is under the word.
+        let col = line.rfind(&format!(" {word}")).unwrap() + 2;
+        let report = text.lines().find(|l| l.contains("item.in:")).unwrap_or("");
+        assert!(
+            report.ends_with(&format!(":{col}]")),
+            "{line}: {report}\n{text}"
+        );
+    }
+}

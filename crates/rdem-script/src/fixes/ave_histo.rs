@@ -336,7 +336,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     Ok(Box::new(f))
 }
 
-/// Words that name an attribute, compute, fix or variable the parser knows.
+/// An error at word `k` unless `id` names a defined compute (`kind` 'c'), fix ('f') or
+/// variable ('v').
 pub(super) fn unknown_id(sim: &Sim, a: &Args, k: usize, kind: char, id: &str) -> CmdResult<()> {
     let (what, known, ids): (&str, bool, Vec<&str>) = match kind {
         'c' => (
@@ -445,7 +446,7 @@ impl ScriptFix for AveHisto {
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
 }
 
-/// An equal-style or other global variable, read as thermo reads it.
+/// A global value (`c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]`, `v_name`), read as thermo reads it.
 pub(super) fn global_value(sim: &Sim, word: &str) -> Result<f64, String> {
     column_value(sim, word).map(|v| v.0)
 }
