@@ -303,17 +303,24 @@ fn run_lid(lid: &str, tail: &str) -> (bool, String) {
 #[test]
 fn servo_errors_name_the_word() {
     const OK: &str = "fix lid all mesh/surface/stress/servo file floor.stl type 1 move 0 0 0.0102 com 0 0 0.0102 ctrlPV force axis 0 0 1 target_val -1 vel_max 0.05";
-    let cases: [(String, &str, &str); 9] = [
+    let cases: [(String, &str, &str); 12] = [
         (OK.replace("com 0 0 0.0102 ", ""), "", "needs 'com x y z'"),
         (
-            OK.replace("ctrlPV force", "ctrlPV torque"),
+            OK.replace("ctrlPV force", "ctrlPV shear"),
             "",
-            "ctrlPV torque is not supported",
+            "unknown ctrlPV 'shear'",
         ),
         (
             OK.to_string() + " mode auto",
             "",
-            "servo keyword 'mode' is not supported",
+            "mode auto needs 'ratio dr'",
+        ),
+        (OK.to_string() + " mode manual ratio 0.1", "", "auto"),
+        (OK.to_string() + " mode auto ratio -1", "", "ratio"),
+        (
+            OK.replace("axis 0 0 1", "axis 0 0 v_a"),
+            "",
+            "a variable axis is not supported",
         ),
         (
             OK.replace("vel_max 0.05", "vel_max 80"),

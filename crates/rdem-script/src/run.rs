@@ -140,6 +140,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     let want = stages.wants_virial(sim, start_step, true);
     let w = sim.world.as_mut().expect("checked");
     w.want_virial = want;
+    w.start_servos();
     w.setup().map_err(engine_error)?;
     stages.end_of_step(sim, start_step, true)?;
     flush_world_warnings(sim);

@@ -273,6 +273,41 @@ impl World {
                 wall.build_candidates(&self.meshes, &mut self.particles, fix.groupbit, skin);
             }
         }
+        // `mode auto` servos: whether any particle (on any rank) is a candidate.
+        for k in 0..self.meshes.len() {
+            if self.meshes[k].servo.is_none() {
+                continue;
+            }
+            let local = self.fixes.iter().any(|f| match &f.kind {
+                FixKind::MeshWall(w) => w.has_candidates_on(k),
+                _ => false,
+            });
+            let any = self.comm.any(local);
+            if let Some(servo) = &mut self.meshes[k].servo {
+                servo.contacts = any;
+            }
+        }
+    }
+
+    /// The run-start set-up of the servo meshes (LIGGGHTS' `init`): the smallest particle
+    /// radius over all ranks for `mode auto` ([`crate::mesh_servo::Servo::start_run`]).
+    pub fn start_servos(&mut self) {
+        if self.meshes.iter().all(|m| m.servo.is_none()) {
+            return;
+        }
+        let n = self.particles.nlocal();
+        let local = self.particles.radius[..n]
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let rmin = self.comm.min(local);
+        let rmin = rmin.is_finite().then_some(rmin);
+        let dt = self.dt;
+        for m in &mut self.meshes {
+            if let Some(servo) = &mut m.servo {
+                servo.start_run(rmin, dt);
+            }
+        }
     }
 }
 
@@ -310,13 +345,28 @@ impl World {
     }
 
     /// Step 3b: the servo meshes (`mesh/surface/stress/servo`) translated by the velocity
-    /// their controller set at the end of the previous step (LIGGGHTS'
+    /// (or, `ctrlPV torque`, turned about the axis through their centre of mass by the
+    /// angular velocity) their controller set at the end of the previous step (LIGGGHTS'
     /// `initial_integrate`), with their centre of mass and stress reference point; their
     /// vertices carry that velocity for the wall contacts, even while the servo is stopped.
     pub(crate) fn move_servo_meshes(&mut self) {
         let dt = self.dt;
         for m in &mut self.meshes {
             let Some(servo) = &mut m.servo else { continue };
+            if servo.torque {
+                let angle = servo.turn(dt);
+                if angle != 0.0 {
+                    let (c, q) = (servo.com, glam::DQuat::from_axis_angle(servo.axis, angle));
+                    m.mesh.transform(|p| c + q * (p - c));
+                }
+                // The vertex velocities stay those of the controller update (LIGGGHTS
+                // 3.8 computes them there, from the positions before this turn).
+                if m.motion.vel.len() != m.mesh.verts.len() {
+                    m.motion.vel.clear();
+                    m.motion.vel.resize(m.mesh.verts.len(), DVec3::ZERO);
+                }
+                continue;
+            }
             let d = servo.displacement(dt);
             // A stopped servo does not move, but its vertices keep the last velocity
             // for the contacts, as in LIGGGHTS 3.8 (a lid stopped while rising pulls
@@ -334,9 +384,9 @@ impl World {
         }
     }
 
-    /// Step 13b: each active servo's controller fed with the total force on its mesh
-    /// (summed over the ranks, so that every rank moves the mesh alike; LIGGGHTS'
-    /// `final_integrate`).
+    /// Step 13b: each active servo's controller fed with the total force (or torque
+    /// about the centre of mass) on its mesh (summed over the ranks, so that every rank
+    /// moves the mesh alike; LIGGGHTS' `final_integrate`).
     pub(crate) fn control_servos(&mut self) {
         let dt = self.dt;
         for m in &mut self.meshes {
@@ -346,7 +396,11 @@ impl World {
             if !servo.active {
                 continue;
             }
-            let f = st.total_force;
+            let f = if servo.torque {
+                st.total_torque
+            } else {
+                st.total_force
+            };
             let f = if self.comm.size() > 1 {
                 let mut s = [f.x, f.y, f.z];
                 self.comm.sum_slice(&mut s);
@@ -359,7 +413,13 @@ impl World {
             // set-up forces already see it).
             let vel = servo.vel;
             m.motion.vel.clear();
-            m.motion.vel.resize(m.mesh.verts.len(), vel);
+            if servo.torque {
+                let c = servo.com;
+                let verts = &m.mesh.verts;
+                m.motion.vel.extend(verts.iter().map(|&p| vel.cross(p - c)));
+            } else {
+                m.motion.vel.resize(m.mesh.verts.len(), vel);
+            }
         }
     }
 

@@ -159,6 +159,7 @@ impl StepHooks for NoHooks {
 impl World {
     /// Runs `n` timesteps after a set-up.
     pub fn run(&mut self, n: u64) -> Result<()> {
+        self.start_servos();
         self.setup()?;
         for _ in 0..n {
             self.advance()?;

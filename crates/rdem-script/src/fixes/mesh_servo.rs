@@ -1,5 +1,7 @@
 //! `fix mesh/surface/stress/servo`: a `mesh/surface/stress` mesh that a PID controller
-//! translates along an axis until the particles push on it with `target_val`
+//! (or the gain-scheduled law of `mode auto`) translates along an axis until the
+//! particles push on it with `target_val` (`ctrlPV force`), or turns about the axis
+//! through `com` until their torque about it is `target_val` (`ctrlPV torque`)
 //! (LIGGGHTS 3.8's mesh module servo; the law is in [`rdem::mesh_servo`]). This file
 //! holds the servo keywords, their checks and `fix_modify ID integrate start|stop`
 //! (with `servo/integrate`, `servo/target_val`, `servo/vel_max`, `servo/ctrlParam`).
@@ -16,9 +18,9 @@ pub(super) const ROW: FixRow = style(
     "mesh/surface/stress/servo",
     super::mesh_surface::parse,
     Stages::VALUES,
-    "as `mesh/surface/stress`, and `com x y z`, `ctrlPV force`, `axis ax ay az`, `target_val F`, `vel_max v`, `kp`, `ki`, `kd`; `fix_modify ID integrate start\\|stop` (or `servo/integrate`), `servo/target_val`, `servo/vel_max`, `servo/ctrlParam kp ki kd`",
+    "as `mesh/surface/stress`, and `com x y z`, `ctrlPV force\\|torque`, `axis ax ay az`, `target_val F`, `vel_max v`, `kp`, `ki`, `kd`, `mode auto`, `ratio dr`; `fix_modify ID integrate start\\|stop` (or `servo/integrate`), `servo/target_val`, `servo/vel_max`, `servo/ctrlParam kp ki kd`",
 )
-.notes("PID law measured on LIGGGHTS 3.8 and matched to 1e-9 (see `rdem::mesh_servo`): moves in the step after the force it reacts to; `f_ID[1..9]` total force, torque about the centre of mass, the centre of mass; `ctrlPV torque`, `mode auto`, `ratio` and variable axes stop with an error (not supported yet); a stopped servo does not move but its vertices keep their last velocity for the contacts (as LIGGGHTS 3.8)");
+.notes("PID law measured on LIGGGHTS 3.8 and matched to 1e-9 (see `rdem::mesh_servo`): moves in the step after the force it reacts to; `ctrlPV torque` turns the mesh about the axis through `com` at most `vel_max` at its farthest vertex; `mode auto` switches from `vel_max` to `ratio` · min radius / dt when a particle is within radius + skin of the mesh at a neighbor build (LIGGGHTS 3.8 switched 8 steps later in a measured case: its candidate rule differs); `f_ID[1..9]` total force, torque about the centre of mass, the centre of mass; variable axes stop with an error (not supported yet; LIGGGHTS 3.8 rejects them too); a stopped servo does not move but its vertices keep their last velocity for the contacts (as LIGGGHTS 3.8)");
 
 /// Servo keywords of `mesh/surface/stress/servo`.
 pub(super) const KEYS: [&str; 10] = [
@@ -38,11 +40,15 @@ pub(super) const KEYS: [&str; 10] = [
 #[derive(Default)]
 pub(super) struct ServoWords {
     com: Option<DVec3>,
-    ctrl: bool,
+    /// `ctrlPV`: Some(true) for torque, with the word's position.
+    ctrl: Option<(bool, usize)>,
     axis: Option<DVec3>,
     target: Option<f64>,
     vmax: Option<f64>,
     gains: [Option<f64>; 3],
+    /// `mode auto`, with the word's position.
+    auto: Option<usize>,
+    ratio: Option<f64>,
 }
 
 impl ServoWords {
@@ -52,22 +58,19 @@ impl ServoWords {
         match w {
             "com" => self.com = Some(a.vec3("centre of mass")?),
             "ctrlPV" => {
-                if a.peek() == Some("torque") {
-                    a.seek(a.pos() + 1);
-                    return Err(a.error_prev(
-                        "ctrlPV torque is not supported by this rdem release yet",
-                        Some("supported: ctrlPV force".into()),
-                    ));
-                }
-                a.keyword("ctrlPV", &["force"])?;
-                self.ctrl = true;
+                let at = a.pos();
+                self.ctrl = Some((a.keyword("ctrlPV", &["force", "torque"])? == "torque", at));
             }
             "axis" => {
                 let at = a.pos();
-                if a.peek().is_some_and(|s| s.starts_with("v_")) {
+                // The manual allows variables here, but LIGGGHTS 3.8 reads three numbers
+                // ("Expected floating point parameter" for `axis 0 0 v_a`).
+                let words = a.words();
+                let var = |k: usize| words.get(at + k).is_some_and(|w| w.text.starts_with("v_"));
+                if let Some(k) = (0..3).find(|&k| var(k)) {
                     return Err(a.error_at(
-                        at,
-                        "a variable axis is not supported by this rdem release yet",
+                        at + k,
+                        "a variable axis is not supported by this rdem release yet (LIGGGHTS 3.8 does not take one either)",
                         Some("give three numbers".into()),
                     ));
                 }
@@ -78,7 +81,7 @@ impl ServoWords {
                 self.axis = Some(v);
             }
             "target_val" => {
-                let v = a.f64("target force")?;
+                let v = a.f64("target force or torque")?;
                 if v == 0.0 {
                     return Err(a.error_prev(
                         "target_val must not be 0 (the controller divides the error by it)",
@@ -91,20 +94,27 @@ impl ServoWords {
             "kp" => self.gains[0] = Some(a.non_negative("kp")?),
             "ki" => self.gains[1] = Some(a.non_negative("ki")?),
             "kd" => self.gains[2] = Some(a.non_negative("kd")?),
+            "mode" => {
+                self.auto = Some(a.pos() - 1);
+                a.keyword("mode", &["auto"])?;
+            }
+            "ratio" => self.ratio = Some(a.positive("ratio")?),
             _ => {
                 return Err(a.error_prev(
                     format!("servo keyword '{w}' is not supported by this rdem release yet"),
-                    Some("the PID controller (kp, ki, kd) is; mode auto is not".into()),
+                    Some(format!("servo keywords: {}", KEYS.join(", "))),
                 ))
             }
         }
         Ok(())
     }
 
-    /// The servo once every keyword is read: `com`, `ctrlPV`, `axis`, `target_val` and
-    /// `vel_max` are obligatory; gains default to kp 0.01, ki 0, kd 0 (the manual);
-    /// `vel_max` must stay below skin / (2 dt) (the manual's condition).
-    pub(super) fn finish(self, sim: &Sim, a: &Args) -> CmdResult<Servo> {
+    /// The servo of a mesh with vertices `verts` once every keyword is read: `com`,
+    /// `ctrlPV`, `axis`, `target_val` and `vel_max` are obligatory; gains default to kp
+    /// 0.01, ki 0, kd 0 (the manual); `vel_max` must stay below skin / (2 dt) (the
+    /// manual's condition); `mode auto` needs `ratio`; a torque servo needs a vertex off
+    /// its axis.
+    pub(super) fn finish(self, sim: &Sim, a: &Args, verts: &[DVec3]) -> CmdResult<Servo> {
         let missing = |what: &str| {
             a.error_at(
                 STYLE_WORD,
@@ -113,9 +123,7 @@ impl ServoWords {
             )
         };
         let com = self.com.ok_or_else(|| missing("com x y z"))?;
-        if !self.ctrl {
-            return Err(missing("ctrlPV force"));
-        }
+        let (torque, ctrl_at) = self.ctrl.ok_or_else(|| missing("ctrlPV force|torque"))?;
         let axis = self.axis.ok_or_else(|| missing("axis ax ay az"))?;
         let target = self.target.ok_or_else(|| missing("target_val F"))?;
         let vmax = self.vmax.ok_or_else(|| missing("vel_max v"))?;
@@ -137,14 +145,31 @@ impl ServoWords {
                 ));
             }
         }
+        if let (Some(at), None) = (self.auto, self.ratio) {
+            // LIGGGHTS 3.8: "please define 'ratio' for the mesh, since you use the auto mode".
+            return Err(a.error_at(
+                at,
+                "mode auto needs 'ratio dr' (the speed near particles, dr · min radius / timestep)",
+                None,
+            ));
+        }
         let [kp, ki, kd] = self.gains;
-        Ok(Servo::new(
-            axis,
-            com,
-            target,
-            vmax,
-            [kp.unwrap_or(0.01), ki.unwrap_or(0.0), kd.unwrap_or(0.0)],
-        ))
+        let gains = [kp.unwrap_or(0.01), ki.unwrap_or(0.0), kd.unwrap_or(0.0)];
+        let mut servo = if torque {
+            Servo::new_torque(axis, com, target, vmax, gains, verts).ok_or_else(|| {
+                a.error_at(
+                    ctrl_at,
+                    "ctrlPV torque: every vertex of the mesh lies on the rotation axis",
+                    Some("the axis passes through com".into()),
+                )
+            })?
+        } else {
+            Servo::new(axis, com, target, vmax, gains)
+        };
+        servo.auto = self.auto.is_some();
+        // Without mode auto LIGGGHTS 3.8 takes 'ratio' and does not use it.
+        servo.ratio = self.ratio.unwrap_or(0.0);
+        Ok(servo)
     }
 }
 

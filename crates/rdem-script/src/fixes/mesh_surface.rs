@@ -283,7 +283,7 @@ fn mesh_surface(
                 None,
             ));
         }
-        Some(servo.finish(sim, a)?)
+        Some(servo.finish(sim, a, &mesh.verts)?)
     } else {
         None
     };

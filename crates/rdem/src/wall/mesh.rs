@@ -419,6 +419,14 @@ impl MeshWall {
         }
     }
 
+    /// True when some owned particle has a candidate triangle of mesh `mesh` (an index
+    /// into the world's meshes) since the last build.
+    pub fn has_candidates_on(&self, mesh: usize) -> bool {
+        self.cand
+            .iter()
+            .any(|&(mi, _)| self.meshes[mi as usize] == mesh)
+    }
+
     /// The candidate triangles of owned particle `i` (mesh, triangle).
     pub fn candidates_of(&self, i: usize) -> &[(u32, u32)] {
         &self.cand[self.cand_first[i] as usize..self.cand_first[i + 1] as usize]
