@@ -114,10 +114,10 @@ fn normal_force_is_damped_hertz() {
 }
 
 #[test]
-fn heat_flux_is_not_supported_yet() {
+fn contact_point_is_not_supported_yet() {
     let dir = common::scratch_dir("local");
     let script =
-        read(data().join("in.pair")).replace("pair/gran/local\n", "pair/gran/local heatFlux\n");
+        read(data().join("in.pair")).replace("pair/gran/local\n", "pair/gran/local contactPoint\n");
     std::fs::write(dir.join("in.x"), script).unwrap();
     let out = common::rdem_command(None)
         .current_dir(&dir)
@@ -127,8 +127,11 @@ fn heat_flux_is_not_supported_yet() {
     assert!(!out.status.success());
     let text =
         String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    assert!(text.contains("'heatFlux' is not supported yet"), "{text}");
-    assert!(text.contains("heat/gran are not output yet"), "{text}");
+    assert!(
+        text.contains("'contactPoint' is not supported yet"),
+        "{text}"
+    );
+    assert!(text.contains("contactArea, delta or heatFlux"), "{text}");
 }
 
 #[test]

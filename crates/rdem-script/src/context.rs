@@ -7,7 +7,6 @@ use std::collections::HashMap;
 use rdem::World;
 
 use crate::atom_fields;
-use crate::computes;
 use crate::expr::{self, Context, Name};
 use crate::sim::Sim;
 use crate::variables::Variable;
@@ -76,6 +75,31 @@ pub fn eval_equal_at(
         .collect();
     sim.world.as_mut().expect("checked").step = now;
     vals
+}
+
+/// The equal-style variable `name` at full precision (a moving region's displacement
+/// or angle, which LAMMPS takes as a number, not as text), evaluated `depth` levels
+/// down a chain of references.
+pub(crate) fn equal_variable(sim: &Sim, name: &str, depth: usize) -> Result<f64, String> {
+    if depth > MAX_DEPTH {
+        return Err("variables and regions refer to each other in a loop".into());
+    }
+    match sim.script.vars.get(name) {
+        None => Err(format!("no variable '{name}'")),
+        Some(Variable::Equal(f)) => {
+            let e = expr::parse(f).map_err(|e| format!("in variable '{name}': {}", e.message))?;
+            expr::eval(
+                &e,
+                &mut Ctx {
+                    sim,
+                    depth: depth + 1,
+                    atom: None,
+                },
+            )
+            .map_err(|e| format!("in variable '{name}': {}", e.message))
+        }
+        Some(_) => Err(format!("variable '{name}' is not equal-style")),
+    }
 }
 
 /// Text of `${name}` / `$x`.
@@ -290,7 +314,32 @@ impl Context for Ctx<'_> {
         let w = world(self.sim)?;
         let p = &w.particles;
         let g = self.group(raw.first().map(|s| s.trim()).unwrap_or(""))?;
-        let sel: Vec<usize> = (0..p.nlocal()).filter(|&i| p.mask[i] & g != 0).collect();
+        // The region form: one more argument, the region (placed at the current step if
+        // it moves).
+        let plain = if matches!(name, "count" | "mass" | "ke") {
+            1
+        } else {
+            2
+        };
+        let region = match raw.get(plain) {
+            Some(r) if raw.len() == plain + 1 => {
+                let r = r.trim();
+                if !self.sim.defs.regions.contains_key(r) {
+                    return Err(format!("{name}(): no region '{r}'"));
+                }
+                Some(crate::regions::posed(self.sim, r, self.depth + 1)?)
+            }
+            _ => None,
+        };
+        let sel: Vec<usize> = (0..p.nlocal())
+            .filter(|&i| p.mask[i] & g != 0)
+            .filter(|&i| region.as_ref().is_none_or(|r| r.contains(p.x[i])))
+            .collect();
+        let nargs = if region.is_some() {
+            raw.len() - 1
+        } else {
+            raw.len()
+        };
         let dim = |s: Option<&String>| -> Result<usize, String> {
             match s.map(|s| s.trim()) {
                 Some("x") => Ok(0),
@@ -301,7 +350,7 @@ impl Context for Ctx<'_> {
                 )),
             }
         };
-        let mass: f64 = w.comm.sum(sel.iter().map(|&i| p.rmass[i]).sum());
+        let mass: f64 = w.comm.sum(sel.iter().map(|&i| p.rmass[i]).sum()) + 0.0;
         let weighted = |f: &dyn Fn(usize) -> f64| -> f64 {
             let s = w.comm.sum(sel.iter().map(|&i| p.rmass[i] * f(i)).sum());
             if mass > 0.0 {
@@ -310,10 +359,16 @@ impl Context for Ctx<'_> {
                 0.0
             }
         };
-        Ok(Some(match (name, raw.len()) {
+        Ok(Some(match (name, nargs) {
             ("count", 1) => w.comm.sum_count(sel.len() as u64) as f64,
             ("mass", 1) => mass,
-            ("ke", 1) => computes::kinetic(w, g),
+            ("ke", 1) => {
+                let e: f64 = sel
+                    .iter()
+                    .map(|&i| 0.5 * p.rmass[i] * p.v[i].length_squared())
+                    .sum();
+                w.comm.sum(e) + 0.0
+            }
             ("xcm", 2) => {
                 let a = dim(raw.get(1))?;
                 let size = w.domain.boxhi - w.domain.boxlo;
@@ -346,9 +401,9 @@ impl Context for Ctx<'_> {
                 return Err(format!(
                     "{name}() takes {} argument(s)",
                     if matches!(name, "count" | "mass" | "ke") {
-                        "1 (a group)"
+                        "1 (a group) or 2 (group, region)"
                     } else {
-                        "2 (group, dimension)"
+                        "2 (group, dimension) or 3 (group, dimension, region)"
                     }
                 ))
             }

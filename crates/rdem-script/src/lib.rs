@@ -25,6 +25,7 @@ pub mod materials;
 pub mod models;
 pub mod old_gran;
 pub mod output;
+pub mod regions;
 pub mod registry;
 pub mod run;
 pub mod sim;

@@ -127,7 +127,7 @@ pub struct Definitions {
     /// Groups.
     pub groups: Groups,
     /// Regions by ID.
-    pub regions: BTreeMap<String, Region>,
+    pub regions: BTreeMap<String, crate::regions::RegionDef>,
     /// The lattice (`lattice` command).
     pub lattice: Option<Lattice>,
     /// `fix property/global` tables by property name.
@@ -288,20 +288,43 @@ impl Sim {
         }
     }
 
-    /// Reads a region ID word and returns the region.
+    /// Reads a region ID word and returns the region where it is now (a moving region's
+    /// variables evaluated at the current step).
     pub fn region(&self, a: &mut Args) -> CmdResult<Region> {
+        let r = self.region_id(a)?;
+        crate::regions::region_now(self, &r).map_err(|e| a.error_prev(e, None))
+    }
+
+    /// Reads a region ID word for a use that needs a region that stays put (`who`:
+    /// e.g. "fix insert/pack"; LIGGGHTS refuses dynamic regions there too).
+    pub fn fixed_region(&self, a: &mut Args, who: &str) -> CmdResult<Region> {
+        let r = self.region_id(a)?;
+        if crate::regions::is_dynamic(self, &r) {
+            return Err(a.error_prev(
+                format!(
+                    "{who}: region '{r}' moves (move/rotate): dynamic regions are not allowed here"
+                ),
+                None,
+            ));
+        }
+        Ok(self.defs.regions[&r].region.clone())
+    }
+
+    /// Reads a region ID word and checks that the region exists.
+    pub fn region_id(&self, a: &mut Args) -> CmdResult<String> {
         let r = a.word("region ID")?;
-        self.defs.regions.get(r).cloned().ok_or_else(|| {
-            let names: Vec<&str> = self.defs.regions.keys().map(|s| s.as_str()).collect();
-            a.error_prev(
-                format!("no region '{r}'"),
-                Some(if names.is_empty() {
-                    "no region is defined yet".into()
-                } else {
-                    suggest(r, &names)
-                }),
-            )
-        })
+        if self.defs.regions.contains_key(r) {
+            return Ok(r.to_string());
+        }
+        let names: Vec<&str> = self.defs.regions.keys().map(|s| s.as_str()).collect();
+        Err(a.error_prev(
+            format!("no region '{r}'"),
+            Some(if names.is_empty() {
+                "no region is defined yet".into()
+            } else {
+                suggest(r, &names)
+            }),
+        ))
     }
 
     /// Index of fix `id`.

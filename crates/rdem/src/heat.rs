@@ -250,6 +250,34 @@ impl HeatConduction {
         self.k_eff(ty, wall_type) * area.sqrt()
     }
 
+    /// The heat flow into particle `i` from particle `j` touching it at centre distance
+    /// `d`, from the temperatures they have now (LIGGGHTS' per-contact `heatFlux` output
+    /// of `compute pair/gran/local`); 0 when neither is in the group.
+    pub fn pair_flow(&self, p: &Particles, i: usize, j: usize, d: f64) -> f64 {
+        if p.mask[i] & self.groupbit == 0 && p.mask[j] & self.groupbit == 0 {
+            return 0.0;
+        }
+        let temp = &p.props[self.props.temp.0].data;
+        let h = self.pair_conductance(p.radius[i], p.radius[j], p.ty[i], p.ty[j], d);
+        (temp[j] - temp[i]) * h
+    }
+
+    /// The heat flow into particle `i` from a wall of type `wall_type` at temperature
+    /// `t_wall` (`None`: an adiabatic wall, no flow) that it overlaps by `delta`, from the
+    /// particle's temperature now (`compute wall/gran/local`'s `heatFlux`).
+    pub fn wall_flow(
+        &self,
+        p: &Particles,
+        i: usize,
+        wall_type: u32,
+        t_wall: Option<f64>,
+        delta: f64,
+    ) -> f64 {
+        let Some(tw) = t_wall else { return 0.0 };
+        let temp = &p.props[self.props.temp.0].data;
+        (tw - temp[i]) * self.wall_conductance(p.radius[i], p.ty[i], wall_type, delta)
+    }
+
     /// Initial integration: the heat flows of the group's owned particles zeroed (the
     /// sources are kept).
     pub fn reset_flux(&self, p: &mut Particles) {

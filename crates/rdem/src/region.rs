@@ -1,7 +1,8 @@
 //! Regions (LIGGGHTS `region`): block, sphere, cylinder, cone, plane, union and intersect,
 //! with `side in|out`. A region answers whether a point is inside (boundary included, as
 //! LAMMPS), gives a bounding box when it is finite, and samples uniform random points
-//! (rejection in the bounding box) for insertion.
+//! (rejection in the bounding box) for insertion. A region may be posed (LIGGGHTS
+//! `move`/`rotate`): displaced and turned about an axis, its shape unchanged.
 
 use glam::DVec3;
 
@@ -71,13 +72,56 @@ pub enum Shape {
     Intersect(Vec<Region>),
 }
 
-/// A region: a shape and its side.
+/// A region: a shape, its side and its pose.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Region {
     /// The shape.
     pub shape: Shape,
     /// `side out`: the region is everything outside the shape.
     pub outside: bool,
+    /// Where the shape is now, if it moves (`None`: where it was defined).
+    pub pose: Option<Pose>,
+}
+
+/// The rigid motion of a moving region from where it was defined: a point `x₀` of the
+/// defined shape is now at `rot(x₀ − P) + P + shift`, where `rot` turns by `angle`
+/// (right-handed) about `axis` through `P` (LAMMPS: the displacement also carries the
+/// rotation point).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Displacement.
+    pub shift: DVec3,
+    /// Point on the rotation axis (before the shift).
+    pub point: DVec3,
+    /// Rotation, about a unit axis through `point`.
+    pub rotation: glam::DQuat,
+}
+
+impl Pose {
+    /// A pose from a displacement and a turn of `angle` radians about `axis` (any
+    /// non-zero length) through `point`.
+    pub fn new(shift: DVec3, point: DVec3, axis: DVec3, angle: f64) -> Self {
+        let rotation = if angle == 0.0 || axis.length_squared() == 0.0 {
+            glam::DQuat::IDENTITY
+        } else {
+            glam::DQuat::from_axis_angle(axis.normalize(), angle)
+        };
+        Self {
+            shift,
+            point,
+            rotation,
+        }
+    }
+
+    /// Where the defined shape's point `x0` is now.
+    pub fn forward(&self, x0: DVec3) -> DVec3 {
+        self.rotation * (x0 - self.point) + self.point + self.shift
+    }
+
+    /// Which point of the defined shape is now at `x`.
+    pub fn inverse(&self, x: DVec3) -> DVec3 {
+        self.rotation.inverse() * (x - self.shift - self.point) + self.point
+    }
 }
 
 /// The two axes other than `axis`, in increasing order.
@@ -191,6 +235,7 @@ impl Region {
         Ok(Self {
             shape,
             outside: false,
+            pose: None,
         })
     }
 
@@ -200,9 +245,20 @@ impl Region {
         self
     }
 
+    /// The same region, moved to `pose` (from where it was defined).
+    pub fn posed(mut self, pose: Pose) -> Self {
+        self.pose = Some(pose);
+        self
+    }
+
+    /// The point of the shape as defined that is now at `x`.
+    fn local(&self, x: DVec3) -> DVec3 {
+        self.pose.map_or(x, |p| p.inverse(x))
+    }
+
     /// True if `x` is in the region (boundary included for `side in`).
     pub fn contains(&self, x: DVec3) -> bool {
-        self.in_shape(x) != self.outside
+        self.in_shape(self.local(x)) != self.outside
     }
 
     fn in_shape(&self, x: DVec3) -> bool {
@@ -251,6 +307,7 @@ impl Region {
     }
 
     fn sphere_test(&self, x: DVec3, r: f64, out: bool) -> bool {
+        let x = self.local(x);
         match &self.shape {
             Shape::Block { lo, hi } => {
                 if out {
@@ -358,6 +415,27 @@ impl Region {
 
     /// A box containing the region, or `None` if it is unbounded.
     pub fn bounding_box(&self) -> Option<(DVec3, DVec3)> {
+        let (lo, hi) = self.defined_box()?;
+        let Some(pose) = self.pose else {
+            return Some((lo, hi));
+        };
+        // The box around the moved corners of the defined shape's box.
+        let (mut l, mut h) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for k in 0..8 {
+            let c = DVec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            );
+            let c = pose.forward(c);
+            l = l.min(c);
+            h = h.max(c);
+        }
+        Some((l, h))
+    }
+
+    /// The bounding box of the shape where it was defined.
+    fn defined_box(&self) -> Option<(DVec3, DVec3)> {
         if self.outside {
             return None;
         }
@@ -567,6 +645,42 @@ mod tests {
             }
         }
         assert!(k.contains_sphere(v(0.0, 0.0, 1.0), 0.1));
+    }
+
+    /// A posed region is the defined one moved rigidly: a block shifted by (1, 0, 0) and
+    /// turned by 90° about z through (0, 0, 0) after the shift carries the rotation point.
+    #[test]
+    fn posed_regions_move_rigidly() {
+        let b = Region::new(Shape::Block {
+            lo: v(0., 0., 0.),
+            hi: v(2., 1., 1.),
+        })
+        .unwrap();
+        let shifted = b
+            .clone()
+            .posed(Pose::new(v(1., 0., 0.), DVec3::ZERO, DVec3::Z, 0.0));
+        assert!(shifted.contains(v(2.9, 0.5, 0.5)) && !shifted.contains(v(0.9, 0.5, 0.5)));
+        assert_eq!(shifted.bounding_box(), Some((v(1., 0., 0.), v(3., 1., 1.))));
+        // Right-handed quarter turn about z: (x, y) -> (-y, x), then the shift.
+        let turned = b.clone().posed(Pose::new(
+            v(1., 0., 0.),
+            DVec3::ZERO,
+            v(0., 0., 5.),
+            std::f64::consts::FRAC_PI_2,
+        ));
+        assert!(turned.contains(v(0.5, 1.9, 0.5)) && !turned.contains(v(1.5, 0.5, 0.5)));
+        assert!(!turned.contains(v(0.5, 2.1, 0.5)));
+        let (l, h) = turned.bounding_box().unwrap();
+        assert!((l - v(0., 0., 0.)).length() < 1e-12 && (h - v(1., 2., 1.)).length() < 1e-12);
+        // The whole-sphere test follows the pose; side out too.
+        assert!(turned.contains_sphere(v(0.5, 1.0, 0.5), 0.5));
+        assert!(!turned.contains_sphere(v(0.5, 1.0, 0.5), 0.51));
+        let out = turned.clone().side_out();
+        assert!(out.contains(v(1.5, 0.5, 0.5)) && !out.contains(v(0.5, 1.9, 0.5)));
+        // Forward and inverse agree.
+        let p = Pose::new(v(0.3, -2., 1.), v(1., 2., 3.), v(1., 1., 0.), 0.7);
+        let x = v(0.4, -0.2, 5.);
+        assert!((p.inverse(p.forward(x)) - x).length() < 1e-14);
     }
 
     #[test]

@@ -26,7 +26,7 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }),
         ));
     }
-    let r = sim.region(a)?;
+    let r = sim.fixed_region(a, "create_box")?;
     if !a.is_done() {
         return Err(a.error_at(
             a.pos(),

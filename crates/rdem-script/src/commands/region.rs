@@ -6,6 +6,7 @@ use rdem::region::{Region, Shape};
 
 use crate::args::{Args, CmdResult};
 use crate::lattice::{self, Lattice};
+use crate::regions::{Motion, RegionDef};
 use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 
@@ -74,11 +75,14 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     // Geometry words first (numbers may be INF/EDGE); keywords after.
     let mut geo: Vec<String> = Vec::new();
     let mut parts: Vec<Region> = Vec::new();
+    let mut part_ids: Vec<String> = Vec::new();
     match style {
         "union" | "intersect" => {
             let n = a.count("number of regions")?;
             for _ in 0..n {
-                parts.push(sim.region(a)?);
+                let id = sim.region_id(a)?;
+                parts.push(sim.defs.regions[&id].region.clone());
+                part_ids.push(id);
             }
         }
         _ => {
@@ -92,15 +96,32 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     let (mut outside, mut lattice_units) = (false, false); // LIGGGHTS 3.8: units box
+    let mut motion: Option<Motion> = None;
     while !a.is_done() {
-        match a.keyword(
-            "region keyword",
-            &["side", "units", "move", "rotate", "open"],
-        )? {
+        match a.keyword("region keyword", &["side", "units", "move", "rotate"])? {
             "side" => outside = a.keyword("side", &["in", "out"])? == "out",
             "units" => lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice",
             k => {
-                return Err(a.error_prev(format!("region keyword '{k}' is not supported yet"), None))
+                if matches!(style, "union" | "intersect") {
+                    return Err(a.error_prev(
+                        format!("region {style} cannot {k}: give move/rotate to its parts"),
+                        None,
+                    ));
+                }
+                let m = motion.get_or_insert_with(Motion::default);
+                if k == "move" {
+                    for c in 0..3 {
+                        m.shift[c] = motion_variable(a, "x, y or z displacement", true)?;
+                    }
+                } else {
+                    let theta = motion_variable(a, "rotation angle", false)?.expect("required");
+                    let point = a.vec3("rotation point Px Py Pz")?;
+                    let axis = a.vec3("rotation axis Rx Ry Rz")?;
+                    if axis.length_squared() == 0.0 {
+                        return Err(a.error_prev("rotation axis must not be 0 0 0", None));
+                    }
+                    m.rotate = Some((theta, point, axis));
+                }
             }
         }
     }
@@ -216,8 +237,38 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if outside {
         r = r.side_out();
     }
-    sim.defs.regions.insert(id, r);
+    // LAMMPS scales the rotation point with `units lattice`, not the axis.
+    if let Some((_, p, _)) = motion.as_mut().and_then(|m| m.rotate.as_mut()) {
+        *p *= s;
+    }
+    sim.defs.regions.insert(
+        id,
+        RegionDef {
+            region: r,
+            motion,
+            parts: part_ids,
+        },
+    );
     Ok(())
+}
+
+/// Reads `v_name` (or `NULL` if `null_ok`) for a region's motion; the variable is looked
+/// up when the region is used, as LAMMPS does at run set-up.
+fn motion_variable(a: &mut Args, what: &str, null_ok: bool) -> CmdResult<Option<String>> {
+    let w = a.word(what)?;
+    if null_ok && w == "NULL" {
+        return Ok(None);
+    }
+    match w.strip_prefix("v_").filter(|n| !n.is_empty()) {
+        Some(n) => Ok(Some(n.to_string())),
+        None => Err(a.error_prev(
+            format!(
+                "region {what} must be an equal-style variable v_name{}, not '{w}'",
+                if null_ok { " or NULL" } else { "" }
+            ),
+            Some("e.g. 'variable dx equal 0.1*time' then 'move v_dx NULL NULL'".into()),
+        )),
+    }
 }
 
 pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {

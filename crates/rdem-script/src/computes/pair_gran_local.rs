@@ -2,15 +2,18 @@
 //! (both particles in the group), with the columns the keywords select, in LIGGGHTS
 //! 3.8's order whatever the order of the keywords: pos (6), vel (6), id (3), force (3),
 //! force_normal (3), force_tangential (3), torque (3), history (the contact law's
-//! history values), contactArea (1), delta (1). Without keywords: pos, vel, id, force,
-//! torque, history and contactArea.
+//! history values), contactArea (1), delta (1), heatFlux (1). Without keywords: pos,
+//! vel, id, force, torque, history and contactArea.
 //!
 //! Values as LIGGGHTS 3.8 gives them (checked against its output in
 //! `crates/rdem-cli/tests/local_dump.rs`): positions and velocities of i then j; the two
 //! IDs and 1 when j is a periodic image (0 otherwise); the contact force on i; its
 //! components along and across the line of centres; the contact law's torque on i
 //! (without rolling friction, which LIGGGHTS leaves out too); the contact area of the
-//! two spheres' geometric intersection, π a²; the overlap r_i + r_j − |x_i − x_j|.
+//! two spheres' geometric intersection, π a²; the overlap r_i + r_j − |x_i − x_j|; the
+//! heat flow into i through the contact from the temperatures at the time of output
+//! (`fix heat/gran`'s conductance, [`rdem::heat::HeatConduction::pair_flow`]; LIGGGHTS
+//! 3.8 gives the same, measured, and stops without a `fix heat/gran`).
 //! The contact law is evaluated from the state when the compute is invoked, as
 //! LIGGGHTS does ([`rdem::pair::PairContacts`]).
 
@@ -26,7 +29,7 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
     parse,
     "per-contact values of the pair contacts (`dump local`, `dump local/gran/vtk`)",
 )
-.notes("`heatFlux`, `contactPoint` and `ms_id` are not supported yet");
+.notes("`heatFlux` needs `fix heat/gran`; `contactPoint` and `ms_id` are not supported yet");
 
 /// The keywords, in LIGGGHTS' column order.
 const KEYWORDS: [&str; 13] = [
@@ -58,6 +61,7 @@ pub(super) struct Columns {
     pub(super) history: bool,
     pub(super) contact_area: bool,
     pub(super) delta: bool,
+    pub(super) heat_flux: bool,
 }
 
 /// The compute.
@@ -86,6 +90,7 @@ impl Columns {
             (c.history, "history", hist_width),
             (c.contact_area, "contactArea", 1),
             (c.delta, "delta", 1),
+            (c.heat_flux, "heatFlux", 1),
         ] {
             if on {
                 out.push((name, at, n));
@@ -135,6 +140,7 @@ impl ScriptCompute for PairGranLocal {
                 c.id
             ));
         };
+        let heat = heat_for(w, &self.cols, c)?;
         let p = &w.particles;
         let rec = pair.contacts(p, &w.neighbor.list, w.dt);
         let cols = &self.cols;
@@ -194,9 +200,30 @@ impl ScriptCompute for PairGranLocal {
             if cols.delta {
                 out.push(rec.delta[k]);
             }
+            if let Some(h) = heat {
+                out.push(h.pair_flow(p, i, j, dist));
+            }
         }
         Ok(out)
     }
+}
+
+/// The heat conduction a `heatFlux` column reads (`None` without that column); an error
+/// without `fix heat/gran`, as in LIGGGHTS 3.8.
+pub(super) fn heat_for<'w>(
+    w: &'w rdem::World,
+    cols: &Columns,
+    c: &ComputeHead,
+) -> Result<Option<&'w rdem::heat::HeatConduction>, String> {
+    if !cols.heat_flux {
+        return Ok(None);
+    }
+    w.heat.as_ref().map(Some).ok_or_else(|| {
+        format!(
+            "compute {}: heatFlux needs the heat flows of a fix heat/gran, and there is none",
+            c.id
+        )
+    })
 }
 
 /// `compute ID group pair/gran/local [keywords]`.
@@ -229,17 +256,15 @@ pub(super) fn parse_columns(a: &mut Args, style: &str) -> CmdResult<Columns> {
             "history" => c.history = true,
             "contactArea" => c.contact_area = true,
             "delta" => c.delta = true,
+            "heatFlux" => c.heat_flux = true,
             other => {
                 return Err(a.error_prev(
                     format!("{style}: keyword '{other}' is not supported yet"),
-                    Some(match other {
-                        "heatFlux" => {
-                            "per-contact heat flows of fix heat/gran are not output yet".to_string()
-                        }
-                        _ => "use pos, vel, id, force, force_normal, force_tangential, \
-                              torque, history, contactArea or delta"
+                    Some(
+                        "use pos, vel, id, force, force_normal, force_tangential, torque, \
+                         history, contactArea, delta or heatFlux"
                             .to_string(),
-                    }),
+                    ),
                 ))
             }
         }

@@ -2,7 +2,7 @@
 //! the group with a mesh wall, with the columns the keywords select, in LIGGGHTS 3.8's
 //! order whatever the order of the keywords: pos (6), vel (6), id (3), force (3),
 //! force_normal (3), force_tangential (3), torque (3), history (the wall model's history
-//! values), contactArea (1), delta (1). Without keywords: pos, vel, id, force, torque,
+//! values), contactArea (1), delta (1), heatFlux (1). Without keywords: pos, vel, id, force, torque,
 //! history and contactArea.
 //!
 //! As in LIGGGHTS 3.8 (its manual: "only mesh walls can be used"), the contacts are
@@ -14,7 +14,9 @@
 //! triangle (its order in the file) and the particle's ID; the contact force on the
 //! particle, its parts along the wall normal and across it; the contact law's torque on
 //! the particle; the history values; π (r² − d²) with d the centre's distance to the
-//! wall; the overlap r − d. Rows are ordered by mesh, triangle, then particle. The
+//! wall; the overlap r − d; the heat flow into the particle from the wall's temperature
+//! at the time of output (`fix heat/gran`'s conductance; 0 for a wall without a
+//! temperature). Rows are ordered by mesh, triangle, then particle. The
 //! contact law is evaluated from the state when the compute is invoked, as LIGGGHTS
 //! does ([`rdem::wall::MeshWall::contacts`]); a wall bond's force is not included.
 
@@ -22,7 +24,7 @@ use std::f64::consts::PI;
 
 use rdem::fix::FixKind;
 
-use super::pair_gran_local::{parse_columns, Columns};
+use super::pair_gran_local::{heat_for, parse_columns, Columns};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
@@ -35,7 +37,8 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
 )
 .notes(
     "mesh walls only, as LIGGGHTS 3.8; one per script (LIGGGHTS: one per fix wall/gran); \
-     `heatFlux`, `contactPoint` and `ms_id` are not supported yet",
+     `heatFlux` needs `fix heat/gran` (0 on a wall without a temperature); \
+     `contactPoint` and `ms_id` are not supported yet",
 );
 
 /// The compute.
@@ -73,6 +76,7 @@ impl ScriptCompute for WallGranLocal {
                 c.id, self.wall
             ));
         };
+        let heat = heat_for(w, &self.cols, c)?;
         let p = &w.particles;
         let rec = wall.contacts(&w.meshes, p, w.dt);
         let cols = &self.cols;
@@ -126,6 +130,16 @@ impl ScriptCompute for WallGranLocal {
             }
             if cols.delta {
                 out.push(radius - r.dist);
+            }
+            if let Some(h) = heat {
+                let surface = &w.meshes[wall.meshes[r.mesh as usize]];
+                out.push(h.wall_flow(
+                    p,
+                    i,
+                    surface.wall_type,
+                    surface.temperature,
+                    radius - r.dist,
+                ));
             }
         }
         Ok(out)

@@ -18,7 +18,7 @@ pub(super) const ROW: DumpRow = DumpRow::runs(
     parse,
     "per-contact values of local computes (`c_ID[k]`) as text, LIGGGHTS' layout",
 )
-.notes("`f_ID` columns and `dump_modify` `label`/`format` are not supported yet");
+.notes("`dump_modify format` as for `dump custom` (a `%d` column prints the value as an integer, where LIGGGHTS 3.8 prints the bits of a double); `f_ID` columns and `dump_modify label` are not supported yet");
 
 /// A column: compute ID and 1-based column (`None`: a compute with one column).
 #[derive(Debug, Clone)]
@@ -87,6 +87,7 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
         Box::new(Local {
             name: DumpFileName::new(file),
             single: None,
+            formats: Vec::new(),
         }),
         cols,
     ))
@@ -96,6 +97,8 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
 struct Local {
     name: DumpFileName,
     single: Option<AppendFile>,
+    /// `dump_modify format`: one per column (`None`: `%g`).
+    formats: Vec<Option<Printf>>,
 }
 
 fn letter(b: Boundary) -> char {
@@ -180,10 +183,11 @@ impl DumpStyle for Local {
             .map(|&(ci, k)| (ids.iter().position(|&x| x == ci).expect("listed"), k))
             .collect();
         for r in 0..nrows {
-            for &(m, k) in &pos {
+            for (col, &(m, k)) in pos.iter().enumerate() {
                 let (vals, n) = &data[m];
                 let v = vals.as_ref().expect("rank 0")[r * n + k];
-                g.write(&mut out, Value::Float(v));
+                let f = self.formats.get(col).and_then(|f| f.as_ref()).unwrap_or(&g);
+                f.write(&mut out, Value::Float(v));
                 out.push(' ');
             }
             out.push('\n');
@@ -219,5 +223,15 @@ impl DumpStyle for Local {
             "sort does not apply to dump local (it has no atom IDs)",
             None,
         ))
+    }
+
+    fn set_format(&mut self, f: &str, ncols: usize) -> Result<Option<String>, NotHere> {
+        Ok(match rdem_io::parse_line_format(f, ncols) {
+            Ok(formats) => {
+                self.formats = formats;
+                None
+            }
+            Err(e) => Some(e.to_string()),
+        })
     }
 }

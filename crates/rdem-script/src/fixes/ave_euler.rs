@@ -81,7 +81,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     while !a.is_done() {
         a.keyword("ave/euler keyword", &["basevolume_region"])?;
         let name = a.peek().unwrap_or("").to_string();
-        let r = sim.region(a)?;
+        let r = sim.fixed_region(a, "fix ave/euler basevolume_region")?;
         base_region = Some((name, r));
     }
     Ok(Box::new(AveEuler {

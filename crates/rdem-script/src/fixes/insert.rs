@@ -222,7 +222,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 a.keyword("omega distribution", &["constant"])?;
                 omega = a.vec3("omega")?;
             }
-            "region" => region = Some(sim.region(a)?),
+            "region" => region = Some(sim.fixed_region(a, &format!("fix {style}"))?),
             "volumefraction_region" => {
                 let f = a.f64("volume fraction")?;
                 if !(f > 0.0 && f < 1.0) {
