@@ -64,12 +64,10 @@ impl DumpStyle for Custom {
     }
 
     fn set_format(&mut self, f: &str, ncols: usize) -> Result<Option<String>, NotHere> {
-        Ok(match rdem_io::parse_line_format(f, ncols) {
-            Ok(formats) => {
-                self.0.options.formats = formats;
-                None
-            }
-            Err(e) => Some(e.to_string()),
-        })
+        Ok(super::set_line_formats(
+            &mut self.0.options.formats,
+            f,
+            ncols,
+        ))
     }
 }

@@ -226,12 +226,6 @@ impl DumpStyle for Local {
     }
 
     fn set_format(&mut self, f: &str, ncols: usize) -> Result<Option<String>, NotHere> {
-        Ok(match rdem_io::parse_line_format(f, ncols) {
-            Ok(formats) => {
-                self.formats = formats;
-                None
-            }
-            Err(e) => Some(e.to_string()),
-        })
+        Ok(super::set_line_formats(&mut self.formats, f, ncols))
     }
 }

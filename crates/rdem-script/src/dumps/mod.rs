@@ -94,7 +94,23 @@ pub trait DumpStyle {
 
     /// `dump_modify format`: `Ok(Some(error))` for a bad format string.
     fn set_format(&mut self, _f: &str, _ncols: usize) -> Result<Option<String>, NotHere> {
-        Err(("format applies to dump custom only", None))
+        Err(("format applies to dump custom and dump local only", None))
+    }
+}
+
+/// `dump_modify format` for the text dumps: one format per column into `formats`, or the
+/// error of a bad format line (`formats` unchanged then).
+pub(super) fn set_line_formats(
+    formats: &mut Vec<Option<rdem_io::Printf>>,
+    f: &str,
+    ncols: usize,
+) -> Option<String> {
+    match rdem_io::parse_line_format(f, ncols) {
+        Ok(parsed) => {
+            *formats = parsed;
+            None
+        }
+        Err(e) => Some(e.to_string()),
     }
 }
 

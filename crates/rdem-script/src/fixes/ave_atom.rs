@@ -9,6 +9,7 @@
 //! running sum during a window and the average after it, and the steps follow LAMMPS'
 //! `nextvalid` (with `Nrepeat` 1 a multiple of `Nfreq` at a run's set-up is sampled).
 
+use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{id_help, Args, CmdResult};
 use crate::sim::Sim;
@@ -42,33 +43,13 @@ enum Input {
 
 /// `fix ave/atom`.
 pub struct AveAtom {
-    nevery: u64,
-    nrepeat: u64,
-    nfreq: u64,
+    schedule: Schedule,
     inputs: Vec<Input>,
-    /// Next step that is sampled.
-    nvalid: u64,
-    /// Samples taken in the current window.
-    irepeat: u64,
     /// Name of the per-particle property holding the values.
     prop: String,
 }
 
 impl AveAtom {
-    /// LAMMPS' `nextvalid`: the first sampled step at or after `step`.
-    fn next_valid(&self, step: u64) -> u64 {
-        let mut n = (step / self.nfreq) * self.nfreq + self.nfreq;
-        if n - self.nfreq == step && self.nrepeat == 1 {
-            n = step;
-        } else {
-            n -= (self.nrepeat - 1) * self.nevery;
-        }
-        if n < step {
-            n += self.nfreq;
-        }
-        n
-    }
-
     /// The values of input `k` for the owned particles.
     fn input(&self, sim: &Sim, k: usize) -> Result<Vec<f64>, String> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
@@ -86,16 +67,8 @@ impl AveAtom {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let nevery = a.count("Nevery")?;
-    let nrepeat = a.count("Nrepeat")?;
-    let nfreq = a.count("Nfreq")?;
-    if nfreq % nevery != 0 || (nrepeat - 1) * nevery >= nfreq {
-        return Err(a.error_at(
-            a.pos() - 1,
-            format!("Nfreq must be a multiple of Nevery and Nfreq > (Nrepeat-1)*Nevery (got {nevery} {nrepeat} {nfreq})"),
-            None,
-        ));
-    }
+    let mut schedule = Schedule::parse(a)?;
+    let nevery = schedule.nevery;
     let mut inputs = Vec::new();
     while let Some(w) = a.peek() {
         let k = a.pos();
@@ -193,18 +166,13 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         return Err(a.error_at(a.pos(), "ave/atom needs at least one value", None));
     }
     let step = sim.world_ref(a)?.step;
-    let mut f = AveAtom {
-        nevery,
-        nrepeat,
-        nfreq,
+    schedule.begin(step);
+    let prop = format!("fix ave/atom {} ({} values)", head.id, inputs.len());
+    Ok(Box::new(AveAtom {
+        schedule,
         inputs,
-        nvalid: 0,
-        irepeat: 0,
-        prop: format!("fix ave/atom {} ({} values)", head.id, 0),
-    };
-    f.prop = format!("fix ave/atom {} ({} values)", head.id, f.inputs.len());
-    f.nvalid = f.next_valid(step);
-    Ok(Box::new(f))
+        prop,
+    }))
 }
 
 impl ScriptFix for AveAtom {
@@ -221,7 +189,7 @@ impl ScriptFix for AveAtom {
 
     fn peratom_shape(&self) -> Option<(usize, u64)> {
         let n = self.inputs.len();
-        Some((if n == 1 { 0 } else { n }, self.nfreq))
+        Some((if n == 1 { 0 } else { n }, self.schedule.nfreq))
     }
 
     fn peratom(&self, sim: &Sim, head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, String> {
@@ -249,14 +217,9 @@ impl ScriptFix for AveAtom {
         step: u64,
         _setup: bool,
     ) -> Result<(), String> {
-        if self.nvalid < step {
-            // A run started past the next sampled step (LAMMPS' init).
-            self.irepeat = 0;
-            self.nvalid = self.next_valid(step);
-        }
-        if step != self.nvalid {
+        let Some(first) = self.schedule.due(step) else {
             return Ok(());
-        }
+        };
         let values: Vec<Vec<f64>> = (0..self.inputs.len())
             .map(|k| self.input(sim, k))
             .collect::<Result<_, _>>()?;
@@ -266,7 +229,7 @@ impl ScriptFix for AveAtom {
         let n = p.nlocal();
         let width = self.inputs.len();
         let (mask, prop) = (&p.mask, &mut p.props[id.0]);
-        if self.irepeat == 0 {
+        if first {
             prop.data[..n * width].iter_mut().for_each(|v| *v = 0.0);
         }
         for i in 0..n {
@@ -277,14 +240,10 @@ impl ScriptFix for AveAtom {
                 }
             }
         }
-        self.irepeat += 1;
-        if self.irepeat < self.nrepeat {
-            self.nvalid += self.nevery;
+        if !self.schedule.sampled(step) {
             return Ok(());
         }
-        self.irepeat = 0;
-        self.nvalid = step + self.nfreq - (self.nrepeat - 1) * self.nevery;
-        let scale = 1.0 / self.nrepeat as f64;
+        let scale = 1.0 / self.schedule.nrepeat as f64;
         prop.data[..n * width].iter_mut().for_each(|v| *v *= scale);
         Ok(())
     }

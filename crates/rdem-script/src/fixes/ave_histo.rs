@@ -19,6 +19,7 @@
 //!   "Histogram"), and `title1/2/3` replace the three header lines word for word (the
 //!   third is written in scalar mode too).
 
+use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{id_help, Args, CmdResult};
 use crate::sim::Sim;
@@ -62,10 +63,7 @@ const EMPTY: Stats = [0.0, 0.0, 1e20, -1e20];
 
 /// `fix ave/histo`.
 pub struct AveHisto {
-    nevery: u64,
-    nrepeat: u64,
-    nfreq: u64,
-    start: u64,
+    schedule: Schedule,
     lo: f64,
     hi: f64,
     /// Bins, with the two of `beyond extra`.
@@ -80,9 +78,6 @@ pub struct AveHisto {
     /// The three header lines, each with its newline.
     header: String,
     file: Option<rdem_io::AppendFile>,
-    /// Next sampled step.
-    nvalid: u64,
-    irepeat: u64,
     /// The histogram being summed over the `Nrepeat` samples.
     stats: Stats,
     hist: Vec<f64>,
@@ -95,23 +90,6 @@ pub struct AveHisto {
 }
 
 impl AveHisto {
-    /// LAMMPS' `nextvalid` with `start`: the first sampled step at or after `step`.
-    fn next_valid(&self, step: u64) -> u64 {
-        let mut n = (step / self.nfreq) * self.nfreq + self.nfreq;
-        while n < self.start {
-            n += self.nfreq;
-        }
-        if n - self.nfreq == step && self.nrepeat == 1 {
-            n = step;
-        } else {
-            n -= (self.nrepeat - 1) * self.nevery;
-        }
-        if n < step {
-            n += self.nfreq;
-        }
-        n
-    }
-
     /// Bins one value (LAMMPS' `bin_one`).
     fn bin(&mut self, v: f64) {
         let s = &mut self.stats;
@@ -216,16 +194,8 @@ impl AveHisto {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let nevery = a.count("Nevery")?;
-    let nrepeat = a.count("Nrepeat")?;
-    let nfreq = a.count("Nfreq")?;
-    if nfreq % nevery != 0 || (nrepeat - 1) * nevery >= nfreq {
-        return Err(a.error_at(
-            a.pos() - 1,
-            format!("Nfreq must be a multiple of Nevery and Nfreq > (Nrepeat-1)*Nevery (got {nevery} {nrepeat} {nfreq})"),
-            None,
-        ));
-    }
+    let mut schedule = Schedule::parse(a)?;
+    let nevery = schedule.nevery;
     let lo = a.f64("lo")?;
     let hi = a.f64("hi")?;
     if lo >= hi {
@@ -306,11 +276,10 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let inputs = input::parse_all(sim, a, &words, vector, nevery)?;
     let width = (hi - lo) / nbins as f64;
     let nbins = nbins + if beyond == Beyond::Extra { 2 } else { 0 };
-    let mut f = AveHisto {
-        nevery,
-        nrepeat,
-        nfreq,
-        start,
+    schedule.start = start;
+    schedule.begin(sim.world.as_ref().map_or(0, |w| w.step));
+    let f = AveHisto {
+        schedule,
         lo,
         hi,
         nbins,
@@ -322,8 +291,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         overwrite: overwrite.is_some(),
         header: titles.iter().map(|t| format!("{t}\n")).collect(),
         file: None,
-        nvalid: 0,
-        irepeat: 0,
         stats: EMPTY,
         hist: vec![0.0; nbins],
         stats_total: [0.0; 4],
@@ -331,8 +298,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         window: Vec::new(),
         iwindow: 0,
     };
-    let step = sim.world.as_ref().map_or(0, |w| w.step);
-    f.nvalid = f.next_valid(step);
     Ok(Box::new(f))
 }
 
@@ -393,15 +358,10 @@ impl ScriptFix for AveHisto {
         step: u64,
         _setup: bool,
     ) -> Result<(), String> {
-        if self.nvalid < step {
-            // A run started past the next sampled step (LAMMPS' init).
-            self.irepeat = 0;
-            self.nvalid = self.next_valid(step);
-        }
-        if step != self.nvalid {
+        let Some(first) = self.schedule.due(step) else {
             return Ok(());
-        }
-        if self.irepeat == 0 {
+        };
+        if first {
             self.stats = EMPTY;
             self.hist.iter_mut().for_each(|h| *h = 0.0);
         }
@@ -410,13 +370,9 @@ impl ScriptFix for AveHisto {
             let values = self.inputs[k].values(sim, head.groupbit)?;
             values.into_iter().for_each(|v| self.bin(v));
         }
-        self.irepeat += 1;
-        if self.irepeat < self.nrepeat {
-            self.nvalid += self.nevery;
+        if !self.schedule.sampled(step) {
             return Ok(());
         }
-        self.irepeat = 0;
-        self.nvalid = step + self.nfreq - (self.nrepeat - 1) * self.nevery;
         if peratom {
             // Each rank binned its own particles over the samples: add the ranks' sums.
             let w = sim.world.as_ref().ok_or("no simulation box")?;

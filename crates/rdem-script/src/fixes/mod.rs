@@ -34,6 +34,7 @@ mod particletemplate_sphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod sampling;
 mod wall_gran;
 mod wall_gran_old;
 
