@@ -119,15 +119,6 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// and the walls `wall/gran/hertz/history 1 0 zplane 0.0 NULL 1`, `xplane 0.0 0.06 1`,
 /// `yplane ...` run in their 3.x translation.)
 ///
-/// `56_2x_chute_cylinder_obstacle/in.test` (LIGGGHTS 2.x syntax) — 4 lines:
-/// - 57 and 76 `fix ... wall/gran/hertz/history primitive ... store_force yes ...`: the
-///   wall force per particle (`f_force_ID`) is not stored yet;
-/// - 83 and 92 `dump ... f_force_cyl[1] ...`: the values of that `store_force`.
-///
-/// Left out as a follow-on: 93 `dump_modify dmp3 region dumpreg` (its dump's line
-/// failed). (Line 44, `pair_style gran/hertz/history tangential_damping on cohesion off
-/// rolling_friction off viscous off`, runs in its 3.x translation, and line 67, `fix
-/// gravi all gravity 9.81 chute 0.0`, runs.)
 #[test]
 fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     let Some(root) = wild() else { return };
@@ -157,13 +148,6 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
             "in.giacomp",
             "in.giacomp: 1 line rdem cannot run: fix pour (line 82)",
             &[113][..],
-        ),
-        (
-            "56_2x_chute_cylinder_obstacle",
-            "in.test",
-            "in.test: 4 lines rdem cannot run: fix wall/gran/hertz/history (line 57), \
-             fix wall/gran/hertz/history (76), dump custom (83), dump custom (92)",
-            &[93][..],
         ),
     ];
     for (case, main, want, left_out) in cases {
@@ -391,6 +375,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",
     "50_capillary_heat_init/DEM",
+    "56_2x_chute_cylinder_obstacle",
 ];
 
 /// `rdem -check` on every case of `../shared/wild`: exactly the cases of

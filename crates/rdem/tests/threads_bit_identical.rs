@@ -189,11 +189,20 @@ fn neighbor_list_is_identical_on_1_2_and_4_threads() {
 
 /// Wall forces, torques, wall history and candidate lists on 1, 2 and 4 threads: the bed
 /// against its floor and lid and a cylinder through it, with viscous damping and an
-/// added force after the walls, evaluated once (set-up) and after 100 steps.
+/// added force after the walls, evaluated once (set-up) and after 100 steps; the
+/// cylinder stores its force on each particle (`store_force`), which must be the same on
+/// every thread count and must not change any force (against a run without it).
 #[test]
 fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
-    type Snap = (Vec<[u64; 3]>, Vec<[u64; 3]>, Vec<Vec<u64>>, Vec<Vec<u32>>);
-    let walls = |threads: usize| -> Vec<Snap> {
+    type Snap = (
+        Vec<[u64; 3]>,
+        Vec<[u64; 3]>,
+        Vec<Vec<u64>>,
+        Vec<Vec<u32>>,
+        Vec<u64>,
+    );
+    // `store`: the cylinder keeps its force on each particle (`store_force yes`).
+    let walls = |threads: usize, store: bool| -> Vec<Snap> {
         on_pool(threads, || {
             let mut w = dense_bed(false);
             let shape = WallShape::Cylinder {
@@ -202,7 +211,11 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
                 c1: 0.02,
                 c2: 0.02,
             };
-            let cyl = PrimitiveWall::new("cyl", ContactModel::hertz_history(), 1, shape).unwrap();
+            let mut cyl =
+                PrimitiveWall::new("cyl", ContactModel::hertz_history(), 1, shape).unwrap();
+            if store {
+                cyl.store_force = Some("force_cyl".into());
+            }
             w.add_fix(Fix::new("cyl", 1, FixKind::WallGran(Box::new(cyl))).unwrap())
                 .unwrap();
             w.add_fix(Fix::new("visc", 1, FixKind::Viscous { gamma: 1e-4 }).unwrap())
@@ -223,7 +236,13 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
                         cands.push(wall.candidates().to_vec());
                     }
                 }
-                (bits(&p.f[..n]), bits(&p.torque[..n]), hist, cands)
+                let stored = p.property("force_cyl").map_or_else(Vec::new, |id| {
+                    p.props[id.0].data[..3 * n]
+                        .iter()
+                        .map(|v| v.to_bits())
+                        .collect()
+                });
+                (bits(&p.f[..n]), bits(&p.torque[..n]), hist, cands, stored)
             };
             w.setup().unwrap();
             let first = snap(&w);
@@ -231,7 +250,7 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
             vec![first, snap(&w)]
         })
     };
-    let one = walls(1);
+    let one = walls(1, true);
     for (s, snap) in one.iter().enumerate() {
         let touching = |c: usize| snap.2[c].iter().filter(|&&h| h != 0).count();
         // floor, lid, cylinder: the floor and the cylinder must carry contacts.
@@ -244,10 +263,21 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
         if s == 1 {
             assert!(touching(0) > 100, "floor contacts {}", touching(0));
             assert!(touching(2) > 100, "cylinder contacts {}", touching(2));
+            let pushed = snap.4.chunks(3).filter(|f| f != &[0; 3]).count();
+            assert!(pushed > 100, "stored cylinder forces {pushed}");
         }
     }
+    // Storing the cylinder's force leaves every force as it was.
+    let plain = walls(1, false);
+    for (s, (a, b)) in plain.iter().zip(&one).enumerate() {
+        assert!(a.4.is_empty());
+        assert!(
+            a.0 == b.0 && a.1 == b.1,
+            "snapshot {s}: store_force moved a force"
+        );
+    }
     for threads in [2, 4] {
-        let other = walls(threads);
+        let other = walls(threads, true);
         for (s, (a, b)) in other.iter().zip(&one).enumerate() {
             assert!(
                 a.3 == b.3,
@@ -259,6 +289,10 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
             );
             assert!(a.0 == b.0, "{threads} threads, snapshot {s}: other forces");
             assert!(a.1 == b.1, "{threads} threads, snapshot {s}: other torques");
+            assert!(
+                a.4 == b.4,
+                "{threads} threads, snapshot {s}: other stored forces"
+            );
         }
     }
 }

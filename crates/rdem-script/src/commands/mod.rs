@@ -129,7 +129,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim_atoi("run", run::run, "`N`, `N upto`"),
         sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
         sim("dump", dumps::dump, "the dump styles below"),
-        sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `binary`, `compressor`"),
+        sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`"),
         sim("undump", dumps::undump, "`ID`"),
         sim("write_dump", dumps::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
         sim("write_restart", data_files::write_data, "file name")

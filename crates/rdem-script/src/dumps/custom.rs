@@ -58,6 +58,10 @@ impl DumpStyle for Custom {
         false
     }
 
+    fn takes_region(&self) -> bool {
+        true
+    }
+
     fn set_sort(&mut self, s: Sort) -> Result<(), NotHere> {
         self.0.options.sort = s;
         Ok(())

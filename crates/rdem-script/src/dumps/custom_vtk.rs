@@ -70,6 +70,10 @@ impl DumpStyle for CustomVtk {
         self.0.name_mut()
     }
 
+    fn takes_region(&self) -> bool {
+        true
+    }
+
     fn set_sort(&mut self, s: Sort) -> Result<(), NotHere> {
         self.0.sort = s;
         Ok(())

@@ -32,6 +32,9 @@ pub struct DumpHead {
     pub id: String,
     /// Group bit mask.
     pub groupbit: u32,
+    /// `dump_modify region ID`: only the particles in this region (placed at the time of
+    /// each snapshot) are written.
+    pub region: Option<String>,
 }
 
 /// Why a `dump_modify` keyword does not apply to a style: the message and a help line.
@@ -90,6 +93,12 @@ pub trait DumpStyle {
             "compressor applies to VTK XML output (atom/vtk, custom/vtk with .vtp or .vtu)",
             Some("legacy .vtk files cannot be compressed"),
         ))
+    }
+
+    /// Whether `dump_modify region` applies (LIGGGHTS 3.8: dump custom and custom/vtk;
+    /// atom/vtk refuses it).
+    fn takes_region(&self) -> bool {
+        false
     }
 
     /// `dump_modify format`: `Ok(Some(error))` for a bad format string.
@@ -232,6 +241,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         head: DumpHead {
             id: String::new(),
             groupbit: 0,
+            region: None,
         },
         every: 1,
         columns: Vec::new(),
@@ -329,7 +339,11 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         None
     };
     sim.outputs.dumps.push(Dump {
-        head: DumpHead { id, groupbit },
+        head: DumpHead {
+            id,
+            groupbit,
+            region: None,
+        },
         every,
         columns,
         style,
@@ -354,6 +368,7 @@ pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("e.g. sort id, pad 5, every N, format \"...\", binary yes".into()),
         ));
     }
+    let regions: Vec<String> = sim.defs.regions.keys().cloned().collect();
     modify(
         &mut sim.outputs.dumps[k],
         a,
@@ -363,14 +378,17 @@ pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "format",
             "every",
             "first",
+            "region",
             "binary",
             "compressor",
         ],
+        &regions,
     )
 }
 
-/// Applies `dump_modify`-style keywords (those in `valid`) to dump `d`.
-fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str]) -> CmdResult {
+/// Applies `dump_modify`-style keywords (those in `valid`) to dump `d`; `regions`: the
+/// IDs of the regions defined.
+fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str], regions: &[String]) -> CmdResult {
     let not_here = |a: &Args, (m, h): NotHere| a.error_prev(m, h.map(str::to_string));
     while !a.is_done() {
         let kw = a.keyword("dump_modify keyword", valid)?;
@@ -406,6 +424,24 @@ fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str]) -> CmdResult {
                 }
             }
             "every" => d.every = a.count("every")?,
+            "region" => {
+                let r = a.word("region ID (or none)")?;
+                if !d.style.takes_region() {
+                    return Err(a.error_at(
+                        a.pos() - 2,
+                        "region applies to dump custom and custom/vtk only",
+                        None,
+                    ));
+                }
+                d.head.region = if r == "none" {
+                    None
+                } else if regions.iter().any(|x| x == r) {
+                    Some(r.to_string())
+                } else {
+                    let names: Vec<&str> = regions.iter().map(String::as_str).collect();
+                    return Err(a.error_prev(format!("no region '{r}'"), Some(suggest(r, &names))));
+                };
+            }
             "first" => {
                 if a.yes_no("first")? {
                     d.last = None;
@@ -442,6 +478,7 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         head: DumpHead {
             id: WRITE_DUMP.into(),
             groupbit,
+            region: None,
         },
         every: 1,
         columns,
@@ -454,10 +491,12 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let mut result = Ok(());
     if a.peek() == Some("modify") {
         a.seek(a.pos() + 1);
+        let regions: Vec<String> = sim.defs.regions.keys().cloned().collect();
         result = modify(
             &mut sim.outputs.dumps[k],
             a,
-            &["sort", "pad", "format", "binary", "compressor"],
+            &["sort", "pad", "format", "region", "binary", "compressor"],
+            &regions,
         );
     }
     if result.is_ok() {

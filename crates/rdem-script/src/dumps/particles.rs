@@ -224,7 +224,12 @@ pub(super) fn gather(
         .world
         .as_ref()
         .ok_or("dump before the simulation box is defined")?;
-    let sel = rdem_io::fields::group_selection(&w.particles, head.groupbit);
+    let mut sel = rdem_io::fields::group_selection(&w.particles, head.groupbit);
+    if let Some(id) = &head.region {
+        let r =
+            crate::regions::region_now(sim, id).map_err(|e| format!("dump_modify region: {e}"))?;
+        sel.retain(|&i| r.contains(w.particles.x[i]));
+    }
     let custom: Vec<&[f64]> = cols
         .iter()
         .filter_map(|c| match c {

@@ -6,7 +6,8 @@ use glam::DVec3;
 use rdem::{FixKind, PrimitiveWall, WallShape};
 
 use super::engine::engine_fix;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::property_atom::PropertyAtom;
+use super::{style, FixEntry, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
 use crate::models;
 use crate::sim::Sim;
@@ -16,16 +17,95 @@ pub(super) const ROW: FixRow = style(
     "wall/gran",
     parse,
     Stages::ENGINE,
-    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `temperature T` (a wall at fixed temperature for `fix heat/gran`); `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
+    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `store_force yes` (the wall's force on each particle as `f_force_ID[1..3]`); `temperature T` (a wall at fixed temperature for `fix heat/gran`); `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
 )
 .notes("with `cohesion bond`, particle–wall bonds (on mesh walls anchored to a triangle, so they go with `fix move/mesh` and `surface_vel`); mesh walls: one contact per shared edge or corner and per flat surface (`curvature`), history that follows a sphere to the next triangle; the wall's velocity at the contact point (`surface_vel`, `surface_ang_vel`, `fix move/mesh`) enters the contact");
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let kind = match wall_gran(sim, a, &head.id)? {
-        Wall::Primitive(wall) => FixKind::WallGran(Box::new(wall)),
-        Wall::Mesh(wall) => FixKind::MeshWall(Box::new(wall)),
+    let (kind, store) = match wall_gran(sim, a, &head.id)? {
+        Wall::Primitive(wall) => {
+            let store = wall.store_force.clone();
+            (FixKind::WallGran(Box::new(wall)), store)
+        }
+        Wall::Mesh(wall) => {
+            let store = wall.store_force.clone();
+            (FixKind::MeshWall(Box::new(wall)), store)
+        }
     };
-    engine_fix(sim, a, head, kind)
+    let engine = engine_fix(sim, a, head, kind)?;
+    Ok(match store {
+        Some(name) => Box::new(StoringWall { engine, name }),
+        None => engine,
+    })
+}
+
+/// A wall with `store_force yes`: the engine wall, and the `fix property/atom` (ID and
+/// name `force_ID`, 3 values per particle) that holds the wall's force on each particle,
+/// defined when the wall is (`f_force_ID[1..3]` in dumps and variables).
+pub(super) struct StoringWall {
+    /// The wall's own entry (the engine fix).
+    pub(super) engine: Box<dyn ScriptFix>,
+    /// `force_ID`.
+    pub(super) name: String,
+}
+
+impl std::fmt::Debug for StoringWall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "StoringWall({})", self.name)
+    }
+}
+
+impl ScriptFix for StoringWall {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        self.engine.install(sim, a, head)?;
+        define_store(sim, a, &self.name)
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        self.engine.unfix(sim, head);
+        super::unfix_id(sim, &self.name);
+    }
+}
+
+/// Defines `fix NAME all property/atom NAME vector no no no 0 0 0` for a wall's
+/// `store_force` (replacing an earlier one of that ID, as a redefined wall does).
+pub(super) fn define_store(sim: &mut Sim, a: &Args, name: &str) -> CmdResult<()> {
+    super::unfix_id(sim, name);
+    let mut imp = PropertyAtom {
+        name: name.to_string(),
+        vector: true,
+        defaults: vec![0.0; 3],
+        forward: false,
+    };
+    let head = FixHead {
+        id: name.to_string(),
+        style: "property/atom",
+        groupbit: 1,
+    };
+    imp.install(sim, a, &head)?;
+    let origin = sim.origin(a, super::STYLE_WORD);
+    sim.defs.fixes.push(FixEntry {
+        head,
+        stages: Stages::NONE,
+        origin,
+        energy: false,
+        imp: Box::new(imp),
+    });
+    Ok(())
+}
+
+/// Reads `store_force yes|no` or `store_force_contact no` at the current word (which is
+/// one of them): the name of the stored-force property for `yes`.
+pub(super) fn store_force_keyword(a: &mut Args, id: &str) -> CmdResult<Option<String>> {
+    let w = a.word("keyword")?.to_string();
+    let yes = a.yes_no(&w)?;
+    if w == "store_force_contact" && yes {
+        return Err(a.error_prev(
+            "store_force_contact yes is not supported (LIGGGHTS 3.8 has it in selected versions only, not in the public one)",
+            Some("use 'store_force yes' for the total wall force per particle".into()),
+        ));
+    }
+    Ok(yes.then(|| format!("force_{id}")))
 }
 
 /// A `wall/gran` wall.
@@ -83,13 +163,20 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
                     Some("write 'temperature T' in the fix mesh/surface line (LIGGGHTS 3.8 ignores it here)".into()),
                 ));
             }
+            let mut store = None;
+            while matches!(a.peek(), Some("store_force" | "store_force_contact")) {
+                if let Some(name) = store_force_keyword(a, id)? {
+                    store = Some(name);
+                }
+            }
             if models::at_switch(a) {
                 models::parse_switches(a, &mut model)?;
             } else if !a.is_done() {
-                return Err(models::unknown(a, a.pos(), &[]));
+                return Err(models::unknown(a, a.pos(), &["store_force"]));
             }
-            let wall = rdem::wall::MeshWall::new(id, model, meshes)
+            let mut wall = rdem::wall::MeshWall::new(id, model, meshes)
                 .map_err(|e| a.error_cmd(e.to_string(), None))?;
+            wall.store_force = store;
             return Ok(Wall::Mesh(wall));
         }
         Some(
@@ -115,6 +202,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
     let shape = primitive_shape(a)?.0;
     let mut velocity = DVec3::ZERO;
     let mut temperature = None;
+    let mut store = None;
     while let Some(w) = a.peek() {
         if models::at_switch(a) {
             models::parse_switches(a, &mut model)?;
@@ -132,9 +220,8 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
                 temperature = Some(super::mesh_surface::wall_temperature(a)?);
             }
             "store_force" | "store_force_contact" => {
-                a.seek(a.pos() + 1);
-                if a.yes_no(w)? {
-                    return Err(a.error_prev(format!("{w} yes is not supported yet"), None));
+                if let Some(name) = store_force_keyword(a, id)? {
+                    store = Some(name);
                 }
             }
             _ => {
@@ -150,6 +237,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     wall.velocity = velocity;
     wall.temperature = temperature;
+    wall.store_force = store;
     Ok(Wall::Primitive(wall))
 }
 

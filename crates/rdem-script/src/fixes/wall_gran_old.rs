@@ -21,8 +21,8 @@ use crate::args::{Args, CmdResult};
 use crate::old_gran::{self, Form};
 use crate::sim::Sim;
 
-const HELP: &str = "LIGGGHTS 1.x `dampflag cohesionflag` then `xplane\\|yplane\\|zplane lo hi type` (NULL for no wall), `zcylinder R type`, `mesh/gran N ID...`, `shear dim v`; LIGGGHTS 2.x `primitive type T ...`, `mesh n_meshes N meshes ID...`, `shear`, `store_force no`, with `tangential_damping on\\|off`, `cohesion off\\|sjkr`, `rolling_friction off\\|cdt`, `viscous off`: run as `fix wall/gran` (a note line gives the 3.x command)";
-const NOTES: &str = "pre-3.0 syntax, which LIGGGHTS 3.8 refuses; `gran/hooke` is `model hooke tangential no_history`; the contact physics are LIGGGHTS 3.x's (with `cohesion sjkr` the Coulomb limit uses the contact force without cohesion, where 2.x subtracted it); `wiggle`, `temperature`, `viscous on`, `store_force yes` and cylinder `shear` around the axis stop with an error";
+const HELP: &str = "LIGGGHTS 1.x `dampflag cohesionflag` then `xplane\\|yplane\\|zplane lo hi type` (NULL for no wall), `zcylinder R type`, `mesh/gran N ID...`, `shear dim v`; LIGGGHTS 2.x `primitive type T ...`, `mesh n_meshes N meshes ID...`, `shear`, `store_force yes|no`, with `tangential_damping on\\|off`, `cohesion off\\|sjkr`, `rolling_friction off\\|cdt`, `viscous off`: run as `fix wall/gran` (a note line gives the 3.x command)";
+const NOTES: &str = "pre-3.0 syntax, which LIGGGHTS 3.8 refuses; `gran/hooke` is `model hooke tangential no_history`; the contact physics are LIGGGHTS 3.x's (with `cohesion sjkr` the Coulomb limit uses the contact force without cohesion, where 2.x subtracted it); `wiggle`, `temperature`, `viscous on` and cylinder `shear` around the axis stop with an error";
 
 /// The registry row of `wall/gran/hertz/history`.
 pub(super) const ROW_HERTZ: FixRow =
@@ -52,6 +52,8 @@ struct OldWall {
     ids: Vec<String>,
     /// The note line: what the command became.
     note: String,
+    /// With `store_force yes`: the `force_ID` property/atom.
+    store: Option<String>,
 }
 
 impl ScriptFix for OldWall {
@@ -60,6 +62,9 @@ impl ScriptFix for OldWall {
         for fix in self.fixes.drain(..) {
             w.add_fix(fix)
                 .map_err(|e| a.error_cmd(e.to_string(), None))?;
+        }
+        if let Some(name) = &self.store {
+            super::wall_gran::define_store(sim, a, name)?;
         }
         sim.outputs.out.line(&self.note);
         Ok(())
@@ -70,6 +75,9 @@ impl ScriptFix for OldWall {
             for id in &self.ids {
                 w.remove_fix(id);
             }
+        }
+        if let Some(name) = &self.store {
+            super::unfix_id(sim, name);
         }
     }
 }
@@ -91,14 +99,17 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     sim.world_ref(a)?;
     let name = &head.style["wall/gran/".len()..];
     let mut m = old_gran::base_model(name).expect("registry names are old model names");
+    let mut store = false;
     let (form, walls, shear) = if old_gran::at_flags(a) {
         old_gran::read_flags(a, &mut m)?;
         let (walls, shear) = v1_walls(sim, a)?;
         (Form::V1, walls, shear)
     } else {
-        let (wall, shear) = v2_wall(sim, a, &mut m)?;
+        let (wall, shear) = v2_wall(sim, a, &mut m, &head.id, &mut store)?;
         (Form::V2, vec![wall], shear)
     };
+    // `store_force` is a 2.x keyword: one wall.
+    let store_name = store.then(|| format!("force_{}", head.id));
     let mut fixes = Vec::new();
     let mut ids = Vec::new();
     let mut new_words = Vec::new();
@@ -112,6 +123,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             Wall::Primitive { ty, shape, words } => {
                 let mut w = PrimitiveWall::new(&id, m, ty, shape)
                     .map_err(|e| a.error_cmd(e.to_string(), None))?;
+                w.store_force = store_name.clone();
                 let mut words = words;
                 if let Some((d, v)) = shear {
                     w.velocity = DVec3::ZERO;
@@ -121,10 +133,16 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 (FixKind::WallGran(Box::new(w)), words)
             }
             Wall::Mesh { meshes, words } => {
-                let w =
+                let mut w =
                     MeshWall::new(&id, m, meshes).map_err(|e| a.error_cmd(e.to_string(), None))?;
+                w.store_force = store_name.clone();
                 (FixKind::MeshWall(Box::new(w)), words)
             }
+        };
+        let words = if store {
+            format!("{words} store_force yes")
+        } else {
+            words
         };
         let group = &a.words()[2].text;
         new_words.push(format!(
@@ -142,7 +160,12 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         form.label(),
         new_words.join(" and ")
     );
-    Ok(Box::new(OldWall { fixes, ids, note }))
+    Ok(Box::new(OldWall {
+        fixes,
+        ids,
+        note,
+        store: store_name,
+    }))
 }
 
 /// A wall type (an integer ≥ 1).
@@ -287,7 +310,13 @@ fn read_shear(a: &mut Args, walls: &[Wall]) -> CmdResult<(usize, f64)> {
 }
 
 /// The 2.x wall: model keywords, one `primitive` or `mesh` wall, `shear`, `store_force`.
-fn v2_wall(sim: &Sim, a: &mut Args, m: &mut ContactModel) -> CmdResult<(Wall, Shear)> {
+fn v2_wall(
+    sim: &Sim,
+    a: &mut Args,
+    m: &mut ContactModel,
+    id: &str,
+    store: &mut bool,
+) -> CmdResult<(Wall, Shear)> {
     let mut wall: Option<Wall> = None;
     let mut shear_at = None;
     let mut shear = None;
@@ -329,12 +358,8 @@ fn v2_wall(sim: &Sim, a: &mut Args, m: &mut ContactModel) -> CmdResult<(Wall, Sh
             }
             "shear" => shear_at = Some(at),
             "store_force" => {
-                if a.yes_no("store_force")? {
-                    return Err(a.error_prev(
-                        "store_force yes (the wall force per particle as f_force_ID) is not supported yet",
-                        Some("write 'store_force no' or leave it out".into()),
-                    ));
-                }
+                a.seek(at);
+                *store = super::wall_gran::store_force_keyword(a, id)?.is_some();
             }
             _ => {
                 let mut valid = vec!["primitive", "mesh", "shear", "store_force"];

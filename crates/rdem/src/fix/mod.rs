@@ -368,6 +368,15 @@ impl Fix {
     }
 }
 
+/// The first `n` particles' values of a taken-out property (`id`: its ID and width), or
+/// an empty slice for none.
+fn cut<'a>(v: &'a mut [f64], id: &Option<(usize, usize)>, n: usize) -> &'a mut [f64] {
+    match id {
+        Some((_, w)) => &mut v[..n * w],
+        None => Default::default(),
+    }
+}
+
 /// The post-force fixes `fixes` (none of them `aveforce`) in one pass over the owned
 /// particles; false when some force or torque is then not finite.
 fn post_force_pass(
@@ -378,22 +387,30 @@ fn post_force_pass(
     update: bool,
 ) -> bool {
     let n = p.nlocal();
-    // The walls' history properties (ID, width), taken out of the particles meanwhile.
-    let hist_ids: Vec<Option<(usize, usize)>> = fixes
+    // The walls' history and `store_force` properties (ID, width), taken out of the
+    // particles meanwhile.
+    let taken: Vec<[Option<(usize, usize)>; 2]> = fixes
         .iter()
-        .map(|fix| match &fix.kind {
-            FixKind::WallGran(wall) => wall.history_prop().map(|id| (id.0, p.props[id.0].width)),
-            FixKind::MeshWall(wall) => wall.history_prop().map(|id| (id.0, p.props[id.0].width)),
-            _ => None,
+        .map(|fix| {
+            let (hist, store) = match &fix.kind {
+                FixKind::WallGran(wall) => (wall.history_prop(), wall.store_prop()),
+                FixKind::MeshWall(wall) => (wall.history_prop(), wall.store_prop()),
+                _ => (None, None),
+            };
+            [hist, store].map(|id| id.map(|id| (id.0, p.props[id.0].width)))
         })
         .collect();
     let (view, f, torque, props) = View::split(p);
-    let mut hists: Vec<Vec<f64>> = hist_ids
+    let mut data: Vec<[Vec<f64>; 2]> = taken
         .iter()
-        .map(|h| h.map_or_else(Vec::new, |(id, _)| std::mem::take(&mut props[id].data)))
+        .map(|t| t.map(|h| h.map_or_else(Vec::new, |(id, _)| std::mem::take(&mut props[id].data))))
         .collect();
-    let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [&mut [f64]]| {
-        for (fix, h) in fixes.iter().zip(hs.iter_mut()) {
+    let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [[&mut [f64]; 2]]| {
+        for (fix, [h, store]) in fixes.iter().zip(hs.iter_mut()) {
+            let stored = !store.is_empty();
+            if stored {
+                crate::wall::store_begin(f, store);
+            }
             if let FixKind::WallGran(wall) = &fix.kind {
                 wall.apply_range(&view, lo, f, torque, h, dt, update);
             } else if let FixKind::MeshWall(wall) = &fix.kind {
@@ -401,27 +418,31 @@ fn post_force_pass(
             } else if fix.post_force() {
                 fix.post_force_range(&view, lo, f, torque);
             }
+            if stored {
+                crate::wall::store_end(f, store);
+            }
         }
         all_finite(f, torque)
     };
     let ok = if !parallel(n) {
-        let mut hs: Vec<&mut [f64]> = hists
+        let mut hs: Vec<[&mut [f64]; 2]> = data
             .iter_mut()
-            .zip(&hist_ids)
-            .map(|(h, id)| match id {
-                Some((_, w)) => &mut h[..n * w],
-                None => Default::default(),
-            })
+            .zip(&taken)
+            .map(|([h, s], [hid, sid])| [cut(h, hid, n), cut(s, sid, n)])
             .collect();
         chunk(0, &mut f[..n], &mut torque[..n], &mut hs)
     } else {
-        let mut per: Vec<Vec<&mut [f64]>> = (0..n.div_ceil(CHUNK))
+        let mut per: Vec<Vec<[&mut [f64]; 2]>> = (0..n.div_ceil(CHUNK))
             .map(|_| Vec::with_capacity(fixes.len()))
             .collect();
-        for (h, id) in hists.iter_mut().zip(&hist_ids) {
-            let w = id.map_or(0, |(_, w)| w);
-            for (c, s) in per.iter_mut().zip(chunk_hist(h, n, w)) {
-                c.push(s);
+        for ([h, s], [hid, sid]) in data.iter_mut().zip(&taken) {
+            let hw = hid.map_or(0, |(_, w)| w);
+            let sw = sid.map_or(0, |(_, w)| w);
+            for (c, (hc, sc)) in per
+                .iter_mut()
+                .zip(chunk_hist(h, n, hw).into_iter().zip(chunk_hist(s, n, sw)))
+            {
+                c.push([hc, sc]);
             }
         }
         let oks: Vec<bool> = f[..n]
@@ -433,9 +454,11 @@ fn post_force_pass(
             .collect();
         oks.into_iter().all(|ok| ok)
     };
-    for (h, id) in hists.into_iter().zip(&hist_ids) {
-        if let Some((id, _)) = id {
-            props[*id].data = h;
+    for (d, t) in data.into_iter().zip(&taken) {
+        for (v, id) in d.into_iter().zip(t) {
+            if let Some((id, _)) = id {
+                props[*id].data = v;
+            }
         }
     }
     ok

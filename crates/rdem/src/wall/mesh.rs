@@ -160,6 +160,10 @@ pub struct MeshWall {
     pub meshes: Vec<usize>,
     /// Name of the per-particle history property.
     pub history_name: String,
+    /// With `store_force yes`: the name of the per-particle property (3 values) that
+    /// receives the wall's total force on each particle at every force pass.
+    pub store_force: Option<String>,
+    store: Option<PropId>,
     table: CoeffTable,
     hist: Option<PropId>,
     /// Per-slot values after the contact history when a mesh records stress
@@ -261,6 +265,8 @@ impl MeshWall {
             model,
             meshes,
             history_name: format!("wallhist_{id}"),
+            store_force: None,
+            store: None,
             table: CoeffTable::default(),
             hist: None,
             extra: 0,
@@ -306,12 +312,18 @@ impl MeshWall {
             "mesh wall history too wide"
         );
         self.hist = Some(p.add_property(&self.history_name, w, &vec![0.0; w])?);
+        self.store = super::store_prop(self.store_force.as_deref(), p)?;
         Ok(())
     }
 
     /// The history property's ID.
     pub(crate) fn history_prop(&self) -> Option<PropId> {
         self.hist
+    }
+
+    /// The `store_force` property's ID (after [`MeshWall::setup`]).
+    pub(crate) fn store_prop(&self) -> Option<PropId> {
+        self.store
     }
 
     /// Where a particle's wall bond flag sits in its history (with `cohesion bond`).

@@ -37,3 +37,34 @@ pub(crate) fn count_bonded(
 ) -> u64 {
     bonded(p, hist, flag).filter(|&b| b).count() as u64
 }
+
+/// Registers (or finds) the `store_force` property `name`: 3 values per particle, 0 for
+/// new particles.
+pub(crate) fn store_prop(
+    name: Option<&str>,
+    p: &mut crate::particles::Particles,
+) -> crate::error::Result<Option<crate::particles::PropId>> {
+    name.map(|n| p.add_property(n, 3, &[0.0; 3])).transpose()
+}
+
+/// With `store_force`: before a wall's pass over particles `f.len()` (their forces `f`,
+/// their stored values `store`, 3 each), parks each force in its stored slots and zeroes
+/// it, so the pass leaves just the wall's force in `f`.
+#[inline]
+pub(crate) fn store_begin(f: &mut [glam::DVec3], store: &mut [f64]) {
+    for (fi, s) in f.iter_mut().zip(store.chunks_exact_mut(3)) {
+        s.copy_from_slice(&fi.to_array());
+        *fi = glam::DVec3::ZERO;
+    }
+}
+
+/// After the pass ([`store_begin`]): each particle's force becomes the parked force plus
+/// the wall's, and the stored slots keep the wall's.
+#[inline]
+pub(crate) fn store_end(f: &mut [glam::DVec3], store: &mut [f64]) {
+    for (fi, s) in f.iter_mut().zip(store.chunks_exact_mut(3)) {
+        let wall = *fi;
+        *fi = glam::DVec3::from_slice(s) + wall;
+        s.copy_from_slice(&wall.to_array());
+    }
+}

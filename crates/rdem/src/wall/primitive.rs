@@ -126,6 +126,11 @@ pub struct PrimitiveWall {
     pub velocity: DVec3,
     /// Name of the per-particle history property.
     pub history_name: String,
+    /// With `store_force yes`: the name of the per-particle property (3 values) that
+    /// receives the wall's total force on each particle at every force pass
+    /// (`force_ID` in LIGGGHTS).
+    pub store_force: Option<String>,
+    store: Option<PropId>,
     /// Fixed temperature of the wall for heat conduction (`temperature T`), if any.
     pub temperature: Option<f64>,
     table: CoeffTable,
@@ -159,6 +164,8 @@ impl PrimitiveWall {
             shape,
             velocity: DVec3::ZERO,
             history_name: format!("wallhist_{id}"),
+            store_force: None,
+            store: None,
             temperature: None,
             table: CoeffTable::default(),
             hist: None,
@@ -191,6 +198,7 @@ impl PrimitiveWall {
         } else {
             None
         };
+        self.store = super::store_prop(self.store_force.as_deref(), p)?;
         Ok(())
     }
 
@@ -267,16 +275,32 @@ impl PrimitiveWall {
         let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
         let (view, f, torque, props) = View::split(p);
         let mut empty: [f64; 0] = [];
+        let mut store = self
+            .store
+            .map(|id| std::mem::take(&mut props[id.0].data))
+            .unwrap_or_default();
         let hist: &mut [f64] = match self.hist {
             Some(id) if w > 0 => &mut props[id.0].data[..n * w],
             _ => &mut empty,
         };
+        if self.store.is_some() {
+            super::store_begin(&mut f[..n], &mut store[..3 * n]);
+        }
         self.apply_range(&view, 0, &mut f[..n], &mut torque[..n], hist, dt, update);
+        if let Some(id) = self.store {
+            super::store_end(&mut f[..n], &mut store[..3 * n]);
+            props[id.0].data = store;
+        }
     }
 
     /// The history property's ID, if the model has history.
     pub(crate) fn history_prop(&self) -> Option<PropId> {
         self.hist
+    }
+
+    /// The `store_force` property's ID (after [`PrimitiveWall::setup`]).
+    pub(crate) fn store_prop(&self) -> Option<PropId> {
+        self.store
     }
 
     /// [`PrimitiveWall::apply`] on the particles `lo..lo + f.len()`: `f`, `torque` and
