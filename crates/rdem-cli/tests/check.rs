@@ -112,13 +112,6 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// Left out as a follow-on: 64 `pair_coeff * *`. (Line 75, `read_dump dump.atom_info_1 1
 /// x y z radius vx vy vz box no add yes replace no`, runs.)
 ///
-/// `44_1x_giacomp_pour/in.giacomp` (LIGGGHTS 1.x syntax) — 1 line:
-/// - 82 `fix ins nve_group pour ...`: LAMMPS' and LIGGGHTS 1.x's `fix pour`.
-///
-/// Left out as a follow-on: 113 `unfix ins`. (The 1.x `pair_style gran/hertz/history 1 0`
-/// and the walls `wall/gran/hertz/history 1 0 zplane 0.0 NULL 1`, `xplane 0.0 0.06 1`,
-/// `yplane ...` run in their 3.x translation.)
-///
 #[test]
 fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     let Some(root) = wild() else { return };
@@ -142,12 +135,6 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
             "in.cal_prim_30X",
             "in.cal_prim_30X: 2 lines rdem cannot run: pair_style gran (line 25), fix wall/gran (40)",
             &[64][..],
-        ),
-        (
-            "44_1x_giacomp_pour",
-            "in.giacomp",
-            "in.giacomp: 1 line rdem cannot run: fix pour (line 82)",
-            &[113][..],
         ),
     ];
     for (case, main, want, left_out) in cases {
@@ -372,6 +359,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "20_inl_chain_test_plate",
     "36_thesis_screw_conveyor",
     "40_2x_conveyor_surface_vel_heat",
+    "44_1x_giacomp_pour",
     "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",
     "50_capillary_heat_init/DEM",

@@ -31,6 +31,7 @@ mod move_mesh;
 mod move_particles;
 mod particledistribution_discrete;
 mod particletemplate_sphere;
+mod pour;
 mod print;
 mod property_atom;
 mod property_global;
@@ -322,6 +323,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         insert::ROW_PACK,
         insert::ROW_RATE,
         insert_stream::ROW,
+        pour::ROW,
         massflow_mesh::ROW,
         engine::ROW_NVE,
         gravity::ROW,
@@ -341,10 +343,6 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
         Row::not_yet("bond/gran", "bonds"),
-        Row::not_yet(
-            "pour",
-            "the particle pouring of LAMMPS and LIGGGHTS 1.x; use fix insert/pack or insert/rate/region",
-        ),
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],
 };

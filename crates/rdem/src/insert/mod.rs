@@ -11,7 +11,7 @@ pub mod stream;
 pub mod template;
 
 pub use distribution::{Distribution, Weighting};
-pub use pack::{InsertPack, InsertReport, PackTarget, VelocityLaw};
+pub use pack::{FallFromTop, InsertPack, InsertReport, PackTarget, VelocityLaw};
 pub use stream::{InsertStream, StreamFace};
 pub use template::{ParticleTemplate, RadiusDist};
 

@@ -35,6 +35,20 @@ pub enum VelocityLaw {
     Gaussian(DVec3, DVec3),
 }
 
+/// `fix pour`'s vertical velocity: each particle gets the speed it would have reached
+/// falling from the top of the insertion volume, at height `top`, with initial vertical
+/// speed `vz`, under gravity `g` (> 0, along −z): v_z = −√(vz² + 2 g (top − z)) (as LAMMPS'
+/// fix pour does).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FallFromTop {
+    /// Gravity's magnitude.
+    pub g: f64,
+    /// Top of the insertion volume.
+    pub top: f64,
+    /// Vertical velocity at the top.
+    pub vz: f64,
+}
+
 /// What one insertion did (LIGGGHTS prints the same two numbers).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InsertReport {
@@ -73,6 +87,9 @@ pub struct InsertPack {
     pub velocity: VelocityLaw,
     /// Angular velocity (`omega constant wx wy wz`).
     pub omega: DVec3,
+    /// `fix pour`: the vertical velocity is that of a fall from the top (replaces the
+    /// velocity law's z component).
+    pub fall: Option<FallFromTop>,
     rng: InsertRng,
     last: Option<u64>,
     /// The thin-subdomain warning was given.
@@ -124,6 +141,7 @@ impl InsertPack {
             max_attempt: 50,
             velocity: VelocityLaw::Constant(DVec3::ZERO),
             omega: DVec3::ZERO,
+            fall: None,
             rng: super::rng(seed),
             last: None,
             warned_extent: false,
@@ -224,7 +242,7 @@ impl InsertPack {
         // A try is a position where the sphere fits the region (LIGGGHTS draws from the
         // region shrunk by the radius), so positions too close to the boundary are drawn
         // again without using up a try.
-        let placed = choose(
+        let mut placed = choose(
             &mut self.dist,
             &mut self.rng,
             wanted,
@@ -242,6 +260,11 @@ impl InsertPack {
             },
             self.velocity,
         );
+        if let Some(f) = self.fall {
+            for pl in &mut placed {
+                pl.v.z = -(f.vz * f.vz + 2.0 * f.g * (f.top - pl.x.z)).max(0.0).sqrt();
+            }
+        }
         let (mut inserted, mut mass) = (0u64, 0.0);
         for pl in &placed {
             mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit)?.0;
