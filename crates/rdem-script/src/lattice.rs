@@ -1,5 +1,7 @@
 //! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`
-//! whose `scale` is the lattice constant in metres, with an `origin` shift. `units
+//! whose `scale` is the lattice constant in metres, and `custom` lattices with
+//! axis-aligned cell vectors `a1 a2 a3` (in units of the scale) and `basis` atoms, with an
+//! `origin` shift. `units
 //! lattice` in `region` and `create_atoms` multiplies by the lattice spacings, which for
 //! these unrotated cubic lattices all equal the constant. As in LIGGGHTS 3.8, `units box`
 //! is those commands' default, and without a `lattice` command the scale is that of the
@@ -18,10 +20,13 @@ pub struct Lattice {
     pub basis: Vec<DVec3>,
     /// Origin shift in unit-cell fractions.
     pub origin: DVec3,
+    /// The unit cell's edges in units of `a` (1, 1, 1 for the cubic styles; `a1`, `a2`,
+    /// `a3` along x, y, z for `custom`).
+    pub cell: DVec3,
 }
 
 /// Valid lattice styles.
-pub const STYLES: [&str; 5] = ["none", "sc", "bcc", "fcc", "diamond"];
+pub const STYLES: [&str; 6] = ["none", "sc", "bcc", "fcc", "diamond", "custom"];
 
 impl Lattice {
     /// A lattice of `style` with constant `a` (`None` for an unknown style). Style `none`
@@ -29,7 +34,7 @@ impl Lattice {
     pub fn new(style: &str, a: f64) -> Option<Self> {
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         let basis = match style {
-            "none" => vec![],
+            "none" | "custom" => vec![],
             "sc" => vec![v(0.0, 0.0, 0.0)],
             "bcc" => vec![v(0.0, 0.0, 0.0), v(0.5, 0.5, 0.5)],
             "fcc" => vec![
@@ -55,18 +60,19 @@ impl Lattice {
             a,
             basis,
             origin: DVec3::ZERO,
+            cell: DVec3::ONE,
         })
     }
 
     /// Lattice spacing per axis (the `units lattice` scale).
     pub fn spacing(&self) -> DVec3 {
-        DVec3::splat(self.a)
+        self.a * self.cell
     }
 
     /// Every lattice point inside the box `lo..hi` (points on the upper faces excluded,
     /// as LAMMPS does for periodic boxes), in a fixed order (z, y, x cells, then basis).
     pub fn points(&self, lo: DVec3, hi: DVec3) -> Vec<DVec3> {
-        let a = self.a;
+        let a = self.spacing();
         let cell_lo = ((lo / a) - self.origin).floor() - DVec3::ONE;
         let cell_hi = ((hi / a) - self.origin).ceil() + DVec3::ONE;
         let mut out = Vec::new();

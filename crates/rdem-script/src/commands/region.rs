@@ -281,8 +281,14 @@ pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     let scale = a.positive("lattice constant (m)")?;
     let mut l = Lattice::new(style, scale).expect("valid style");
+    let custom = style == "custom";
+    let mut axes = [None; 3];
+    let mut keywords = vec!["origin", "orient", "spacing"];
+    if custom {
+        keywords.extend(["a1", "a2", "a3", "basis"]);
+    }
     while !a.is_done() {
-        match a.keyword("lattice keyword", &["origin", "orient", "spacing"])? {
+        match a.keyword("lattice keyword", &keywords)? {
             "origin" => {
                 let o = a.vec3("origin")?;
                 if (0..3).any(|d| !(0.0..1.0).contains(&o[d])) {
@@ -290,19 +296,52 @@ pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 }
                 l.origin = o;
             }
+            k @ ("a1" | "a2" | "a3") => {
+                let d = (k.as_bytes()[1] - b'1') as usize;
+                let v = a.vec3(k)?;
+                // Axis-aligned cells only: a1 along x, a2 along y, a3 along z.
+                if (0..3).any(|e| e != d && v[e] != 0.0) || v[d] <= 0.0 {
+                    return Err(a.error_prev(
+                        format!(
+                            "lattice custom: {k} must lie along +{} (other cell vectors are not supported yet)",
+                            ["x", "y", "z"][d]
+                        ),
+                        None,
+                    ));
+                }
+                axes[d] = Some(v[d]);
+            }
+            "basis" => {
+                let b = a.vec3("basis atom")?;
+                if (0..3).any(|d| !(0.0..1.0).contains(&b[d])) {
+                    return Err(a.error_prev("basis values must be in [0, 1)", None));
+                }
+                l.basis.push(b);
+            }
             k => {
                 return Err(a.error_prev(
-                    format!("lattice {k} is not supported yet (only unrotated cubic lattices)"),
+                    format!("lattice {k} is not supported yet (only unrotated lattices)"),
                     None,
                 ))
             }
         }
     }
+    if custom {
+        l.cell = DVec3::new(
+            axes[0].unwrap_or(1.0),
+            axes[1].unwrap_or(1.0),
+            axes[2].unwrap_or(1.0),
+        );
+        if l.basis.is_empty() {
+            return Err(a.error_at(1, "lattice custom needs at least one 'basis x y z'", None));
+        }
+    }
+    let s = l.spacing();
     sim.outputs.out.line(&format!(
         "Lattice spacing in x,y,z = {} {} {}",
-        crate::variables::g(scale),
-        crate::variables::g(scale),
-        crate::variables::g(scale)
+        crate::variables::g(s.x),
+        crate::variables::g(s.y),
+        crate::variables::g(s.z)
     ));
     sim.defs.lattice = Some(l);
     Ok(())

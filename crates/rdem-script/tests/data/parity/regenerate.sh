@@ -7,7 +7,7 @@ for f in item*.in; do
   b=${f%.in}
   liggghts -in "$f" -log none > "$b.liggghts.txt" 2>&1 || true
 done
-for d in item4.dump item8.dump item13.dump; do
+for d in item4.dump item8.dump item13.dump item19.dump; do
   [ -f "$d" ] && mv "$d" "${d%.dump}.liggghts.dump"
 done
 [ -f item10.dump ] && mv item10.dump item10.liggghts.dump
