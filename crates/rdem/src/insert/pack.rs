@@ -346,6 +346,60 @@ mod tests {
         assert!((rep.mass - p.rmass.iter().sum::<f64>()).abs() < 1e-12);
     }
 
+    /// Across a periodic boundary: a dense fill of a slab at the lower x face of a box
+    /// periodic in x and y, next to particles at the upper x face, overlaps none of
+    /// them through the boundary (minimum-image distances), nor itself.
+    #[test]
+    fn periodic_images_are_checked() {
+        let (lo, hi) = (DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.02, 0.02, 0.02));
+        let periodic = [Boundary::Periodic, Boundary::Periodic, Boundary::Fixed];
+        let mut w = World::new(Domain::new(lo, hi, periodic).unwrap());
+        let r = 0.001;
+        // A wall of spheres whose centres sit half a radius inside the upper x face.
+        for j in 0..10 {
+            for k in 0..10 {
+                let x = DVec3::new(
+                    0.02 - 0.5 * r,
+                    0.001 + 0.002 * j as f64,
+                    0.001 + 0.002 * k as f64,
+                );
+                w.add_particle(&crate::NewParticle::at(x, r, 2500.0))
+                    .unwrap();
+            }
+        }
+        w.extend_tags();
+        let t = ParticleTemplate::new("t", 15485863, 1, 2500.0, RadiusDist::Constant(r)).unwrap();
+        let d = Distribution::new("d", 32452843, Weighting::Number, vec![(t, 1.0)]).unwrap();
+        let reg = Region::new(Shape::Block {
+            lo: DVec3::new(0.0, 0.0, 0.0),
+            hi: DVec3::new(0.004, 0.02, 0.02),
+        })
+        .unwrap();
+        let mut ins =
+            InsertPack::new("ins", 32452867, 0, reg, d, PackTarget::Count(100), None).unwrap();
+        ins.max_attempt = 1000;
+        let rep = ins.insert(&mut w).unwrap();
+        assert!(rep.inserted > 50, "{rep:?}");
+        let p = &w.particles;
+        let n = p.nlocal();
+        let mut closest = f64::INFINITY;
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut dx = p.x[i] - p.x[j];
+                for a in 0..2 {
+                    dx[a] -= 0.02 * (dx[a] / 0.02).round();
+                }
+                closest = closest.min(dx.length() - p.radius[i] - p.radius[j]);
+            }
+        }
+        // Touching is allowed; rounding of the image shift is 1e-18 here.
+        assert!(
+            closest >= -1e-15,
+            "overlap of {} through the boundary",
+            -closest
+        );
+    }
+
     #[test]
     fn counts_and_masses_top_up() {
         let (mut w, mut ins) = setup(PackTarget::Count(300), false);

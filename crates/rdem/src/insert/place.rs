@@ -51,10 +51,39 @@ pub(crate) struct Placed {
 }
 
 /// Existing particles (of every rank) near an insertion volume, on a grid of cells two
-/// largest radii wide, for the overlap check.
+/// largest radii wide, for the overlap check. Across a periodic boundary a sphere near one
+/// face is also held at its image beyond the other face, so a new sphere cannot overlap
+/// an existing one through the boundary.
 pub(crate) struct OverlapGrid {
     cell: f64,
     cells: HashMap<[i64; 3], Vec<(DVec3, f64)>>,
+    /// The box's extent along each periodic axis (`None`: not periodic).
+    periodic: [Option<(f64, f64)>; 3],
+}
+
+/// `x` and its periodic images within `reach` of the box (along the axes of `periodic`,
+/// each the box's lo and hi along it), calling `f` on each.
+fn for_images(x: DVec3, periodic: &[Option<(f64, f64)>; 3], reach: f64, mut f: impl FnMut(DVec3)) {
+    let shifts = |a: usize| -> [Option<f64>; 2] {
+        match periodic[a] {
+            Some((lo, hi)) => {
+                let len = hi - lo;
+                [
+                    (x[a] < lo + reach).then_some(len),
+                    (x[a] > hi - reach).then_some(-len),
+                ]
+            }
+            None => [None, None],
+        }
+    };
+    let [sx, sy, sz] = [shifts(0), shifts(1), shifts(2)];
+    for dz in std::iter::once(0.0).chain(sz.into_iter().flatten()) {
+        for dy in std::iter::once(0.0).chain(sy.into_iter().flatten()) {
+            for dx in std::iter::once(0.0).chain(sx.into_iter().flatten()) {
+                f(x + DVec3::new(dx, dy, dz));
+            }
+        }
+    }
 }
 
 impl OverlapGrid {
@@ -67,12 +96,17 @@ impl OverlapGrid {
         let rmax = world
             .comm
             .max(p.radius[..n].iter().copied().fold(max_new_radius, f64::max));
+        let d = &world.domain;
+        let periodic = [0, 1, 2].map(|a| d.periodic(a).then_some((d.boxlo[a], d.boxhi[a])));
         let reach = DVec3::splat(2.0 * rmax);
+        let near = |x: DVec3| {
+            bb.is_none_or(|(lo, hi)| x.cmpge(lo - reach).all() && x.cmple(hi + reach).all())
+        };
         let mut mine = Vec::new();
         for i in 0..n {
             let x = p.x[i];
-            let inside =
-                bb.is_none_or(|(lo, hi)| x.cmpge(lo - reach).all() && x.cmple(hi + reach).all());
+            let mut inside = false;
+            for_images(x, &periodic, 2.0 * rmax, |y| inside |= near(y));
             if inside {
                 mine.extend_from_slice(&[x.x, x.y, x.z, p.radius[i]]);
             }
@@ -81,6 +115,7 @@ impl OverlapGrid {
         let mut g = Self {
             cell: 2.0 * rmax,
             cells: HashMap::new(),
+            periodic,
         };
         for c in near.chunks_exact(4) {
             g.push(DVec3::new(c[0], c[1], c[2]), c[3]);
@@ -96,10 +131,13 @@ impl OverlapGrid {
         ]
     }
 
-    /// Adds a sphere.
+    /// Adds a sphere (and its periodic images near the box).
     pub fn push(&mut self, x: DVec3, r: f64) {
-        let k = self.key(x);
-        self.cells.entry(k).or_default().push((x, r));
+        let (periodic, reach) = (self.periodic, self.cell);
+        for_images(x, &periodic, reach, |y| {
+            let k = self.key(y);
+            self.cells.entry(k).or_default().push((y, r));
+        });
     }
 
     /// True if a sphere at `x` of radius `r` overlaps none of the grid's.
