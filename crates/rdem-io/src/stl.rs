@@ -102,6 +102,8 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
             continue;
         };
         match word {
+            // A comment line (LIGGGHTS 3.8 reads files that have them, e.g. a header).
+            _ if word.starts_with('#') => {}
             "solid" => {
                 if in_solid {
                     return Err(err(line, "'solid' inside a solid".into()));
@@ -218,6 +220,20 @@ endsolid test
         let t = parse_stl(ASCII.as_bytes(), "t.stl").unwrap();
         assert_eq!(t.len(), 1);
         assert_eq!(t[0][2], DVec3::new(1.0, 1.0, 0.05));
+    }
+
+    /// Lines starting with `#` are comments, before `solid` and between facets (LIGGGHTS
+    /// 3.8 reads such files); any other unknown word is still an error.
+    #[test]
+    fn comment_lines_are_skipped() {
+        let text = format!(
+            "# ======\n#backwall.stl:\n{}",
+            ASCII.replace("  endfacet", "  endfacet\n  # note")
+        );
+        let t = parse_stl(text.as_bytes(), "t.stl").unwrap();
+        assert_eq!(t, parse_stl(ASCII.as_bytes(), "t.stl").unwrap());
+        let bad = format!("% header\n{ASCII}");
+        assert!(parse_stl(bad.as_bytes(), "t.stl").is_err());
     }
 
     /// A binary file written by `stl_io` reads back, also when its header starts with
