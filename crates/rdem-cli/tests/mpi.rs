@@ -312,3 +312,58 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
         .join(" ");
     assert!(words.contains("first lost tag 2"), "{err}");
 }
+
+/// `compute coord/atom` counts neighbours owned by the other rank and periodic images:
+/// the 5 × 5 × 5 simple cubic lattice of rdem-script's tests/data/coord_atom (spacing
+/// 0.02, periodic, split along x on 2 ranks) gives the sums LIGGGHTS 3.8's dump gives
+/// (ppp.liggghts.dump: Σ c_all25 = 750, Σ c_all29 = 2250, Σ c_mix = 560, Σ c_t12[1] =
+/// 280, Σ c_t12[3] = 1080; with fixed faces 600, 1560, 236, 118, 740), on 1 and 2 ranks.
+#[test]
+fn coord_atom_counts_across_ranks_as_serial_and_liggghts() {
+    if !have_mpirun() {
+        return;
+    }
+    for (bound, want) in [
+        ("p p p", [750.0, 2250.0, 560.0, 280.0, 1080.0, 6.0, 18.0]),
+        ("f f f", [600.0, 1560.0, 236.0, 118.0, 740.0, 3.0, 6.0]),
+    ] {
+        let script = format!(
+            "units si
+atom_style sphere
+atom_modify map array
+boundary {bound}
+newton off
+communicate single vel yes
+lattice sc 0.02
+region domain block 0 5 0 5 0 5 units lattice
+create_box 2 domain
+create_atoms 1 box
+set type 1 diameter 0.01 density 1000
+group half id 1:60
+set group half type 2
+neighbor 0.02 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+compute all25 all coord/atom 0.025
+compute all29 all coord/atom 0.029
+compute mix all coord/atom 0.029 mix yes
+compute t12 half coord/atom 0.029 1 2* *
+compute s all reduce sum c_all25 c_all29 c_mix c_t12[1] c_t12[3]
+compute lo all reduce min c_all25 c_all29
+thermo_style custom step c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_lo[1] c_lo[2]
+run 0
+"
+        );
+        for ranks in [0, 2] {
+            let out = run(&script, ranks);
+            let row = last_row(&out);
+            assert_close(&row[1..], &want, 0.0, &format!("{bound} on {ranks} ranks"));
+        }
+    }
+}

@@ -217,7 +217,7 @@ fn coord_counts(
         fill[c] += 1;
     }
     let cut2 = cutoff * cutoff;
-    for i in 0..nlocal {
+    for (i, out) in counts.iter_mut().enumerate() {
         if p.mask[i] & groupbit == 0 {
             continue;
         }
@@ -254,7 +254,7 @@ fn coord_counts(
                 }
             }
         }
-        counts[i] = f64::from(count);
+        *out = f64::from(count);
     }
     counts
 }
