@@ -149,7 +149,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         "Memory usage per processor = {} Mbytes",
         crate::variables::format_g(mem, 4)
     ));
-    sim.outputs.out.thermo_line(&thermo::header(sim));
+    if let Some(h) = thermo::header(sim) {
+        sim.outputs.out.thermo_line(&h);
+    }
     thermo_row(sim)?;
     if sim.script.check {
         crate::check::after_setup(sim, nsteps)?;

@@ -1,7 +1,11 @@
 //! Thermo output: the keywords of `thermo_style custom`, their values, and the table in
 //! LIGGGHTS' layout (a header line of the keywords, then one row per output step; integers
 //! as `%8d`, floats as `%12.8g`, each followed by a space, unless `thermo_modify format`
-//! says otherwise).
+//! says otherwise). With `thermo_modify line multi`, LIGGGHTS 3.8's multi-line layout
+//! (measured): no header; per output a banner `---------------- Step %8d ----- CPU =
+//! %11.4f (sec) ----------------`, then `%-8s = ` label and value (integers `%14d`,
+//! floats `%14.4f`, or the `thermo_modify format`), each followed by a space, three to a
+//! line.
 
 use crate::computes;
 use crate::context;
@@ -63,6 +67,8 @@ pub struct Thermo {
     pub line_format: Option<Vec<String>>,
     /// Last step printed (no duplicate rows).
     pub last_printed: Option<u64>,
+    /// `thermo_modify line multi`.
+    pub multi: bool,
 }
 
 impl Default for Thermo {
@@ -77,6 +83,7 @@ impl Default for Thermo {
             float_format: None,
             line_format: None,
             last_printed: None,
+            multi: false,
         }
     }
 }
@@ -206,8 +213,11 @@ pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
     Ok((keyword(sim, col)?, INT_KEYWORDS.contains(&col)))
 }
 
-/// The header line.
-pub fn header(sim: &Sim) -> String {
+/// The header line (`None` with `thermo_modify line multi`, which prints none).
+pub fn header(sim: &Sim) -> Option<String> {
+    if sim.outputs.thermo.multi {
+        return None;
+    }
     let mut s = String::new();
     for c in &sim.outputs.thermo.columns {
         let int = INT_KEYWORDS.contains(&c.as_str());
@@ -218,7 +228,7 @@ pub fn header(sim: &Sim) -> String {
             s.push_str(&format!("{label:>14} "));
         }
     }
-    s
+    Some(s)
 }
 
 /// LIGGGHTS' header label of a column (a few keywords print capitalised).
@@ -272,10 +282,11 @@ fn extensive_reference(sim: &Sim, col: &str) -> bool {
     }
 }
 
-/// One row.
+/// One row (with `thermo_modify line multi`, the banner and the labelled lines).
 pub fn row(sim: &Sim) -> Result<String, RunError> {
-    let mut s = String::new();
-    for (k, c) in sim.outputs.thermo.columns.iter().enumerate() {
+    let th = &sim.outputs.thermo;
+    let mut cells = Vec::with_capacity(th.columns.len());
+    for (k, c) in th.columns.iter().enumerate() {
         let (mut v, int) = column_value(sim, c).map_err(|m| {
             // A variable that fails is reported at its definition, else the column.
             let var = match split_reference(c) {
@@ -285,50 +296,56 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
             match var {
                 Some(o) => RunError::at(Some(o), "rdem::run::variable", m),
                 None => {
-                    let origin = sim.outputs.thermo.origins.get(k).and_then(Option::as_ref);
+                    let origin = th.origins.get(k).and_then(Option::as_ref);
                     RunError::at(origin, "rdem::run::thermo", m)
                 }
             }
         })?;
         let n = sim.natoms();
-        if sim.outputs.thermo.norm && n > 0 && extensive_reference(sim, c) {
+        if th.norm && n > 0 && extensive_reference(sim, c) {
             v /= n as f64;
         }
-        let fmt = sim
-            .outputs
-            .thermo
+        let fmt = th
             .col_format
             .iter()
             .rev()
             .find(|(n, _)| *n == k + 1)
             .map(|(_, f)| f.clone())
-            .or_else(|| {
-                sim.outputs
-                    .thermo
-                    .line_format
-                    .as_ref()
-                    .and_then(|l| l.get(k).cloned())
-            })
+            .or_else(|| th.line_format.as_ref().and_then(|l| l.get(k).cloned()))
             .or_else(|| {
                 if int {
-                    sim.outputs.thermo.int_format.clone()
+                    th.int_format.clone()
                 } else {
-                    sim.outputs.thermo.float_format.clone()
+                    th.float_format.clone()
                 }
             });
-        match fmt {
+        cells.push(match fmt {
             Some(f) => match rdem_io::Printf::parse(&f) {
-                Ok(p) => s.push_str(&p.format(if int {
+                Ok(p) => p.format(if int {
                     rdem_io::Value::Int(v as i64)
                 } else {
                     rdem_io::Value::Float(v)
-                })),
+                }),
                 Err(e) => return Err(format!("thermo_modify format '{f}': {e}").into()),
             },
-            None if int => s.push_str(&format!("{:>8}", v as i64)),
-            None => s.push_str(&format!("{:>14}", format_g(v, 8))),
+            None if th.multi && int => format!("{:>14}", v as i64),
+            None if th.multi => format!("{v:>14.4}"),
+            None if int => format!("{:>8}", v as i64),
+            None => format!("{:>14}", format_g(v, 8)),
+        });
+    }
+    if !th.multi {
+        return Ok(cells.iter().map(|c| format!("{c} ")).collect());
+    }
+    let step = sim.world.as_ref().map_or(0, |w| w.step);
+    let cpu = keyword(sim, "cpu").unwrap_or(0.0);
+    let mut s =
+        format!("---------------- Step {step:>8} ----- CPU = {cpu:>11.4} (sec) ----------------");
+    for (k, (c, cell)) in th.columns.iter().zip(&cells).enumerate() {
+        if k % 3 == 0 {
+            s.push('\n');
         }
-        s.push(' ');
+        s.push_str(&format!("{:<8} = {cell} ", header_label(c)));
     }
     Ok(s)
 }

@@ -187,6 +187,61 @@ fn keywords_as_liggghts() {
     assert!(close(t[1], 3.5233628199729665, 1e-14), "{}", t[1]);
 }
 
+/// `heat/gran` (not `heat/gran/conduction`) ends its line at the first word that is not a
+/// keyword, as LIGGGHTS 3.8 does, with one warning naming what is ignored. LIGGGHTS 3.8 on
+/// the pair above, one step (`run 0` before the `set`): `initial_temperature 300. 300.
+/// contact_area constant 1e-4` gives T1 = 399.11915929500674 (the overlap area, the same as
+/// `initial_temperature 300.`: the constant area after the ignored `300.` is not read);
+/// `initial_temperature 300. contact_area constant 1e-4 junk 2` gives 396.81690113816211
+/// (the area read, `junk 2` ignored).
+#[test]
+fn heat_gran_ignores_the_rest_of_the_line_as_liggghts() {
+    for (words, want, ignored) in [
+        (
+            "initial_temperature 300. 300. contact_area constant 1e-4",
+            399.11915929500674,
+            "'300. contact_area constant 1e-4' is ignored",
+        ),
+        (
+            "initial_temperature 300. contact_area constant 1e-4 junk 2",
+            396.81690113816211,
+            "'junk 2' is ignored",
+        ),
+    ] {
+        let src = format!(
+            "{HEAD}{PAIR}fix ht all heat/gran {words}\n\
+             set atom 1 property/atom Temp 400.\n\
+             run 1\n"
+        );
+        let i = interp(&src);
+        let t = prop(&i, "Temp");
+        assert!(close(t[0], want, 1e-14), "{words}: {} vs {want}", t[0]);
+        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let warnings: Vec<&str> = out.lines().filter(|l| l.contains("WARNING")).collect();
+        let line = HEAD.lines().count() + PAIR.lines().count() + 1;
+        let hits: Vec<&&str> = warnings
+            .iter()
+            .filter(|w| w.contains("heat/gran"))
+            .collect();
+        assert_eq!(hits.len(), 1, "{words}: {out}");
+        assert!(
+            hits[0].contains(&format!("line {line}:")) && hits[0].contains(ignored),
+            "{words}: {}",
+            hits[0]
+        );
+    }
+    // Without extra words: no warning.
+    let src = format!("{HEAD}{PAIR}fix ht all heat/gran initial_temperature 300.\nrun 1\n");
+    let out = interp(&src)
+        .sim
+        .outputs
+        .out
+        .captured
+        .clone()
+        .unwrap_or_default();
+    assert!(!out.contains("heat/gran:"), "{out}");
+}
+
 /// A sphere resting on walls at fixed temperature T_w: T_w − T decays as
 /// (1 − h dt/(m c))^n ≈ exp(−h t/(m c)), with h = 4 k_p k_w/(k_p + k_w) √(π(r² − (r−δ)²)).
 /// LIGGGHTS 3.8 on the first step (overlap 1e-4 with a type-2 `zplane` at 400 K): particle
@@ -336,8 +391,8 @@ fn errors() {
     for (tail, want) in [
         ("fix h all heat/gran 300.", "unknown heat/gran keyword '300.'"),
         (
-            "fix h all heat/gran initial_temperature 300. bogus 3",
-            "bogus",
+            "fix h all heat/gran/conduction initial_temperature 300. bogus 3",
+            "unknown heat/gran keyword 'bogus'",
         ),
         (
             "fix h all heat/gran initial_temperature 300. store_contact_data yes",

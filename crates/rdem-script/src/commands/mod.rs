@@ -124,8 +124,8 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8"),
         sim("thermo_log", thermo::thermo_log, "`FILE [append]`, `none`: thermo's lines also go to FILE")
             .notes("without a file name LIGGGHTS 3.8 writes to `log`; rdem asks for the name"),
-        sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `format int\\|float\\|line\\|N`")
-            .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran)"),
+        sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `line one\\|multi`, `format int\\|float\\|line\\|N`, `every`, `flush`")
+            .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran); `line multi` prints LIGGGHTS 3.8's multi-line layout byte for byte (a banner with the step and CPU seconds, three `Label = value` items a line); `line yaml` is an error, as in LIGGGHTS 3.8 (a later LAMMPS layout); a new `thermo_style` goes back to `line one`, as LIGGGHTS"),
         sim_atoi("run", run::run, "`N`, `N upto`"),
         sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
         sim("dump", dumps::dump, "the dump styles below"),

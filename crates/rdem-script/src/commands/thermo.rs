@@ -75,6 +75,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         || !sim.outputs.thermo.col_format.is_empty()
         || sim.outputs.thermo.float_format.is_some()
         || sim.outputs.thermo.int_format.is_some()
+        || sim.outputs.thermo.multi
     {
         sim.outputs
             .out
@@ -87,6 +88,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.outputs.thermo.int_format = None;
     sim.outputs.thermo.float_format = None;
     sim.outputs.thermo.line_format = None;
+    sim.outputs.thermo.multi = false;
     Ok(())
 }
 
@@ -95,14 +97,19 @@ pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_at(
             a.pos(),
             "thermo_modify: missing keyword",
-            Some("lost, norm, format, flush".into()),
+            Some("lost, norm, line, format, flush, every".into()),
         ));
     }
     while !a.is_done() {
         match a.keyword(
             "thermo_modify keyword",
-            &["lost", "norm", "format", "flush", "every"],
+            &["lost", "norm", "line", "format", "flush", "every"],
         )? {
+            // LIGGGHTS 3.8 knows `one` and `multi` (`yaml` came to LAMMPS later: 3.8
+            // stops with "Illegal thermo_modify command").
+            "line" => {
+                sim.outputs.thermo.multi = a.keyword("line style", &["one", "multi"])? == "multi"
+            }
             "lost" => {
                 let p = match a.keyword("lost setting", &["error", "warn", "ignore"])? {
                     "error" => LostPolicy::Error,

@@ -6,6 +6,7 @@
 
 mod bond_counter;
 mod contact_atom;
+mod coord_atom;
 mod displace_atom;
 mod energy_atom;
 mod erotate_sphere;
@@ -163,6 +164,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         reduce::ROW,
         property_atom::ROW,
         contact_atom::ROW,
+        coord_atom::ROW,
         stress_atom::ROW,
         bond_counter::ROW,
         nbond_atom::ROW,

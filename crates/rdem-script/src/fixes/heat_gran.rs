@@ -28,7 +28,7 @@ use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
 const HELP: &str = "`initial_temperature T0`, `contact_area overlap\\|projection\\|constant A`, `area_correction yes\\|no`, `store_contact_data no`: conduction through the contacts and from walls with a `temperature`; per-type `thermalConductivity`, `thermalCapacity`; `Temp`, `heatFlux`, `heatSource`, `directionalHeatFlux` per particle; `f_ID` the thermal energy Σ m c T";
-const NOTES: &str = "an unknown keyword is an error (LIGGGHTS 3.8's `heat/gran` ignores the rest of the line); `store_contact_data yes` is not supported yet; `projection` uses the larger radius, as LIGGGHTS 3.8's code (its manual says the smaller); `unfix` stops conduction and the temperature update (LIGGGHTS keeps integrating the heat sources)";
+const NOTES: &str = "an unknown keyword is an error, as in LIGGGHTS 3.8; `store_contact_data yes` is not supported yet; `projection` uses the larger radius, as LIGGGHTS 3.8's code (its manual says the smaller); `unfix` stops conduction and the temperature update (LIGGGHTS keeps integrating the heat sources)";
 
 /// The registry row of `heat/gran/conduction`.
 pub(super) const ROW: FixRow = style(
@@ -45,7 +45,8 @@ pub(super) const ROW_ALIAS: FixRow = style(
     parse,
     Stages::PRE_STEP.and(Stages::VALUES),
     "as `heat/gran/conduction`",
-);
+)
+.notes("as LIGGGHTS 3.8, the first word after `initial_temperature T0` that is not a keyword ends the line: it and the words after it are ignored, with a warning naming them (`heat/gran/conduction` stops with an error)");
 
 /// The per-particle properties the fix defines: name, number of values, forwarded.
 const PROPS: [(&str, usize, bool); 4] = [
@@ -76,11 +77,29 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let mut area_correction = false;
     let mut correction_at = None;
     let mut area_at = None;
-    while !a.is_done() {
-        match a.keyword(
-            "heat/gran keyword",
-            &["contact_area", "area_correction", "store_contact_data"],
-        )? {
+    const KEYWORDS: [&str; 3] = ["contact_area", "area_correction", "store_contact_data"];
+    while let Some(word) = a.peek() {
+        // LIGGGHTS 3.8's `heat/gran` stops reading its line at the first word that is not
+        // one of its keywords and goes on without it (measured: `initial_temperature 300.
+        // 300. contact_area constant 1e-4` conducts as `initial_temperature 300.`);
+        // `heat/gran/conduction` stops with "unknown keyword". rdem does the same, and
+        // warns about what it ignores.
+        if head.style == "heat/gran" && !KEYWORDS.contains(&word) {
+            let rest = a.words()[a.pos()..]
+                .iter()
+                .map(|w| w.text.as_str())
+                .collect::<Vec<_>>()
+                .join(" ");
+            a.warn_at(
+                a.pos(),
+                &format!(
+                    "fix heat/gran: '{word}' is not a heat/gran keyword: '{rest}' is ignored, as LIGGGHTS 3.8 ignores the rest of the line (valid: {})",
+                    KEYWORDS.join(", ")
+                ),
+            );
+            break;
+        }
+        match a.keyword("heat/gran keyword", &KEYWORDS)? {
             "contact_area" => {
                 area_at = Some(a.pos());
                 area = match a.keyword("contact_area", &["overlap", "projection", "constant"])? {

@@ -17,6 +17,7 @@ pub mod ave_euler;
 mod ave_histo;
 mod ave_time;
 mod check_timestep_gran;
+mod couple_cfd;
 mod engine;
 mod gravity;
 mod heat_gran;
@@ -342,6 +343,9 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
+        couple_cfd::ROW,
+        couple_cfd::ROW_FORCE,
+        couple_cfd::ROW_IMPLICIT,
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],

@@ -467,12 +467,15 @@ impl CoeffTable {
         for &e in &m.youngs_modulus {
             check("youngsModulus", e, e > 0.0, "must be > 0")?;
         }
+        // LIGGGHTS 3.8's range, measured: 0 and 0.5 run (0.5, the incompressible limit,
+        // gives E* = 2E/3 and a finite G*), -1e-9 and 0.50000001 stop with
+        // "0 <= poissonsRatio <= 0.5 required".
         for &nu in &m.poissons_ratio {
             check(
                 "poissonsRatio",
                 nu,
-                nu > -1.0 && nu < 0.5,
-                "must be in (-1, 0.5)",
+                (0.0..=0.5).contains(&nu),
+                "must be in [0, 0.5], as LIGGGHTS 3.8 requires",
             )?;
         }
         Ok(())
@@ -518,6 +521,12 @@ mod tests {
         assert!(CoeffTable::new(&ok, Needs::default()).is_ok());
         let mut m = ok.clone();
         m.poissons_ratio = vec![0.5];
+        assert!(CoeffTable::new(&m, Needs::default()).is_ok());
+        m.poissons_ratio = vec![0.0];
+        assert!(CoeffTable::new(&m, Needs::default()).is_ok());
+        m.poissons_ratio = vec![0.500_000_01];
+        assert!(CoeffTable::new(&m, Needs::default()).is_err());
+        m.poissons_ratio = vec![-1e-9];
         assert!(CoeffTable::new(&m, Needs::default()).is_err());
         let mut m = ok.clone();
         m.poissons_ratio = vec![-1.0];
