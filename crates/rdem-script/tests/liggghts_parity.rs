@@ -267,3 +267,44 @@ fn lattice_custom_errors() {
         assert!(text.contains(message), "{line}: {text}");
     }
 }
+
+/// `insert/rate/region` defined before `timestep`: the particles per insertion follow the
+/// time step of the run (500 particles/s × 1e-4 s × 500 steps = 25), as LIGGGHTS 3.8
+/// inserts them (25 at steps 1, 501 and 1001 for a public script written this way).
+/// rdem used the default time step at the definition and inserted none.
+#[test]
+fn insert_rate_uses_the_timestep_of_the_run() {
+    let src = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region domain block -0.9 0.9 -0.9 0.9 0.0 4.0 units box
+create_box 1 domain
+neighbor 0.03 bin
+fix m1 all property/global youngsModulus peratomtype 1e8
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 1000 radius constant 0.03
+fix pdd all particledistribution/discrete 15485867 1 pts 1.0
+region factory cylinder z 0.0 0.0 0.25 2.3 2.5 units box
+fix ins all insert/rate/region seed 32452843 distributiontemplate pdd nparticles 25000 particlerate 500 insert_every 500 overlapcheck yes vel constant 0. 0. -1.0 region factory
+pair_style gran model hertz tangential history
+pair_coeff * *
+fix integrate all nve/sphere
+fix grav all gravity 9.81 vector 0.0 0.0 -1.0
+timestep 0.0001
+run 1100
+";
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.run_source("in.rate", src).unwrap();
+    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let steps: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("INFO: Particle insertion ins: inserted 25 "))
+        .map(|l| l.rsplit(' ').next().unwrap())
+        .collect();
+    assert_eq!(steps, ["1", "501", "1001"], "{out}");
+}

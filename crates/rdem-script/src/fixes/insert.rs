@@ -73,6 +73,10 @@ pub struct RateState {
     pub limit: Option<u64>,
     /// Particles per insertion (may be fractional).
     pub per_insertion: f64,
+    /// `insert/rate/region`: particles per unit time and the steps between insertions;
+    /// the particles per insertion then follow from the time step at each insertion (a
+    /// `timestep` after the fix counts, as in LIGGGHTS).
+    pub per_time: Option<(f64, u64)>,
     /// Fractional carry.
     pub carry: f64,
 }
@@ -319,9 +323,9 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 ))
             }
         };
-        let per_step = match (prate, mrate) {
-            (Some(r), None) => r * dt,
-            (None, Some(m)) => m * dt / dist.mean_particle_mass(),
+        let per_time = match (prate, mrate) {
+            (Some(r), None) => r,
+            (None, Some(m)) => m / dist.mean_particle_mass(),
             _ => {
                 return Err(a.error_at(
                     STYLE_WORD,
@@ -334,7 +338,8 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             PackTarget::Count(0),
             Some(RateState {
                 limit,
-                per_insertion: per_step * every as f64,
+                per_insertion: per_time * dt * every as f64,
+                per_time: Some((per_time, every)),
                 carry: 0.0,
             }),
         )
@@ -424,6 +429,9 @@ impl ScriptFix for Inserter {
             (InsertEngine::Stream(st), _) => st.insert(w)?,
             (InsertEngine::Pack(pack), None) => pack.insert(w)?,
             (InsertEngine::Pack(pack), Some(r)) => {
+                if let Some((per_time, every)) = r.per_time {
+                    r.per_insertion = per_time * w.dt * every as f64;
+                }
                 let want = r.per_insertion + r.carry;
                 let mut n = want.floor() as u64;
                 r.carry = want - n as f64;

@@ -241,6 +241,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         rate: Some(RateState {
             limit: Some(n),
             per_insertion: per as f64,
+            per_time: None,
             carry: 0.0,
         }),
         verbose: false,
