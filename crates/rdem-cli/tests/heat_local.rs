@@ -16,15 +16,8 @@ fn data() -> PathBuf {
 }
 
 fn run(script_text: &str) -> (PathBuf, std::process::Output) {
-    let dir = common::scratch_dir("heat_local");
-    std::fs::write(dir.join("in.heat_local"), script_text).unwrap();
-    std::fs::copy(data().join("heat/floor.stl"), dir.join("floor.stl")).unwrap();
-    let out = common::rdem_command(None)
-        .current_dir(&dir)
-        .args(["-in", "in.heat_local", "-log", "none"])
-        .output()
-        .unwrap();
-    (dir, out)
+    let floor = std::fs::read_to_string(data().join("heat/floor.stl")).unwrap();
+    common::run_kept("heat_local", script_text, &[("floor.stl", &floor)], None)
 }
 
 /// Each snapshot's rows after `ITEM: ENTRIES` / `ITEM: ATOMS`, sorted (the order of

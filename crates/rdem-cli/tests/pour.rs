@@ -35,13 +35,7 @@ fix grav all gravity 9.81 vector 0 0 -1
 }
 
 fn run(name: &str, script: &str) -> (PathBuf, String, String, bool) {
-    let dir = common::scratch_dir(name);
-    std::fs::write(dir.join("in.pour"), script).unwrap();
-    let out = common::rdem_command(None)
-        .current_dir(&dir)
-        .args(["-in", "in.pour", "-log", "none"])
-        .output()
-        .unwrap();
+    let (dir, out) = common::run_kept(name, script, &[], None);
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     (dir, stdout, stderr, out.status.success())
@@ -208,17 +202,8 @@ run 1000
         stdout.contains("Particle insertion: 3 every 452 steps, 100 by step 14917\n"),
         "{stdout}"
     );
-    let counts: Vec<(u64, u64)> = stdout
-        .lines()
-        .filter_map(|l| {
-            let w: Vec<u64> = l
-                .split_whitespace()
-                .map(|x| x.parse().ok())
-                .collect::<Option<_>>()?;
-            (w.len() == 2).then(|| (w[0], w[1]))
-        })
-        .collect();
-    let want: Vec<(u64, u64)> = (0..=20)
+    let counts = common::thermo_rows(&stdout);
+    let want: Vec<Vec<f64>> = (0..=20)
         .map(|k| {
             let step = 50 * k;
             let n = match step {
@@ -227,7 +212,7 @@ run 1000
                 s if s < 905 => 6,
                 _ => 9,
             };
-            (step, n)
+            vec![step as f64, n as f64]
         })
         .collect();
     assert_eq!(counts, want, "{stdout}");
@@ -255,7 +240,7 @@ fn what_pour_cannot_do_is_a_located_error() {
         let (_, stdout, stderr, ok) = run("pour_bad", &format!("{base}{line}\n"));
         assert!(!ok, "{line}: {stdout}");
         assert!(stderr.contains(message), "{line}: {stderr}");
-        assert!(stderr.contains("in.pour:"), "{line}: located: {stderr}");
+        assert!(stderr.contains("in.test:"), "{line}: located: {stderr}");
     }
     // Gravity must exist and point along -z.
     let no_gravity = base.replace("fix grav all gravity 9.81 vector 0 0 -1\n", "");

@@ -17,15 +17,8 @@ fn data() -> PathBuf {
 /// Runs `script` in a scratch folder with the plate mesh; returns the folder and the
 /// output.
 fn run(name: &str, script: &str) -> (PathBuf, std::process::Output) {
-    let dir = common::scratch_dir(name);
-    std::fs::write(dir.join("in.x"), script).unwrap();
-    std::fs::copy(data().join("plate.stl"), dir.join("plate.stl")).unwrap();
-    let out = common::rdem_command(None)
-        .current_dir(&dir)
-        .args(["-in", "in.x", "-log", "none"])
-        .output()
-        .unwrap();
-    (dir, out)
+    let plate = std::fs::read_to_string(data().join("plate.stl")).unwrap();
+    common::run_kept(name, script, &[("plate.stl", &plate)], None)
 }
 
 fn script() -> String {
@@ -181,6 +174,6 @@ fn bad_store_force_lines_are_located_errors() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success(), "{to}: should fail");
         assert!(err.contains(message), "{to}: {err}");
-        assert!(err.contains("in.x:"), "{to}: located: {err}");
+        assert!(err.contains("in.test:"), "{to}: located: {err}");
     }
 }

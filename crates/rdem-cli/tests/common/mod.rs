@@ -73,7 +73,21 @@ pub fn run_with_files_raw(
     files: &[(&str, &str)],
     ranks: Option<usize>,
 ) -> std::process::Output {
-    let dir = scratch_dir("script");
+    let (dir, out) = run_kept("script", script, files, ranks);
+    let _ = std::fs::remove_dir_all(&dir);
+    out
+}
+
+/// Writes `script` as `in.test` and `files` (name, contents) into a fresh scratch
+/// directory named after `prefix`, and runs it there with `-log none` and one thread per
+/// process; returns the directory (kept, with what the run wrote) and the output.
+pub fn run_kept(
+    prefix: &str,
+    script: &str,
+    files: &[(&str, &str)],
+    ranks: Option<usize>,
+) -> (std::path::PathBuf, std::process::Output) {
+    let dir = scratch_dir(prefix);
     for (name, text) in files {
         std::fs::write(dir.join(name), text).unwrap();
     }
@@ -84,8 +98,7 @@ pub fn run_with_files_raw(
         .current_dir(&dir)
         .output()
         .unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    out
+    (dir, out)
 }
 
 /// [`run_script_raw`] for a script that must succeed; returns the screen output.

@@ -13,8 +13,8 @@
 //! the CFD's files at the first coupling step, forever when there is no CFD; rdem stops
 //! with an error instead.
 
-use super::property_atom::PropertyAtom;
-use super::{style, FixEntry, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::property_atom::{self, PropertyAtom};
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -118,32 +118,16 @@ impl ScriptFix for CoupleCfdForce {
             props.extend([("Ksl", 1), ("uf", 3)]);
         }
         for (name, width) in props {
-            if sim
-                .fix_index(name)
-                .is_some_and(|k| sim.defs.fixes[k].downcast::<PropertyAtom>().is_some())
-            {
-                super::unfix_id(sim, name);
-            }
-            let mut imp = PropertyAtom {
-                name: name.to_string(),
-                vector: width > 1,
-                defaults: vec![0.0; width],
-                forward: false,
-            };
-            let phead = FixHead {
-                id: name.to_string(),
-                style: "property/atom",
-                groupbit: 1,
-            };
-            imp.install(sim, a, &phead)?;
-            let origin = sim.origin(a, STYLE_WORD);
-            sim.defs.fixes.push(FixEntry {
-                head: phead,
-                stages: Stages::NONE,
-                origin,
-                energy: false,
-                imp: Box::new(imp),
-            });
+            property_atom::redefine(
+                sim,
+                a,
+                PropertyAtom {
+                    name: name.to_string(),
+                    vector: width > 1,
+                    defaults: vec![0.0; width],
+                    forward: false,
+                },
+            )?;
         }
         Ok(())
     }

@@ -22,8 +22,8 @@
 use rdem::heat::{self, ContactArea, HeatConduction, HeatProps};
 use rdem::NormalKind;
 
-use super::property_atom::PropertyAtom;
-use super::{style, FixEntry, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::property_atom::{self, PropertyAtom};
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -182,37 +182,21 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 impl ScriptFix for HeatGran {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
         for (name, width, forward) in PROPS {
-            if sim
-                .fix_index(name)
-                .is_some_and(|k| sim.defs.fixes[k].downcast::<PropertyAtom>().is_some())
-            {
-                super::unfix_id(sim, name);
-            }
             let defaults = if name == heat::TEMP {
                 vec![self.t0]
             } else {
                 vec![0.0; width]
             };
-            let mut imp = PropertyAtom {
-                name: name.to_string(),
-                vector: width > 1,
-                defaults,
-                forward,
-            };
-            let phead = FixHead {
-                id: name.to_string(),
-                style: "property/atom",
-                groupbit: 1,
-            };
-            imp.install(sim, a, &phead)?;
-            let origin = sim.origin(a, STYLE_WORD);
-            sim.defs.fixes.push(FixEntry {
-                head: phead,
-                stages: Stages::NONE,
-                origin,
-                energy: false,
-                imp: Box::new(imp),
-            });
+            property_atom::redefine(
+                sim,
+                a,
+                PropertyAtom {
+                    name: name.to_string(),
+                    vector: width > 1,
+                    defaults,
+                    forward,
+                },
+            )?;
         }
         let w = sim.world_mut(a)?;
         let props = HeatProps::register(&mut w.particles, self.t0)

@@ -67,18 +67,39 @@ pub struct Inserter {
     pub announce: Option<Notes>,
 }
 
-/// State of `insert/rate/region`.
+/// State of `insert/rate/region` (and `fix pour`).
 pub struct RateState {
     /// Particles to insert in all (`None`: no limit).
     pub limit: Option<u64>,
-    /// Particles per insertion (may be fractional).
-    pub per_insertion: f64,
-    /// `insert/rate/region`: particles per unit time and the steps between insertions;
-    /// the particles per insertion then follow from the time step at each insertion (a
-    /// `timestep` after the fix counts, as in LIGGGHTS).
-    pub per_time: Option<(f64, u64)>,
+    /// Particles per insertion.
+    pub per: PerInsertion,
     /// Fractional carry.
     pub carry: f64,
+}
+
+/// How many particles one insertion asks for (may be fractional).
+pub enum PerInsertion {
+    /// A fixed count (`fix pour`'s batch).
+    Fixed(f64),
+    /// `insert/rate/region`: particles per unit time, and the steps between insertions.
+    /// The count follows the time step at each insertion (a `timestep` after the fix
+    /// counts, as in LIGGGHTS).
+    Rate {
+        /// Particles per unit time.
+        per_time: f64,
+        /// Steps between insertions.
+        every: u64,
+    },
+}
+
+impl PerInsertion {
+    /// The count for time step `dt`.
+    fn count(&self, dt: f64) -> f64 {
+        match *self {
+            Self::Fixed(n) => n,
+            Self::Rate { per_time, every } => per_time * dt * every as f64,
+        }
+    }
 }
 
 /// The parser of all three insertion styles (their keywords overlap).
@@ -338,8 +359,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             PackTarget::Count(0),
             Some(RateState {
                 limit,
-                per_insertion: per_time * dt * every as f64,
-                per_time: Some((per_time, every)),
+                per: PerInsertion::Rate { per_time, every },
                 carry: 0.0,
             }),
         )
@@ -429,10 +449,7 @@ impl ScriptFix for Inserter {
             (InsertEngine::Stream(st), _) => st.insert(w)?,
             (InsertEngine::Pack(pack), None) => pack.insert(w)?,
             (InsertEngine::Pack(pack), Some(r)) => {
-                if let Some((per_time, every)) = r.per_time {
-                    r.per_insertion = per_time * w.dt * every as f64;
-                }
-                let want = r.per_insertion + r.carry;
+                let want = r.per.count(w.dt) + r.carry;
                 let mut n = want.floor() as u64;
                 r.carry = want - n as f64;
                 if let Some(lim) = r.limit {

@@ -27,7 +27,7 @@ use rdem::insert::{
 use rdem::region::Shape;
 use rdem::FixKind;
 
-use super::insert::{InsertEngine, Inserter, RateState};
+use super::insert::{InsertEngine, Inserter, PerInsertion, RateState};
 use super::{style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
@@ -120,17 +120,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 }
             }
             "vel" => {
-                gaussian = match a.peek() {
-                    Some("uniform") => {
-                        a.seek(a.pos() + 1);
-                        false
-                    }
-                    Some("gaussian") => {
-                        a.seek(a.pos() + 1);
-                        true
-                    }
-                    _ => false,
-                };
+                gaussian = gaussian_word(a);
                 vx = (a.f64("vx (low or mean)")?, a.f64("vx (high or sigma)")?);
                 vy = (a.f64("vy (low or mean)")?, a.f64("vy (high or sigma)")?);
                 vz = a.f64("vz")?;
@@ -240,8 +230,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         total_mass: 0.0,
         rate: Some(RateState {
             limit: Some(n),
-            per_insertion: per as f64,
-            per_time: None,
+            per: PerInsertion::Fixed(per as f64),
             carry: 0.0,
         }),
         verbose: false,
@@ -276,12 +265,7 @@ fn read_diam(a: &mut Args) -> CmdResult<Diam> {
     let d = match style {
         "uniform" | "range" => {
             a.seek(a.pos() + 1);
-            let lo = a.positive("smallest diameter")?;
-            let hi = a.positive("largest diameter")?;
-            if hi < lo {
-                return Err(a.error_prev("the largest diameter is below the smallest", None));
-            }
-            Diam::Range(lo, hi)
+            diam_range(a)?
         }
         "gaussian" => {
             a.seek(a.pos() + 1);
@@ -307,32 +291,36 @@ fn read_diam(a: &mut Args) -> CmdResult<Diam> {
             }
             Diam::Poly(parts)
         }
-        _ => {
-            let lo = a.positive("smallest diameter")?;
-            let hi = a.positive("largest diameter")?;
-            if hi < lo {
-                return Err(a.error_prev("the largest diameter is below the smallest", None));
-            }
-            Diam::Range(lo, hi)
-        }
+        _ => diam_range(a)?,
     };
     Ok(d)
+}
+
+/// `lo hi` of a uniform diameter law.
+fn diam_range(a: &mut Args) -> CmdResult<Diam> {
+    let lo = a.positive("smallest diameter")?;
+    let hi = a.positive("largest diameter")?;
+    if hi < lo {
+        return Err(a.error_prev("the largest diameter is below the smallest", None));
+    }
+    Ok(Diam::Range(lo, hi))
+}
+
+/// Reads an optional `uniform` or `gaussian` law word (LIGGGHTS 1.x); true for
+/// `gaussian`. Without one the values are LAMMPS' (a uniform range).
+fn gaussian_word(a: &mut Args) -> bool {
+    let law = a.peek();
+    let gaussian = law == Some("gaussian");
+    if gaussian || law == Some("uniform") {
+        a.seek(a.pos() + 1);
+    }
+    gaussian
 }
 
 /// `dens uniform lo hi | gaussian mu sigma | lo hi`: only one density is supported.
 fn read_density(a: &mut Args) -> CmdResult<f64> {
     let at = a.pos() - 1;
-    let gaussian = match a.peek() {
-        Some("uniform") => {
-            a.seek(a.pos() + 1);
-            false
-        }
-        Some("gaussian") => {
-            a.seek(a.pos() + 1);
-            true
-        }
-        _ => false,
-    };
+    let gaussian = gaussian_word(a);
     let first = a.positive("density")?;
     let second = if gaussian {
         a.non_negative("density sigma")?

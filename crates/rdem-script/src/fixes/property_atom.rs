@@ -12,7 +12,7 @@
 //! with the second flag `yes` forward communication refreshes them every step too (as
 //! LIGGGHTS does for a temperature that pair computations read on ghosts).
 
-use super::{count_error, style, FixHead, FixRow, ScriptFix, Stages};
+use super::{count_error, style, FixEntry, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -71,6 +71,40 @@ impl ScriptFix for PropertyAtom {
             w.particles.retire_property(&self.name);
         }
     }
+}
+
+/// Defines `imp` as the fix `NAME all property/atom NAME ...` (fix ID = property name)
+/// that another command brings along: heat/gran's `Temp`, a wall's `force_ID`,
+/// couple/cfd's `dragforce`. Its origin is that command's style word.
+pub(super) fn define(sim: &mut Sim, a: &Args, mut imp: PropertyAtom) -> CmdResult<()> {
+    let head = FixHead {
+        id: imp.name.clone(),
+        style: "property/atom",
+        groupbit: 1,
+    };
+    imp.install(sim, a, &head)?;
+    let origin = sim.origin(a, STYLE_WORD);
+    sim.defs.fixes.push(FixEntry {
+        head,
+        stages: Stages::NONE,
+        origin,
+        energy: false,
+        imp: Box::new(imp),
+    });
+    Ok(())
+}
+
+/// [`define`], replacing a `fix property/atom` of that ID the script defined first (as
+/// LIGGGHTS lets heat/gran and couple/cfd take over the user's definition).
+pub(super) fn redefine(sim: &mut Sim, a: &Args, imp: PropertyAtom) -> CmdResult<()> {
+    let name = imp.name.as_str();
+    if sim
+        .fix_index(name)
+        .is_some_and(|k| sim.defs.fixes[k].downcast::<PropertyAtom>().is_some())
+    {
+        super::unfix_id(sim, name);
+    }
+    define(sim, a, imp)
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {

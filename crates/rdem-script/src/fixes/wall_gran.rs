@@ -6,8 +6,8 @@ use glam::DVec3;
 use rdem::{FixKind, PrimitiveWall, WallShape};
 
 use super::engine::engine_fix;
-use super::property_atom::PropertyAtom;
-use super::{style, FixEntry, FixHead, FixRow, ScriptFix, Stages};
+use super::property_atom::{self, PropertyAtom};
+use super::{style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
 use crate::models;
 use crate::sim::Sim;
@@ -71,27 +71,16 @@ impl ScriptFix for StoringWall {
 /// `store_force` (replacing an earlier one of that ID, as a redefined wall does).
 pub(super) fn define_store(sim: &mut Sim, a: &Args, name: &str) -> CmdResult<()> {
     super::unfix_id(sim, name);
-    let mut imp = PropertyAtom {
-        name: name.to_string(),
-        vector: true,
-        defaults: vec![0.0; 3],
-        forward: false,
-    };
-    let head = FixHead {
-        id: name.to_string(),
-        style: "property/atom",
-        groupbit: 1,
-    };
-    imp.install(sim, a, &head)?;
-    let origin = sim.origin(a, super::STYLE_WORD);
-    sim.defs.fixes.push(FixEntry {
-        head,
-        stages: Stages::NONE,
-        origin,
-        energy: false,
-        imp: Box::new(imp),
-    });
-    Ok(())
+    property_atom::define(
+        sim,
+        a,
+        PropertyAtom {
+            name: name.to_string(),
+            vector: true,
+            defaults: vec![0.0; 3],
+            forward: false,
+        },
+    )
 }
 
 /// Reads `store_force yes|no` or `store_force_contact no` at the current word (which is
