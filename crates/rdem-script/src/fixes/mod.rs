@@ -16,11 +16,13 @@ mod ave_atom;
 pub mod ave_euler;
 mod ave_histo;
 mod ave_time;
+mod balance;
 mod check_timestep_gran;
 mod engine;
 mod gravity;
 mod heat_gran;
 pub mod insert;
+mod insert_dense;
 mod insert_stream;
 pub(crate) mod liquid;
 mod massflow_mesh;
@@ -321,6 +323,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         particledistribution_discrete::ROW_NUMBER,
         insert::ROW_PACK,
         insert::ROW_RATE,
+        insert_dense::ROW,
         insert_stream::ROW,
         massflow_mesh::ROW,
         engine::ROW_NVE,
@@ -340,6 +343,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
+        balance::ROW,
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet(
             "pour",
