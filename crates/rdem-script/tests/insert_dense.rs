@@ -127,14 +127,14 @@ fn unsupported_keywords_are_located_errors() {
         (" colour red", "colour", "unknown insert/pack/dense keyword"),
     ] {
         let line = format!("{fix}{rest}\n");
-        let e = run(&line).unwrap_err();
+        let e = run(&line).err().expect("an error");
         let col = line.find(&format!(" {col_word}")).unwrap() + 2;
         assert!(e.contains(&format!("in.dense:25:{col}")), "{rest}: {e}");
         assert!(e.contains(message), "{rest}: {e}");
     }
-    let e = run("fix ins all insert/pack/dense seed 123 distributiontemplate pdd1\n").unwrap_err();
+    let e = run("fix ins all insert/pack/dense seed 123 distributiontemplate pdd1\n").err().expect("an error");
     assert!(e.contains("needs 'region ID'"), "{e}");
-    let e = run("fix ins all insert/pack/dense region insReg seed 1\n").unwrap_err();
+    let e = run("fix ins all insert/pack/dense region insReg seed 1\n").err().expect("an error");
     assert!(e.contains("the first keyword must be 'seed'"), "{e}");
 }
 
@@ -154,7 +154,7 @@ fn fix_balance_warns_and_checks_its_words() {
         ("1000 z 10 1.1 out bal.txt", "'out' is not supported yet"),
         ("1000 z", "Niter"),
     ] {
-        let e = run(&format!("fix lb all balance {rest}\n")).unwrap_err();
+        let e = run(&format!("fix lb all balance {rest}\n")).err().expect("an error");
         assert!(e.contains("in.dense:25:"), "{rest}: {e}");
         assert!(e.contains(message), "{rest}: {e}");
     }

@@ -233,7 +233,7 @@ impl ScriptFix for InsertDense {
                 head.id,
                 g(self.pack.volume_fraction),
                 rep.estimate,
-                g(self.pack.radius_factor())
+                g(rep.radius_factor)
             ));
             notes.line(super::insertion_report(
                 &head.id,

@@ -7,7 +7,10 @@
 //!    volume fraction (at most 0.57, the densest packing the front reaches); they are
 //!    inserted with their own radii, so the packing of enlarged spheres, about 0.57 of
 //!    the region, leaves the real spheres at about φ, with gaps of at least
-//!    (f − 1)(rᵢ + rⱼ) between new neighbours.
+//!    (f − 1)(rᵢ + rⱼ) between new neighbours. Near walls the front packs looser, so when
+//!    the count misses φ V / v̄ by more than 1 %, rdem packs again from the same random
+//!    numbers with f corrected by the cube root of the ratio (never below 1); this second
+//!    packing is rdem's (LIGGGHTS-PFM inserts its first).
 //! 2. Three touching spheres start the packing at the centre of the region's box (or a
 //!    random point of the region where 2.155 enlarged radii fit), turned at random.
 //! 3. Every placed sphere joins the front, a first-in first-out queue. For the sphere at
@@ -79,6 +82,8 @@ pub struct DenseReport {
     pub volume_fraction: f64,
     /// Region volume used for the estimate.
     pub region_volume: f64,
+    /// The factor the radii were enlarged by for the packing that was inserted.
+    pub radius_factor: f64,
 }
 
 /// A sphere of the packing: centre and (enlarged, for new ones) radius.
@@ -90,6 +95,7 @@ struct Sphere {
 
 /// The spheres of the packing on a grid of cubic cells (a linked list per cell), for the
 /// neighbour and overlap queries.
+#[derive(Clone)]
 struct Cells {
     lo: DVec3,
     size: f64,
@@ -292,11 +298,9 @@ impl DensePack {
         let boxlo = world.domain.boxlo;
         let boxhi = world.domain.boxhi;
         let (rlo, rhi) = self.region.bounding_box().expect("checked in new");
-        let rmax = self.dist.max_radius() * f;
-        // Centres stay one largest enlarged radius inside the box (as LIGGGHTS-PFM keeps
-        // them inside its subdomain).
-        let lo = rlo.max(boxlo + DVec3::splat(rmax));
-        let hi = rhi.min(boxhi - DVec3::splat(rmax));
+        // The second packing's factor stays within [1, 1.1 f]; the grid is sized for it.
+        let fmax = 1.1 * f;
+        let rmax = self.dist.max_radius() * fmax;
         // Particles already there, from every rank, in tag order (the packing is then the
         // same on any number of ranks).
         let p = &world.particles;
@@ -334,15 +338,25 @@ impl DensePack {
         }
         let rng = &mut self.rng;
         let volume = self.region.volume((boxlo, boxhi), 1_000_000, || rng.gen());
-        let estimate = ((self.volume_fraction * volume - present_volume)
-            / self.dist.mean_particle_volume())
-        .floor()
-        .max(0.0) as u64;
-        let placed = if lo.cmplt(hi).all() {
-            self.pack(&mut cells, lo, hi, f)?
-        } else {
-            Vec::new()
-        };
+        let wanted =
+            ((self.volume_fraction * volume - present_volume) / self.dist.mean_particle_volume())
+                .max(0.0);
+        let estimate = wanted.floor() as u64;
+        // The first packing, and a second one with the factor corrected by the cube root
+        // of the count's ratio when the first misses by more than 1 % (the front packs
+        // looser than 0.57 near walls); the second draws the same random numbers.
+        let (rng0, dist0) = (self.rng.clone(), self.dist.clone());
+        let mut placed = self.pack(&mut cells.clone(), (boxlo, boxhi), f)?;
+        let mut factor = f;
+        let got = placed.len() as f64;
+        if wanted > 0.0 && got > 0.0 && (got / wanted - 1.0).abs() > 0.01 {
+            let f1 = (f * (got / wanted).cbrt()).clamp(1.0, fmax);
+            if f1 != f {
+                (self.rng, self.dist) = (rng0, dist0);
+                placed = self.pack(&mut cells, (boxlo, boxhi), f1)?;
+                factor = f1;
+            }
+        }
         let (mut inserted, mut mass, mut vol) = (0u64, 0.0, 0.0);
         for pl in &placed {
             mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit)?.0;
@@ -356,6 +370,7 @@ impl DensePack {
             mass,
             volume_fraction: if volume > 0.0 { vol / volume } else { 0.0 },
             region_volume: volume,
+            radius_factor: factor,
         })
     }
 
@@ -377,9 +392,18 @@ impl DensePack {
         })
     }
 
-    /// The packing: positions of the new particles (real radii) in insertion order.
-    fn pack(&mut self, cells: &mut Cells, lo: DVec3, hi: DVec3, f: f64) -> Result<Vec<Placed>> {
+    /// The packing with radii enlarged by `f` in the box `bx` (`cells` holds the particles
+    /// already there): positions of the new particles (real radii) in insertion order.
+    fn pack(&mut self, cells: &mut Cells, bx: (DVec3, DVec3), f: f64) -> Result<Vec<Placed>> {
         let rmax = self.dist.max_radius() * f;
+        let (rlo, rhi) = self.region.bounding_box().expect("checked in new");
+        // Centres stay one largest enlarged radius inside the box (as LIGGGHTS-PFM keeps
+        // them inside its subdomain).
+        let lo = rlo.max(bx.0 + DVec3::splat(rmax));
+        let hi = rhi.min(bx.1 - DVec3::splat(rmax));
+        if !lo.cmplt(hi).all() {
+            return Ok(Vec::new());
+        }
         let start_reach = START_REACH * rmax;
         let domain = (lo, hi);
         let mut start = (lo + hi) * 0.5;
