@@ -60,7 +60,7 @@ run 3
     let want = 0.5 * 2.7e-5 / (4.0 / 3.0 * std::f64::consts::PI * 1e-9);
     eprintln!("inserted {n}, closed form {want}");
     assert!((n / want - 1.0).abs() < 0.02, "{n} vs {want}\n{out}");
-    assert!(out.contains("about 3222 particles"), "{out}");
+    assert!(out.contains("0.5 asked for (about 3222 particles;"), "{out}");
     assert!(
         out.contains(&format!("inserted {n} particle templates")),
         "{out}"

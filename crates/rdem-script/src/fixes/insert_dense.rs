@@ -227,14 +227,9 @@ impl ScriptFix for InsertDense {
         self.total += rep.inserted;
         self.total_mass += rep.mass;
         if self.verbose {
+            // LIGGGHTS' insertion report, then one more ` - ` line (tools that read the
+            // thermo table skip `INFO` and ` - ` lines).
             let g = |v: f64| format_g(v, 6);
-            notes.line(format!(
-                "fix insert/pack/dense {}: volume fraction {} asked for (about {} particles), radii enlarged {} times for the packing",
-                head.id,
-                g(self.pack.volume_fraction),
-                rep.estimate,
-                g(rep.radius_factor)
-            ));
             notes.line(super::insertion_report(
                 &head.id,
                 rep.inserted,
@@ -244,13 +239,11 @@ impl ScriptFix for InsertDense {
                 self.total_mass,
             ));
             notes.line(format!(
-                " - volume fraction reached {} ({}% of the particles asked for)",
+                " - volume fraction {} reached, {} asked for (about {} particles; radii enlarged {} times for the packing)",
                 g(rep.volume_fraction),
-                g(if rep.estimate > 0 {
-                    100.0 * rep.inserted as f64 / rep.estimate as f64
-                } else {
-                    100.0
-                })
+                g(self.pack.volume_fraction),
+                rep.estimate,
+                g(rep.radius_factor)
             ));
         }
         Ok(())
