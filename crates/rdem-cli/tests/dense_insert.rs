@@ -68,12 +68,15 @@ fn dense_insertion_and_run_are_the_same_on_one_and_two_threads() {
     assert_eq!(r1.len(), 5, "{one}");
     assert_eq!(r1, r2, "1 thread:\n{one}\n2 threads:\n{two}");
     // Inserted at step 1; φ V / v̄ with v̄ the number-weighted mean volume of the mix
-    // (40/60 by mass of 0.8 and 1 mm): within 6 %.
+    // (40/60 by mass of 0.8 and 1 mm): within 2 % (measured 4017 of 4006).
     let n = r1[1][1];
     let (v1, v2) = (0.0008f64.powi(3), 0.001f64.powi(3));
     let (n1, n2) = (0.4 / v1, 0.6 / v2);
     let mean = 4.0 / 3.0 * std::f64::consts::PI * (n1 * v1 + n2 * v2) / (n1 + n2);
     let want = 0.45 * 0.03 * 0.03 * 0.03 / mean;
-    assert!((n / want - 1.0).abs() < 0.06, "{n} vs {want}\n{one}");
-    assert!(one.contains("INFO: Particle insertion ins: inserted"), "{one}");
+    assert!((n / want - 1.0).abs() < 0.02, "{n} vs {want}\n{one}");
+    assert!(
+        one.contains("INFO: Particle insertion ins: inserted"),
+        "{one}"
+    );
 }

@@ -60,7 +60,10 @@ run 3
     let want = 0.5 * 2.7e-5 / (4.0 / 3.0 * std::f64::consts::PI * 1e-9);
     eprintln!("inserted {n}, closed form {want}");
     assert!((n / want - 1.0).abs() < 0.02, "{n} vs {want}\n{out}");
-    assert!(out.contains("0.5 asked for (about 3222 particles;"), "{out}");
+    assert!(
+        out.contains("0.5 asked for (about 3222 particles;"),
+        "{out}"
+    );
     assert!(
         out.contains(&format!("inserted {n} particle templates")),
         "{out}"
@@ -133,9 +136,13 @@ fn unsupported_keywords_are_located_errors() {
         assert!(e.contains(&format!("in.dense:22:{col}")), "{rest}: {e}");
         assert!(e.contains(message), "{rest}: {e}");
     }
-    let e = run("fix ins all insert/pack/dense seed 123 distributiontemplate pdd1\n").err().expect("an error");
+    let e = run("fix ins all insert/pack/dense seed 123 distributiontemplate pdd1\n")
+        .err()
+        .expect("an error");
     assert!(e.contains("needs 'region ID'"), "{e}");
-    let e = run("fix ins all insert/pack/dense region insReg seed 1\n").err().expect("an error");
+    let e = run("fix ins all insert/pack/dense region insReg seed 1\n")
+        .err()
+        .expect("an error");
     assert!(e.contains("the first keyword must be 'seed'"), "{e}");
 }
 
@@ -155,7 +162,9 @@ fn fix_balance_warns_and_checks_its_words() {
         ("1000 z 10 1.1 out bal.txt", "'out' is not supported yet"),
         ("1000 z", "Niter"),
     ] {
-        let e = run(&format!("fix lb all balance {rest}\n")).err().expect("an error");
+        let e = run(&format!("fix lb all balance {rest}\n"))
+            .err()
+            .expect("an error");
         assert!(e.contains("in.dense:22:"), "{rest}: {e}");
         assert!(e.contains(message), "{rest}: {e}");
     }

@@ -338,9 +338,9 @@ impl DensePack {
         }
         let rng = &mut self.rng;
         let volume = self.region.volume((boxlo, boxhi), 1_000_000, || rng.gen());
-        let wanted =
-            ((self.volume_fraction * volume - present_volume) / self.dist.mean_particle_volume())
-                .max(0.0);
+        let wanted = ((self.volume_fraction * volume - present_volume)
+            / self.dist.mean_particle_volume())
+        .max(0.0);
         let estimate = wanted.floor() as u64;
         // The first packing, and a second one with the factor corrected by the cube root
         // of the count's ratio when the first misses by more than 1 % (the front packs
