@@ -352,6 +352,7 @@ bogus_after_the_loop
 const WILD_FULLY_SUPPORTED: &[&str] = &[
     "02_cfdem_periodic_channel_init/DEM",
     "04_cfdem_fillcylinder_init/DEM",
+    "08_cfdem_hopper_tracer_init/DEM",
     "10_pfm_servo_wall",
     "14_pfm_stress_box_euler",
     "16_pfm_rotary_kiln_init",

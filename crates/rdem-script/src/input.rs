@@ -414,6 +414,7 @@ impl Interpreter {
                 a.done()?;
             }
             "if" => self.if_command(&mut a, &cmd)?,
+            "run" => self.run_command(&mut a, &cmd)?,
             "quit" => self.quit = true,
             name => {
                 if commands::REGISTRY.row(name).is_none() {
@@ -510,7 +511,36 @@ impl Interpreter {
         }
     }
 
-    /// Runs words `range` of `cmd` as commands (the branches of `if`).
+    /// `run N ... [every M c1 c2 ...]`: with `every`, the run in chunks of M steps (the
+    /// last one shorter) with the commands after each, as LAMMPS' `run`: the first chunk
+    /// always sets up, the last always prints the full summary, and a run of 0 steps
+    /// still runs the commands once. LIGGGHTS 3.8 reads the integers with `atoi`. Under
+    /// `rdem -check` the steps are one checked run and the commands run once after it.
+    fn run_command(&mut self, a: &mut Args, cmd: &Command) -> CmdResult {
+        a.read_integers_with_atoi();
+        let plan = crate::run::parse(&self.sim, a)?;
+        let Some((m, range)) = plan.every.clone() else {
+            return crate::run::run_plan(&mut self.sim, a, &plan);
+        };
+        if self.check.is_some() {
+            crate::run::run_plan(&mut self.sim, a, &plan)?;
+            return self.run_inline(cmd, range);
+        }
+        let mut left = plan.nsteps;
+        let mut first = true;
+        while (left > 0 || first) && !self.quit {
+            let n = left.min(m);
+            let step = self.sim.world_ref(a)?.step;
+            let chunk = plan.chunk(step, n, first, left <= n);
+            crate::run::run_chunk(&mut self.sim, a, chunk)?;
+            self.run_inline(cmd, range.clone())?;
+            left -= n;
+            first = false;
+        }
+        Ok(())
+    }
+
+    /// Runs words `range` of `cmd` as commands (the branches of `if`, `run every`).
     fn run_inline(&mut self, cmd: &Command, range: std::ops::Range<usize>) -> CmdResult {
         let inner = lexer::word_commands(cmd)?;
         for c in &inner[range] {

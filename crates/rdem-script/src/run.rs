@@ -14,21 +14,71 @@ use crate::fixes::{self, FixEntry, Notes, Stages};
 use crate::sim::Sim;
 use crate::thermo;
 
-/// `run N [upto]`.
-pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
+/// What a `run` line asks for: `run N [upto] [start N1] [stop N2] [pre yes|no]
+/// [post yes|no] [every M c1 c2 ...]`, checked against the current step as LIGGGHTS 3.8
+/// checks it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RunPlan {
+    /// Steps to run (after `upto`: up to N).
+    pub nsteps: u64,
+    /// `start N1`: the step the series of runs started at (`elaplong` counts from it).
+    pub start: Option<u64>,
+    /// `stop N2`: the step the series of runs ends at (checked; no style of rdem reads
+    /// it: LIGGGHTS' `ramp()` and the fixes that ramp over a run are not in rdem).
+    pub stop: Option<u64>,
+    /// `pre`: the full set-up before the run (`no` skips it except for the thermo output,
+    /// unless nothing ran yet).
+    pub pre: bool,
+    /// `post`: the full timing summary after the run (`no`: the loop-time line only).
+    pub post: bool,
+    /// `every M c1 c2 ...`: the run in chunks of M steps with the commands (the indices
+    /// of their words; empty for none or `NULL`) after each chunk.
+    pub every: Option<(u64, std::ops::Range<usize>)>,
+}
+
+/// One stretch of steps with its set-up and summary choices (a whole `run`, or one chunk
+/// of `run every`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Chunk {
+    /// Steps in it.
+    pub nsteps: u64,
+    /// The full set-up first (LAMMPS' `init` and `setup`); without it only the thermo
+    /// header and row and the due dumps, as LAMMPS' `output->setup`.
+    pub setup: bool,
+    /// The full timing summary after it (else the loop-time line only).
+    pub summary: bool,
+    /// LAMMPS' `beginstep` (`elaplong` counts from it).
+    pub begin: u64,
+}
+
+/// Reads a `run` line (after the command name).
+pub fn parse(sim: &Sim, a: &mut Args) -> CmdResult<RunPlan> {
     let n = a.u64("number of steps")?;
-    let mut upto = false;
+    let (mut upto, mut start, mut stop, mut pre, mut post) = (false, None, None, true, true);
+    let mut every = None;
     while !a.is_done() {
         match a.keyword(
             "run keyword",
             &["upto", "start", "stop", "pre", "post", "every"],
         )? {
             "upto" => upto = true,
-            k => {
-                return Err(a.error_prev(
-                    format!("run {k} is not supported yet"),
-                    Some("supported: 'run N' and 'run N upto'".into()),
-                ))
+            "start" => start = Some((a.pos(), a.u64("start step")?)),
+            "stop" => stop = Some((a.pos(), a.u64("stop step")?)),
+            "pre" => pre = a.yes_no("pre")?,
+            "post" => post = a.yes_no("post")?,
+            _ => {
+                // Every word after M is a command (so `every` comes last, as the manual
+                // says); a single NULL means none.
+                let m = a.count("every (steps per chunk)")?;
+                let first = a.pos();
+                let last = a.words().len();
+                let cmds = if last == first + 1 && a.words()[first].text == "NULL" {
+                    first..first
+                } else {
+                    first..last
+                };
+                a.seek(last);
+                every = Some((m, cmds));
             }
         }
     }
@@ -45,7 +95,61 @@ pub fn run(sim: &mut Sim, a: &mut Args) -> CmdResult {
     } else {
         n
     };
-    steps(sim, nsteps).map_err(|e| run_error(a, e))
+    if let Some((k, s)) = start {
+        if s > step {
+            return Err(a.error_at(
+                k,
+                format!("run start {s} is after the start of the run (step {step})"),
+                Some("start must be at or before the current step".into()),
+            ));
+        }
+    }
+    if let Some((k, s)) = stop {
+        if s < step + nsteps {
+            return Err(a.error_at(
+                k,
+                format!(
+                    "run stop {s} is before the end of the run (step {})",
+                    step + nsteps
+                ),
+                Some("stop must be at or after the run's last step".into()),
+            ));
+        }
+    }
+    Ok(RunPlan {
+        nsteps,
+        start: start.map(|s| s.1),
+        stop: stop.map(|s| s.1),
+        pre,
+        post,
+        every,
+    })
+}
+
+impl RunPlan {
+    /// The chunk of `nsteps` steps from `step`: `first` (the first chunk of `every`, which
+    /// always sets up) and `last` (the last one, which always prints the full summary),
+    /// as LAMMPS' `run` does.
+    pub fn chunk(&self, step: u64, nsteps: u64, first: bool, last: bool) -> Chunk {
+        Chunk {
+            nsteps,
+            setup: self.pre || first,
+            summary: self.post || last,
+            begin: self.start.unwrap_or(step),
+        }
+    }
+}
+
+/// `run` without `every` (the interpreter runs `every`'s chunks and commands).
+pub fn run_plan(sim: &mut Sim, a: &Args, plan: &RunPlan) -> CmdResult {
+    let step = sim.world_ref(a)?.step;
+    let chunk = plan.chunk(step, plan.nsteps, false, false);
+    run_chunk(sim, a, chunk)
+}
+
+/// Runs one chunk; errors point at `a`'s words.
+pub fn run_chunk(sim: &mut Sim, a: &Args, chunk: Chunk) -> CmdResult {
+    run_steps(sim, chunk).map_err(|e| run_error(a, e))
 }
 
 /// A run's error: at the word that introduced what failed when it is known (with the
@@ -73,6 +177,24 @@ fn run_error(a: &Args, e: RunError) -> ScriptError {
 
 /// Runs `nsteps` steps with set-up, output and the end-of-run report.
 pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
+    let step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
+    run_steps(
+        sim,
+        Chunk {
+            nsteps,
+            setup: true,
+            summary: true,
+            begin: step,
+        },
+    )
+}
+
+/// Runs a chunk of steps: set-up (or, after `pre no`, the thermo output alone), the
+/// steps with their output, and the end-of-run report.
+fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
+    let nsteps = chunk.nsteps;
+    // `pre no` is overridden before anything ran (LAMMPS' `first_update`).
+    let setup = chunk.setup || !sim.script.set_up;
     let m = crate::materials::materials(sim)?;
     {
         let w = sim
@@ -113,8 +235,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         w.lost_policy = sim.setup.lost;
         w.timers.reset();
     }
-    // LAMMPS' init: computes count what they keep through the run.
-    if let Some(w) = sim.world.as_ref() {
+    // LAMMPS' init: computes count what they keep through the run (skipped with the
+    // set-up after `pre no`, as LAMMPS skips `init`).
+    if let Some(w) = sim.world.as_ref().filter(|_| setup) {
         for c in &mut sim.defs.computes {
             c.imp.init(w, &c.head);
         }
@@ -122,6 +245,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
     let start_step = sim.world.as_ref().map(|w| w.step).unwrap_or(0);
     sim.script.run_first = start_step;
     sim.script.run_last = start_step + nsteps;
+    sim.script.run_begin = chunk.begin;
     sim.script.run_started = Instant::now();
     sim.outputs.thermo.last_printed = None;
     let builds0 = sim
@@ -130,25 +254,28 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         .map(|w| (w.neighbor.nbuilds, w.neighbor.ndangerous))
         .unwrap_or((0, 0));
     let stages = RunStages::of(sim);
-    // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
-    stages.pre_step(sim, start_step, true)?;
-    // As LIGGGHTS: only when there is no fix at all.
-    if sim.defs.fixes.is_empty() {
-        sim.warn_once("No fixes defined, atoms won't move");
+    if setup {
+        // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
+        stages.pre_step(sim, start_step, true)?;
+        // As LIGGGHTS: only when there is no fix at all.
+        if sim.defs.fixes.is_empty() {
+            sim.warn_once("No fixes defined, atoms won't move");
+        }
+        sim.outputs.out.line("Setting up run ...");
+        let want = stages.wants_virial(sim, start_step, true);
+        let w = sim.world.as_mut().expect("checked");
+        w.want_virial = want;
+        w.start_servos();
+        w.setup().map_err(engine_error)?;
+        sim.script.set_up = true;
+        stages.end_of_step(sim, start_step, true)?;
+        flush_world_warnings(sim);
+        let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
+        sim.outputs.out.line(&format!(
+            "Memory usage per processor = {} Mbytes",
+            crate::variables::format_g(mem, 4)
+        ));
     }
-    sim.outputs.out.line("Setting up run ...");
-    let want = stages.wants_virial(sim, start_step, true);
-    let w = sim.world.as_mut().expect("checked");
-    w.want_virial = want;
-    w.start_servos();
-    w.setup().map_err(engine_error)?;
-    stages.end_of_step(sim, start_step, true)?;
-    flush_world_warnings(sim);
-    let mem = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0) as f64 / 1048576.0;
-    sim.outputs.out.line(&format!(
-        "Memory usage per processor = {} Mbytes",
-        crate::variables::format_g(mem, 4)
-    ));
     if let Some(h) = thermo::header(sim) {
         sim.outputs.out.thermo_line(&h);
     }
@@ -197,7 +324,9 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
         p(nsteps, nsteps);
     }
     let loop_time = t0.elapsed().as_secs_f64();
-    report(sim, loop_time, nsteps, builds0);
+    // The set-up's build is not counted (as in LIGGGHTS).
+    let builds0 = (builds0.0 + u64::from(setup), builds0.1);
+    report(sim, loop_time, nsteps, builds0, chunk.summary);
     stages.end_of_run(sim)?;
     Ok(())
 }
@@ -365,13 +494,14 @@ fn spread(label: &str, vals: &[f64]) -> (String, String) {
 }
 
 /// The end-of-run report in LIGGGHTS' words.
-fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
+/// With `summary` false (`run ... post no`), the loop-time line alone.
+fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64), summary: bool) {
     let Some(w) = &sim.world else { return };
     let natoms = w.natoms();
     let nprocs = w.comm.size();
     let timers = w.timers;
-    // Builds during the steps (the set-up build is not counted, as in LIGGGHTS).
-    let nbuilds = w.neighbor.nbuilds.saturating_sub(builds0.0 + 1);
+    // Builds during the steps.
+    let nbuilds = w.neighbor.nbuilds.saturating_sub(builds0.0);
     let ndanger = w.neighbor.ndangerous - builds0.1;
     // Per-rank counts, gathered for the ave/max/min lines and histograms.
     let counts = w.comm.all_gather(&[
@@ -387,6 +517,12 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64)) {
         g(loop_time)
     )];
     lines.push(String::new());
+    if !summary {
+        for l in lines {
+            sim.outputs.out.line(&l);
+        }
+        return;
+    }
     let pct = |t: f64| {
         if loop_time > 0.0 {
             100.0 * t / loop_time

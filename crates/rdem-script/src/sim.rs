@@ -189,6 +189,11 @@ pub struct ScriptState {
     pub run_first: u64,
     /// Last step of the current run.
     pub run_last: u64,
+    /// LAMMPS' `beginstep`: `run ... start N1`, else the run's first step (`elaplong`).
+    pub run_begin: u64,
+    /// A run has set up (LAMMPS' `first_update`): `run ... pre no` skips the set-up only
+    /// after one.
+    pub set_up: bool,
     /// Wall-clock start of the current run.
     pub run_started: Instant,
     /// (step, simulated time) when the timestep last changed: `time` is
@@ -238,6 +243,8 @@ impl Sim {
                 started: Instant::now(),
                 run_first: 0,
                 run_last: 0,
+                run_begin: 0,
+                set_up: false,
                 run_started: Instant::now(),
                 time_origin: (0, 0.0),
             },

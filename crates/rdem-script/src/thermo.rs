@@ -119,10 +119,11 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
             .map(|w| w.step)
             .unwrap_or(0)
             .saturating_sub(sim.script.run_first) as f64,
+        // From `run ... start N1` when given (LAMMPS' beginstep).
         "elaplong" => w
             .map(|w| w.step)
             .unwrap_or(0)
-            .saturating_sub(sim.script.run_first) as f64,
+            .saturating_sub(sim.script.run_begin) as f64,
         "dt" => sim.dt(),
         "time" => sim.time(),
         // Wall time since the run's loop started (0 at set-up), as LIGGGHTS.

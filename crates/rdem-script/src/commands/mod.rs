@@ -2,7 +2,7 @@
 //! help the README's command table shows, and the LIGGGHTS commands it does not run. The
 //! handlers live in the files of this folder, grouped by what they act on. Flow-control
 //! commands (`include`, `label`, `jump`, `next`, `if`, `print`, `variable`, `log`, `echo`,
-//! `quit`) are rows too; [`crate::input`], which owns the file stack, runs them.
+//! `quit`, and `run`, whose `every` runs commands) are rows too; [`crate::input`], which owns the file stack, runs them.
 
 mod atoms;
 mod compute;
@@ -21,7 +21,7 @@ pub use crate::args::id_help;
 use crate::args::{nearest, Args, CmdResult};
 use crate::registry::{Registry, Row};
 use crate::sim::Sim;
-use crate::{dumps, fixes, run};
+use crate::{dumps, fixes};
 
 /// A command's handler.
 pub type Handler = fn(&mut Sim, &mut Args) -> CmdResult;
@@ -52,8 +52,8 @@ const fn sim(name: &'static str, handler: Handler, help: &'static str) -> Row<Co
     )
 }
 
-/// A command row whose integers LIGGGHTS 3.8 reads with `atoi` (checked there: `run`,
-/// `reset_timestep`, the IDs and types of `group id|type`: `group g id 1.` takes atom 1).
+/// A command row whose integers LIGGGHTS 3.8 reads with `atoi` (checked there: `run`
+/// (read so by the interpreter, which runs it), `reset_timestep`, the IDs and types of `group id|type`: `group g id 1.` takes atom 1).
 const fn sim_atoi(name: &'static str, handler: Handler, help: &'static str) -> Row<Command> {
     Row::runs(
         name,
@@ -126,7 +126,8 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("without a file name LIGGGHTS 3.8 writes to `log`; rdem asks for the name"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `line one\\|multi`, `format int\\|float\\|line\\|N`, `every`, `flush`")
             .notes("`norm yes` divides the printed extensive columns as LIGGGHTS does (`ke`, `etotal`, `c_` of ke/erotate/reduce sum, `f_` of check/timestep/gran); `line multi` prints LIGGGHTS 3.8's multi-line layout byte for byte (a banner with the step and CPU seconds, three `Label = value` items a line); `line yaml` is an error, as in LIGGGHTS 3.8 (a later LAMMPS layout); a new `thermo_style` goes back to `line one`, as LIGGGHTS"),
-        sim_atoi("run", run::run, "`N`, `N upto`"),
+        flow("run", "`N`, `upto`, `start N1`, `stop N2`, `pre yes\\|no`, `post yes\\|no`, `every M \"c1\" \"c2\" ...` (or `NULL`): the run in chunks of M steps with the commands after each")
+            .notes("`stop` is checked but changes nothing: no rdem style ramps over a run (no `ramp()`); `elaplong` counts from `start`; under `rdem -check` the chunks are one checked run and the commands run once"),
         sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
         sim("dump", dumps::dump, "the dump styles below"),
         sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`"),

@@ -16,12 +16,14 @@ mod ave_atom;
 pub mod ave_euler;
 mod ave_histo;
 mod ave_time;
+mod balance;
 mod check_timestep_gran;
 mod couple_cfd;
 mod engine;
 mod gravity;
 mod heat_gran;
 pub mod insert;
+mod insert_dense;
 mod insert_stream;
 pub(crate) mod liquid;
 mod massflow_mesh;
@@ -323,6 +325,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         particledistribution_discrete::ROW_NUMBER,
         insert::ROW_PACK,
         insert::ROW_RATE,
+        insert_dense::ROW,
         insert_stream::ROW,
         pour::ROW,
         massflow_mesh::ROW,
@@ -346,6 +349,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         couple_cfd::ROW,
         couple_cfd::ROW_FORCE,
         couple_cfd::ROW_IMPLICIT,
+        balance::ROW,
         Row::not_yet("bond/gran", "bonds"),
         Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],

@@ -368,7 +368,10 @@ impl CoeffTable {
         )?;
         let stiff = needs.stiffness.is_some();
         let abs = needs.stiffness == Some(true);
-        let kn = pair_table("kn", &m.kn, n, stiff, |v| v > 0.0, "must be > 0")?;
+        // A zero kn is LIGGGHTS 3.8's "no normal spring" for type pairs that never touch
+        // (walls of types 2 and 3 in a script's table); it runs them, and so does rdem.
+        // LIGGGHTS 3.8 also runs a negative kn (an attractive spring): rdem refuses it.
+        let kn = pair_table("kn", &m.kn, n, stiff, |v| v >= 0.0, "must be >= 0")?;
         let kt = pair_table("kt", &m.kt, n, stiff, |v| v >= 0.0, "must be >= 0")?;
         let (gn_name, gn_table, gt_name, gt_table) = if abs {
             ("gamman_abs", &m.gamman_abs, "gammat_abs", &m.gammat_abs)

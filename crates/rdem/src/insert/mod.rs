@@ -4,12 +4,14 @@
 //! is reproducible; positions and sizes differ from LIGGGHTS' (another generator), their
 //! statistics do not.
 
+pub mod dense;
 pub mod distribution;
 pub mod pack;
 mod place;
 pub mod stream;
 pub mod template;
 
+pub use dense::{DensePack, DenseReport};
 pub use distribution::{Distribution, Weighting};
 pub use pack::{FallFromTop, InsertPack, InsertReport, PackTarget, VelocityLaw};
 pub use stream::{InsertStream, StreamFace};
