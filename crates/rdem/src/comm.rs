@@ -143,7 +143,9 @@ pub trait Comm: std::fmt::Debug + Send {
 }
 
 /// One process owning the whole box. Ghosts are the periodic images within the cutoff,
-/// made axis by axis so that edge and corner images exist too.
+/// made axis by axis so that edge and corner images exist too; a particle has images
+/// through both faces of an axis shorter than twice the cutoff, and several layers of
+/// them along an axis shorter than the cutoff.
 #[derive(Debug, Clone, Default)]
 pub struct Serial {
     /// Shift of each ghost relative to its owner (index `g - nlocal`).
@@ -203,13 +205,20 @@ impl Comm for Serial {
                     self.shift[i - nlocal]
                 };
                 let xa = p.x[i][a];
-                if xa < domain.boxlo[a] + cutoff {
-                    p.push_ghost(i, l);
-                    self.shift.push(base + l);
+                // Image k (k = 1, 2, ...) lies within the cutoff beyond the upper face
+                // (shifted up) or the lower face (shifted down). Along a box shorter than
+                // the cutoff there are several layers.
+                let mut k = 1.0;
+                while xa < domain.boxlo[a] + cutoff - (k - 1.0) * prd[a] {
+                    p.push_ghost(i, k * l);
+                    self.shift.push(base + k * l);
+                    k += 1.0;
                 }
-                if xa >= domain.boxhi[a] - cutoff {
-                    p.push_ghost(i, -l);
-                    self.shift.push(base - l);
+                let mut k = 1.0;
+                while xa >= domain.boxhi[a] - cutoff + (k - 1.0) * prd[a] {
+                    p.push_ghost(i, -k * l);
+                    self.shift.push(base - k * l);
+                    k += 1.0;
                 }
             }
         }

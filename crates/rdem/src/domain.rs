@@ -396,20 +396,37 @@ impl Domain {
         self.boundary.iter().flatten().any(|b| b.is_shrink())
     }
 
-    /// Checks that every periodic length is at least twice `cutoff`, so that one layer of
-    /// ghost images suffices and no pair is seen through two images.
-    pub fn check_periodic_cutoff(&self, cutoff: f64) -> Result<()> {
+    /// Checks that every periodic length is at least twice `contact`, the largest
+    /// distance at which two particles interact (the neighbor cutoff without the skin):
+    /// then a particle interacts with at most one periodic image of each partner, and
+    /// never with its own image. Boxes shorter than twice the neighbor cutoff are allowed
+    /// (the ghosts then hold several images of a particle, and the neighbor list may hold
+    /// two images of one partner, one of which can touch); see
+    /// [`Domain::short_periodic_half`].
+    pub fn check_periodic_contact(&self, contact: f64) -> Result<()> {
         let prd = self.prd();
         for a in 0..3 {
-            if self.periodic(a) && prd[a] < 2.0 * cutoff {
+            if self.periodic(a) && prd[a] < 2.0 * contact {
                 return Err(Error::PeriodicBoxTooSmall {
                     axis: AXES[a],
                     len: prd[a],
-                    cutoff,
+                    contact,
                 });
             }
         }
         Ok(())
+    }
+
+    /// Half the shortest periodic length that is less than twice `cutoff`, if any: the
+    /// neighbor list can then hold more than one image of a partner (LAMMPS and
+    /// LIGGGHTS run such boxes too; their ghost exchange makes as many image layers as
+    /// the cutoff needs).
+    pub fn short_periodic_half(&self, cutoff: f64) -> Option<f64> {
+        let prd = self.prd();
+        (0..3)
+            .filter(|&a| self.periodic(a) && prd[a] < 2.0 * cutoff)
+            .map(|a| 0.5 * prd[a])
+            .reduce(f64::min)
     }
 }
 

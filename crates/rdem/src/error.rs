@@ -92,15 +92,17 @@ pub enum Error {
         /// Number of types.
         ntypes: u32,
     },
-    /// A periodic box too short for the neighbor cutoff.
-    #[error("periodic box length {len} along {axis} is less than twice the neighbor cutoff {cutoff}; enlarge the box or reduce the skin")]
+    /// A periodic box shorter than twice the largest contact distance: a particle could
+    /// touch two images of one partner (or its own image), which rdem does not support.
+    /// Boxes between that and twice the neighbor cutoff run (see [`crate::domain`]).
+    #[error("periodic box length {len} along {axis} is less than twice the largest contact distance {contact} (twice the largest radius, times the contact distance factor, or the longest bond): a particle could touch two periodic images of one partner, which rdem does not support; enlarge the box along {axis}")]
     PeriodicBoxTooSmall {
         /// Axis.
         axis: char,
         /// Box length.
         len: f64,
-        /// Neighbor cutoff.
-        cutoff: f64,
+        /// Largest contact distance (the neighbor cutoff without the skin).
+        contact: f64,
     },
 }
 

@@ -281,6 +281,42 @@ impl Comm for MpiComm {
                 } else if !up && m == 0 {
                     shift[a] = prd[a];
                 }
+                if np == 1 {
+                    // Images of this rank's own particles: one swap per layer of images
+                    // (several along a periodic axis shorter than the cutoff).
+                    let mut k = 1.0;
+                    loop {
+                        let reach = cutoff - (k - 1.0) * prd[a];
+                        let send: Vec<usize> = (0..n)
+                            .filter(|&i| {
+                                if up {
+                                    p.x[i][a] >= domain.subhi[a] - reach
+                                } else {
+                                    p.x[i][a] < domain.sublo[a] + reach
+                                }
+                            })
+                            .collect();
+                        if k > 1.0 && send.is_empty() {
+                            break;
+                        }
+                        let first = p.len();
+                        for &i in &send {
+                            p.push_ghost(i, k * shift);
+                        }
+                        let nrecv = send.len();
+                        self.swaps.push(Swap {
+                            send_to,
+                            recv_from,
+                            here: true,
+                            send,
+                            shift: k * shift,
+                            first,
+                            nrecv,
+                        });
+                        k += 1.0;
+                    }
+                    continue;
+                }
                 let send: Vec<usize> = if send_to.is_some() {
                     (0..n)
                         .filter(|&i| {
@@ -295,22 +331,6 @@ impl Comm for MpiComm {
                     Vec::new()
                 };
                 let first = p.len();
-                if np == 1 {
-                    for &i in &send {
-                        p.push_ghost(i, shift);
-                    }
-                    let nrecv = send.len();
-                    self.swaps.push(Swap {
-                        send_to,
-                        recv_from,
-                        here: true,
-                        send,
-                        shift,
-                        first,
-                        nrecv,
-                    });
-                    continue;
-                }
                 let mut buf = std::mem::take(&mut self.buf);
                 buf.clear();
                 for &i in &send {

@@ -910,6 +910,13 @@ pub struct Neighbor {
     pub contact_factor: f64,
     /// Pairs left out of the list (`neigh_modify exclude`); takes effect at the next build.
     pub exclude: Exclusions,
+    /// Half the shortest periodic length that is below twice the cutoff, when there is
+    /// one (set before each build). The list may then hold two images of one partner,
+    /// and the history saved by tag would be handed to both: [`Neighbor::build`] keeps it
+    /// only on pairs closer than this, the one image that can interact (the box is at
+    /// least twice the largest contact distance, see
+    /// [`crate::domain::Domain::check_periodic_contact`]).
+    pub short_periodic: Option<f64>,
     last_build: u64,
     /// True from a build until the history is saved: the list's indices still refer to
     /// the particles (ghosts included) it was built for.
@@ -993,7 +1000,7 @@ impl Neighbor {
     /// The neighbor cutoff for particles of largest radius `rmax`: max(2·rmax·f, reach) +
     /// skin (f the contact distance factor).
     pub fn cutoff_for(&self, rmax: f64) -> f64 {
-        (2.0 * rmax * self.factor()).max(self.reach) + self.settings.skin
+        self.contact_for(rmax) + self.settings.skin
     }
 
     /// The contact distance factor in use (at least 1).
@@ -1107,6 +1114,41 @@ impl Neighbor {
         self.list.hist.resize(self.list.partner.len() * w, 0.0);
         self.store.restore(&mut self.list, &p.tag, nlocal);
         self.store.clear();
+        if let Some(half) = self.short_periodic {
+            self.keep_history_of_near_images(p, half);
+        }
+    }
+
+    /// In a periodic box shorter than twice the cutoff: clears the restored history of
+    /// every pair at least `half` apart. The history is saved by tag pair, so every
+    /// listed image of a partner receives it; only one image can interact (two images
+    /// of one partner are a box length apart, at least twice the largest contact
+    /// distance, so at most one lies within it). The others would keep a copy
+    /// that the force pass never clears (it skips pairs beyond its near list) and that
+    /// a bond or a liquid bridge would act on. A pair `half` or more apart cannot touch
+    /// at the next force pass (positions do not change between a build and that pass),
+    /// so clearing it changes nothing else.
+    fn keep_history_of_near_images(&mut self, p: &Particles, half: f64) {
+        let list = &mut self.list;
+        let w = list.width;
+        if w == 0 {
+            return;
+        }
+        let lim = half * half;
+        for i in 0..list.first.len() - 1 {
+            for k in list.first[i] as usize..list.first[i + 1] as usize {
+                let j = list.partner[k] as usize;
+                if (p.x[j] - p.x[i]).length_squared() >= lim {
+                    list.hist[k * w..(k + 1) * w].fill(0.0);
+                }
+            }
+        }
+    }
+
+    /// Largest distance at which two particles of largest radius `rmax` interact: the
+    /// cutoff without the skin, max(2·rmax·f, reach).
+    pub fn contact_for(&self, rmax: f64) -> f64 {
+        (2.0 * rmax * self.factor()).max(self.reach)
     }
 
     /// Removes the excluded pairs from the freshly searched list (before histories are

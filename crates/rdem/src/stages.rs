@@ -243,7 +243,9 @@ impl World {
     }
 
     /// Re-neighboring 8: the ghost cutoff for the largest particle, checked against the
-    /// periodic box and the subdomain.
+    /// periodic box (at least twice the contact distance) and the subdomain; notes a
+    /// periodic length below twice the cutoff for the build
+    /// ([`crate::neighbor::Neighbor::short_periodic`]).
     pub(crate) fn checked_cutoff(&mut self) -> Result<f64> {
         let rmax = self.comm.max(
             self.particles.radius[..self.particles.nlocal()]
@@ -252,8 +254,10 @@ impl World {
                 .fold(0.0, f64::max),
         );
         let cutoff = self.neighbor.cutoff_for(rmax);
-        self.domain.check_periodic_cutoff(cutoff)?;
+        self.domain
+            .check_periodic_contact(self.neighbor.contact_for(rmax))?;
         self.domain.check_subdomain_cutoff(cutoff)?;
+        self.neighbor.short_periodic = self.domain.short_periodic_half(cutoff);
         Ok(cutoff)
     }
 

@@ -272,9 +272,10 @@ fn types_beyond_ntypes_are_refused_at_setup() {
 }
 
 #[test]
-fn periodic_box_must_hold_twice_the_cutoff() {
-    // Cutoff 2 r + skin = 0.25 + 0.0625 ... exact binary numbers: r = 0.125, skin = 0.25,
-    // cutoff 0.5, so a box of 1 is exactly twice the cutoff.
+fn periodic_box_must_hold_twice_the_contact_distance() {
+    // Exact binary numbers: r = 0.125, skin = 0.25, contact distance 2 r = 0.25, cutoff
+    // 0.5. A box of 0.5 is exactly twice the contact distance (and shorter than twice the
+    // cutoff: it runs, with two images of a particle in the list); below it is refused.
     let mk = |len_y: f64| {
         let mut w = World::new(
             Domain::new(
@@ -285,18 +286,19 @@ fn periodic_box_must_hold_twice_the_cutoff() {
             .unwrap(),
         );
         w.neighbor.settings.skin = 0.25;
-        w.add_particle(&NewParticle::at(DVec3::splat(0.5), 0.125, 1000.0))
+        w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.25, 0.5), 0.125, 1000.0))
             .unwrap();
         w
     };
     mk(1.0).setup().unwrap();
-    let short = f64::from_bits(1.0f64.to_bits() - 1);
+    mk(0.5).setup().unwrap();
+    let short = f64::from_bits(0.5f64.to_bits() - 1);
     assert_eq!(
         mk(short).setup().unwrap_err(),
         Error::PeriodicBoxTooSmall {
             axis: 'y',
             len: short,
-            cutoff: 0.5
+            contact: 0.25
         }
     );
     // A fixed axis can be as thin as it likes.
@@ -312,10 +314,11 @@ fn periodic_box_must_hold_twice_the_cutoff() {
     w.add_particle(&NewParticle::at(DVec3::new(0.5, 0.15, 0.5), 0.125, 1000.0))
         .unwrap();
     w.setup().unwrap();
-    // A particle that grows (fix adapt) beyond the limit is caught at the next set-up.
+    // A particle that grows (fix adapt) beyond the limit is caught at the next set-up:
+    // radius 0.3 makes the contact distance 0.6, more than half the box of 1 along x.
     let mut w = mk(1.0);
     w.setup().unwrap();
-    w.particles.set_radius(0, 0.2).unwrap();
+    w.particles.set_radius(0, 0.3).unwrap();
     assert!(matches!(
         w.setup(),
         Err(Error::PeriodicBoxTooSmall { axis: 'x', .. })

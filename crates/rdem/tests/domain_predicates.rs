@@ -557,18 +557,30 @@ fn inside_fixed_and_lost_only_look_at_fixed_faces() {
 }
 
 #[test]
-fn periodic_cutoff_check_is_twice_the_cutoff() {
+fn periodic_check_is_twice_the_contact_distance() {
     let d = Domain::new(
         DVec3::ZERO,
         v(1.0, 0.3, 5.0),
         [Boundary::Periodic, Boundary::Fixed, Boundary::Periodic],
     )
     .unwrap();
-    assert!(d.check_periodic_cutoff(0.5).is_ok());
-    match d.check_periodic_cutoff(up(0.5)) {
-        Err(Error::PeriodicBoxTooSmall { axis, len, cutoff }) => {
-            assert_eq!((axis, len, cutoff), ('x', 1.0, up(0.5)));
+    assert!(d.check_periodic_contact(0.5).is_ok());
+    match d.check_periodic_contact(up(0.5)) {
+        Err(Error::PeriodicBoxTooSmall { axis, len, contact }) => {
+            assert_eq!((axis, len, contact), ('x', 1.0, up(0.5)));
         }
         other => panic!("expected PeriodicBoxTooSmall, got {other:?}"),
     }
+    // Short for a cutoff above half a length: the half of the shortest such length.
+    assert_eq!(d.short_periodic_half(0.5), None);
+    assert_eq!(d.short_periodic_half(up(0.5)), Some(0.5));
+    assert_eq!(d.short_periodic_half(2.6), Some(0.5));
+    let z_only = Domain::new(
+        DVec3::ZERO,
+        v(1.0, 0.3, 5.0),
+        [Boundary::Fixed, Boundary::Fixed, Boundary::Periodic],
+    )
+    .unwrap();
+    assert_eq!(z_only.short_periodic_half(2.0), None);
+    assert_eq!(z_only.short_periodic_half(2.6), Some(2.5));
 }
