@@ -312,3 +312,50 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
         .join(" ");
     assert!(words.contains("first lost tag 2"), "{err}");
 }
+
+/// A box periodic along z and shorter than twice the neighbor cutoff (0.02 against
+/// 2 × 0.011; the contact distance is 0.008): an oblique impact with spin across the
+/// periodic face z = 0.02, which also crosses the subdomain face x = 0.05. Split along x
+/// (`processors 2 1 1`, z unsplit: each rank makes the images through both z faces
+/// itself) it ends as serially within 1e-12. Split along z (`processors 1 1 2`) the
+/// subdomains (0.01) are shorter than the cutoff: every rank stops with that error.
+#[test]
+fn a_short_periodic_axis_runs_when_unsplit_and_is_refused_when_split() {
+    if !have_mpirun() {
+        return;
+    }
+    let head = HEAD
+        .replace("boundary p f f", "boundary f f p")
+        .replace("neighbor 0.001 bin", "neighbor 0.003 bin");
+    let body = "\
+create_atoms 1 single 0.047 0.01 0.0165 units box
+create_atoms 1 single 0.052 0.0101 0.0035 units box
+set atom * diameter 0.008 density 2500
+set atom 1 vx 0.3 vz 0.8 omega 0 20 0
+set atom 2 vz -0.8
+variable a1 equal x[1]
+variable b1 equal vz[1]
+variable c1 equal omegay[1]
+variable d2 equal vx[2]
+variable e2 equal vz[2]
+thermo_style custom step atoms ke v_a1 v_b1 v_c1 v_d2 v_e2
+";
+    let script =
+        |grid: &str| format!("{head}processors {grid}\n{body}{FORMAT}thermo 1000\nrun 4000\n");
+    let serial = run(&script("1 1 1"), 0);
+    let reference = last_row(&serial);
+    // They collided: atom 1's vz is no longer 0.8.
+    assert!((reference[4] - 0.8).abs() > 0.1, "{reference:?}");
+    let out = run(&script("2 1 1"), 2);
+    assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
+    assert_close(&last_row(&out), &reference, 1e-12, "2 ranks along x");
+    let out = common::run_script_raw(&script("1 1 2"), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(
+        err.matches("the subdomains are 0.01 long along z, less than the neighbor cutoff 0.011")
+            .count(),
+        1,
+        "{err}"
+    );
+}

@@ -8,7 +8,10 @@
 //! j > i, and a pair of a local i with a ghost g when g lies "above" i (larger z, then y,
 //! then x), which picks exactly one of the two periodic images of a pair across a
 //! periodic face. The order of the partners within a row follows the bin traversal; it is
-//! deterministic but not sorted.
+//! deterministic but not sorted. In a periodic box shorter than twice the cutoff the list
+//! may hold several images of one partner (each image pair once, by the same rule); only
+//! one of them can touch, and only it keeps the history (see
+//! [`Neighbor::short_periodic`]).
 //!
 //! Binning (LAMMPS' default): bins of at least half the cutoff over the bounding box of
 //! all particles, and a stencil of the bin offsets whose nearest points are closer than
