@@ -150,9 +150,10 @@ fn contact_point_matches_liggghts_byte_for_byte() {
     let (ri, rj) = (0.001, 0.0009);
     for a in 0..3 {
         let want = r[a] + (r[3 + a] - r[a]) * ri / (ri + rj);
-        // Six printed digits of positions up to 1.8 mm.
+        // Six printed digits of positions up to 1.8 mm: each known to 5e-9 m. (Halving
+        // the overlap instead, r_i − δ/2 from i, would be 2.3e-6 m off.)
         assert!(
-            (r[32 + a] - want).abs() < 1e-9,
+            (r[32 + a] - want).abs() < 4e-9,
             "contact point {a}: {} vs {want}",
             r[32 + a]
         );
@@ -252,19 +253,20 @@ fn xml_force_chains_read_back_in_vtk() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let code = "import sys, vtk\n\
-def read(f):\n\
-    r = vtk.vtkXMLPolyDataReader() if f.endswith('.vtp') else vtk.vtkXMLUnstructuredGridReader()\n\
-    r.SetFileName(f); r.Update(); o = r.GetOutput(); cd = o.GetCellData()\n\
-    arrays = [cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())]\n\
-    vals = [cd.GetArray(a).GetComponent(c, m) for a in arrays for c in range(o.GetNumberOfCells()) for m in range(cd.GetArray(a).GetNumberOfComponents())]\n\
-    pts = [o.GetPoint(k) for k in range(o.GetNumberOfPoints())]\n\
-    return o.GetNumberOfPoints(), o.GetNumberOfCells(), arrays, vals, pts\n\
-a = read(sys.argv[1])\n\
-print(a[0], a[1], ' '.join(a[2]))\n\
-print(a[4][2])\n\
-for f in sys.argv[2:]:\n\
-    print(read(f) == a)\n";
+    let code = r#"import sys, vtk
+def read(f):
+    r = vtk.vtkXMLPolyDataReader() if f.endswith('.vtp') else vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(f); r.Update(); o = r.GetOutput(); cd = o.GetCellData()
+    arrays = [cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())]
+    vals = [cd.GetArray(a).GetComponent(c, m) for a in arrays for c in range(o.GetNumberOfCells()) for m in range(cd.GetArray(a).GetNumberOfComponents())]
+    pts = [o.GetPoint(k) for k in range(o.GetNumberOfPoints())]
+    return o.GetNumberOfPoints(), o.GetNumberOfCells(), arrays, vals, pts
+a = read(sys.argv[1])
+print(a[0], a[1], ' '.join(a[2]))
+print(a[4][2])
+for f in sys.argv[2:]:
+    print(read(f) == a)
+"#;
     let post = dir.join("post");
     let out = std::process::Command::new("python3")
         .args(["-c", code])
@@ -290,7 +292,8 @@ for f in sys.argv[2:]:\n\
         .map(|w| w.parse().unwrap())
         .collect();
     for (x, y) in p.iter().zip([0.000947364, 0.000105285, 3.15274e-08]) {
-        assert!((x - y).abs() < 1e-6 * y.abs(), "{p:?}");
+        // LIGGGHTS printed six digits: within half a unit of the sixth.
+        assert!((x - y).abs() < 5e-6 * y.abs(), "{p:?}");
     }
     assert_eq!(
         &lines[2..],
