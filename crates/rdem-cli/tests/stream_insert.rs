@@ -126,6 +126,57 @@ run 400
     assert!(last[4] >= -0.5, "{last:?}");
 }
 
+/// The packets follow the time step of the run, not the one in force when the fix was
+/// defined, as in LIGGGHTS 3.8. Recorded with LIGGGHTS 3.8 on this script (with `newton
+/// off`, `communicate single vel yes` and without `all_in`, which LIGGGHTS needs for a
+/// `mesh/surface` face), timestep 2e-4 before the fix and 1e-4 after it:
+/// `extrude_length 0.05` at 2 m/s gave "50.000000 particles every 250 steps", packets at
+/// steps 1 and 251 (at the definition's 2e-4 it would be every 125 steps);
+/// `particlerate 1000 insert_every 100` gave "10.000000 particles every 100 steps",
+/// 10 at steps 1, 101, 201 (not 20).
+#[test]
+fn packets_follow_the_timestep_of_the_run() {
+    let head = HEAD.replace("timestep 1e-4\n", "timestep 2e-4\n");
+    let stl = square(0.1);
+    let cases = [
+        (
+            "nparticles 120 particlerate 2000 vel constant 0 0 -2 overlapcheck yes \
+             verbose yes insertion_face face extrude_length 0.05",
+            "50.000000 particles every 250 steps",
+            [(250.0, 50.0), (300.0, 100.0)],
+        ),
+        (
+            "nparticles 120 particlerate 1000 insert_every 100 vel constant 0 0 -2 \
+             overlapcheck yes verbose yes insertion_face face",
+            "10.000000 particles every 100 steps",
+            [(150.0, 20.0), (250.0, 30.0)],
+        ),
+    ];
+    for (words, info, counts) in cases {
+        let script = format!(
+            "{head}fix ins all insert/stream seed 10039 distributiontemplate pdd {words}
+timestep 1e-4
+thermo 50
+run 300
+"
+        );
+        let out = run_with_files_raw(&script, &[("face.stl", &stl)], None);
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(out.status.success(), "{text}");
+        assert!(
+            text.contains(&format!(
+                "INFO: Particle insertion ins: {info} - particle rate"
+            )),
+            "{text}"
+        );
+        let rows = thermo_rows(&text);
+        for (step, atoms) in counts {
+            let r = rows.iter().find(|r| r[0] == step).unwrap();
+            assert_eq!(r[1], atoms, "step {step}: {text}");
+        }
+    }
+}
+
 /// Bad combinations are refused with the line and the keyword to fix.
 #[test]
 fn stream_errors_are_located() {

@@ -108,6 +108,24 @@ fn keyword_order_is_liggghts_order() {
 }
 
 #[test]
+fn contact_point_is_zero_for_walls_as_in_liggghts() {
+    // LIGGGHTS 3.8 leaves a wall contact's point at 0 0 0 (point2.txt) and draws it as a
+    // third point in the force chains (point2.vtk: 6 points, 6 lines for 2 contacts).
+    let (dir, _) = run("in.wall_point");
+    let ours = read(dir.join("post/point2.txt"));
+    assert_same(&ours, &read(data().join("point2.txt")), "point2.txt");
+    for row in rows(&ours) {
+        assert_eq!(row.len(), 13, "pos id delta contactPoint");
+        assert_eq!(&row[10..], &[0.0, 0.0, 0.0]);
+    }
+    assert_eq!(
+        read(dir.join("post/point2.vtk")),
+        read(data().join("point2.vtk")),
+        "point2.vtk differs from LIGGGHTS 3.8's"
+    );
+}
+
+#[test]
 fn wall_local_needs_a_mesh_wall() {
     let script = "atom_style granular\nboundary f f f\nregion b block 0 1 0 1 0 1\n\
                   create_box 1 b\nfix m1 all property/global youngsModulus peratomtype 1e7\n\

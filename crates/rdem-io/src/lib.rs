@@ -23,6 +23,7 @@
 
 pub mod atom_vtk;
 pub mod atomic;
+pub mod chains_vtk;
 pub mod data_file;
 pub mod dump_text;
 pub mod euler_vtk;
@@ -37,6 +38,7 @@ pub mod vtk_xml;
 
 pub use atom_vtk::{AtomVtkDump, Compressor};
 pub use atomic::{write_atomic, AppendFile, IoError};
+pub use chains_vtk::ForceChains;
 pub use data_file::{
     format_data, parse_data, read_data, write_data, DataAtom, DataError, DataFile, DataVelocity,
     ReadDataError,

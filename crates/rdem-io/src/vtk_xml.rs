@@ -323,6 +323,18 @@ fn write_int(out: &mut String, v: i64) {
 
 /// Writes one `<DataArray>` element at `indent` spaces.
 fn write_array(out: &mut String, indent: usize, a: &XmlArray, enc: XmlEncoding) {
+    write_array_keyed(out, indent, a, enc, false);
+}
+
+/// [`write_array`]; with `key_if_empty`, an empty array of several components also gets
+/// its `L2_NORM_RANGE` key (of `1e+299`, `-1e+299`), as in LIGGGHTS' force-chain files.
+pub(crate) fn write_array_keyed(
+    out: &mut String,
+    indent: usize,
+    a: &XmlArray,
+    enc: XmlEncoding,
+    key_if_empty: bool,
+) {
     let pad = " ".repeat(indent);
     let n = a.data.len();
     let nc = a.components.max(1);
@@ -372,7 +384,7 @@ fn write_array(out: &mut String, indent: usize, a: &XmlArray, enc: XmlEncoding) 
         encode_binary(out, &a.data.bytes(), enc);
         out.push('\n');
     }
-    if nc > 1 && ntuples > 0 {
+    if nc > 1 && (ntuples > 0 || key_if_empty) {
         let g = Printf::parse("%.11g").expect("valid");
         let _ = writeln!(
             out,
@@ -395,7 +407,8 @@ fn xml_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-fn file_header(out: &mut String, kind: &str, enc: XmlEncoding) {
+/// The XML declaration and the `VTKFile` start tag of a `kind` file.
+pub(crate) fn file_header(out: &mut String, kind: &str, enc: XmlEncoding) {
     let _ = write!(
         out,
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"{kind}\" version=\"0.1\" \

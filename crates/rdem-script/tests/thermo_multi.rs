@@ -75,6 +75,27 @@ fn multi_layout_as_liggghts() {
     ));
 }
 
+/// `thermo_style multi`: step, atoms, ke and cpu in the multi-line layout (LIGGGHTS
+/// 3.8's `screen_style.liggghts` for `in.style_multi`), also with `norm yes`.
+#[test]
+fn style_multi_as_liggghts() {
+    let src = std::fs::read_to_string(format!("{DIR}/in.style_multi")).unwrap();
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    if let Err(e) = i.run_source("in.style_multi", &src) {
+        panic!("{:?}", miette::Report::new(*e));
+    }
+    let ours = thermo_lines(&i.sim.outputs.out.captured.clone().unwrap_or_default());
+    let theirs =
+        thermo_lines(&std::fs::read_to_string(format!("{DIR}/screen_style.liggghts")).unwrap());
+    // 2 runs: 3 outputs of a banner and 2 lines, then 2.
+    assert_eq!(theirs.len(), 9 + 1 + 6 + 1, "{theirs:#?}");
+    assert_eq!(ours, theirs);
+    assert!(theirs
+        .iter()
+        .any(|l| l
+            == "Step     =             15 Atoms    =              2 KinEng   =         9.1688 "));
+}
+
 /// `line yaml` (a later LAMMPS layout) and other words: LIGGGHTS 3.8 stops ("Illegal
 /// thermo_modify command"); rdem with a located error listing `one`, `multi`.
 #[test]

@@ -120,8 +120,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("compute_modify", compute::compute_modify, "`extra N` (also `extra/dof`), `dynamic yes\\|no` (also `dynamic/dof`), `thermo yes\\|no`; `thermo_temp` and user computes")
             .notes("`extra/dof`, `dynamic/dof` are later LAMMPS names LIGGGHTS 3.8 refuses; a keyword a style does not use is accepted with a warning"),
         sim("thermo", thermo::thermo, "`N`"),
-        sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`")
-            .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8"),
+        sim("thermo_style", thermo::thermo_style, "`custom` with keywords `step elapsed elaplong dt time cpu atoms ke temp pe etotal vol lx ly lz xlo xhi ylo yhi zlo zhi`, `c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`; `one` and `multi` (step atoms ke cpu, on one line or in the multi-line layout)")
+            .notes("`pe` is 0 (granular contacts store no potential energy); `temp` is `c_thermo_temp` (LIGGGHTS 3.8 has no `temp` keyword); `ke` is Σ ½ m v² for any count, as LIGGGHTS 3.8; `one`/`multi` do not append `vol` when the box changes (LIGGGHTS' manual says they do)"),
         sim("thermo_log", thermo::thermo_log, "`FILE [append]`, `none`: thermo's lines also go to FILE")
             .notes("without a file name LIGGGHTS 3.8 writes to `log`; rdem asks for the name"),
         sim("thermo_modify", thermo::thermo_modify, "`lost error\\|warn\\|ignore`, `norm`, `line one\\|multi`, `format int\\|float\\|line\\|N`, `every`, `flush`")

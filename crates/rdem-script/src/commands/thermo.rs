@@ -65,11 +65,12 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
             c
         }
-        "one" => {
+        // `multi`: the items of `one` in the layout of `thermo_modify line multi` (LIGGGHTS
+        // 3.8's manual; its screen compared in tests/thermo_multi.rs).
+        _ => {
             origins = vec![None; 4];
             ["step", "atoms", "ke", "cpu"].map(String::from).to_vec()
         }
-        _ => return Err(a.error_prev("thermo_style multi is not supported; use custom", None)),
     };
     if sim.outputs.thermo.norm
         || !sim.outputs.thermo.col_format.is_empty()
@@ -88,7 +89,7 @@ pub(super) fn thermo_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.outputs.thermo.int_format = None;
     sim.outputs.thermo.float_format = None;
     sim.outputs.thermo.line_format = None;
-    sim.outputs.thermo.multi = false;
+    sim.outputs.thermo.multi = style == "multi";
     Ok(())
 }
 

@@ -2,8 +2,10 @@
 //! (both particles in the group), with the columns the keywords select, in LIGGGHTS
 //! 3.8's order whatever the order of the keywords: pos (6), vel (6), id (3), force (3),
 //! force_normal (3), force_tangential (3), torque (3), history (the contact law's
-//! history values), contactArea (1), delta (1), heatFlux (1). Without keywords: pos,
-//! vel, id, force, torque, history and contactArea.
+//! history values), contactArea (1), delta (1), contactPoint (3), heatFlux (1). Without
+//! keywords: pos, vel, id, force, torque, history and contactArea. (The manual lists
+//! heatFlux before contactPoint; LIGGGHTS 3.8 writes contactPoint first, measured with
+//! `id heatFlux contactPoint`: `1 2 0 0.0097546 -2.38853e-05 4.48546e-05 8.3533`.)
 //!
 //! Values as LIGGGHTS 3.8 gives them (checked against its output in
 //! `crates/rdem-cli/tests/local_dump.rs`): positions and velocities of i then j; the two
@@ -11,6 +13,8 @@
 //! components along and across the line of centres; the contact law's torque on i
 //! (without rolling friction, which LIGGGHTS leaves out too); the contact area of the
 //! two spheres' geometric intersection, π a²; the overlap r_i + r_j − |x_i − x_j|; the
+//! contact point, on the line of centres at the fraction r_i/(r_i + r_j) of the way from
+//! i to j (LIGGGHTS 3.8's values, see `crates/rdem-cli/tests/local_dump.rs`); the
 //! heat flow into i through the contact from the temperatures at the time of output
 //! (`fix heat/gran`'s conductance, [`rdem::heat::HeatConduction::pair_flow`]; LIGGGHTS
 //! 3.8 gives the same, measured, and stops without a `fix heat/gran`).
@@ -29,7 +33,7 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
     parse,
     "per-contact values of the pair contacts (`dump local`, `dump local/gran/vtk`)",
 )
-.notes("`heatFlux` needs `fix heat/gran`; `contactPoint` and `ms_id` are not supported yet");
+.notes("`heatFlux` needs `fix heat/gran`; `ms_id` is not supported yet");
 
 /// The keywords, in LIGGGHTS' column order.
 const KEYWORDS: [&str; 13] = [
@@ -43,8 +47,8 @@ const KEYWORDS: [&str; 13] = [
     "history",
     "contactArea",
     "delta",
-    "heatFlux",
     "contactPoint",
+    "heatFlux",
     "ms_id",
 ];
 
@@ -61,6 +65,7 @@ pub(super) struct Columns {
     pub(super) history: bool,
     pub(super) contact_area: bool,
     pub(super) delta: bool,
+    pub(super) contact_point: bool,
     pub(super) heat_flux: bool,
 }
 
@@ -90,6 +95,7 @@ impl Columns {
             (c.history, "history", hist_width),
             (c.contact_area, "contactArea", 1),
             (c.delta, "delta", 1),
+            (c.contact_point, "contactPoint", 3),
             (c.heat_flux, "heatFlux", 1),
         ] {
             if on {
@@ -155,10 +161,11 @@ impl ScriptCompute for PairGranLocal {
             let d = p.x[i] - p.x[j];
             let dist = d.length();
             let f = rec.f[k];
-            // Along the unit vector from i to j, as LIGGGHTS takes it (the same value; the
-            // sign of a zero component follows it: LIGGGHTS writes −0 there).
+            // Along the unit vector from i to j, as LIGGGHTS takes it: x_j − x_i, whose zero
+            // components are +0, so that a zero component of a force pushing i away from
+            // j is −0, as LIGGGHTS writes it (measured: `-0.133184 -0.0147983 -0`).
             let fnorm = if dist > 0.0 {
-                let n = -d / dist;
+                let n = (p.x[j] - p.x[i]) / dist;
                 n * f.dot(n)
             } else {
                 f
@@ -199,6 +206,11 @@ impl ScriptCompute for PairGranLocal {
             }
             if cols.delta {
                 out.push(rec.delta[k]);
+            }
+            if cols.contact_point {
+                let (ri, rj) = (p.radius[i], p.radius[j]);
+                let q = p.x[i] + (p.x[j] - p.x[i]) * (ri / (ri + rj));
+                out.extend_from_slice(&[q.x, q.y, q.z]);
             }
             if let Some(h) = heat {
                 out.push(h.pair_flow(p, i, j, dist));
@@ -256,13 +268,14 @@ pub(super) fn parse_columns(a: &mut Args, style: &str) -> CmdResult<Columns> {
             "history" => c.history = true,
             "contactArea" => c.contact_area = true,
             "delta" => c.delta = true,
+            "contactPoint" => c.contact_point = true,
             "heatFlux" => c.heat_flux = true,
             other => {
                 return Err(a.error_prev(
                     format!("{style}: keyword '{other}' is not supported yet"),
                     Some(
                         "use pos, vel, id, force, force_normal, force_tangential, torque, \
-                         history, contactArea, delta or heatFlux"
+                         history, contactArea, delta, contactPoint or heatFlux"
                             .to_string(),
                     ),
                 ))

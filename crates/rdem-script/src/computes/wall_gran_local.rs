@@ -2,8 +2,8 @@
 //! the group with a mesh wall, with the columns the keywords select, in LIGGGHTS 3.8's
 //! order whatever the order of the keywords: pos (6), vel (6), id (3), force (3),
 //! force_normal (3), force_tangential (3), torque (3), history (the wall model's history
-//! values), contactArea (1), delta (1), heatFlux (1). Without keywords: pos, vel, id, force, torque,
-//! history and contactArea.
+//! values), contactArea (1), delta (1), contactPoint (3), heatFlux (1). Without keywords:
+//! pos, vel, id, force, torque, history and contactArea.
 //!
 //! As in LIGGGHTS 3.8 (its manual: "only mesh walls can be used"), the contacts are
 //! those of the last `fix wall/gran` with mesh walls defined before the compute; a
@@ -14,7 +14,9 @@
 //! triangle (its order in the file) and the particle's ID; the contact force on the
 //! particle, its parts along the wall normal and across it; the contact law's torque on
 //! the particle; the history values; π (r² − d²) with d the centre's distance to the
-//! wall; the overlap r − d; the heat flow into the particle from the wall's temperature
+//! wall; the overlap r − d; the contact point as LIGGGHTS 3.8 gives it for a wall: 0 0 0
+//! (measured: `pos id delta contactPoint` on a sphere pressed into a mesh plate gives
+//! `... 0 0 2 0.000149916 0 0 0`; the closest point of the wall is in `pos`); the heat flow into the particle from the wall's temperature
 //! at the time of output (`fix heat/gran`'s conductance; 0 for a wall without a
 //! temperature). Rows are ordered by mesh, triangle, then particle. The
 //! contact law is evaluated from the state when the compute is invoked, as LIGGGHTS
@@ -38,7 +40,8 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
 .notes(
     "mesh walls only, as LIGGGHTS 3.8; one per script (LIGGGHTS: one per fix wall/gran); \
      `heatFlux` needs `fix heat/gran` (0 on a wall without a temperature); \
-     `contactPoint` and `ms_id` are not supported yet",
+     `contactPoint` is 0 0 0 as in LIGGGHTS 3.8 (the wall's closest point is in `pos`); \
+     `ms_id` is not supported yet",
 );
 
 /// The compute.
@@ -130,6 +133,10 @@ impl ScriptCompute for WallGranLocal {
             }
             if cols.delta {
                 out.push(radius - r.dist);
+            }
+            if cols.contact_point {
+                // LIGGGHTS 3.8 leaves a wall contact's point at zero.
+                out.extend_from_slice(&[0.0; 3]);
             }
             if let Some(h) = heat {
                 let surface = &w.meshes[wall.meshes[r.mesh as usize]];

@@ -1,18 +1,21 @@
 //! `dump ID group local/gran/vtk N file c_ID`: force chains for ParaView, one line cell
-//! per contact of a `compute pair/gran/local` that gives `pos` (or per bond of a `compute
-//! pair/gran/local/bond`, whose torque_normal and torque_tangential arrays follow torque,
-//! as LIGGGHTS-INL names them), as LIGGGHTS 3.8 writes
-//! them (legacy VTK 5.1 ASCII polydata): the two particle centres as points (`%g` of
-//! the single-precision value), and
-//! per line the compute's other groups as `double` field arrays (`%.11g`), named and
-//! ordered as LIGGGHTS names them: vel1 vel2 id1 id2 force force_normal force_tangential
-//! torque contact_area delta (the periodic flag and the history are not written). Nine
-//! values per text line, each followed by a space. The compute ID is written without
-//! `c_`, as in LIGGGHTS.
+//! per contact of a `compute pair/gran/local` (or `wall/gran/local`) that gives `pos`
+//! (or per bond of a `compute pair/gran/local/bond`, whose torque_normal and
+//! torque_tangential arrays follow torque, as LIGGGHTS-INL names them), as LIGGGHTS 3.8
+//! writes them ([`rdem_io::ForceChains`]): the suffix picks the format, legacy VTK 5.1
+//! ASCII polydata (`.vtk`), VTK XML PolyData (`.vtp`) or UnstructuredGrid (`.vtu`),
+//! ASCII unless `dump_modify binary yes` or `compressor` (XML only), as LIGGGHTS 3.8.
+//! The two particle centres are the points (single precision), and per line the
+//! compute's other groups are `double` arrays, named and ordered as LIGGGHTS names
+//! them: vel1 vel2 id1 id2 force force_normal force_tangential torque contact_area delta
+//! (the periodic flag, the history and the contact point are not written as arrays).
+//! With `contactPoint`, LIGGGHTS 3.8 draws each contact as three points (centre i,
+//! centre j, contact point) and three lines (i–j, i–point, j–point) carrying the same
+//! values; so does rdem. The compute ID is written without `c_`, as in LIGGGHTS.
 
 use std::path::PathBuf;
 
-use rdem_io::{write_atomic, DumpFileName, Printf, Sort, Value};
+use rdem_io::{write_atomic, Compressor, DumpFileName, ForceChains, Sort};
 
 use super::local::gather_local;
 use super::particles::Done;
@@ -24,9 +27,9 @@ use crate::sim::Sim;
 pub(super) const ROW: DumpRow = DumpRow::runs(
     "local/gran/vtk",
     parse,
-    "force chains (legacy .vtk lines) from a `compute pair/gran/local` with `pos`",
+    "force chains (lines) from a `compute pair/gran/local` with `pos`: legacy `.vtk`, XML `.vtp` (PolyData) or `.vtu` (UnstructuredGrid)",
 )
-.notes("legacy `.vtk` only (`.vtp`/`.pvtu` not supported yet); bonds through `compute pair/gran/local/bond`");
+.notes("parallel `.pvtp`/`.pvtu` not supported yet; `binary`/`compressor` for the XML files only; bonds through `compute pair/gran/local/bond`");
 
 /// The compute's index, or why it cannot be dumped.
 fn compute_of(sim: &Sim, id: &str) -> Result<usize, String> {
@@ -48,40 +51,98 @@ fn compute_of(sim: &Sim, id: &str) -> Result<usize, String> {
 }
 
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
-    if !file.ends_with(".vtk") {
+    let format = if file.ends_with(".vtk") {
+        Format::Legacy
+    } else if file.ends_with(".vtp") {
+        Format::Vtp
+    } else if file.ends_with(".vtu") {
+        Format::Vtu
+    } else {
         return Err(a.error_prev(
-            "dump local/gran/vtk: only legacy .vtk files are supported yet",
-            Some("name the file post/chain*.vtk".into()),
+            format!("dump local/gran/vtk: the file name '{file}' must end in .vtk, .vtp or .vtu"),
+            Some(
+                "the suffix picks the format: .vtk legacy VTK, .vtp XML PolyData, .vtu XML \
+                 UnstructuredGrid (the parallel .pvtp/.pvtu are not supported yet)"
+                    .into(),
+            ),
         ));
-    }
+    };
     let id = a.word("compute ID (of a pair/gran/local)")?;
     compute_of(sim, id).map_err(|m| a.error_prev(m, None))?;
     Ok((
         Box::new(LocalGranVtk {
             name: DumpFileName::new(file),
+            format,
+            binary: false,
+            compressor: Compressor::None,
         }),
         vec![id.to_string()],
     ))
 }
 
-struct LocalGranVtk {
-    name: DumpFileName,
+/// The file format, from the name's suffix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Legacy,
+    Vtp,
+    Vtu,
 }
 
-/// Writes `values` nine to a line, each followed by a space.
-fn rows(out: &mut String, values: impl Iterator<Item = f64>, f: &Printf) {
-    let mut k = 0;
-    for v in values {
-        f.write(out, Value::Float(v));
-        out.push(' ');
-        k += 1;
-        if k % 9 == 0 {
-            out.push('\n');
+struct LocalGranVtk {
+    name: DumpFileName,
+    format: Format,
+    /// `dump_modify binary` (XML files).
+    binary: bool,
+    /// `dump_modify compressor` (XML files).
+    compressor: Compressor,
+}
+
+/// The lines of a snapshot from the compute's rows (`n` values each, in `groups`): the
+/// two centres (and, with `contactPoint`, the contact point: three points, three lines
+/// i–j, i–point, j–point, each with the contact's values, as LIGGGHTS 3.8 draws them),
+/// and the arrays as LIGGGHTS splits and names them.
+fn chains(groups: &[(&str, usize, usize)], data: &[f64], n: usize) -> ForceChains {
+    let nrows = data.len().checked_div(n).unwrap_or(0);
+    let find = |name: &str| groups.iter().find(|g| g.0 == name).map(|g| g.1);
+    let pos = find("pos").expect("checked at definition");
+    let cp = find("contactPoint");
+    let per = if cp.is_some() { 3 } else { 1 };
+    let mut c = ForceChains::default();
+    for r in 0..nrows {
+        let row = &data[r * n..(r + 1) * n];
+        let mut pts = row[pos..pos + 6].to_vec();
+        if let Some(at) = cp {
+            pts.extend_from_slice(&row[at..at + 3]);
+        }
+        // Single precision, as the `float` points LIGGGHTS writes.
+        c.points.extend(pts.iter().map(|&v| v as f32));
+        let k = (r * (pts.len() / 3)) as i64;
+        if cp.is_some() {
+            c.lines.extend([[k, k + 1], [k, k + 2], [k + 1, k + 2]]);
+        } else {
+            c.lines.push([k, k + 1]);
         }
     }
-    if k % 9 != 0 {
-        out.push('\n');
+    let mut arrays: Vec<(&str, usize, usize)> = Vec::new();
+    for &(name, at, w) in groups {
+        match name {
+            "vel" => arrays.extend([("vel1", at, 3), ("vel2", at + 3, 3)]),
+            "id" => arrays.extend([("id1", at, 1), ("id2", at + 1, 1)]),
+            "pos" | "history" | "contactPoint" => {}
+            "contactArea" => arrays.push(("contact_area", at, 1)),
+            _ => arrays.push((name, at, w)),
+        }
     }
+    for (name, at, w) in arrays {
+        let mut values = Vec::with_capacity(nrows * per * w);
+        for r in 0..nrows {
+            for _ in 0..per {
+                values.extend_from_slice(&data[r * n + at..r * n + at + w]);
+            }
+        }
+        c.arrays.push((name.to_string(), w, values));
+    }
+    c
 }
 
 impl DumpStyle for LocalGranVtk {
@@ -100,49 +161,12 @@ impl DumpStyle for LocalGranVtk {
         let Some(data) = data else {
             return Ok(Vec::new());
         };
-        let nrows = data.len().checked_div(n).unwrap_or(0);
-        let g = Printf::default_float();
-        let dbl = Printf::parse("%.11g").expect("a valid format");
-        let mut out = String::from(
-            "# vtk DataFile Version 5.1\nGenerated by LIGGGHTS\nASCII\nDATASET POLYDATA\n",
-        );
-        out.push_str(&format!("POINTS {} float\n", 2 * nrows));
-        if nrows > 0 {
-            let pos = groups.iter().find(|x| x.0 == "pos").expect("checked").1;
-            let d = &data;
-            // Single precision, as the `float` points LIGGGHTS writes.
-            let pts =
-                (0..nrows).flat_map(|r| (0..6).map(move |k| d[r * n + pos + k] as f32 as f64));
-            rows(&mut out, pts, &g);
-            out.push_str(&format!(
-                "LINES {} {}\nOFFSETS vtktypeint64\n",
-                nrows + 1,
-                2 * nrows
-            ));
-            rows(&mut out, (0..=nrows).map(|k| (2 * k) as f64), &g);
-            out.push_str("CONNECTIVITY vtktypeint64\n");
-            rows(&mut out, (0..2 * nrows).map(|k| k as f64), &g);
-            // The arrays, as LIGGGHTS splits and names them.
-            let mut arrays: Vec<(&str, usize, usize)> = Vec::new();
-            for &(name, at, w) in &groups {
-                match name {
-                    "vel" => arrays.extend([("vel1", at, 3), ("vel2", at + 3, 3)]),
-                    "id" => arrays.extend([("id1", at, 1), ("id2", at + 1, 1)]),
-                    "pos" | "history" => {}
-                    "contactArea" => arrays.push(("contact_area", at, 1)),
-                    _ => arrays.push((name, at, w)),
-                }
-            }
-            out.push_str(&format!(
-                "CELL_DATA {nrows}\nFIELD FieldData {}\n",
-                arrays.len()
-            ));
-            for (name, at, w) in arrays {
-                out.push_str(&format!("{name} {w} {nrows} double\n"));
-                let vals = (0..nrows).flat_map(|r| (0..w).map(move |k| r * n + at + k));
-                rows(&mut out, vals.map(|i| data[i]), &dbl);
-            }
-        }
+        let c = chains(&groups, &data, n);
+        let out = match self.format {
+            Format::Legacy => c.format_legacy(),
+            Format::Vtp => c.format_xml(self.compressor.encoding(self.binary), false),
+            Format::Vtu => c.format_xml(self.compressor.encoding(self.binary), true),
+        };
         let path: PathBuf = self.name.path(step, 0);
         write_atomic(&path, out.as_bytes()).map_err(|e| e.to_string())?;
         Ok(vec![(time, path)])
@@ -158,5 +182,29 @@ impl DumpStyle for LocalGranVtk {
 
     fn set_sort(&mut self, _s: Sort) -> Result<(), NotHere> {
         Err(("sort does not apply to dump local/gran/vtk", None))
+    }
+
+    fn set_binary(&mut self, yes: bool) -> Result<(), NotHere> {
+        if self.format == Format::Legacy {
+            return Err((
+                "binary for dump local/gran/vtk is supported with .vtp or .vtu files only",
+                Some("legacy .vtk force chains are written as ASCII (binary not supported yet)"),
+            ));
+        }
+        self.binary = yes;
+        Ok(())
+    }
+
+    fn set_compressor(&mut self, c: Compressor) -> Result<(), NotHere> {
+        if self.format == Format::Legacy {
+            return Err((
+                "compressor applies to VTK XML output (.vtp or .vtu files)",
+                Some("legacy .vtk files cannot be compressed"),
+            ));
+        }
+        // As LIGGGHTS 3.8: a compressor alone makes the data binary.
+        self.compressor = c;
+        self.binary |= c != Compressor::None;
+        Ok(())
     }
 }

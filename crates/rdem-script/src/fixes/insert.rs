@@ -65,6 +65,9 @@ pub struct Inserter {
     pub verbose: bool,
     /// What the definition reports, printed when it is installed.
     pub announce: Option<Notes>,
+    /// `insert/stream` with `verbose yes`: its rate line is still to be printed, at the
+    /// first run's set-up with that run's time step (as LIGGGHTS 3.8 prints it).
+    pub rate_line_due: bool,
 }
 
 /// State of `insert/rate/region` (and `fix pour`).
@@ -402,6 +405,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         rate: rate_state,
         verbose,
         announce: None,
+        rate_line_due: false,
     }))
 }
 
@@ -433,6 +437,30 @@ impl ScriptFix for Inserter {
     /// `f_ID[1]`, `f_ID[2]`: particles inserted so far and their mass.
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
         Ok(vec![self.total as f64, self.total_mass])
+    }
+
+    /// `insert/stream`: at each run's set-up, the packets follow the run's time step (a
+    /// `timestep` after the fix counts, as in LIGGGHTS 3.8).
+    fn pre_step(
+        &mut self,
+        sim: &mut Sim,
+        head: &FixHead,
+        _step: u64,
+        setup: bool,
+    ) -> Result<(), String> {
+        let (InsertEngine::Stream(st), true) = (&mut self.pack, setup) else {
+            return Ok(());
+        };
+        let Some(w) = sim.world.as_ref() else {
+            return Ok(());
+        };
+        st.set_timestep(w.dt)
+            .map_err(|e| format!("fix {} (insert/stream): {e}", head.id))?;
+        if std::mem::take(&mut self.rate_line_due) {
+            let line = super::insert_stream::rate_line(&head.id, st);
+            sim.outputs.out.line(&line);
+        }
+        Ok(())
     }
 
     fn due(&self, step: u64) -> bool {

@@ -6,7 +6,7 @@
 use rdem::insert::{Distribution, VelocityLaw};
 
 use super::insert::{InsertEngine, Inserter};
-use super::{style, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
+use super::{style, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 use crate::variables::format_e;
@@ -15,10 +15,10 @@ use crate::variables::format_e;
 pub(super) const ROW: FixRow = style(
     "insert/stream",
     super::insert::parse,
-    Stages::PRE_EXCHANGE.and(Stages::VALUES),
+    Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
     "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
 )
-.notes("a packet every `round(L / (v·n dt))` steps, each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps")
+.notes("a packet every `round(L / (v·n dt))` steps (dt: the run's time step, as LIGGGHTS 3.8), each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps")
 .atoi();
 
 /// What `fix insert/stream` was given (besides the settings every insertion has).
@@ -120,23 +120,24 @@ pub(super) fn build(
     .map_err(|e| a.error_at(face_at, e.to_string(), None))?;
     st.limit = limit;
     settings(&mut st);
-    let mut announce = Notes::default();
-    if verbose {
-        announce.line(format!(
-            "INFO: Particle insertion {}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
-            s.id,
-            st.per_insertion,
-            st.every,
-            rate,
-            format_e(rate * st.dist.mean_particle_mass())
-        ));
-    }
     Ok(Box::new(Inserter {
         pack: InsertEngine::Stream(st),
         total: 0,
         total_mass: 0.0,
         rate: None,
         verbose,
-        announce: Some(announce),
+        announce: None,
+        rate_line_due: verbose,
     }))
+}
+
+/// The line `verbose yes` prints at the first run's set-up.
+pub(super) fn rate_line(id: &str, st: &rdem::insert::InsertStream) -> String {
+    format!(
+        "INFO: Particle insertion {id}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
+        st.per_insertion,
+        st.every,
+        st.rate(),
+        format_e(st.rate() * st.dist.mean_particle_mass())
+    )
 }

@@ -221,6 +221,12 @@ pub struct InsertStream {
     pub inserted: u64,
     rng: InsertRng,
     last: Option<u64>,
+    /// Particles per time unit.
+    rate: f64,
+    /// How the insertion volume's depth is given.
+    extrusion: Extrusion,
+    /// The mean velocity along the face normal.
+    vn: f64,
 }
 
 impl InsertStream {
@@ -240,10 +246,41 @@ impl InsertStream {
         dt: f64,
     ) -> Result<Self> {
         crate::error::check("particle rate", rate, rate > 0.0, "must be > 0")?;
-        crate::error::check("timestep", dt, dt > 0.0, "must be > 0")?;
         let f = StreamFace::new(face, mean_velocity(velocity))?;
         let vn = mean_velocity(velocity).dot(f.normal);
-        let (every, extrude) = match extrusion {
+        let mut st = Self {
+            id: id.to_string(),
+            groupbit,
+            dist,
+            mesh,
+            velocity,
+            omega: DVec3::ZERO,
+            overlap_check: true,
+            all_in: false,
+            max_attempt: 50,
+            start: None,
+            limit: None,
+            every: 0,
+            extrude: 0.0,
+            per_insertion: 0.0,
+            inserted: 0,
+            rng: super::rng(seed),
+            last: None,
+            rate,
+            extrusion,
+            vn,
+        };
+        st.set_timestep(dt)?;
+        Ok(st)
+    }
+
+    /// Sets the steps between packets, the depth of the insertion volume and the
+    /// particles per packet for time step `dt`. LIGGGHTS 3.8 takes them from the time
+    /// step of the run (a `timestep` after the fix counts): call it at each run's set-up.
+    pub fn set_timestep(&mut self, dt: f64) -> Result<()> {
+        crate::error::check("timestep", dt, dt > 0.0, "must be > 0")?;
+        let vn = self.vn;
+        let (every, extrude) = match self.extrusion {
             Extrusion::Length(l) => {
                 crate::error::check("extrude_length", l, l > 0.0, "must be > 0")?;
                 // Rounded: 0.6 / (2 · 1e-5) is 29999.999... in floating point, 30000 steps.
@@ -277,25 +314,15 @@ impl InsertStream {
                 (every, duration as f64 * dt * vn)
             }
         };
-        Ok(Self {
-            id: id.to_string(),
-            groupbit,
-            dist,
-            mesh,
-            velocity,
-            omega: DVec3::ZERO,
-            overlap_check: true,
-            all_in: false,
-            max_attempt: 50,
-            start: None,
-            limit: None,
-            every,
-            extrude,
-            per_insertion: rate * every as f64 * dt,
-            inserted: 0,
-            rng: super::rng(seed),
-            last: None,
-        })
+        self.every = every;
+        self.extrude = extrude;
+        self.per_insertion = self.rate * every as f64 * dt;
+        Ok(())
+    }
+
+    /// Particles per time unit.
+    pub fn rate(&self) -> f64 {
+        self.rate
     }
 
     /// True if a packet is due at `step`.
