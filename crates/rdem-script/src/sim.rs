@@ -60,6 +60,20 @@ impl Groups {
         }
     }
 
+    /// The names by bit (restart files).
+    pub fn table(&self) -> Vec<Option<String>> {
+        self.names.clone()
+    }
+
+    /// Sets the names by bit (from a restart file): 32 bits, bit 0 `all`.
+    pub fn set_table(&mut self, names: Vec<Option<String>>) -> Result<(), String> {
+        if names.len() != 32 || names[0].as_deref() != Some("all") {
+            return Err("its group table is damaged".into());
+        }
+        self.names = names;
+        Ok(())
+    }
+
     /// Names of all groups.
     pub fn names(&self) -> Vec<&str> {
         self.names.iter().flatten().map(|s| s.as_str()).collect()
@@ -143,6 +157,8 @@ pub struct Definitions {
     pub computes: Vec<Compute>,
     /// Whether a pair style was defined with `pair_coeff` given.
     pub pair_coeff_set: bool,
+    /// What `read_restart` brought that later definitions take back.
+    pub restored: crate::restart_state::Restored,
 }
 
 /// Where results go: thermo, dumps, the screen and log, the progress display.
