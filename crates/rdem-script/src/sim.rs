@@ -367,8 +367,14 @@ impl Sim {
 
     /// Sets the time step (finite and > 0): the world's once a box exists, else the one
     /// the box will get. Simulated time stays continuous across a change (`time` is
-    /// t0 + (step − step0)·dt from the step of the change on, as in LIGGGHTS).
+    /// t0 + (step − step0)·dt from the step of the change on, as in LIGGGHTS). The same
+    /// step again changes nothing: a script continued from a restart file, which gives
+    /// its `timestep` again, counts time with the same formula (and so the same
+    /// roundings) as the unbroken run.
     pub fn set_timestep(&mut self, dt: f64) -> Result<(), String> {
+        if self.world.is_some() && dt == self.dt() {
+            return Ok(());
+        }
         let now = (self.world.as_ref().map_or(0, |w| w.step), self.time());
         match &mut self.world {
             Some(w) => w.set_timestep(dt).map_err(|e| e.to_string())?,
