@@ -14,6 +14,8 @@
 //! * [`data_file`]: LAMMPS data files for `atom_style granular` (`read_data`, `write_data`).
 //! * [`filename`]: the `*` (timestep) and `%` (rank) wildcards of dump file names.
 //! * [`atomic`]: every file is written under a temporary name and renamed into place.
+//! * [`restart_file`]: the framing of rdem's binary restart files (magic, format
+//!   version, length, CRC-32).
 //! * [`stl`]: STL triangle files (ASCII in double precision, binary) for `fix mesh/surface`.
 //!
 //! Nothing here decides *when* to write; the front end calls the writers on the right
@@ -32,6 +34,7 @@ pub mod filename;
 pub mod mesh_vtk;
 pub mod printf;
 pub mod pvd;
+pub mod restart_file;
 pub mod stl;
 pub mod vtk_legacy;
 pub mod vtk_xml;

@@ -27,6 +27,7 @@ pub mod old_gran;
 pub mod output;
 pub mod regions;
 pub mod registry;
+pub mod restart_state;
 pub mod run;
 pub mod sim;
 pub mod source;

@@ -60,6 +60,20 @@ impl Groups {
         }
     }
 
+    /// The names by bit (restart files).
+    pub fn table(&self) -> Vec<Option<String>> {
+        self.names.clone()
+    }
+
+    /// Sets the names by bit (from a restart file): 32 bits, bit 0 `all`.
+    pub fn set_table(&mut self, names: Vec<Option<String>>) -> Result<(), String> {
+        if names.len() != 32 || names[0].as_deref() != Some("all") {
+            return Err("its group table is damaged".into());
+        }
+        self.names = names;
+        Ok(())
+    }
+
     /// Names of all groups.
     pub fn names(&self) -> Vec<&str> {
         self.names.iter().flatten().map(|s| s.as_str()).collect()
@@ -143,6 +157,8 @@ pub struct Definitions {
     pub computes: Vec<Compute>,
     /// Whether a pair style was defined with `pair_coeff` given.
     pub pair_coeff_set: bool,
+    /// What `read_restart` brought that later definitions take back.
+    pub restored: crate::restart_state::Restored,
 }
 
 /// Where results go: thermo, dumps, the screen and log, the progress display.
@@ -351,8 +367,14 @@ impl Sim {
 
     /// Sets the time step (finite and > 0): the world's once a box exists, else the one
     /// the box will get. Simulated time stays continuous across a change (`time` is
-    /// t0 + (step − step0)·dt from the step of the change on, as in LIGGGHTS).
+    /// t0 + (step − step0)·dt from the step of the change on, as in LIGGGHTS). The same
+    /// step again changes nothing: a script continued from a restart file, which gives
+    /// its `timestep` again, counts time with the same formula (and so the same
+    /// roundings) as the unbroken run.
     pub fn set_timestep(&mut self, dt: f64) -> Result<(), String> {
+        if self.world.is_some() && dt == self.dt() {
+            return Ok(());
+        }
         let now = (self.world.as_ref().map_or(0, |w| w.step), self.time());
         match &mut self.world {
             Some(w) => w.set_timestep(dt).map_err(|e| e.to_string())?,

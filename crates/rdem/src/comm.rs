@@ -140,6 +140,33 @@ pub trait Comm: std::fmt::Debug + Send {
     fn is_root(&self) -> bool {
         self.rank() == 0
     }
+    /// Every rank's `data`, one buffer per rank in rank order, on rank 0 (`None`
+    /// elsewhere). The bytes travel as f64 words (a length, then the bytes eight to a
+    /// word) through [`Comm::gather`].
+    fn gather_bytes(&self, data: &[u8]) -> Option<Vec<Vec<u8>>> {
+        let mut words = Vec::with_capacity(data.len() / 8 + 2);
+        words.push(f64::from_bits(data.len() as u64));
+        for c in data.chunks(8) {
+            let mut b = [0u8; 8];
+            b[..c.len()].copy_from_slice(c);
+            words.push(f64::from_bits(u64::from_le_bytes(b)));
+        }
+        let all = self.gather(&words)?;
+        let mut out = Vec::with_capacity(self.size());
+        let mut k = 0;
+        while k < all.len() {
+            let n = all[k].to_bits() as usize;
+            let nw = n.div_ceil(8);
+            let mut bytes = Vec::with_capacity(nw * 8);
+            for w in &all[k + 1..k + 1 + nw] {
+                bytes.extend_from_slice(&w.to_bits().to_le_bytes());
+            }
+            bytes.truncate(n);
+            out.push(bytes);
+            k += 1 + nw;
+        }
+        Some(out)
+    }
 }
 
 /// One process owning the whole box. Ghosts are the periodic images within the cutoff,

@@ -27,6 +27,7 @@ pub mod pair;
 pub mod par;
 pub mod particles;
 pub mod region;
+pub mod restart;
 pub mod sort;
 mod stages;
 pub mod step;

@@ -1175,6 +1175,42 @@ impl Neighbor {
         list.partner.truncate(out);
     }
 
+    /// Every contact with non-zero history, for a restart file: from the list while it
+    /// is live (as listed, in the row of its first particle), else from the history saved
+    /// since (which holds each contact from both sides).
+    pub fn history_state(&self, p: &Particles) -> crate::restart::HistoryState {
+        let (w, odd) = (self.list.width, self.list.odd);
+        let mut entries = Vec::new();
+        if w > 0 && self.live {
+            let rows = self.list.first.len().saturating_sub(1);
+            for i in 0..rows {
+                for k in self.list.first[i] as usize..self.list.first[i + 1] as usize {
+                    let h = &self.list.hist[k * w..(k + 1) * w];
+                    if h.iter().all(|&v| v == 0.0) {
+                        continue;
+                    }
+                    entries.push(p.tag[i] as f64);
+                    entries.push(p.tag[self.list.partner[k] as usize] as f64);
+                    entries.extend_from_slice(h);
+                }
+            }
+        } else if w > 0 && self.store.width == w && !self.store.start.is_empty() {
+            let st = &self.store;
+            for (r, &t) in st.tags.iter().enumerate() {
+                for q in st.start[r] as usize..st.start[r + 1] as usize {
+                    entries.push(t as f64);
+                    entries.push(st.partner[q] as f64);
+                    entries.extend_from_slice(&st.vals[q * w..(q + 1) * w]);
+                }
+            }
+        }
+        crate::restart::HistoryState {
+            width: w,
+            odd,
+            entries,
+        }
+    }
+
     /// Positions at the last build (for tests and diagnostics).
     pub fn xhold(&self) -> &[DVec3] {
         &self.xhold

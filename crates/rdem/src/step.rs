@@ -254,6 +254,7 @@ impl World {
         self.extend_tags();
         self.check_types()?;
         self.setup_pair()?;
+        self.apply_restored_history();
         self.setup_walls()?;
         self.move_meshes();
         self.reneighbor()?;

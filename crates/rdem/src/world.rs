@@ -98,6 +98,8 @@ pub struct World {
     /// Heat conduction through contacts (`fix heat/gran/conduction`), if any.
     pub heat: Option<crate::heat::HeatConduction>,
     pub(crate) next_sort: u64,
+    /// Contact histories read from a restart file, for the next set-up.
+    pub(crate) restored_history: Option<crate::restart::HistoryState>,
     pub(crate) needs_reneighbor: bool,
     /// Particles were removed: the next step re-neighbors (no set-up needed).
     pub(crate) rebuild_next: bool,
@@ -127,6 +129,7 @@ impl World {
             virial_step: None,
             heat: None,
             next_sort: 0,
+            restored_history: None,
             needs_reneighbor: true,
             rebuild_next: false,
         }

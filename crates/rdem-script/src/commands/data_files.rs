@@ -1,5 +1,6 @@
-//! `read_data`, `write_data`, `read_restart`, `write_restart`: particles and box from and
-//! to LAMMPS data files (rdem's restart files are data files too).
+//! `read_data`, `write_data`: particles and box from and to LAMMPS data files;
+//! `read_restart`, `write_restart`: the whole state from and to rdem's restart files
+//! ([`crate::restart_state`]).
 
 use rdem::{Domain, World};
 
@@ -52,48 +53,78 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.outputs
         .out
         .line(&format!("  {} atoms", data.atoms.len()));
-    if a.name() == "read_restart" {
-        // The step written by write_restart (or write_data) into the title line.
-        w.step = data
-            .title
-            .rsplit_once("timestep = ")
-            .and_then(|(_, n)| n.trim().parse().ok())
-            .ok_or_else(|| {
-                a.error_at(
-                    1,
-                    format!("{file}: not an rdem restart file (no 'timestep = N' in its title)"),
-                    None,
-                )
-            })?;
-    }
     w.materials.ntypes = data.ntypes as usize;
     sim.world = Some(w);
     super::settings::disc_masses(sim);
     Ok(())
 }
 
-/// `write_data FILE [nocoeff] [nofix]`, `write_restart FILE`: rdem's restart files are portable data files (particles, box, step); the LIGGGHTS binary restart format is not written or read.
+/// `write_data FILE [nocoeff] [nofix]`: the particles and the box (and the step, in the
+/// title line) as a LAMMPS data file.
 pub(super) fn write_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    let restart = a.name() == "write_restart";
     let f = a.word("file name")?;
     while !a.is_done() {
-        if restart {
-            a.keyword("write_restart keyword", &[])?;
-        } else {
-            a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
-        }
+        a.keyword("write_data keyword", &["nocoeff", "nofix"])?;
     }
     let step = sim.world_ref(a)?.step;
     let f = f.replace('*', &step.to_string());
-    write_restart_file(sim, &f).map_err(|m| a.error_at(1, m, None))
+    write_data_file(sim, &f).map_err(|m| a.error_at(1, m, None))
+}
+
+/// `write_restart FILE`: the whole state as an rdem restart file (`*` in the name is
+/// the step).
+pub(super) fn write_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let f = a.word("file name")?;
+    while !a.is_done() {
+        a.keyword("write_restart keyword", &[])?;
+    }
+    let step = sim.world_ref(a)?.step;
+    let f = f.replace('*', &step.to_string());
+    crate::restart_state::write(sim, &f).map_err(|m| a.error_at(1, m, None))
+}
+
+/// `read_restart FILE`: the box, particles, contact histories, groups, step, time and
+/// timestep of a restart file, in place of `create_box`.
+pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let file = a.word("restart file")?;
+    a.done()?;
+    if sim.world.is_some() {
+        return Err(a.error_cmd(
+            "read_restart: the simulation box is already defined",
+            Some(
+                "read_restart takes the place of create_box, read_data or an earlier read_restart"
+                    .into(),
+            ),
+        ));
+    }
+    let c = crate::restart_state::read(file).map_err(|m| a.error_at(1, m, None))?;
+    let h = &c.head;
+    sim.outputs.out.line(&format!(
+        "Reading restart file ...\n  written by {} on {} rank(s) at step {}\n  orthogonal box = ({} {} {}) to ({} {} {})",
+        h.program,
+        h.nranks,
+        h.world.step,
+        crate::variables::g(h.boxlo[0]),
+        crate::variables::g(h.boxlo[1]),
+        crate::variables::g(h.boxlo[2]),
+        crate::variables::g(h.boxhi[0]),
+        crate::variables::g(h.boxhi[1]),
+        crate::variables::g(h.boxhi[2])
+    ));
+    let natoms = h.natoms;
+    crate::restart_state::restore(sim, c, |sim, w| {
+        decompose(sim, w, a, 1).map_err(|e| e.message)
+    })
+    .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
+    sim.outputs.out.line(&format!("  {natoms} atoms"));
+    Ok(())
 }
 
 /// Writes the particles and the box (and the step, in the title line) to `path` as a
-/// data file, which `read_data` and `read_restart` read: the writer of `write_data`,
-/// `write_restart` and `restart`. Every rank sends its owned particles; rank 0 writes
-/// them all, sorted by tag, under a temporary name renamed to `path` when complete
-/// (`rdem_io`'s atomic writes). Under `rdem -check` nothing is written.
-pub(crate) fn write_restart_file(sim: &Sim, path: &str) -> Result<(), String> {
+/// data file, which `read_data` reads. Every rank sends its owned particles; rank 0
+/// writes them all, sorted by tag, under a temporary name renamed to `path` when
+/// complete (`rdem_io`'s atomic writes). Under `rdem -check` nothing is written.
+pub(crate) fn write_data_file(sim: &Sim, path: &str) -> Result<(), String> {
     if sim.script.check {
         return Ok(());
     }

@@ -133,12 +133,12 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`"),
         sim("undump", dumps::undump, "`ID`"),
         sim("write_dump", dumps::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
-        sim("write_restart", data_files::write_data, "file name")
-            .notes("rdem's restart file is a portable LAMMPS data file (box, particles with velocities and spins, the step in its title line): `read_restart` continues from it in a new script. Contact histories and fix states are not saved"),
+        sim("write_restart", data_files::write_restart, "file name (`*` = the step)")
+            .notes("rdem's own binary format (versioned, with a checksum): particles with every per-particle value, contact histories (bonds, walls, meshes), groups, step, time, timestep and the state of the fixes that keep one; LIGGGHTS' restart files are not written"),
         sim("restart", restart::restart, "`0`, `N root` (`*` in the name replaced by the step, else `.STEP` appended), `N file1 file2` (in turn)")
             .notes("the files are `write_restart`'s; `v_name` for N, `%` in names, `fileper`, `nfile`: not supported yet"),
-        sim("read_restart", data_files::read_data, "file name")
-            .notes("reads rdem's restart files; LIGGGHTS' binary restart files cannot be read"),
+        sim("read_restart", data_files::read_restart, "file name")
+            .notes("in place of `create_box`: box, boundary, units, particles, contact histories, groups, step, time and timestep; a fix defined again with the ID and style it had takes its state back (as LIGGGHTS); the older rdem restart files (data files) are refused with a note to use `read_data`; LIGGGHTS' binary restart files cannot be read"),
         flow("variable", "the variable styles below"),
         flow("print", "text with `$x`, `${name}`, `$(formula)`; `file`, `append`, `screen`"),
         flow("include", "a script file, run in place"),

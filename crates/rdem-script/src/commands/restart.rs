@@ -1,6 +1,5 @@
 //! `restart 0`, `restart N root`, `restart N file1 file2`: a restart file every N steps
-//! of a run, written by the `write_restart` writer (rdem's restart files are portable
-//! data files, see [`super::data_files`]).
+//! of a run, written by the `write_restart` writer ([`crate::restart_state`]).
 //!
 //! As the LIGGGHTS 3.8 manual (`restart.txt`) says: files are written on steps that are
 //! multiples of N, but not on the first step of a run (its set-up); with one name a `*`
@@ -133,7 +132,7 @@ pub fn write_due(sim: &mut Sim, step: u64) -> Result<(), RunError> {
         }
         let name = r.names.take(step);
         let origin = r.origin.clone();
-        super::data_files::write_restart_file(sim, &name)
+        crate::restart_state::write(sim, &name)
             .map_err(|m| RunError::at(origin.as_ref(), "rdem::run::restart", m))?;
     }
     Ok(())

@@ -125,7 +125,47 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
     Ok(Box::new(ave))
 }
 
+/// What `ave/time` keeps in restart files: the open window, the last averages and the
+/// running totals.
+type AveTimeState = (Vec<f64>, u64, Vec<f64>, Vec<f64>, u64);
+
 impl ScriptFix for AveTime {
+    fn save_state(&self, _sim: &Sim, _head: &FixHead) -> Option<Vec<u8>> {
+        let st: AveTimeState = (
+            self.sum.clone(),
+            self.count,
+            self.values.clone(),
+            self.running_sum.clone(),
+            self.windows,
+        );
+        postcard::to_stdvec(&st).ok()
+    }
+
+    fn restore_state(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        state: &[u8],
+    ) -> Result<(), String> {
+        let st: AveTimeState =
+            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let n = self.inputs.len();
+        if [st.0.len(), st.2.len(), st.3.len()]
+            .iter()
+            .any(|&l| l != n && l != 0)
+        {
+            return Err(format!("it averages another number of values than {n}"));
+        }
+        (
+            self.sum,
+            self.count,
+            self.values,
+            self.running_sum,
+            self.windows,
+        ) = st;
+        Ok(())
+    }
+
     /// Makes the `file` (its folder too) with its two header lines.
     fn install(&mut self, _sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
         let Some((path, at)) = &self.path else {

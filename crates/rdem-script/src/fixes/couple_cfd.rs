@@ -126,6 +126,7 @@ impl ScriptFix for CoupleCfdForce {
                     vector: width > 1,
                     defaults: vec![0.0; width],
                     forward: false,
+                    restart: true,
                 },
             )?;
         }

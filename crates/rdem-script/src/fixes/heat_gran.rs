@@ -195,6 +195,7 @@ impl ScriptFix for HeatGran {
                     vector: width > 1,
                     defaults,
                     forward,
+                    restart: true,
                 },
             )?;
         }

@@ -41,7 +41,30 @@ pub enum InsertEngine {
     Stream(rdem::insert::InsertStream),
 }
 
+/// What an insertion fix keeps in restart files.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct InserterState {
+    progress: rdem::insert::InsertProgress,
+    total: u64,
+    total_mass: f64,
+    carry: f64,
+}
+
 impl InsertEngine {
+    fn progress(&self) -> rdem::insert::InsertProgress {
+        match self {
+            Self::Pack(p) => p.progress(),
+            Self::Stream(s) => s.progress(),
+        }
+    }
+
+    fn set_progress(&mut self, p: &rdem::insert::InsertProgress) -> bool {
+        match self {
+            Self::Pack(x) => x.set_progress(p),
+            Self::Stream(x) => x.set_progress(p),
+        }
+    }
+
     /// True if an insertion is due at `step`.
     pub fn due(&self, step: u64) -> bool {
         match self {
@@ -465,6 +488,38 @@ impl ScriptFix for Inserter {
 
     fn due(&self, step: u64) -> bool {
         self.pack.due(step)
+    }
+
+    /// The generators, the schedule and the counts.
+    fn save_state(&self, _sim: &Sim, _head: &FixHead) -> Option<Vec<u8>> {
+        let st = InserterState {
+            progress: self.pack.progress(),
+            total: self.total,
+            total_mass: self.total_mass,
+            carry: self.rate.as_ref().map_or(0.0, |r| r.carry),
+        };
+        postcard::to_stdvec(&st).ok()
+    }
+
+    fn restore_state(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        state: &[u8],
+    ) -> Result<(), String> {
+        let st: InserterState =
+            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        if !self.pack.set_progress(&st.progress) {
+            return Err(
+                "it was written for a distribution with another number of templates".into(),
+            );
+        }
+        self.total = st.total;
+        self.total_mass = st.total_mass;
+        if let Some(r) = &mut self.rate {
+            r.carry = st.carry;
+        }
+        Ok(())
     }
 
     fn pre_exchange(

@@ -171,7 +171,39 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     }))
 }
 
+/// What `massflow/mesh` keeps in restart files: the totals and the last rate
+/// evaluation (the particles' counted flags travel with them).
+type FlowState = (f64, u64, f64, u64, Option<(u64, f64, u64)>, (u64, f64, f64));
+
 impl ScriptFix for MassFlowFix {
+    fn save_state(&self, _sim: &Sim, _head: &FixHead) -> Option<Vec<u8>> {
+        let f = &self.flow;
+        let st: FlowState = (
+            f.mass,
+            f.count,
+            f.deleted_mass,
+            f.deleted,
+            self.last.get(),
+            self.rates.get(),
+        );
+        postcard::to_stdvec(&st).ok()
+    }
+
+    fn restore_state(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        state: &[u8],
+    ) -> Result<(), String> {
+        let st: FlowState =
+            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let f = &mut self.flow;
+        (f.mass, f.count, f.deleted_mass, f.deleted) = (st.0, st.1, st.2, st.3);
+        self.last.set(st.4);
+        self.rates.set(st.5);
+        Ok(())
+    }
+
     /// Opens the `file`/`append` file and writes its header (not under `rdem -check`,
     /// and only on the rank that writes files).
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {

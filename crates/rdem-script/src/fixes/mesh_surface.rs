@@ -83,6 +83,21 @@ impl ScriptFix for Mesh {
         }
     }
 
+    /// Vertex positions and velocities, stress tallies, servo state.
+    fn save_state(&self, sim: &Sim, head: &FixHead) -> Option<Vec<u8>> {
+        let w = sim.world.as_ref()?;
+        let k = w.mesh_index(&head.id)?;
+        postcard::to_stdvec(&w.meshes[k].state()).ok()
+    }
+
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+        let st: rdem::restart::MeshState =
+            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let w = sim.world.as_mut().ok_or("no simulation box")?;
+        let k = w.mesh_index(&head.id).ok_or("the mesh is missing")?;
+        w.meshes[k].set_state(&st)
+    }
+
     // The mesh stays in the world (LIGGGHTS keeps a mesh that walls may still use).
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
 }

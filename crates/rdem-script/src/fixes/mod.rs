@@ -239,6 +239,25 @@ pub trait ScriptFix: AsAny {
         Ok(false)
     }
 
+    /// Restart files: the fix's own state that a continued run needs to go on as the
+    /// unbroken run would (insertion counts, random generators, accumulators,
+    /// controllers), serialized; `None` (the default) for a fix with nothing to keep.
+    /// Per-particle values are not here: they travel with the particles.
+    fn save_state(&self, _sim: &Sim, _head: &FixHead) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// Takes back what [`ScriptFix::save_state`] wrote, when a fix of the same ID and
+    /// style is defined after `read_restart` (once installed).
+    fn restore_state(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        _state: &[u8],
+    ) -> Result<(), String> {
+        Err("this fix style keeps no state in restart files".into())
+    }
+
     /// Whether `unfix` may remove the fix now.
     fn check_unfix(&self, _sim: &Sim, _head: &FixHead) -> Result<(), String> {
         Ok(())
@@ -542,6 +561,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         unfix_id(sim, &head.id);
     }
     imp.install(sim, a, &head)?;
+    restore_state(sim, a, &head, &mut *imp)?;
     let origin = sim.origin(a, STYLE_WORD);
     sim.defs.fixes.push(FixEntry {
         head,
@@ -550,6 +570,36 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         energy: false,
         imp,
     });
+    Ok(())
+}
+
+/// After `read_restart`: a fix defined with the ID of a fix of the writing run takes
+/// back its state if the style is the same (as LIGGGHTS); with another style the state
+/// is dropped with a warning.
+fn restore_state(sim: &mut Sim, a: &Args, head: &FixHead, imp: &mut dyn ScriptFix) -> CmdResult {
+    let restored = &mut sim.defs.restored.fixes;
+    let Some(k) = restored.iter().position(|f| f.id == head.id) else {
+        return Ok(());
+    };
+    let st = restored.remove(k);
+    if st.style != head.style {
+        sim.outputs.out.warning(&format!(
+            "fix {}: the restart file holds the state of a {} fix of this ID, not of a {} fix: it starts afresh",
+            head.id, st.style, head.style
+        ));
+        return Ok(());
+    }
+    imp.restore_state(sim, head, &st.state).map_err(|m| {
+        a.error_at(
+            STYLE_WORD,
+            format!("the restart file's state of fix {}: {m}", head.id),
+            None,
+        )
+    })?;
+    sim.outputs.out.line(&format!(
+        "fix {} ({}): state taken from the restart file",
+        head.id, head.style
+    ));
     Ok(())
 }
 

@@ -37,6 +37,33 @@ impl ScriptFix for MoveMesh {
             .map_err(|e| a.error_at(style_at, e.to_string(), None))
     }
 
+    /// The motion's start time, and the vertex positions the mesh's motions start from.
+    fn save_state(&self, sim: &Sim, head: &FixHead) -> Option<Vec<u8>> {
+        let m = &sim.world.as_ref()?.meshes[self.mesh].motion;
+        let t0 = m.movers.iter().find(|x| x.0 == head.id)?.2;
+        let base: Vec<[f64; 3]> = m.base.iter().map(|v| v.to_array()).collect();
+        postcard::to_stdvec(&(t0, base)).ok()
+    }
+
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+        let (t0, base): (f64, Vec<[f64; 3]>) =
+            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let w = sim.world.as_mut().ok_or("no simulation box")?;
+        let m = &mut w.meshes[self.mesh].motion;
+        if base.len() != m.base.len() {
+            return Err(format!(
+                "it moves {} vertices, the mesh has {}",
+                base.len(),
+                m.base.len()
+            ));
+        }
+        if let Some(x) = m.movers.iter_mut().find(|x| x.0 == head.id) {
+            x.2 = t0;
+        }
+        m.base = base.into_iter().map(rdem::DVec3::from_array).collect();
+        Ok(())
+    }
+
     /// Refuses to remove a motion that is not the last one of its mesh (LIGGGHTS' rule:
     /// superposed motions go in reverse order).
     fn check_unfix(&self, sim: &Sim, head: &FixHead) -> Result<(), String> {

@@ -8,7 +8,8 @@
 //!
 //! As the LIGGGHTS manual says, the fix applies to all particles whatever its group. The
 //! three yes/no flags (restart, forward and reverse ghost communication) are read and
-//! checked: rdem writes no restart files; ghosts carry the values when they are made, and
+//! checked: values of particles read from a restart file are kept with `restart yes` and
+//! set to the defaults with `no`; ghosts carry the values when they are made, and
 //! with the second flag `yes` forward communication refreshes them every step too (as
 //! LIGGGHTS does for a temperature that pair computations read on ghosts).
 
@@ -23,7 +24,7 @@ pub(super) const ROW: FixRow = style(
     Stages::NONE,
     "`NAME scalar\\|vector yes\\|no yes\\|no yes\\|no defaults...`: named per-particle values (`set property/atom`, `f_ID`, `f_ID[i]`)",
 )
-.notes("applies to all particles (as LIGGGHTS); no restart files; `set` needs no `run 0` after it (LIGGGHTS 3.8 asks for one)");
+.notes("applies to all particles (as LIGGGHTS); values come back from restart files with the restart flag `yes`; `set` needs no `run 0` after it (LIGGGHTS 3.8 asks for one)");
 
 /// A defined per-particle property: its values live in the world's particles under `name`.
 #[derive(Debug)]
@@ -36,14 +37,24 @@ pub struct PropertyAtom {
     pub defaults: Vec<f64>,
     /// Ghost values refreshed every step (the `comm_ghost_value` flag).
     pub forward: bool,
+    /// Values taken back from a restart file (the `restart` flag): with `no`, particles
+    /// read from a restart file get the defaults again.
+    pub restart: bool,
 }
 
 impl ScriptFix for PropertyAtom {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+        let restored = sim.defs.restored.props.remove(&self.name);
         let p = &mut sim.world_mut(a)?.particles;
         let id = p
             .add_property(&self.name, self.defaults.len(), &self.defaults)
             .map_err(|e| a.error_at(4, e.to_string(), None))?;
+        if restored && !self.restart {
+            let prop = &mut p.props[id.0];
+            for c in prop.data.chunks_exact_mut(self.defaults.len()) {
+                c.copy_from_slice(&self.defaults);
+            }
+        }
         if self.forward {
             p.set_forward(id);
         }
@@ -117,7 +128,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             .downcast::<PropertyAtom>()
             .is_some_and(|f| f.name == name)
     });
-    if !mine && w.particles.property(&name).is_some() {
+    let restored = sim.defs.restored.props.contains(&name);
+    if !mine && !restored && w.particles.property(&name).is_some() {
         let owner = sim
             .defs
             .fixes
@@ -133,7 +145,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         ));
     }
     let vector = a.keyword("property/atom style", &["scalar", "vector"])? == "vector";
-    a.yes_no("restart value (yes or no)")?;
+    let restart = a.yes_no("restart value (yes or no)")?;
     let forward = a.yes_no("communicate ghost value (yes or no)")?;
     a.yes_no("communicate reverse ghost value (yes or no)")?;
     let start = a.pos();
@@ -166,5 +178,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         vector,
         defaults,
         forward,
+        restart,
     }))
 }

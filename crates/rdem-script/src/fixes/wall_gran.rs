@@ -79,6 +79,7 @@ pub(super) fn define_store(sim: &mut Sim, a: &Args, name: &str) -> CmdResult<()>
             vector: true,
             defaults: vec![0.0; 3],
             forward: false,
+            restart: true,
         },
     )
 }

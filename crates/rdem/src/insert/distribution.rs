@@ -35,6 +35,26 @@ pub struct Distribution {
 }
 
 impl Distribution {
+    /// The generators: the distribution's, then each template's (restart files).
+    pub fn rngs(&self) -> Vec<InsertRng> {
+        let mut r = vec![self.rng.clone()];
+        r.extend(self.templates.iter().map(|t| t.rng.clone()));
+        r
+    }
+
+    /// Sets the generators [`Distribution::rngs`] gave; false if their number does not
+    /// match (another distribution).
+    pub fn set_rngs(&mut self, r: &[InsertRng]) -> bool {
+        if r.len() != 1 + self.templates.len() {
+            return false;
+        }
+        self.rng = r[0].clone();
+        for (t, g) in self.templates.iter_mut().zip(&r[1..]) {
+            t.rng = g.clone();
+        }
+        true
+    }
+
     /// A distribution of `parts` (template, weight).
     pub fn new(
         id: &str,

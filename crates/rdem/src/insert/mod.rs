@@ -21,6 +21,23 @@ pub use template::{ParticleTemplate, RadiusDist};
 /// versions (unlike `StdRng`).
 pub type InsertRng = rand_pcg::Pcg64;
 
+/// Where an insertion fix stands, for restart files: every generator it draws from (its
+/// own, its distribution's, its templates') and its schedule, so that a continued run
+/// inserts what the unbroken run would.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct InsertProgress {
+    /// The fix's own generator.
+    pub rng: InsertRng,
+    /// The distribution's generator, then each template's.
+    pub dist: Vec<InsertRng>,
+    /// Step of the last insertion.
+    pub last: Option<u64>,
+    /// First insertion step.
+    pub start: Option<u64>,
+    /// Particles inserted so far (`insert/stream`'s limit).
+    pub inserted: u64,
+}
+
 /// A generator seeded from a script seed.
 pub fn rng(seed: u64) -> InsertRng {
     use rand::SeedableRng;

@@ -275,6 +275,31 @@ impl InsertPack {
     }
 }
 
+impl InsertPack {
+    /// Where the fix stands (restart files).
+    pub fn progress(&self) -> super::InsertProgress {
+        super::InsertProgress {
+            rng: self.rng.clone(),
+            dist: self.dist.rngs(),
+            last: self.last,
+            start: self.start,
+            inserted: 0,
+        }
+    }
+
+    /// Takes back what [`InsertPack::progress`] gave; false if it belongs to another
+    /// distribution.
+    pub fn set_progress(&mut self, p: &super::InsertProgress) -> bool {
+        if !self.dist.set_rngs(&p.dist) {
+            return false;
+        }
+        self.rng = p.rng.clone();
+        self.last = p.last;
+        self.start = p.start;
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

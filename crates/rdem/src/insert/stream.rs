@@ -412,3 +412,29 @@ fn mean_velocity(v: VelocityLaw) -> DVec3 {
         VelocityLaw::Constant(m) | VelocityLaw::Uniform(m, _) | VelocityLaw::Gaussian(m, _) => m,
     }
 }
+
+impl InsertStream {
+    /// Where the fix stands (restart files).
+    pub fn progress(&self) -> super::InsertProgress {
+        super::InsertProgress {
+            rng: self.rng.clone(),
+            dist: self.dist.rngs(),
+            last: self.last,
+            start: self.start,
+            inserted: self.inserted,
+        }
+    }
+
+    /// Takes back what [`InsertStream::progress`] gave; false if it belongs to another
+    /// distribution.
+    pub fn set_progress(&mut self, p: &super::InsertProgress) -> bool {
+        if !self.dist.set_rngs(&p.dist) {
+            return false;
+        }
+        self.rng = p.rng.clone();
+        self.last = p.last;
+        self.start = p.start;
+        self.inserted = p.inserted;
+        true
+    }
+}

@@ -28,7 +28,7 @@ pub struct ParticleTemplate {
     pub density: f64,
     /// Radius law.
     pub radius: RadiusDist,
-    rng: InsertRng,
+    pub(crate) rng: InsertRng,
 }
 
 impl ParticleTemplate {

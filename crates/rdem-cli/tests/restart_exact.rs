@@ -1,0 +1,399 @@
+//! Exact restarts: a run split by `write_restart` and `read_restart` (in a new process)
+//! ends bit-identical to the unbroken run, as LIGGGHTS continues bit for bit.
+//!
+//! Each case is a script in parts: `head` (before the box), `make_box`, `defs` (what
+//! both the writing and the continuing script define after the box: materials, pair
+//! style, walls, fixes) and `init` (what only the writing script does: creating or
+//! inserting particles). The unbroken run is `head make_box defs init run N1 run N2`;
+//! the split run is `head make_box defs init run N1 write_restart` in one process and
+//! `head read_restart defs run N2` in another. Both write every particle's state with 17
+//! significant digits at the end, and the thermo rows of the second run; they must be
+//! the same bytes.
+
+mod common;
+use common::run_kept;
+
+/// One case.
+struct Case {
+    head: &'static str,
+    make_box: &'static str,
+    defs: &'static str,
+    init: &'static str,
+    n1: u64,
+    n2: u64,
+    /// Files (name, contents) beside the scripts.
+    files: Vec<(&'static str, String)>,
+}
+
+/// The end state and the thermo rows of the last run.
+const FINAL: &str = "write_dump all custom final.dump id type x y z vx vy vz omegax omegay omegaz radius mass modify sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n";
+
+fn run_ok(prefix: &str, script: &str, files: &[(&str, &str)]) -> (std::path::PathBuf, String) {
+    let (dir, out) = run_kept(prefix, script, files, None);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{prefix}: {text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (dir, text)
+}
+
+/// Thermo rows after the last `Step` header, as printed.
+fn last_rows(out: &str) -> Vec<String> {
+    let start = out.rfind("Step").expect("a thermo header");
+    out[start..]
+        .lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with("Loop time"))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Runs `c` unbroken and split; asserts the same end state and thermo rows; returns the
+/// end state's dump and the thermo rows of the continued run.
+fn check_split(name: &str, c: &Case) -> (String, Vec<Vec<f64>>) {
+    let unbroken = format!(
+        "{}{}{}{}run {}\nrun {}\n{FINAL}",
+        c.head, c.make_box, c.defs, c.init, c.n1, c.n2
+    );
+    let files: Vec<(&str, &str)> = c.files.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    let (d0, out0) = run_ok(&format!("{name}-unbroken"), &unbroken, &files);
+    let first = format!(
+        "{}{}{}{}run {}\nwrite_restart state.restart\n",
+        c.head, c.make_box, c.defs, c.init, c.n1
+    );
+    let (d1, _) = run_ok(&format!("{name}-first"), &first, &files);
+    // The continuing script runs in a new process and directory with the restart file
+    // beside its own files.
+    let second = format!(
+        "{}read_restart ../{}/state.restart\n{}run {}\n{FINAL}",
+        c.head,
+        d1.file_name().unwrap().to_string_lossy(),
+        c.defs,
+        c.n2
+    );
+    let (dir2, out2) = run_ok(&format!("{name}-second"), &second, &files);
+    let a = std::fs::read_to_string(d0.join("final.dump")).unwrap();
+    let b = std::fs::read_to_string(dir2.join("final.dump")).unwrap();
+    let (ra, rb) = (last_rows(&out0), last_rows(&out2));
+    for d in [d0, d1, dir2] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+    assert_eq!(ra, rb, "{name}: thermo rows of the continued run differ");
+    if a != b {
+        let diff = a
+            .lines()
+            .zip(b.lines())
+            .find(|(x, y)| x != y)
+            .map(|(x, y)| format!("unbroken: {x}\nsplit:    {y}"));
+        panic!("{name}: end states differ, first difference:\n{diff:?}");
+    }
+    let rows = ra
+        .iter()
+        .filter_map(|l| {
+            l.split_whitespace()
+                .map(str::parse)
+                .collect::<Result<Vec<f64>, _>>()
+                .ok()
+        })
+        .collect();
+    (a, rows)
+}
+
+/// Particles in a dump's `ITEM: ATOMS` section.
+fn atoms(dump: &str) -> usize {
+    dump.lines()
+        .skip_while(|l| !l.starts_with("ITEM: ATOMS"))
+        .skip(1)
+        .count()
+}
+
+const HEAD: &str = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+";
+
+/// A bed settling in a cylinder on a floor, rolling friction on: pair, wall and
+/// rolling histories all carry over.
+#[test]
+fn settling_bed_with_walls_and_rolling_friction_continues_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1
+pair_style gran model hertz tangential history rolling_friction cdt
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history rolling_friction cdt primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential history rolling_friction cdt primitive type 1 zcylinder 0.045 0 0
+fix integr all nve/sphere
+thermo_style custom step atoms ke
+thermo 1000
+thermo_modify format float %.17g
+",
+        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+",
+        n1: 8000,
+        n2: 4000,
+        files: Vec::new(),
+    };
+    let (end, _) = check_split("bed", &c);
+    assert_eq!(atoms(&end), 250);
+}
+
+/// A square of half-width `h` at height `z` (two triangles, normal +z), ASCII STL.
+fn square_stl(h: f64, z: f64) -> String {
+    let v = |x: f64, y: f64| format!("vertex {x} {y} {z}\n");
+    let tri = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
+        format!(
+            "facet normal 0 0 1\nouter loop\n{}{}{}endloop\nendfacet\n",
+            v(a.0, a.1),
+            v(b.0, b.1),
+            v(c.0, c.1)
+        )
+    };
+    format!(
+        "solid sq\n{}{}endsolid sq\n",
+        tri((-h, -h), (h, -h), (h, h)),
+        tri((-h, -h), (h, h), (-h, h))
+    )
+}
+
+/// A stream poured through a face onto a shaking floor mesh, counted by a massflow
+/// face on the way: insertion generators and schedule, mesh motion phase, mesh wall
+/// history and the flow counters all carry over (the continuing script defines the
+/// templates, the stream, the meshes, their motion and the counter again, as CFDEM's
+/// run scripts do).
+#[test]
+fn stream_on_a_moving_mesh_with_massflow_continues_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.06 0.06 -0.06 0.06 -0.01 0.16 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all mesh/surface file floor.stl type 1
+fix face all mesh/surface file face.stl type 1
+fix counter all mesh/surface file counter.stl type 1
+fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor
+fix side all wall/gran model hertz tangential history primitive type 1 zcylinder 0.05 0 0
+fix shake all move/mesh mesh floor wiggle amplitude 0 0 0.002 period 0.01
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius gaussian 0.003 0.0003
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/stream seed 86028157 distributiontemplate pdd nparticles 400 particlerate 2000 insert_every 1000 overlapcheck yes vel constant 0 0 -0.5 insertion_face face
+fix mf all massflow/mesh mesh counter count once vec_side 0 0 -1
+fix integr all nve/sphere
+thermo_style custom step atoms ke f_mf[1] f_mf[2] f_ins[1]
+thermo 500
+thermo_modify format float %.17g
+",
+        init: "",
+        n1: 5000,
+        n2: 4000,
+        files: vec![
+            ("floor.stl", square_stl(0.05, 0.0)),
+            ("face.stl", square_stl(0.03, 0.14)),
+            ("counter.stl", square_stl(0.05, 0.07)),
+        ],
+    };
+    let (end, rows) = check_split("stream", &c);
+    // Insertions every 1000 steps from step 1 (40 each) go on after the split, and the
+    // counter face has counted particles before and after it.
+    let last = rows.last().unwrap();
+    assert_eq!(
+        (atoms(&end), last[1], last[5]),
+        (360, 360.0, 360.0),
+        "{last:?}"
+    );
+    assert!(rows[0][4] > 0.0 && last[4] > rows[0][4], "{rows:?}");
+}
+
+/// A bonded agglomerate (`cohesion bond`, bonds made at step 1 between touching
+/// neighbours of a cubic block) dropped on a floor and breaking on impact: the bonds,
+/// their forces and the broken ones carry over with the pair histories.
+#[test]
+fn bonded_agglomerate_breaking_on_a_floor_continues_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.012 0.012 -0.012 0.012 0 0.02 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.0002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+fix b1 all property/global radiusMultiplierBond peratomtypepair 1 1.0
+fix b2 all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 2e10
+fix b3 all property/global tangentialBondStiffnessPerUnitArea peratomtypepair 1 1e10
+fix b4 all property/global maxDistanceBond peratomtypepair 1 0.002003
+fix b5 all property/global createDistanceBond peratomtypepair 1 0.00201
+fix b6 all property/global tsCreateBond scalar 1
+fix d1 all property/global dampingNormalForceBond peratomtypepair 1 0.0
+fix d2 all property/global dampingTangentialForceBond peratomtypepair 1 0.0
+fix d3 all property/global dampingNormalTorqueBond peratomtypepair 1 0.0
+fix d4 all property/global dampingTangentialTorqueBond peratomtypepair 1 0.0
+pair_style gran model hertz tangential history cohesion bond
+pair_coeff * *
+timestep 2e-7
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix integr all nve/sphere
+compute bc all bond/counter
+thermo_style custom step atoms ke c_bc[3]
+thermo 500
+thermo_modify format float %.17g
+",
+        init: "lattice sc 0.002
+region blk block -0.004 0.0041 -0.004 0.0041 0.0021 0.0102 units box
+create_atoms 1 region blk
+set group all diameter 0.002 density 2500
+velocity all set 0.3 0 -4
+",
+        n1: 4600,
+        n2: 1400,
+        files: Vec::new(),
+    };
+    let (end, rows) = check_split("bonds", &c);
+    assert_eq!(atoms(&end), 100);
+    // 235 bonds were made between the 100 touching neighbours; the impact (at step
+    // ~3700) breaks 65 of them after the split.
+    let intact: Vec<f64> = rows.iter().map(|r| r[3]).collect();
+    assert_eq!(
+        (intact[0], *intact.last().unwrap()),
+        (235.0, 170.0),
+        "{intact:?}"
+    );
+}
+
+/// Particles growing by `fix adapt` (a diameter that follows the time) in a bed whose
+/// mean kinetic energy a running `fix ave/time` follows: the time, the radii and
+/// masses, and the running average carry over.
+#[test]
+fn growing_particles_with_a_running_average_continue_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential history primitive type 1 zcylinder 0.045 0 0
+variable d atom 0.006*(1+0.25*time/0.2)
+fix grow all adapt 50 atom diameter v_d
+variable k equal ke
+fix at all ave/time 10 20 500 v_k ave running
+fix integr all nve/sphere
+thermo_style custom step atoms ke f_at
+thermo 500
+thermo_modify format float %.17g
+",
+        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+",
+        n1: 5000,
+        n2: 5000,
+        files: Vec::new(),
+    };
+    let (end, rows) = check_split("adapt", &c);
+    assert_eq!(atoms(&end), 250);
+    // The last adaptation, in the last step (its pre-force stage, at the time of step
+    // 9999): every diameter is 0.006 · (1 + 0.25 · 0.19998 / 0.2).
+    let want = 0.5 * 0.006 * (1.0 + 0.25 * 0.19998 / 0.2);
+    for l in end
+        .lines()
+        .skip_while(|l| !l.starts_with("ITEM: ATOMS"))
+        .skip(1)
+    {
+        let r: f64 = l.split_whitespace().nth(11).unwrap().parse().unwrap();
+        assert!((r - want).abs() < 1e-15, "{l}");
+    }
+    assert!(rows.iter().all(|r| r[3] > 0.0), "{rows:?}");
+}
+
+/// Bad restart files stop `read_restart` with a located error that names the file and
+/// says what is wrong; never a panic.
+#[test]
+fn bad_restart_files_are_located_errors() {
+    // A good file to damage.
+    let script = format!(
+        "{HEAD}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\ncreate_atoms 1 single 0.5 0.5 0.5 units box\nwrite_restart good.restart\n"
+    );
+    let (dir, out) = run_kept("badrestart", &script, &[], None);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let good = std::fs::read(dir.join("good.restart")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut corrupt = good.clone();
+    let k = good.len() - 3;
+    corrupt[k] ^= 0x10;
+    let mut later = good.clone();
+    later[16] += 1;
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("truncated", good[..good.len() / 2].to_vec(), "is truncated"),
+        ("corrupted", corrupt, "is corrupted"),
+        ("later", later, "written by a newer rdem"),
+        (
+            "data",
+            b"LAMMPS data file\n\n1 atoms\n1 atom types\n0 1 xlo xhi\n".to_vec(),
+            "read it with read_data",
+        ),
+        ("empty", Vec::new(), "it is empty"),
+    ];
+    for (name, bytes, want) in cases {
+        let script = format!("{HEAD}read_restart r.restart\n");
+        let dir = common::scratch_dir(&format!("badrestart-{name}"));
+        std::fs::write(dir.join("r.restart"), &bytes).unwrap();
+        std::fs::write(dir.join("in.test"), &script).unwrap();
+        let out = common::rdem_command(None)
+            .args(["-in", "in.test", "-log", "none"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+        assert_eq!(out.status.code(), Some(1), "{name}: {text}");
+        assert!(
+            text.contains(want) && text.contains("'r.restart'"),
+            "{name}: {text}"
+        );
+        assert!(text.contains("in.test:7"), "{name}: not located: {text}");
+        assert!(!text.contains("panicked"), "{name}: {text}");
+    }
+}

@@ -1,0 +1,261 @@
+//! What an rdem restart file holds, and the writer and reader that `write_restart`,
+//! `restart N ...` and `read_restart` share.
+//!
+//! The payload (framed by [`rdem_io::restart_file`]: magic, format version, length,
+//! CRC-32) is a [`RestartHead`] followed by one block per writing rank, each a
+//! [`rdem::restart::RankState`] (that rank's owned particles in storage order, with every
+//! named property, and its contact histories), all serialized with `postcard`:
+//!
+//! ```text
+//! u64 length, RestartHead | u64 number of blocks | (u64 length, RankState) × blocks
+//! ```
+//!
+//! As in LIGGGHTS, a restart file continues a study in a new script: `read_restart`
+//! takes the place of `create_box` and restores the box, units, particles, groups, the
+//! step, the time and the timestep; the script then defines its pair style, walls and
+//! fixes again. A fix defined with the ID and style of a fix of the writing run takes
+//! back that fix's state (insertion counts, random generators, accumulators,
+//! controllers: [`crate::fixes::ScriptFix::save_state`]); per-particle values
+//! (`fix property/atom`, wall histories, temperatures) come back with the particles and
+//! are kept when the fix that holds them is defined again.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use rdem::restart::{HistoryState, RankState, WorldValues};
+use rdem::{Boundary, Domain, World};
+use serde::{Deserialize, Serialize};
+
+use crate::sim::Sim;
+
+/// One fix's state in a restart file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FixState {
+    /// Fix ID.
+    pub id: String,
+    /// Fix style.
+    pub style: String,
+    /// The style's own serialization of its state.
+    pub state: Vec<u8>,
+}
+
+/// The world-wide part of a restart file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RestartHead {
+    /// The program that wrote it (`rdem VERSION`).
+    pub program: String,
+    /// `units` style.
+    pub units: String,
+    /// `dimension`.
+    pub dimension: u8,
+    /// Boundary letters, lower and upper face per axis (`p`, `f`, `s`, `m`).
+    pub boundary: [[char; 2]; 3],
+    /// Box corners.
+    pub boxlo: [f64; 3],
+    /// Box corners.
+    pub boxhi: [f64; 3],
+    /// Number of particle types.
+    pub ntypes: u32,
+    /// Group names by bit.
+    pub groups: Vec<Option<String>>,
+    /// Step, timestep, sort schedule.
+    pub world: WorldValues,
+    /// (step, time) at the last change of the timestep.
+    pub time_origin: (u64, f64),
+    /// Ranks that wrote the file.
+    pub nranks: u32,
+    /// Particles in the file.
+    pub natoms: u64,
+    /// Fix states, in definition order.
+    pub fixes: Vec<FixState>,
+}
+
+/// What `read_restart` brought that later definitions take back.
+#[derive(Debug, Clone, Default)]
+pub struct Restored {
+    /// Fix states not yet taken by a fix of the same ID.
+    pub fixes: Vec<FixState>,
+    /// Per-particle properties of the file that no fix holds yet.
+    pub props: BTreeSet<String>,
+}
+
+fn letter(b: Boundary) -> char {
+    match b {
+        Boundary::Periodic => 'p',
+        Boundary::Fixed => 'f',
+        Boundary::Shrink => 's',
+        Boundary::ShrinkMin => 'm',
+    }
+}
+
+fn push_block(out: &mut Vec<u8>, bytes: &[u8]) {
+    out.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+    out.extend_from_slice(bytes);
+}
+
+/// Encodes `v` (the types here always serialize).
+fn encode<T: Serialize>(v: &T) -> Vec<u8> {
+    postcard::to_stdvec(v).expect("restart state serializes")
+}
+
+/// Writes the whole state to `path` as a restart file: every rank sends its block, rank
+/// 0 writes the file under a temporary name and renames it. Under `rdem -check`
+/// nothing is written.
+pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), String> {
+    if sim.script.check {
+        return Ok(());
+    }
+    let w = sim.world.as_ref().ok_or("no simulation box")?;
+    let mine = encode(&w.rank_state());
+    let natoms = w.comm.sum_count(w.particles.nlocal() as u64);
+    let fixes: Vec<FixState> = sim
+        .defs
+        .fixes
+        .iter()
+        .filter_map(|f| {
+            f.imp.save_state(sim, &f.head).map(|state| FixState {
+                id: f.head.id.clone(),
+                style: f.head.style.to_string(),
+                state,
+            })
+        })
+        .collect();
+    let Some(blocks) = w.comm.gather_bytes(&mine) else {
+        return Ok(());
+    };
+    let d = &w.domain;
+    let head = RestartHead {
+        program: format!("rdem {}", env!("CARGO_PKG_VERSION")),
+        units: sim.setup.units.name().to_string(),
+        dimension: sim.setup.dimension,
+        boundary: d.boundary.map(|f| f.map(letter)),
+        boxlo: d.boxlo.to_array(),
+        boxhi: d.boxhi.to_array(),
+        ntypes: sim.ntypes() as u32,
+        groups: sim.defs.groups.table(),
+        world: w.world_values(),
+        time_origin: sim.script.time_origin,
+        nranks: w.comm.size() as u32,
+        natoms,
+        fixes,
+    };
+    let total: usize = blocks.iter().map(|b| b.len() + 8).sum();
+    let mut payload = Vec::with_capacity(total + 1024);
+    push_block(&mut payload, &encode(&head));
+    payload.extend_from_slice(&(blocks.len() as u64).to_le_bytes());
+    for b in &blocks {
+        push_block(&mut payload, b);
+    }
+    rdem_io::restart_file::write_restart_file(Path::new(path), &payload).map_err(|e| e.to_string())
+}
+
+/// A restart file's contents, decoded.
+pub struct RestartContents {
+    /// The world-wide part.
+    pub head: RestartHead,
+    /// One block per writing rank.
+    pub ranks: Vec<RankState>,
+}
+
+/// Reads and decodes the restart file at `path`; the message names the file.
+pub fn read(path: &str) -> Result<RestartContents, String> {
+    let (_version, payload) =
+        rdem_io::restart_file::read_restart_file(Path::new(path)).map_err(|e| e.to_string())?;
+    decode(&payload).map_err(|m| format!("'{path}' cannot be decoded ({m}); its checksum is right, so it was written by an rdem whose format differs from this one's"))
+}
+
+/// Reads the blocks of a payload in order.
+struct Cursor<'a> {
+    buf: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+        let s = self
+            .buf
+            .get(self.at..self.at.saturating_add(n))
+            .ok_or_else(|| format!("{n} bytes expected at byte {}", self.at))?;
+        self.at += n;
+        Ok(s)
+    }
+    fn len(&mut self) -> Result<usize, String> {
+        Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")) as usize)
+    }
+    fn block<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
+        let n = self.len()?;
+        postcard::from_bytes(self.take(n)?).map_err(|e| e.to_string())
+    }
+}
+
+fn decode(payload: &[u8]) -> Result<RestartContents, String> {
+    let mut c = Cursor {
+        buf: payload,
+        at: 0,
+    };
+    let head: RestartHead = c.block()?;
+    let nb = c.len()?;
+    let mut ranks = Vec::with_capacity(nb.min(1 << 16));
+    for _ in 0..nb {
+        ranks.push(c.block()?);
+    }
+    Ok(RestartContents { head, ranks })
+}
+
+/// Builds the world a restart file describes (box, decomposition, particles this rank
+/// owns, contact histories, step and timestep) and sets the script state it holds
+/// (units, dimension, groups, time, the fix states and properties later definitions
+/// take back). `decompose` splits the box between the ranks.
+pub(crate) fn restore(
+    sim: &mut Sim,
+    c: RestartContents,
+    decompose: impl FnOnce(&mut Sim, &mut World) -> Result<(), String>,
+) -> Result<(), String> {
+    let h = c.head;
+    sim.setup.units = crate::units::Units::from_name(&h.units)
+        .ok_or_else(|| format!("the file's units '{}' are not rdem's", h.units))?;
+    sim.setup.dimension = h.dimension;
+    let mut boundary = [[Boundary::Fixed; 2]; 3];
+    for a in 0..3 {
+        for s in 0..2 {
+            boundary[a][s] = Boundary::from_letter(h.boundary[a][s])
+                .ok_or_else(|| format!("boundary letter '{}'", h.boundary[a][s]))?;
+        }
+    }
+    let domain =
+        Domain::with_faces(h.boxlo.into(), h.boxhi.into(), boundary).map_err(|e| e.to_string())?;
+    let mut w = World::new(domain);
+    decompose(sim, &mut w)?;
+    w.set_world_values(&h.world).map_err(|e| e.to_string())?;
+    w.materials.ntypes = h.ntypes as usize;
+    let mut history = HistoryState::default();
+    let mut props = BTreeSet::new();
+    for r in &c.ranks {
+        w.restore_particles(&r.particles)
+            .map_err(|e| e.to_string())?;
+        props.extend(r.particles.props.iter().map(|q| q.name.clone()));
+        if !r.history.entries.is_empty() {
+            history.width = r.history.width;
+            history.odd = r.history.odd;
+            history.entries.extend_from_slice(&r.history.entries);
+        }
+    }
+    let placed = w.comm.sum_count(w.particles.nlocal() as u64);
+    if placed != h.natoms {
+        return Err(format!(
+            "{} of its {} particles lie outside the box",
+            h.natoms - placed,
+            h.natoms
+        ));
+    }
+    w.restore_history(history);
+    sim.setup.dt = h.world.dt;
+    sim.script.time_origin = h.time_origin;
+    sim.defs.groups.set_table(h.groups)?;
+    sim.defs.restored = Restored {
+        fixes: h.fixes,
+        props,
+    };
+    sim.world = Some(w);
+    Ok(())
+}
