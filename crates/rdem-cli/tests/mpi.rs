@@ -340,8 +340,11 @@ variable d2 equal vx[2]
 variable e2 equal vz[2]
 thermo_style custom step atoms ke v_a1 v_b1 v_c1 v_d2 v_e2
 ";
-    let script =
-        |grid: &str| format!("{head}processors {grid}\n{body}{FORMAT}thermo 1000\nrun 4000\n");
+    // `processors` must come before the box.
+    let script = |grid: &str| {
+        let head = head.replace("region reg", &format!("processors {grid}\nregion reg"));
+        format!("{head}{body}{FORMAT}thermo 1000\nrun 4000\n")
+    };
     let serial = run(&script("1 1 1"), 0);
     let reference = last_row(&serial);
     // They collided: atom 1's vz is no longer 0.8 (-0.093 at step 4000, serially and on

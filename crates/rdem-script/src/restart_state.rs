@@ -120,9 +120,23 @@ pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), String> {
             })
         })
         .collect();
-    let Some(blocks) = w.comm.gather_bytes(&mine) else {
-        return Ok(());
+    let written = match w.comm.gather_bytes(&mine) {
+        Some(blocks) => write_file(sim, w, path, natoms, fixes, &blocks),
+        None => Ok(()),
     };
+    // Only rank 0 writes: a failure there stops every rank (none waits for the others).
+    crate::dumps::agree(&*w.comm, "write_restart", written)
+}
+
+/// Rank 0's part of [`write`]: the file from every rank's block.
+fn write_file(
+    sim: &Sim,
+    w: &World,
+    path: &str,
+    natoms: u64,
+    fixes: Vec<FixState>,
+    blocks: &[Vec<u8>],
+) -> Result<(), String> {
     let d = &w.domain;
     let head = RestartHead {
         program: format!("rdem {}", env!("CARGO_PKG_VERSION")),
@@ -143,7 +157,7 @@ pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), String> {
     let mut payload = Vec::with_capacity(total + 1024);
     push_block(&mut payload, &encode(&head));
     payload.extend_from_slice(&(blocks.len() as u64).to_le_bytes());
-    for b in &blocks {
+    for b in blocks {
         push_block(&mut payload, b);
     }
     rdem_io::restart_file::write_restart_file(Path::new(path), &payload).map_err(|e| e.to_string())
