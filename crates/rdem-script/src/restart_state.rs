@@ -230,10 +230,9 @@ pub(crate) fn restore(
         .ok_or_else(|| format!("the file's units '{}' are not rdem's", h.units))?;
     sim.setup.dimension = h.dimension;
     let mut boundary = [[Boundary::Fixed; 2]; 3];
-    for a in 0..3 {
-        for s in 0..2 {
-            boundary[a][s] = Boundary::from_letter(h.boundary[a][s])
-                .ok_or_else(|| format!("boundary letter '{}'", h.boundary[a][s]))?;
+    for (faces, letters) in boundary.iter_mut().zip(&h.boundary) {
+        for (b, &c) in faces.iter_mut().zip(letters) {
+            *b = Boundary::from_letter(c).ok_or_else(|| format!("boundary letter '{c}'"))?;
         }
     }
     let domain =
