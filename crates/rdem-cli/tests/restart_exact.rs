@@ -397,3 +397,76 @@ fn bad_restart_files_are_located_errors() {
         assert!(!text.contains("panicked"), "{name}: {text}");
     }
 }
+
+/// A run killed (SIGKILL) while it writes restart files every few steps, in turn to two
+/// names, leaves every restart file it had written readable: each is written under a
+/// temporary name and renamed only once complete.
+#[test]
+fn a_run_killed_while_writing_restart_files_leaves_them_readable() {
+    let script = format!(
+        "{HEAD}region box block 0 0.2 0 0.2 0 0.2 units box
+create_box 1 box
+lattice sc 0.005
+region blk block 0.0025 0.1975 0.0025 0.1975 0.0025 0.0975 units box
+create_atoms 1 region blk
+set group all diameter 0.004 density 2500
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix integr all nve/sphere
+restart 3 a.restart b.restart
+run 100000000
+"
+    );
+    let dir = common::scratch_dir("killed");
+    std::fs::write(dir.join("in.test"), &script).unwrap();
+    let mut child = common::rdem_command(None)
+        .args(["-in", "in.test", "-log", "none"])
+        .env("RDEM_THREADS", "1")
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until both files exist (the run is writing one every 3 steps), then kill.
+    let t0 = std::time::Instant::now();
+    while !(dir.join("a.restart").exists() && dir.join("b.restart").exists()) {
+        assert!(t0.elapsed().as_secs() < 60, "no restart files after 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(150));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let (mut counts, mut steps) = (Vec::new(), Vec::new());
+    for f in ["a.restart", "b.restart"] {
+        let read = format!(
+            "{HEAD}read_restart {f}\nvariable n equal count(all)\nprint \"ATOMS ${{n}} STEP $(step)\"\n"
+        );
+        std::fs::write(dir.join("in.read"), &read).unwrap();
+        let out = common::rdem_command(None)
+            .args(["-in", "in.read", "-log", "none"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(
+            out.status.success(),
+            "{f}: {text}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let line = text.lines().find(|l| l.starts_with("ATOMS ")).unwrap();
+        let w: Vec<&str> = line.split_whitespace().collect();
+        counts.push(w[1].parse::<u64>().unwrap());
+        steps.push(w[3].parse::<u64>().unwrap());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    // Every particle of the lattice (39 × 39 × 19) in both files, which hold steps 3
+    // apart (the last two written), in either order.
+    assert_eq!(counts, [28899, 28899], "{steps:?}");
+    assert_eq!(steps[0].abs_diff(steps[1]), 3, "{steps:?}");
+}
