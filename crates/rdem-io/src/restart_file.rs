@@ -94,12 +94,20 @@ pub enum RestartFileError {
 /// Frames `payload` as a restart file of the current format version.
 pub fn frame(payload: &[u8]) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-    out.extend_from_slice(&crc32fast::hash(payload).to_le_bytes());
-    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    out.resize(HEADER_LEN, 0);
     out.extend_from_slice(payload);
+    fill_header(&mut out);
     out
+}
+
+/// Writes the header into the first [`HEADER_LEN`] bytes of `file`, whose payload
+/// follows them (a file built in place, without copying the payload again).
+pub fn fill_header(file: &mut [u8]) {
+    let (head, payload) = file.split_at_mut(HEADER_LEN);
+    head[..16].copy_from_slice(MAGIC);
+    head[16..20].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
+    head[20..24].copy_from_slice(&crc32fast::hash(payload).to_le_bytes());
+    head[24..32].copy_from_slice(&(payload.len() as u64).to_le_bytes());
 }
 
 /// Writes `payload` to `path` as a restart file, atomically.

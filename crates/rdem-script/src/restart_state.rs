@@ -120,7 +120,13 @@ pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), String> {
             })
         })
         .collect();
-    let written = match w.comm.gather_bytes(&mine) {
+    // One rank: its block as it is (no round trip through the gather's words).
+    let blocks = if w.comm.size() == 1 {
+        Some(vec![mine])
+    } else {
+        w.comm.gather_bytes(&mine)
+    };
+    let written = match blocks {
         Some(blocks) => write_file(sim, w, path, natoms, fixes, &blocks),
         None => Ok(()),
     };
@@ -153,14 +159,18 @@ fn write_file(
         natoms,
         fixes,
     };
+    // The payload goes straight after room for the header (filled in last), so the
+    // blocks are copied once.
     let total: usize = blocks.iter().map(|b| b.len() + 8).sum();
-    let mut payload = Vec::with_capacity(total + 1024);
+    let mut payload = Vec::with_capacity(rdem_io::restart_file::HEADER_LEN + total + 1024);
+    payload.resize(rdem_io::restart_file::HEADER_LEN, 0);
     push_block(&mut payload, &encode(&head));
     payload.extend_from_slice(&(blocks.len() as u64).to_le_bytes());
     for b in blocks {
         push_block(&mut payload, b);
     }
-    rdem_io::restart_file::write_restart_file(Path::new(path), &payload).map_err(|e| e.to_string())
+    rdem_io::restart_file::fill_header(&mut payload);
+    rdem_io::write_atomic(Path::new(path), &payload).map_err(|e| e.to_string())
 }
 
 /// A restart file's contents, decoded.
