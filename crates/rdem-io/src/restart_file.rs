@@ -12,15 +12,15 @@
 //! ```
 //!
 //! This module only frames the payload; what the payload holds (and its serialization,
-//! `postcard`) is the front end's. Files are written whole under a temporary name and
-//! renamed into place ([`crate::atomic`]), so a run killed while writing leaves the
-//! previous file untouched. Reading checks, in order: the file is long enough for the
+//! `postcard`) is the front end's, which writes the framed file whole under a temporary
+//! name renamed into place ([`crate::atomic::write_atomic`]), so that a run killed while
+//! writing leaves the previous file untouched. Reading checks, in order: the file is long enough for the
 //! header, the magic, the version, the length, the checksum; each failure is a
 //! [`RestartFileError`] that names the file and says what is wrong.
 
 use std::path::{Path, PathBuf};
 
-use crate::atomic::{write_atomic, IoError};
+use crate::atomic::IoError;
 
 /// The first 16 bytes of every rdem restart file.
 pub const MAGIC: &[u8; 16] = b"rdem restart\n\0\0\0";
@@ -108,11 +108,6 @@ pub fn fill_header(file: &mut [u8]) {
     head[16..20].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
     head[20..24].copy_from_slice(&crc32fast::hash(payload).to_le_bytes());
     head[24..32].copy_from_slice(&(payload.len() as u64).to_le_bytes());
-}
-
-/// Writes `payload` to `path` as a restart file, atomically.
-pub fn write_restart_file(path: &Path, payload: &[u8]) -> Result<(), IoError> {
-    write_atomic(path, &frame(payload))
 }
 
 /// Reads the restart file at `path`: its format version and payload.

@@ -147,8 +147,7 @@ impl ScriptFix for AveTime {
         _head: &FixHead,
         state: &[u8],
     ) -> Result<(), String> {
-        let st: AveTimeState =
-            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let st: AveTimeState = super::decode_state(state)?;
         let n = self.inputs.len();
         if [st.0.len(), st.2.len(), st.3.len()]
             .iter()

@@ -257,18 +257,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "compress_tags" => {
                 a.yes_no("compress_tags")?;
             }
-            "vel" => {
-                vel = match a.keyword(
-                    "velocity distribution",
-                    &["constant", "uniform", "gaussian"],
-                )? {
-                    "constant" => VelocityLaw::Constant(a.vec3("velocity")?),
-                    "uniform" => {
-                        VelocityLaw::Uniform(a.vec3("mean velocity")?, a.vec3("velocity spread")?)
-                    }
-                    _ => VelocityLaw::Gaussian(a.vec3("mean velocity")?, a.vec3("velocity sigma")?),
-                }
-            }
+            "vel" => vel = velocity_law(a)?,
             "omega" => {
                 a.keyword("omega distribution", &["constant"])?;
                 omega = a.vec3("omega")?;
@@ -432,6 +421,21 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     }))
 }
 
+/// `vel constant|uniform|gaussian ...`: the velocity law of inserted particles (after
+/// the keyword `vel`), as the insertion fixes read it.
+pub(super) fn velocity_law(a: &mut Args) -> CmdResult<VelocityLaw> {
+    Ok(
+        match a.keyword(
+            "velocity distribution",
+            &["constant", "uniform", "gaussian"],
+        )? {
+            "constant" => VelocityLaw::Constant(a.vec3("velocity")?),
+            "uniform" => VelocityLaw::Uniform(a.vec3("mean velocity")?, a.vec3("velocity spread")?),
+            _ => VelocityLaw::Gaussian(a.vec3("mean velocity")?, a.vec3("velocity sigma")?),
+        },
+    )
+}
+
 /// The LIGGGHTS report line of an insertion.
 pub fn insertion_report(
     id: &str,
@@ -507,8 +511,7 @@ impl ScriptFix for Inserter {
         _head: &FixHead,
         state: &[u8],
     ) -> Result<(), String> {
-        let st: InserterState =
-            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let st: InserterState = super::decode_state(state)?;
         if !self.pack.set_progress(&st.progress) {
             return Err(
                 "it was written for a distribution with another number of templates".into(),

@@ -141,18 +141,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 }
             }
             "verbose" => verbose = a.yes_no("verbose")?,
-            "vel" => {
-                vel = match a.keyword(
-                    "velocity distribution",
-                    &["constant", "uniform", "gaussian"],
-                )? {
-                    "constant" => VelocityLaw::Constant(a.vec3("velocity")?),
-                    "uniform" => {
-                        VelocityLaw::Uniform(a.vec3("mean velocity")?, a.vec3("velocity spread")?)
-                    }
-                    _ => VelocityLaw::Gaussian(a.vec3("mean velocity")?, a.vec3("velocity sigma")?),
-                }
-            }
+            "vel" => vel = super::insert::velocity_law(a)?,
             "omega" => {
                 a.keyword("omega distribution", &["constant"])?;
                 omega = a.vec3("omega")?;

@@ -195,8 +195,7 @@ impl ScriptFix for MassFlowFix {
         _head: &FixHead,
         state: &[u8],
     ) -> Result<(), String> {
-        let st: FlowState =
-            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let st: FlowState = super::decode_state(state)?;
         let f = &mut self.flow;
         (f.mass, f.count, f.deleted_mass, f.deleted) = (st.0, st.1, st.2, st.3);
         self.last.set(st.4);

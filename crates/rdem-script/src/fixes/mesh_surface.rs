@@ -91,8 +91,7 @@ impl ScriptFix for Mesh {
     }
 
     fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
-        let st: rdem::restart::MeshState =
-            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let st: rdem::restart::MeshState = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let k = w.mesh_index(&head.id).ok_or("the mesh is missing")?;
         w.meshes[k].set_state(&st)

@@ -573,6 +573,12 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// Decodes a state that a fix's [`ScriptFix::save_state`] wrote (the message for
+/// [`ScriptFix::restore_state`]'s error).
+pub(super) fn decode_state<T: serde::de::DeserializeOwned>(state: &[u8]) -> Result<T, String> {
+    postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))
+}
+
 /// After `read_restart`: a fix defined with the ID of a fix of the writing run takes
 /// back its state if the style is the same (as LIGGGHTS); with another style the state
 /// is dropped with a warning.

@@ -46,8 +46,7 @@ impl ScriptFix for MoveMesh {
     }
 
     fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
-        let (t0, base): (f64, Vec<[f64; 3]>) =
-            postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))?;
+        let (t0, base): (f64, Vec<[f64; 3]>) = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let m = &mut w.meshes[self.mesh].motion;
         if base.len() != m.base.len() {
