@@ -166,6 +166,8 @@ fn main() -> ExitCode {
     #[cfg(feature = "mpi")]
     let _mpi = rdem::comm::init_mpi();
     let (rank, nprocs) = rdem::comm::process_rank_size();
+    // Where failing ranks meet before stopping (made now, while every rank is here).
+    let stop_line = rdem::comm::StopLine::new();
     let threads = match cli.threads {
         Some(n) => n,
         None => match std::env::var("RDEM_THREADS") {
@@ -274,12 +276,18 @@ fn main() -> ExitCode {
             let text = format!("{:?}", miette::Report::new(*report));
             interp.sim.outputs.out.log_line(&format!("ERROR: {text}"));
             interp.sim.outputs.out.flush();
-            // Every rank reads the same script and the engine's errors are agreed on by
-            // all ranks, so every rank stops here; rank 0 reports.
-            if rank == 0 {
-                eprintln!("{text}");
+            // Every rank reads the same script and every command's failure (and every
+            // file write's) is agreed on by all ranks, so every rank stops here and rank 0
+            // reports. A failure that some ranks did not see would leave the others
+            // blocked: after a grace time the failing ranks report and abort the job.
+            if nprocs == 1 || stop_line.all_stopping(std::time::Duration::from_secs(20)) {
+                if rank == 0 {
+                    eprintln!("{text}");
+                }
+                return ExitCode::from(1);
             }
-            ExitCode::from(1)
+            eprintln!("rdem: MPI rank {rank} stopped alone; stopping every rank\n{text}");
+            stop_line.abort(1)
         }
     }
 }

@@ -19,10 +19,15 @@ struct Case {
     make_box: &'static str,
     defs: &'static str,
     init: &'static str,
+    /// What both scripts define after the particles exist (after `init` in the writing
+    /// script, after `defs` in the continuing one).
+    after: &'static str,
     n1: u64,
     n2: u64,
     /// Files (name, contents) beside the scripts.
     files: Vec<(&'static str, String)>,
+    /// Files both runs write at the end, which must be the same bytes.
+    compare: &'static [&'static str],
 }
 
 /// The end state and the thermo rows of the last run.
@@ -54,29 +59,35 @@ fn last_rows(out: &str) -> Vec<String> {
 /// end state's dump and the thermo rows of the continued run.
 fn check_split(name: &str, c: &Case) -> (String, Vec<Vec<f64>>) {
     let unbroken = format!(
-        "{}{}{}{}run {}\nrun {}\n{FINAL}",
-        c.head, c.make_box, c.defs, c.init, c.n1, c.n2
+        "{}{}{}{}{}run {}\nrun {}\n{FINAL}",
+        c.head, c.make_box, c.defs, c.init, c.after, c.n1, c.n2
     );
     let files: Vec<(&str, &str)> = c.files.iter().map(|(n, t)| (*n, t.as_str())).collect();
     let (d0, out0) = run_ok(&format!("{name}-unbroken"), &unbroken, &files);
     let first = format!(
-        "{}{}{}{}run {}\nwrite_restart state.restart\n",
-        c.head, c.make_box, c.defs, c.init, c.n1
+        "{}{}{}{}{}run {}\nwrite_restart state.restart\n",
+        c.head, c.make_box, c.defs, c.init, c.after, c.n1
     );
     let (d1, _) = run_ok(&format!("{name}-first"), &first, &files);
     // The continuing script runs in a new process and directory with the restart file
     // beside its own files.
     let second = format!(
-        "{}read_restart ../{}/state.restart\n{}run {}\n{FINAL}",
+        "{}read_restart ../{}/state.restart\n{}{}run {}\n{FINAL}",
         c.head,
         d1.file_name().unwrap().to_string_lossy(),
         c.defs,
+        c.after,
         c.n2
     );
     let (dir2, out2) = run_ok(&format!("{name}-second"), &second, &files);
     let a = std::fs::read_to_string(d0.join("final.dump")).unwrap();
     let b = std::fs::read_to_string(dir2.join("final.dump")).unwrap();
     let (ra, rb) = (last_rows(&out0), last_rows(&out2));
+    for f in c.compare {
+        let (x, y) = (std::fs::read(d0.join(f)), std::fs::read(dir2.join(f)));
+        assert!(x.is_ok(), "{name}: the unbroken run wrote no {f}");
+        assert!(x.unwrap() == y.unwrap_or_default(), "{name}: {f} differs");
+    }
     for d in [d0, d1, dir2] {
         let _ = std::fs::remove_dir_all(d);
     }
@@ -147,9 +158,11 @@ fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 r
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
 fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
 ",
+        after: "",
         n1: 8000,
         n2: 4000,
         files: Vec::new(),
+        compare: &[],
     };
     let (end, _) = check_split("bed", &c);
     assert_eq!(atoms(&end), 250);
@@ -209,6 +222,7 @@ thermo 500
 thermo_modify format float %.17g
 ",
         init: "",
+        after: "",
         n1: 5000,
         n2: 4000,
         files: vec![
@@ -216,6 +230,7 @@ thermo_modify format float %.17g
             ("face.stl", square_stl(0.03, 0.14)),
             ("counter.stl", square_stl(0.05, 0.07)),
         ],
+        compare: &[],
     };
     let (end, rows) = check_split("stream", &c);
     // Insertions every 1000 steps from step 1 (40 each) go on after the split, and the
@@ -270,9 +285,11 @@ create_atoms 1 region blk
 set group all diameter 0.002 density 2500
 velocity all set 0.3 0 -4
 ",
+        after: "",
         n1: 4600,
         n2: 1400,
         files: Vec::new(),
+        compare: &[],
     };
     let (end, rows) = check_split("bonds", &c);
     assert_eq!(atoms(&end), 100);
@@ -320,9 +337,11 @@ fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 r
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
 fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
 ",
+        after: "",
         n1: 5000,
         n2: 5000,
         files: Vec::new(),
+        compare: &[],
     };
     let (end, rows) = check_split("adapt", &c);
     assert_eq!(atoms(&end), 250);
@@ -338,6 +357,206 @@ fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once
         assert!((r - want).abs() < 1e-15, "{l}");
     }
     assert!(rows.iter().all(|r| r[3] > 0.0), "{rows:?}");
+}
+
+/// The settling bed with `fix ave/euler` and its `dump euler/vtk`: the cell averages of
+/// the last step (velocities, volume fractions, the stress of the contacts) are the same
+/// bytes after the split. ave/euler keeps no state between its samples; what it averages
+/// (positions, velocities and the contact forces, recomputed at the continued run's
+/// set-up from the restored histories) must all have carried over.
+#[test]
+fn ave_euler_of_a_settling_bed_continues_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential history primitive type 1 zcylinder 0.045 0 0
+fix integr all nve/sphere
+fix euler all ave/euler nevery 100 cell_size_relative 3 parallel no
+dump e all euler/vtk 2000 euler_*.vtk
+thermo_style custom step atoms ke
+thermo 1000
+thermo_modify format float %.17g
+",
+        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+",
+        after: "",
+        n1: 6000,
+        n2: 4000,
+        files: Vec::new(),
+        compare: &["euler_10000.vtk"],
+    };
+    let (end, _) = check_split("euler", &c);
+    assert_eq!(atoms(&end), 250);
+}
+
+/// Particles 1–20 wiggle (`fix move wiggle`) and 21–30 follow `fix move variable`
+/// through a settling bed: the motions' time origin (the step of their definition in the
+/// writing script), the last variable displacement and every particle's original
+/// position carry over, so the prescribed particles are where the unbroken run has them.
+#[test]
+fn particles_moved_by_fix_move_continue_bit_for_bit() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential history primitive type 1 zcylinder 0.045 0 0
+thermo_style custom step atoms ke
+thermo 1000
+thermo_modify format float %.17g
+",
+        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+run 500
+",
+        after: "group wig id 1:20
+group var id 21:30
+group free subtract all wig var
+fix wiggle wig move wiggle 0.002 NULL NULL 0.05 units box
+variable dx equal 0.002*sin(20*time)
+variable vx equal 0.04*cos(20*time)
+fix follow var move variable v_dx NULL NULL v_vx NULL NULL units box
+fix integr free nve/sphere
+",
+        n1: 3000,
+        n2: 3000,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, _) = check_split("move", &c);
+    assert_eq!(atoms(&end), 250);
+}
+
+/// A bed packed by `insert/pack/dense` (once, at the first step) and settling: the
+/// continuing script defines the fix again, and it does not pack the region again.
+#[test]
+fn a_dense_packing_is_not_inserted_again_after_a_restart() {
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential history primitive type 1 zcylinder 0.045 0 0
+region ins block -0.03 0.03 -0.03 0.03 0.02 0.08 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack/dense seed 49979687 distributiontemplate pdd region ins volumefraction_region 0.3
+fix integr all nve/sphere
+thermo_style custom step atoms ke f_ins[1]
+thermo 1000
+thermo_modify format float %.17g
+",
+        init: "",
+        after: "",
+        n1: 3000,
+        n2: 3000,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, rows) = check_split("dense", &c);
+    let n = atoms(&end);
+    assert!(n > 150, "{n} particles packed");
+    // The fix's count of inserted particles carried over too.
+    assert!(rows.iter().all(|r| r[3] == n as f64), "{rows:?}");
+}
+
+/// Heat conduction (`fix heat/gran`) in a packing settling on a heated mesh floor
+/// beside a heated wall, with a heat source (a per-particle property set by the writing
+/// script only): the temperatures, heat flows and sources carry over, and defining
+/// `heat/gran` again with its `initial_temperature` does not reset them.
+#[test]
+fn heat_conduction_continues_bit_for_bit() {
+    let floor = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/heat/floor.stl"),
+    )
+    .unwrap();
+    let c = Case {
+        head: HEAD,
+        make_box: "region reg block -0.01 0.07 -0.01 0.07 -0.01 0.08 units box\ncreate_box 2 reg\n",
+        defs: "neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.7 0.7 0.7 0.7
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5
+fix ftco all property/global thermalConductivity peratomtype 100. 40.
+fix ftca all property/global thermalCapacity peratomtype 50. 80.
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix floor all mesh/surface file floor.stl type 2 move 0 0 0.00207 temperature 400.
+fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor
+fix side all wall/gran model hertz tangential history primitive type 1 xplane 0.00208 temperature 350.
+fix side2 all wall/gran model hertz tangential history primitive type 1 xplane 0.0621
+fix side3 all wall/gran model hertz tangential history primitive type 1 yplane 0.0015
+fix side4 all wall/gran model hertz tangential history primitive type 1 yplane 0.0621
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix heattransfer all heat/gran initial_temperature 300.
+fix integr all nve/sphere
+compute tmean all reduce ave f_Temp
+compute tmax all reduce max f_Temp
+compute flux all reduce sum f_heatFlux
+thermo_style custom step atoms f_heattransfer c_tmean c_tmax c_flux
+thermo_modify format float %.17g
+thermo 500
+",
+        init: "lattice fcc 0.0141421356237
+region pack block 0.006 0.06 0.006 0.06 0.006 0.06 units box
+create_atoms 1 region pack
+region upper block INF INF INF INF 0.032 INF units box
+set region upper type 2
+set type 1 diameter 0.01 density 2500
+set type 2 diameter 0.01 density 3000
+run 0
+region src block INF 0.02 INF 0.02 0.04 INF units box
+set region src property/atom heatSource 0.05
+",
+        after: "",
+        n1: 2500,
+        n2: 2500,
+        files: vec![("floor.stl", floor)],
+        compare: &[],
+    };
+    let (end, rows) = check_split("heat", &c);
+    assert_eq!(atoms(&end), 256);
+    // The bed has warmed from its initial 300 K by the end (measured: mean 301.69 K,
+    // maximum 312.94 K at step 5000).
+    let last = rows.last().unwrap();
+    assert!(last[3] > 301.0 && last[4] > 310.0, "{last:?}");
 }
 
 /// Bad restart files stop `read_restart` with a located error that names the file and

@@ -75,6 +75,79 @@ pub fn agree_on_failure(failed: Option<&str>) -> Option<(usize, String)> {
     failed.map(|m| (0, m.to_string()))
 }
 
+/// Where failing ranks meet before they stop: a communicator of its own (a duplicate of
+/// the world, made at start-up while every rank is there), so that meeting on it never
+/// mixes with a collective call of the simulation that other ranks may be blocked in.
+///
+/// A failure that every rank agreed on (every command's and every file write's are)
+/// brings every rank here, and the meeting ends at once. A failure on some ranks only
+/// would leave the others waiting forever in their next collective call; the failing
+/// ranks then stop the whole job with `MPI_Abort` after a grace time, so that no rank
+/// waits forever. Serially (or without the feature) there is nobody to meet.
+pub struct StopLine {
+    #[cfg(feature = "mpi")]
+    comm: Option<mpi::topology::SimpleCommunicator>,
+}
+
+impl StopLine {
+    /// Makes the meeting place. Collective (call it on every rank, after `init_mpi`).
+    pub fn new() -> Self {
+        #[cfg(feature = "mpi")]
+        {
+            use mpi::traits::Communicator;
+            let comm = (process_rank_size().1 > 1)
+                .then(|| mpi::topology::SimpleCommunicator::world().duplicate());
+            Self { comm }
+        }
+        #[cfg(not(feature = "mpi"))]
+        Self {}
+    }
+
+    /// Waits up to `grace` for every rank to arrive; true when they all did (or there is
+    /// one rank). Call it only on the way out after a failure.
+    pub fn all_stopping(&self, grace: std::time::Duration) -> bool {
+        #[cfg(feature = "mpi")]
+        if let Some(c) = &self.comm {
+            use mpi::collective::CommunicatorCollectives;
+            let start = std::time::Instant::now();
+            let mut req = c.immediate_barrier();
+            loop {
+                match req.test() {
+                    Ok(_) => return true,
+                    Err(r) if start.elapsed() < grace => {
+                        req = r;
+                        std::thread::sleep(std::time::Duration::from_millis(5));
+                    }
+                    Err(r) => {
+                        // The barrier stays posted: the job is aborted next.
+                        std::mem::forget(r);
+                        return false;
+                    }
+                }
+            }
+        }
+        let _ = grace;
+        true
+    }
+
+    /// Stops every rank of the job with exit code `code` (`MPI_Abort`); serially, this
+    /// process.
+    pub fn abort(&self, code: u8) -> ! {
+        #[cfg(feature = "mpi")]
+        if let Some(c) = &self.comm {
+            use mpi::traits::Communicator;
+            c.abort(i32::from(code));
+        }
+        std::process::exit(i32::from(code))
+    }
+}
+
+impl Default for StopLine {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// Per-particle data kept outside [`Particles`] that travels with a migrating particle
 /// (the contact history rows of the neighbor list).
 pub trait Carried {

@@ -388,15 +388,15 @@ impl ScriptFix for AveHisto {
         }
         self.combine();
         let block = self.block(step);
+        let mut wrote = Ok(());
         if let Some(f) = &mut self.file {
             if self.overwrite {
                 *f = rdem_io::AppendFile::new(f.path().to_path_buf());
-                f.append(self.header.as_bytes())
-                    .map_err(|e| e.to_string())?;
+                wrote = f.append(self.header.as_bytes());
             }
-            f.append(block.as_bytes()).map_err(|e| e.to_string())?;
+            wrote = wrote.and_then(|()| f.append(block.as_bytes()));
         }
-        Ok(())
+        super::agree_write(sim, "fix ave/histo", wrote.map_err(|e| e.to_string()))
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

@@ -221,15 +221,18 @@ impl ScriptFix for AveTime {
             }
             self.sum.iter_mut().for_each(|s| *s = 0.0);
             self.count = 0;
+            let mut wrote = Ok(());
             if let Some(f) = &mut self.file {
                 let row: Vec<String> = self
                     .values
                     .iter()
                     .map(|v| crate::variables::format_g(*v, 6))
                     .collect();
-                f.append(format!("{step} {}\n", row.join(" ")).as_bytes())
-                    .map_err(|e| e.to_string())?;
+                wrote = f
+                    .append(format!("{step} {}\n", row.join(" ")).as_bytes())
+                    .map_err(|e| e.to_string());
             }
+            super::agree_write(sim, "fix ave/time", wrote)?;
         }
         Ok(())
     }

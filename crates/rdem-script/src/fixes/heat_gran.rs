@@ -144,9 +144,10 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         ));
     }
     // The properties it defines: replaced when a property/atom of the same ID holds them,
-    // an error when another fix does.
+    // an error when another fix does; taken over (values kept) when a restart file brought
+    // them.
     for (name, _, _) in PROPS {
-        if w.particles.property(name).is_none() {
+        if w.particles.property(name).is_none() || sim.defs.restored.props.contains(name) {
             continue;
         }
         let owner = sim

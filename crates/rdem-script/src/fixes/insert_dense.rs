@@ -206,6 +206,32 @@ impl ScriptFix for InsertDense {
         self.pack.due(step)
     }
 
+    /// The generators, whether the packing is done and the totals: a continued run
+    /// does not pack the region again, and an `insert_every N` packing goes on with the
+    /// same random numbers.
+    fn save_state(&self, _sim: &Sim, _head: &FixHead) -> Option<Vec<u8>> {
+        let (progress, done) = self.pack.progress();
+        postcard::to_stdvec(&(progress, done, self.total, self.total_mass)).ok()
+    }
+
+    fn restore_state(
+        &mut self,
+        _sim: &mut Sim,
+        _head: &FixHead,
+        state: &[u8],
+    ) -> Result<(), String> {
+        let (progress, done, total, total_mass): (rdem::insert::InsertProgress, bool, u64, f64) =
+            super::decode_state(state)?;
+        if !self.pack.set_progress(&progress, done) {
+            return Err(
+                "it was written for a distribution with another number of templates".into(),
+            );
+        }
+        self.total = total;
+        self.total_mass = total_mass;
+        Ok(())
+    }
+
     fn pre_exchange(
         &mut self,
         head: &FixHead,

@@ -275,14 +275,14 @@ impl ScriptFix for MassFlowFix {
             })
             .collect();
         // Every rank's lines, in rank order, on the rank that writes.
-        let Some(all) = w.comm.gather(&rows) else {
-            return Ok(());
-        };
-        let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();
-        if let Some(file) = &mut out.writer {
-            file.append(text.as_bytes()).map_err(|e| e.to_string())?;
+        let mut wrote = Ok(());
+        if let Some(all) = w.comm.gather(&rows) {
+            let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();
+            if let Some(file) = &mut out.writer {
+                wrote = file.append(text.as_bytes()).map_err(|e| e.to_string());
+            }
         }
-        Ok(())
+        super::agree_write(sim, "fix massflow/mesh", wrote)
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

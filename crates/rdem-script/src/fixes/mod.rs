@@ -441,6 +441,17 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
     )
 }
 
+/// The outcome of a file write during a run that only MPI rank 0 does, made the same on
+/// every rank (see [`crate::dumps::agree`]): a failed write stops every rank with rank
+/// 0's report instead of leaving the others in the next collective call. Collective:
+/// every rank calls it at the same point of the same step.
+pub(crate) fn agree_write(sim: &Sim, what: &str, r: Result<(), String>) -> Result<(), String> {
+    match &sim.world {
+        Some(w) => crate::dumps::agree(&*w.comm, what, r),
+        None => r,
+    }
+}
+
 /// Indices of the fixes that take part in `stage`, in definition order.
 pub fn with_stage(sim: &Sim, stage: Stages) -> Vec<usize> {
     (0..sim.defs.fixes.len())

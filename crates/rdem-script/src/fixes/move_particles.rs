@@ -40,6 +40,33 @@ impl ScriptFix for FixMove {
         self.inner.install(sim, a, head)
     }
 
+    /// The step the motion started at (its time origin) and, for `variable`, the
+    /// displacement of the last step: with the original positions (a per-particle
+    /// property, in the restart file with every particle) a continued run moves the
+    /// particles on as the unbroken run does.
+    fn save_state(&self, sim: &Sim, head: &FixHead) -> Option<Vec<u8>> {
+        let m = engine_move(sim.world.as_ref()?, &head.id)?;
+        let previous = match &m.style {
+            MoveStyle::Variable { previous, .. } => *previous,
+            _ => [None; 3],
+        };
+        postcard::to_stdvec(&(m.origin_step, previous)).ok()
+    }
+
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+        let (origin_step, prev): (u64, [Option<f64>; 3]) = super::decode_state(state)?;
+        let w = sim.world.as_mut().ok_or("no simulation box")?;
+        let fix = w.fixes.iter_mut().find(|f| f.id == head.id);
+        let Some(FixKind::Move(m)) = fix.map(|f| &mut f.kind) else {
+            return Err("fix move is not in the engine".into());
+        };
+        m.origin_step = origin_step;
+        if let MoveStyle::Variable { previous, .. } = &mut m.style {
+            *previous = prev;
+        }
+        Ok(())
+    }
+
     /// `variable`: the displacement and velocity of the coming step, from the variables
     /// evaluated at that step (as LAMMPS evaluates them in its initial integration).
     fn pre_step(
@@ -89,6 +116,14 @@ impl ScriptFix for FixMove {
         if let Some(w) = &mut sim.world {
             w.particles.retire_property(&Move::property_name(&head.id));
         }
+    }
+}
+
+/// The engine's `fix move` of ID `id`.
+fn engine_move<'a>(w: &'a rdem::World, id: &str) -> Option<&'a Move> {
+    match &w.fixes.iter().find(|f| f.id == id)?.kind {
+        FixKind::Move(m) => Some(m),
+        _ => None,
     }
 }
 

@@ -150,7 +150,8 @@ impl ScriptFix for FixPrint {
         if self.screen {
             sim.outputs.out.line(&line);
         }
-        self.write(&line)
+        let wrote = self.write(&line);
+        super::agree_write(sim, "fix print", wrote)
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

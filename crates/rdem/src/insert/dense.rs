@@ -281,6 +281,30 @@ impl DensePack {
         (MAX_VOLUME_FRACTION / self.volume_fraction).cbrt()
     }
 
+    /// The generators' states and whether the one insertion of `insert_every once` is
+    /// done, for a restart file.
+    pub fn progress(&self) -> (super::InsertProgress, bool) {
+        let p = super::InsertProgress {
+            rng: self.rng.clone(),
+            dist: self.dist.rngs(),
+            last: None,
+            start: None,
+            inserted: 0,
+        };
+        (p, self.done)
+    }
+
+    /// Takes back what [`DensePack::progress`] gave; false if it belongs to another
+    /// distribution.
+    pub fn set_progress(&mut self, p: &super::InsertProgress, done: bool) -> bool {
+        if !self.dist.set_rngs(&p.dist) {
+            return false;
+        }
+        self.rng = p.rng.clone();
+        self.done = done;
+        true
+    }
+
     /// True if an insertion is due at `step`: once (the first step asked), or at the
     /// multiples of `insert_every`.
     pub fn due(&self, step: u64) -> bool {
