@@ -4,7 +4,9 @@
 # tutorial tests run; OpenMPI and libclang, to build and run rdem's `mpi` feature under
 # mpirun; VTK's Python reader, with which tests read our VTK files), then formatting,
 # clippy with warnings as errors (with and without MPI), the doc tests and the whole test
-# suite with the `mpi` feature (cargo-nextest, release). `.ci/run` calls this script.
+# suite with the `mpi` feature (cargo-nextest, release), then the Python package: a
+# virtual environment (target/pyenv) with maturin, numpy and pytest from pip, the wheel
+# built and installed in it, and the Python tests. `.ci/run` calls this script.
 # Usage: bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -46,3 +48,11 @@ cargo clippy --workspace --all-targets --features rdem-cli/mpi -- -D warnings
 cargo test --workspace --doc --release
 # The MPI tests start mpirun themselves (--oversubscribe, so they run on 2 cores too).
 cargo nextest run --workspace --release --features rdem-cli/mpi
+
+# The Python package: the wheel built by maturin, installed in a virtual environment.
+python3 -m venv target/pyenv
+target/pyenv/bin/python -m pip install --quiet --upgrade maturin numpy pytest
+rm -rf target/wheels-test
+target/pyenv/bin/maturin build --release --quiet --out target/wheels-test
+target/pyenv/bin/python -m pip install --quiet --force-reinstall --no-deps target/wheels-test/rdem-*.whl
+target/pyenv/bin/python -m pytest -q python/tests

@@ -74,7 +74,12 @@ fn run_2(tag: &str, script: &str) -> (Option<i32>, String) {
     };
     let mut err = String::new();
     use std::io::Read;
-    child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     (status.code(), err)
 }
@@ -86,7 +91,10 @@ fn assert_one_report(tag: &str, (code, err): (Option<i32>, String), what: &str, 
     assert_eq!(code, Some(1), "{tag}: {err}");
     assert_eq!(err.matches(what).count(), 1, "{tag}: one report:\n{err}");
     assert!(err.contains(why), "{tag}: the reason:\n{err}");
-    assert!(!err.contains("MPI_ABORT"), "{tag}: ranks stopped in agreement:\n{err}");
+    assert!(
+        !err.contains("MPI_ABORT"),
+        "{tag}: ranks stopped in agreement:\n{err}"
+    );
     assert!(!err.contains("stopped alone"), "{tag}:\n{err}");
 }
 
@@ -99,7 +107,12 @@ fn a_fix_print_file_that_cannot_be_written_stops_every_rank() {
         "{SETUP}fix p all print 30 \"step $(step)\" append /dev/full title none screen no\nrun 100\n"
     );
     let out = run_2("iofail-print", &script);
-    assert_one_report("print", out, "cannot append to '/dev/full'", "No space left on device");
+    assert_one_report(
+        "print",
+        out,
+        "cannot append to '/dev/full'",
+        "No space left on device",
+    );
 }
 
 #[test]

@@ -176,6 +176,26 @@ impl ScriptReport {
     pub fn code(&self) -> Option<&'static str> {
         self.code
     }
+
+    /// The message (without the source excerpt and the help).
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+
+    /// The file, and the 1-based line and column (in characters) of the word the report
+    /// points at; `None` when it points at no source.
+    pub fn location(&self) -> Option<(String, usize, usize)> {
+        let (src, span) = (self.src.as_ref()?, self.span?);
+        let text: &str = src.inner();
+        let mut off = span.offset().min(text.len());
+        while !text.is_char_boundary(off) {
+            off -= 1;
+        }
+        let before = &text[..off];
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        Some((src.name().to_string(), line, col))
+    }
 }
 
 impl Diagnostic for ScriptReport {

@@ -533,6 +533,9 @@ impl Interpreter {
             let step = self.sim.world_ref(a)?.step;
             let chunk = plan.chunk(step, n, first, left <= n);
             crate::run::run_chunk(&mut self.sim, a, chunk)?;
+            if self.sim.script.halted {
+                break;
+            }
             self.run_inline(cmd, range.clone())?;
             left -= n;
             first = false;

@@ -193,6 +193,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
 /// steps with their output, and the end-of-run report.
 fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     let nsteps = chunk.nsteps;
+    sim.script.halted = false;
     // `pre no` is overridden before anything ran (LAMMPS' `first_update`).
     let setup = chunk.setup || !sim.script.set_up;
     let m = crate::materials::materials(sim)?;
@@ -279,6 +280,10 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     if let Some(h) = thermo::header(sim) {
         sim.outputs.out.thermo_line(&h);
     }
+    sim.outputs.thermo.table = thermo::ThermoTable {
+        columns: sim.outputs.thermo.columns.clone(),
+        rows: Vec::new(),
+    };
     thermo_row(sim)?;
     if sim.script.check {
         crate::check::after_setup(sim, nsteps)?;
@@ -293,6 +298,8 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     let t0 = Instant::now();
     sim.script.run_started = t0;
     let mut last_progress = Instant::now();
+    let mut done = nsteps;
+    let mut stopped = None;
     for k in 0..nsteps {
         let step = start_step + k + 1;
         stages.pre_step(sim, step, false)?;
@@ -319,16 +326,35 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
                 p(k + 1, nsteps);
             }
         }
+        if let Some(mut hook) = sim.outputs.step_hook.take() {
+            let asked = hook(sim, step);
+            sim.outputs.step_hook = Some(hook);
+            if let Err(m) = &asked {
+                stopped = Some(m.clone());
+            }
+            if asked != Ok(true) {
+                // The run ends here, as if it had been asked for this many steps.
+                done = k + 1;
+                sim.script.run_last = step;
+                sim.script.halted = true;
+                thermo_row(sim)?;
+                break;
+            }
+        }
     }
     if let Some(p) = &mut sim.outputs.progress {
-        p(nsteps, nsteps);
+        p(done, done);
     }
+    let nsteps = done;
     let loop_time = t0.elapsed().as_secs_f64();
     // The set-up's build is not counted (as in LIGGGHTS).
     let builds0 = (builds0.0 + u64::from(setup), builds0.1);
     report(sim, loop_time, nsteps, builds0, chunk.summary);
     stages.end_of_run(sim)?;
-    Ok(())
+    match stopped {
+        Some(m) => Err(m.into()),
+        None => Ok(()),
+    }
 }
 
 /// The fixes due in a step's pre-exchange stage (insertion), out of `Sim::fixes` while
@@ -463,8 +489,9 @@ fn thermo_row(sim: &mut Sim) -> Result<(), RunError> {
     if step.is_some() && sim.outputs.thermo.last_printed == step {
         return Ok(());
     }
-    let r = thermo::row(sim)?;
+    let (r, values) = thermo::row_and_values(sim)?;
     sim.outputs.out.thermo_line(&r);
+    sim.outputs.thermo.table.rows.push(values);
     sim.outputs.thermo.last_printed = step;
     Ok(())
 }

@@ -161,6 +161,9 @@ pub struct Definitions {
     pub restored: crate::restart_state::Restored,
 }
 
+/// See [`Outputs::step_hook`].
+pub type StepHook = Box<dyn FnMut(&Sim, u64) -> Result<bool, String>>;
+
 /// Where results go: thermo, dumps, the screen and log, the progress display.
 pub struct Outputs {
     /// Thermo output settings.
@@ -171,6 +174,12 @@ pub struct Outputs {
     pub out: Output,
     /// Called during long runs with (steps done, steps total) for a progress display.
     pub progress: Option<Box<dyn FnMut(u64, u64)>>,
+    /// Called after every step of a run by a host program (the Python module's
+    /// callbacks and interrupts), with the state after the step's output: `Ok(true)`
+    /// goes on, `Ok(false)` ends the run after this step (as if it had been asked for
+    /// that many steps; a `run every` does not go on either), `Err` ends it the same way
+    /// and then fails the `run` command with that message (the script stops).
+    pub step_hook: Option<StepHook>,
     /// Warnings already printed (see [`Outputs::warn_once`]).
     pub warned: std::collections::BTreeSet<String>,
     /// `restart N ...`: periodic restart files (none by default; at most one schedule
@@ -215,6 +224,8 @@ pub struct ScriptState {
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
+    /// The last run was ended early by [`Outputs::step_hook`].
+    pub halted: bool,
 }
 
 /// Everything a script defines, each fact in one place: the set-up before the box
@@ -248,6 +259,7 @@ impl Sim {
                 dumps: Vec::new(),
                 out,
                 progress: None,
+                step_hook: None,
                 warned: Default::default(),
                 restart: Vec::new(),
             },
@@ -263,6 +275,7 @@ impl Sim {
                 set_up: false,
                 run_started: Instant::now(),
                 time_origin: (0, 0.0),
+                halted: false,
             },
         }
     }

@@ -69,6 +69,17 @@ pub struct Thermo {
     pub last_printed: Option<u64>,
     /// `thermo_modify line multi`.
     pub multi: bool,
+    /// The rows of the current (or last) run, as numbers.
+    pub table: ThermoTable,
+}
+
+/// The thermo rows of one run as numbers (for host programs such as the Python module).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ThermoTable {
+    /// Column keywords, as in `thermo_style`.
+    pub columns: Vec<String>,
+    /// One row per printed step, one value per column.
+    pub rows: Vec<Vec<f64>>,
 }
 
 impl Default for Thermo {
@@ -84,6 +95,7 @@ impl Default for Thermo {
             line_format: None,
             last_printed: None,
             multi: false,
+            table: ThermoTable::default(),
         }
     }
 }
@@ -285,8 +297,14 @@ fn extensive_reference(sim: &Sim, col: &str) -> bool {
 
 /// One row (with `thermo_modify line multi`, the banner and the labelled lines).
 pub fn row(sim: &Sim) -> Result<String, RunError> {
+    row_and_values(sim).map(|(text, _)| text)
+}
+
+/// The thermo row of the current step as printed, and its values (after `norm`).
+pub fn row_and_values(sim: &Sim) -> Result<(String, Vec<f64>), RunError> {
     let th = &sim.outputs.thermo;
     let mut cells = Vec::with_capacity(th.columns.len());
+    let mut values = Vec::with_capacity(th.columns.len());
     for (k, c) in th.columns.iter().enumerate() {
         let (mut v, int) = column_value(sim, c).map_err(|m| {
             // A variable that fails is reported at its definition, else the column.
@@ -306,6 +324,7 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
         if th.norm && n > 0 && extensive_reference(sim, c) {
             v /= n as f64;
         }
+        values.push(v);
         let fmt = th
             .col_format
             .iter()
@@ -336,7 +355,7 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
         });
     }
     if !th.multi {
-        return Ok(cells.iter().map(|c| format!("{c} ")).collect());
+        return Ok((cells.iter().map(|c| format!("{c} ")).collect(), values));
     }
     let step = sim.world.as_ref().map_or(0, |w| w.step);
     let cpu = keyword(sim, "cpu").unwrap_or(0.0);
@@ -348,5 +367,5 @@ pub fn row(sim: &Sim) -> Result<String, RunError> {
         }
         s.push_str(&format!("{:<8} = {cell} ", header_label(c)));
     }
-    Ok(s)
+    Ok((s, values))
 }

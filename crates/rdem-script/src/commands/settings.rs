@@ -206,6 +206,7 @@ pub(super) fn clear(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let out = std::mem::replace(&mut sim.outputs.out, crate::output::Output::captured());
     let mut fresh = Sim::new(out);
     fresh.outputs.progress = sim.outputs.progress.take();
+    fresh.outputs.step_hook = sim.outputs.step_hook.take();
     fresh.outputs.warned = std::mem::take(&mut sim.outputs.warned);
     let s = &mut sim.script;
     let f = &mut fresh.script;
