@@ -183,6 +183,8 @@ def test_values_of_variables_computes_and_fixes():
     sim = rdem.Simulation(threads=1)
     sim.commands(
         BED
+        + "fix tag all property/atom tagged vector no no no 1.5 -2\n"
+        + "set group all property/atom tagged 3 4\n"
         + "variable zc equal xcm(all,z)\nvariable r atom 2*radius\n"
         + "compute k all ke\nfix av all ave/time 1 10 10 c_k\nrun 20\n"
     )
@@ -194,6 +196,10 @@ def test_values_of_variables_computes_and_fixes():
     assert sim.fix("av") > 0
     with pytest.raises(KeyError):
         sim.variable("nope")
+    # A named per-particle property (two values each).
+    np.testing.assert_array_equal(sim.array("tagged"), np.tile([3.0, 4.0], (343, 1)))
+    with pytest.raises(KeyError, match="named per-particle property"):
+        sim.array("nope")
 
 
 def test_a_callback_every_n_steps_sees_the_state_and_can_stop_the_run():
