@@ -12,7 +12,8 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
-const HEAD: &str = "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n";
+const HEAD: &str =
+    "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n";
 
 /// Runs `script` (its `read_restart` line reading `restart`); returns the directory kept
 /// and the screen output; the run must succeed.
@@ -66,7 +67,11 @@ fn settled_bed_particles_are_those_liggghts_dumped() {
     // One warning names what is not taken.
     let warn: Vec<&str> = out.lines().filter(|l| l.starts_with("WARNING")).collect();
     assert_eq!(warn.len(), 1, "{out}");
-    for what in ["pair style gran", "fix pts (particletemplate/sphere)", "fix ins (insert/pack)"] {
+    for what in [
+        "pair style gran",
+        "fix pts (particletemplate/sphere)",
+        "fix ins (insert/pack)",
+    ] {
         assert!(warn[0].contains(what), "{}", warn[0]);
     }
 }
@@ -106,7 +111,10 @@ fn continue_bed(prefix: &str, restart: &Path, ranks: Option<usize>) -> ([f64; 3]
         let b = &ours[t];
         for (k, dk) in d.iter_mut().enumerate() {
             let s = 3 * k;
-            let e = ((a[s] - b[s]).powi(2) + (a[s + 1] - b[s + 1]).powi(2) + (a[s + 2] - b[s + 2]).powi(2)).sqrt();
+            let e = ((a[s] - b[s]).powi(2)
+                + (a[s + 1] - b[s + 1]).powi(2)
+                + (a[s + 2] - b[s + 2]).powi(2))
+            .sqrt();
             *dk = dk.max(e);
         }
     }
@@ -130,8 +138,15 @@ fn settled_bed_continues_as_liggghts_continues_it() {
     // LIGGGHTS: kinetic energy 2.2375103774474262e-09 at step 31000, time 0 at the
     // file's step and 0.02 s at its end.
     let last = thermo_rows(&out).last().unwrap().clone();
-    assert_eq!((last[0], last[1], last[3]), (31000.0, 200.0, 0.02), "{last:?}");
-    assert!((last[2] / 2.2375103774474262e-09 - 1.0).abs() < 1e-9, "{last:?}");
+    assert_eq!(
+        (last[0], last[1], last[3]),
+        (31000.0, 200.0, 0.02),
+        "{last:?}"
+    );
+    assert!(
+        (last[2] / 2.237_510_377_447_426e-9 - 1.0).abs() < 1e-9,
+        "{last:?}"
+    );
     assert_eq!(thermo_rows(&out)[0][3], 0.0);
 }
 
@@ -167,7 +182,11 @@ fn without_histories(pair: bool, walls: bool) -> PathBuf {
         for fix in 0..3 {
             let len = f64_at(&b, p + 8 * k) as usize;
             let zero: Vec<usize> = if fix < 2 {
-                if walls { (k + 1..k + len).collect() } else { Vec::new() }
+                if walls {
+                    (k + 1..k + len).collect()
+                } else {
+                    Vec::new()
+                }
             } else if pair {
                 // count, then (partner tag, three values) per partner
                 (k + 2..k + len).filter(|q| (q - k - 2) % 4 != 0).collect()
@@ -222,9 +241,29 @@ fn a_damaged_liggghts_file_is_a_located_error() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(!out.status.success(), "{text}");
-    assert!(text.contains("cut.restart' (a LIGGGHTS restart file): at byte"), "{text}");
+    assert!(
+        text.contains("cut.restart' (a LIGGGHTS restart file): at byte"),
+        "{text}"
+    );
     assert!(text.contains("it is truncated"), "{text}");
-    // Located: the script line and a caret under the file name.
-    assert!(text.contains("line 5"), "{text}");
-    assert!(text.contains('^'), "{text}");
+    // Located: the script line, and the file name marked.
+    assert!(text.contains("in.test:5:14"), "{text}");
+    assert!(text.contains("here"), "{text}");
+}
+
+#[test]
+fn restart_file_wildcards_are_refused() {
+    for name in ["bed.*", "bed.%"] {
+        let (d, out) = run_kept(
+            "lig-wild",
+            &format!("{HEAD}read_restart {name}\n"),
+            &[],
+            None,
+        );
+        let _ = std::fs::remove_dir_all(&d);
+        let text = String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{text}");
+        assert!(text.contains("wildcards are not supported yet"), "{text}");
+    }
 }

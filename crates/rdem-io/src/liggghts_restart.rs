@@ -196,9 +196,7 @@ pub struct LiggghtsRestart {
 /// of the version string and `Version LIGGGHTS`.
 pub fn is_liggghts_restart(bytes: &[u8]) -> bool {
     const SIG: &[u8] = b"Version LIGGGHTS";
-    bytes.len() >= 8 + SIG.len()
-        && bytes[..4] == [0, 0, 0, 0]
-        && bytes[8..].starts_with(SIG)
+    bytes.len() >= 8 + SIG.len() && bytes[..4] == [0, 0, 0, 0] && bytes[8..].starts_with(SIG)
 }
 
 /// Reads the LIGGGHTS restart file at `path`.
@@ -300,7 +298,10 @@ impl<'a> Reader<'a> {
         let n = self.int_in(&format!("the length of {what}"), 1, 4096)? as usize;
         let s = self.take(n, what)?;
         if s[n - 1] != 0 || s[..n - 1].contains(&0) {
-            return Err(self.err(at, format!("{what} is not a string of {n} bytes ending in NUL")));
+            return Err(self.err(
+                at,
+                format!("{what} is not a string of {n} bytes ending in NUL"),
+            ));
         }
         String::from_utf8(s[..n - 1].to_vec())
             .map_err(|_| self.err(at, format!("{what} is not text")))
@@ -315,7 +316,9 @@ impl<'a> Reader<'a> {
 }
 
 fn boundary_letter(code: i32) -> Option<char> {
-    ['p', 'f', 's', 'm'].get(usize::try_from(code).ok()?).copied()
+    ['p', 'f', 's', 'm']
+        .get(usize::try_from(code).ok()?)
+        .copied()
 }
 
 /// Parses the bytes of a LIGGGHTS restart file read from `path`.
@@ -420,8 +423,7 @@ fn header(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestart
             }
             flag::NATOMS => {
                 let n = r.bigint("the number of atoms")?;
-                f.natoms =
-                    u64::try_from(n).map_err(|_| r.err(at, format!("{n} atoms")))?;
+                f.natoms = u64::try_from(n).map_err(|_| r.err(at, format!("{n} atoms")))?;
             }
             flag::NTYPES => f.ntypes = r.int_in("the number of atom types", 1, 1 << 16)? as u32,
             flag::NBONDS..=flag::IMPROPER_PER_ATOM => {
@@ -463,7 +465,9 @@ fn header(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestart
             _ => {
                 return Err(r.err(
                     at,
-                    format!("header item {fl} is not one LIGGGHTS 3.8 writes (is the file damaged?)"),
+                    format!(
+                        "header item {fl} is not one LIGGGHTS 3.8 writes (is the file damaged?)"
+                    ),
                 ))
             }
         }
@@ -477,7 +481,10 @@ fn header(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestart
     if f.atom_style != "granular" && f.atom_style != "sphere" {
         return Err(r.err(
             r.at,
-            format!("its atom style is '{}'; rdem reads files of atom_style granular (sphere)", f.atom_style),
+            format!(
+                "its atom style is '{}'; rdem reads files of atom_style granular (sphere)",
+                f.atom_style
+            ),
         ));
     }
     Ok(())
@@ -514,7 +521,10 @@ fn type_arrays(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRe
             -1 => return Ok(()),
             0 => f.masses = Some(r.doubles(f.ntypes as usize, "the per-type masses")?),
             fl => {
-                return Err(r.err(at, format!("type array item {fl} is not one LIGGGHTS 3.8 writes")))
+                return Err(r.err(
+                    at,
+                    format!("type array item {fl} is not one LIGGGHTS 3.8 writes"),
+                ))
             }
         }
     }
@@ -547,10 +557,16 @@ fn force_fields(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsR
             }
             fl @ 1..=4 => {
                 let what = ["bond", "angle", "dihedral", "improper"][(fl - 1) as usize];
-                return Err(r.err(at, format!("it holds a {what} style, which rdem does not read")));
+                return Err(r.err(
+                    at,
+                    format!("it holds a {what} style, which rdem does not read"),
+                ));
             }
             fl => {
-                return Err(r.err(at, format!("force field item {fl} is not one LIGGGHTS 3.8 writes")))
+                return Err(r.err(
+                    at,
+                    format!("force field item {fl} is not one LIGGGHTS 3.8 writes"),
+                ))
             }
         }
     }
@@ -588,7 +604,7 @@ fn ubuf(v: f64) -> i64 {
 
 /// A count stored as a double value.
 fn count(v: f64) -> Option<usize> {
-    (v.fract() == 0.0 && v >= 1.0 && v < 1e9).then_some(v as usize)
+    (v.fract() == 0.0 && (1.0..1e9).contains(&v)).then_some(v as usize)
 }
 
 fn atoms(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestartError> {
@@ -608,8 +624,11 @@ fn atoms(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestartE
         density: Vec::with_capacity(cap),
     };
     for chunk in 0..f.nprocs {
-        let n = r.int_in(&format!("the length of processor {chunk}'s atoms"), 0, i32::MAX)?
-            as usize;
+        let n = r.int_in(
+            &format!("the length of processor {chunk}'s atoms"),
+            0,
+            i32::MAX,
+        )? as usize;
         let base = r.at;
         let d = r.doubles(n, &format!("processor {chunk}'s atoms"))?;
         let mut m = 0;
@@ -634,7 +653,10 @@ fn atoms(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestartE
                 return Err(bad(format!("its tag is {tag}")));
             }
             if ty < 1 || ty > i64::from(f.ntypes) {
-                return Err(bad(format!("its type is {ty}, the file has {} types", f.ntypes)));
+                return Err(bad(format!(
+                    "its type is {ty}, the file has {} types",
+                    f.ntypes
+                )));
             }
             let mask = u32::try_from(mask).map_err(|_| bad(format!("its group mask is {mask}")))?;
             let image =
@@ -642,7 +664,8 @@ fn atoms(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsRestartE
             let finite = rec[1..GRANULAR_VALUES].iter().all(|v| v.is_finite());
             if !finite || rec[11] <= 0.0 || rec[12] <= 0.0 {
                 return Err(bad(
-                    "it has a value that is not finite, or a radius or mass that is not positive".into(),
+                    "it has a value that is not finite, or a radius or mass that is not positive"
+                        .into(),
                 ));
             }
             // Image counts: 10 bits per axis, offset by 512 (LIGGGHTS' 4-byte imageint).
@@ -725,7 +748,10 @@ fn read_contacts(fix: &PerAtomFix, tags: &[u64]) -> Result<ContactHistory, Strin
     for (k, &tag) in tags.iter().enumerate() {
         let v = fix.of(k);
         let bad = |what: &str| format!("the contact history of atom {tag}: {what}");
-        let np = v.first().map(|&x| ubuf(x)).ok_or_else(|| bad("no partner count"))?;
+        let np = v
+            .first()
+            .map(|&x| ubuf(x))
+            .ok_or_else(|| bad("no partner count"))?;
         let np = usize::try_from(np).map_err(|_| bad("a negative partner count"))?;
         if np == 0 {
             continue;
@@ -736,7 +762,10 @@ fn read_contacts(fix: &PerAtomFix, tags: &[u64]) -> Result<ContactHistory, Strin
         }
         let w = rest / np - 1;
         if *width.get_or_insert(w) != w {
-            return Err(bad(&format!("{w} values per contact, other atoms {}", width.unwrap_or(0))));
+            return Err(bad(&format!(
+                "{w} values per contact, other atoms {}",
+                width.unwrap_or(0)
+            )));
         }
         for c in v[1..].chunks_exact(w + 1) {
             let j = ubuf(c[0]);

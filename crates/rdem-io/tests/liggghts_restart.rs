@@ -25,9 +25,20 @@ fn dump_rows(name: &str) -> Vec<Vec<f64>> {
 #[test]
 fn settled_bed_file_is_read_exactly() {
     let f = read_liggghts_restart(&data("bed.restart")).unwrap();
-    assert!(f.version.starts_with("Version LIGGGHTS-PUBLIC 3.8.0"), "{}", f.version);
+    assert!(
+        f.version.starts_with("Version LIGGGHTS-PUBLIC 3.8.0"),
+        "{}",
+        f.version
+    );
     assert_eq!(
-        (f.units.as_str(), f.step, f.dimension, f.nprocs, f.natoms, f.ntypes),
+        (
+            f.units.as_str(),
+            f.step,
+            f.dimension,
+            f.nprocs,
+            f.natoms,
+            f.ntypes
+        ),
         ("si", 30000, 3, 1, 200, 1)
     );
     assert_eq!(f.atom_style, "granular");
@@ -37,11 +48,21 @@ fn settled_bed_file_is_read_exactly() {
     assert_eq!(f.groups[0].as_deref(), Some("all"));
     assert!(f.groups[1..].iter().all(Option::is_none));
     let pair = f.pair.as_ref().unwrap();
-    assert_eq!((pair.style.as_str(), pair.setflag.as_slice()), ("gran", &[1][..]));
+    assert_eq!(
+        (pair.style.as_str(), pair.setflag.as_slice()),
+        ("gran", &[1][..])
+    );
     let ids: Vec<_> = f.fixes.iter().map(|x| x.id.as_str()).collect();
     assert_eq!(
         ids,
-        ["history_floor", "history_cyl", "pts", "pdd", "ins", "contacthistory"]
+        [
+            "history_floor",
+            "history_cyl",
+            "pts",
+            "pdd",
+            "ins",
+            "contacthistory"
+        ]
     );
     let per: Vec<_> = f
         .peratom
@@ -218,7 +239,10 @@ fn every_kind_of_bad_file_is_a_located_error() {
     ty[at + 4 + 40..at + 4 + 48].copy_from_slice(&f64::from_bits(5).to_le_bytes());
     check(&ty, "its type is 5, the file has 1 types");
     // Not a LIGGGHTS file at all.
-    check(b"rdem restart\n\0\0\0", "does not begin with LIGGGHTS' version string");
+    check(
+        b"rdem restart\n\0\0\0",
+        "does not begin with LIGGGHTS' version string",
+    );
 }
 
 #[test]

@@ -69,10 +69,9 @@ pub(crate) fn restore(
     // Wall histories: fix `history_ID` (property/atom) of wall `ID`, three values each.
     let mut walls = Vec::new();
     for (k, p) in f.peratom.iter().enumerate() {
-        let wall = p
-            .id
-            .strip_prefix("history_")
-            .filter(|_| p.style == "property/atom");
+        let wall =
+            p.id.strip_prefix("history_")
+                .filter(|_| p.style == "property/atom");
         let uniform = (0..f.atoms.len()).all(|a| p.of(a).len() == SHEAR);
         match wall {
             Some(id) if uniform => {
@@ -140,9 +139,12 @@ pub(crate) fn restore(
     groups.resize(32, None);
     sim.defs.groups.set_table(groups)?;
     for g in &f.fixes {
-        let kept = g.style == "contacthistory" || taken.walls.iter().any(|id| g.id == format!("history_{id}"));
+        let kept = g.style == "contacthistory"
+            || taken.walls.iter().any(|id| g.id == format!("history_{id}"));
         if !kept {
-            taken.not_taken.push(format!("the state of fix {} ({})", g.id, g.style));
+            taken
+                .not_taken
+                .push(format!("the state of fix {} ({})", g.id, g.style));
         }
     }
     sim.world = Some(w);

@@ -98,6 +98,13 @@ pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
             ),
         ));
     }
+    if file.contains(['*', '%']) {
+        return Err(a.error_at(
+            1,
+            "read_restart: the '*' (latest step) and '%' (one file per processor) wildcards are not supported yet",
+            Some("name one restart file".into()),
+        ));
+    }
     if is_liggghts(file) {
         return read_liggghts_restart(sim, a, file);
     }
