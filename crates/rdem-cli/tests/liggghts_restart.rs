@@ -267,3 +267,37 @@ fn restart_file_wildcards_are_refused() {
         assert!(text.contains("wildcards are not supported yet"), "{text}");
     }
 }
+
+#[test]
+fn property_atom_values_come_back_to_the_fix_of_their_id() {
+    // As LIGGGHTS: `fix pa` defined again after read_restart (defaults 0 0) takes the
+    // file's values (1.5 2.5, and 7 8 on 40 particles), by tag.
+    let script = std::fs::read_to_string(data("in.read_pa"))
+        .unwrap()
+        .replace(
+            "read_restart pa.restart",
+            &format!("read_restart {}", data("pa.restart").display()),
+        );
+    let (dir, out) = run("lig-pa", &script, None);
+    let ours = std::fs::read_to_string(dir.join("back.dump")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(ours, std::fs::read_to_string(data("pa.dump")).unwrap());
+    assert!(
+        out.contains("per-particle values of fix(es) pa kept"),
+        "{out}"
+    );
+    // Another number of values than the file holds is a located error.
+    let bad = script.replace(
+        "property/atom pval vector yes no no 0 0",
+        "property/atom pval scalar yes no no 0",
+    );
+    let (d, out) = run_kept("lig-pa-bad", &bad, &[], None);
+    let _ = std::fs::remove_dir_all(&d);
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{text}");
+    assert!(
+        text.contains("holds 2 value(s) per particle for fix pa"),
+        "{text}"
+    );
+}

@@ -23,6 +23,7 @@ use rdem::restart::HistoryState;
 use rdem::{Boundary, Domain, NewParticle, World};
 use rdem_io::liggghts_restart::LiggghtsRestart;
 
+use crate::restart_state::{PeratomValues, Restored};
 use crate::sim::Sim;
 
 /// Values per contact of the tangential history rdem maps (the shear displacement).
@@ -34,6 +35,8 @@ pub(crate) struct Taken {
     pub contacts: usize,
     /// Wall fix IDs whose histories were taken.
     pub walls: Vec<String>,
+    /// `fix property/atom` IDs whose values wait for the fix defined again.
+    pub kept: Vec<String>,
     /// What the file held that was not taken (one warning).
     pub not_taken: Vec<String>,
 }
@@ -64,10 +67,12 @@ pub(crate) fn restore(
     let mut taken = Taken {
         contacts: 0,
         walls: Vec::new(),
+        kept: Vec::new(),
         not_taken: Vec::new(),
     };
     // Wall histories: fix `history_ID` (property/atom) of wall `ID`, three values each.
     let mut walls = Vec::new();
+    let mut peratom = std::collections::BTreeMap::new();
     for (k, p) in f.peratom.iter().enumerate() {
         let wall =
             p.id.strip_prefix("history_")
@@ -83,6 +88,25 @@ pub(crate) fn restore(
                 taken.walls.push(id.to_string());
             }
             _ if p.style == "contacthistory" => {}
+            _ if p.style == "property/atom" && p.maxsize > 1 && wall.is_none() => {
+                let width = p.maxsize as usize - 1;
+                if (0..f.atoms.len()).all(|a| p.of(a).len() == width) {
+                    let mut order: Vec<usize> = (0..f.atoms.len()).collect();
+                    order.sort_unstable_by_key(|&a| f.atoms.tag[a]);
+                    let values = PeratomValues {
+                        width,
+                        tags: order.iter().map(|&a| f.atoms.tag[a]).collect(),
+                        values: order.iter().flat_map(|&a| p.of(a)).copied().collect(),
+                    };
+                    peratom.insert(p.id.clone(), values);
+                    taken.kept.push(p.id.clone());
+                } else {
+                    taken.not_taken.push(format!(
+                        "the per-particle values of fix {} ({})",
+                        p.id, p.style
+                    ));
+                }
+            }
             _ => taken.not_taken.push(format!(
                 "the per-particle values of fix {} ({})",
                 p.id, p.style
@@ -138,9 +162,14 @@ pub(crate) fn restore(
     let mut groups = f.groups.clone();
     groups.resize(32, None);
     sim.defs.groups.set_table(groups)?;
+    sim.defs.restored = Restored {
+        peratom,
+        ..Restored::default()
+    };
     for g in &f.fixes {
         let kept = g.style == "contacthistory"
-            || taken.walls.iter().any(|id| g.id == format!("history_{id}"));
+            || taken.walls.iter().any(|id| g.id == format!("history_{id}"))
+            || taken.kept.contains(&g.id);
         if !kept {
             taken
                 .not_taken

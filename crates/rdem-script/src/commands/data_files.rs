@@ -172,6 +172,12 @@ fn read_liggghts_restart(sim: &mut Sim, a: &mut Args, file: &str) -> CmdResult {
         if taken.walls.is_empty() { "" } else { ": " },
         taken.walls.join(" ")
     ));
+    if !taken.kept.is_empty() {
+        out.line(&format!(
+            "  per-particle values of fix(es) {} kept for fix property/atom defined again with that ID",
+            taken.kept.join(" ")
+        ));
+    }
     let mut skipped = Vec::new();
     if let Some(p) = &f.pair {
         skipped.push(format!(
