@@ -9,12 +9,16 @@
 //! rdem's own restart files keep them) and the wall histories of primitive walls (fix
 //! `history_ID` of wall `ID`, three values per particle) when they have that layout.
 //!
-//! What is not: the timestep (LIGGGHTS 3.8 does not store it: the script sets it after
-//! `read_restart`, as LIGGGHTS requires), fix states (insertion counters, random
-//! generators), the per-particle values of other fixes (mesh wall histories,
-//! `fix property/atom`) and the pair style with its coefficients (LIGGGHTS scripts define
-//! the pair style, materials, walls and fixes again after `read_restart`). One warning
-//! lists what the file held that is not taken.
+//! The values of a `fix property/atom` wait for the fix defined again with its ID, which
+//! takes them by tag ([`crate::restart_state::Restored::peratom`]), as LIGGGHTS gives a
+//! fix defined again with its ID its per-atom state.
+//!
+//! What is not taken: the timestep (LIGGGHTS 3.8 does not store it: the script sets it
+//! after `read_restart`, as LIGGGHTS requires), fix states (insertion counters, random
+//! generators), the per-particle values of other fixes (mesh wall histories) and the pair
+//! style with its coefficients (LIGGGHTS scripts define the pair style, materials, walls
+//! and fixes again after `read_restart`). One warning lists what the file held that is
+//! not taken.
 //!
 //! LIGGGHTS 3.8 starts the `time` of a continued run at 0 at the file's step (measured:
 //! thermo `time` is 0 at the first step after `read_restart`), and so does this reader.
