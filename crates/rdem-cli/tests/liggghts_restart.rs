@@ -301,3 +301,29 @@ fn property_atom_values_come_back_to_the_fix_of_their_id() {
         "{text}"
     );
 }
+
+#[test]
+fn a_script_boundary_other_than_the_files_gives_way_with_a_warning() {
+    // The file: boundary f f f. LIGGGHTS 3.8 (measured, `boundary p p f` before
+    // read_restart) warns that the file's boundary differs and uses it.
+    let script = format!(
+        "{HEAD}boundary p p f\nread_restart {}\nvariable lx equal lx\nprint \"lx ${{lx}}\"\n",
+        data("bed.restart").display()
+    );
+    let (dir, out) = run("lig-boundary", &script, None);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        out.contains(
+            "the script's boundary (pp pp ff) is not the file's (ff ff ff); the file's is used"
+        ),
+        "{out}"
+    );
+    // Nothing said when the script leaves the default.
+    let (dir, out) = run(
+        "lig-boundary-default",
+        &format!("{HEAD}read_restart {}\n", data("bed.restart").display()),
+        None,
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(!out.contains("boundary"), "{out}");
+}

@@ -61,6 +61,25 @@ pub(crate) fn restore(
     let boundary = f.boundary.map(|faces| {
         faces.map(|c| Boundary::from_letter(c).expect("the reader gives p, f, s or m"))
     });
+    // As LIGGGHTS: a boundary the script set before read_restart (other than the
+    // default, periodic everywhere) that differs from the file's gives way to the file's,
+    // with a warning.
+    let script = sim.setup.boundary;
+    if script != [[Boundary::Periodic; 2]; 3] && script != boundary {
+        let letters = |b: [[Boundary; 2]; 3]| {
+            b.map(|faces| {
+                faces
+                    .map(|x| crate::restart_state::letter(x).to_string())
+                    .concat()
+            })
+            .join(" ")
+        };
+        sim.warn_once(&format!(
+            "read_restart: the script's boundary ({}) is not the file's ({}); the file's is used",
+            letters(script),
+            letters(boundary)
+        ));
+    }
     let domain =
         Domain::with_faces(f.boxlo.into(), f.boxhi.into(), boundary).map_err(|e| e.to_string())?;
     let mut w = World::new(domain);

@@ -101,7 +101,8 @@ impl PeratomValues {
     }
 }
 
-fn letter(b: Boundary) -> char {
+/// The boundary letter of a face (`p`, `f`, `s`, `m`).
+pub(crate) fn letter(b: Boundary) -> char {
     match b {
         Boundary::Periodic => 'p',
         Boundary::Fixed => 'f',
