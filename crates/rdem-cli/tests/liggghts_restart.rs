@@ -327,3 +327,28 @@ fn a_script_boundary_other_than_the_files_gives_way_with_a_warning() {
     let _ = std::fs::remove_dir_all(&dir);
     assert!(!out.contains("boundary"), "{out}");
 }
+
+#[test]
+fn a_run_without_the_pair_style_of_a_liggghts_file_is_an_error() {
+    // LIGGGHTS 3.8 continues bed.restart without pair_style/pair_coeff lines (it takes
+    // the pair style from the file); rdem does not decode it and says so.
+    let script = std::fs::read_to_string(data("in.continue"))
+        .unwrap()
+        .replace(
+            "read_restart bed.restart",
+            &format!("read_restart {}", data("bed.restart").display()),
+        )
+        .replace("pair_style gran model hertz tangential history\n", "")
+        .replace("pair_coeff * *\n", "");
+    let (d, out) = run_kept("lig-nopair", &script, &[], None);
+    let _ = std::fs::remove_dir_all(&d);
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{text}");
+    // (The message is wrapped on screen.)
+    assert!(
+        text.contains("restart file read holds pair_style gran"),
+        "{text}"
+    );
+    assert!(text.contains("0x83)"), "{text}");
+}

@@ -187,6 +187,12 @@ pub(crate) fn restore(
     sim.defs.groups.set_table(groups)?;
     sim.defs.restored = Restored {
         peratom,
+        liggghts_pair: f.pair.as_ref().map(|p| {
+            format!(
+                "pair_style {} (LIGGGHTS model code {:#x})",
+                p.style, p.model_hash
+            )
+        }),
         ..Restored::default()
     };
     for g in &f.fixes {

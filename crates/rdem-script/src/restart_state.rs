@@ -80,6 +80,9 @@ pub struct Restored {
     /// Per-particle values of the `fix property/atom` fixes of a LIGGGHTS restart file,
     /// by fix ID, for the fix defined again with that ID (as LIGGGHTS matches them).
     pub peratom: std::collections::BTreeMap<String, PeratomValues>,
+    /// The pair style of a LIGGGHTS restart file, until the first run: LIGGGHTS takes it
+    /// from the file, rdem needs it defined again (the run says so when it is not).
+    pub liggghts_pair: Option<String>,
 }
 
 /// The values one fix of a LIGGGHTS restart file stores with each particle.
