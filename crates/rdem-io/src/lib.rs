@@ -14,6 +14,7 @@
 //! * [`data_file`]: LAMMPS data files for `atom_style granular` (`read_data`, `write_data`).
 //! * [`filename`]: the `*` (timestep) and `%` (rank) wildcards of dump file names.
 //! * [`atomic`]: every file is written under a temporary name and renamed into place.
+//! * [`liggghts_restart`]: a reader of LIGGGHTS 3.8 binary restart files.
 //! * [`restart_file`]: the framing of rdem's binary restart files (magic, format
 //!   version, length, CRC-32).
 //! * [`stl`]: STL triangle files (ASCII in double precision, binary) for `fix mesh/surface`.
@@ -31,6 +32,7 @@ pub mod dump_text;
 pub mod euler_vtk;
 pub mod fields;
 pub mod filename;
+pub mod liggghts_restart;
 pub mod mesh_vtk;
 pub mod printf;
 pub mod pvd;

@@ -197,9 +197,11 @@ fn looks_like(bytes: &[u8]) -> String {
         return "it is a text file".into();
     }
     // LIGGGHTS 3.8 (LAMMPS 2013) binary restart files begin with an int header flag, an
-    // int length and the program's version string, e.g. "LIGGGHTS (Version LIGGGHTS-...".
-    if head.windows(8).any(|w| w == b"LIGGGHTS") {
-        return "it is a LIGGGHTS binary restart file, which rdem cannot read".into();
+    // int length and the program's version string, "Version LIGGGHTS-PUBLIC 3.8.0, ...".
+    if crate::liggghts_restart::is_liggghts_restart(head) {
+        return "it is a LIGGGHTS binary restart file: read_restart reads those through \
+                rdem_io::liggghts_restart, not as rdem restart files"
+            .into();
     }
     "its first bytes are not rdem's".into()
 }
@@ -254,7 +256,7 @@ mod tests {
         );
         check(b"hello world\n".to_vec(), "text file");
         let mut lig = vec![0u8, 0, 0, 0, 40, 0, 0, 0];
-        lig.extend_from_slice(b"LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0)\0");
+        lig.extend_from_slice(b"Version LIGGGHTS-PUBLIC 3.8.0, compiled ...\0");
         check(lig, "LIGGGHTS binary restart file");
         check(vec![0xff; 64], "first bytes are not rdem's");
     }

@@ -21,6 +21,7 @@ pub mod fixes;
 pub mod input;
 pub mod lattice;
 pub mod lexer;
+pub mod liggghts_restart;
 pub mod materials;
 pub mod models;
 pub mod old_gran;

@@ -77,9 +77,35 @@ pub struct Restored {
     pub fixes: Vec<FixState>,
     /// Per-particle properties of the file that no fix holds yet.
     pub props: BTreeSet<String>,
+    /// Per-particle values of the `fix property/atom` fixes of a LIGGGHTS restart file,
+    /// by fix ID, for the fix defined again with that ID (as LIGGGHTS matches them).
+    pub peratom: std::collections::BTreeMap<String, PeratomValues>,
+    /// The pair style of a LIGGGHTS restart file, until the first run: LIGGGHTS takes it
+    /// from the file, rdem needs it defined again (the run says so when it is not).
+    pub liggghts_pair: Option<String>,
 }
 
-fn letter(b: Boundary) -> char {
+/// The values one fix of a LIGGGHTS restart file stores with each particle.
+#[derive(Debug, Clone, Default)]
+pub struct PeratomValues {
+    /// Values per particle.
+    pub width: usize,
+    /// Particle tags, increasing.
+    pub tags: Vec<u64>,
+    /// `width` values per tag.
+    pub values: Vec<f64>,
+}
+
+impl PeratomValues {
+    /// The values of the particle tagged `tag`.
+    pub fn of(&self, tag: u64) -> Option<&[f64]> {
+        let k = self.tags.binary_search(&tag).ok()?;
+        Some(&self.values[k * self.width..(k + 1) * self.width])
+    }
+}
+
+/// The boundary letter of a face (`p`, `f`, `s`, `m`).
+pub(crate) fn letter(b: Boundary) -> char {
     match b {
         Boundary::Periodic => 'p',
         Boundary::Fixed => 'f',
@@ -278,6 +304,7 @@ pub(crate) fn restore(
     sim.defs.restored = Restored {
         fixes: h.fixes,
         props,
+        ..Restored::default()
     };
     sim.world = Some(w);
     Ok(())

@@ -205,6 +205,17 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
         if w.pair.is_some() && !sim.defs.pair_coeff_set {
             return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
         }
+        // LIGGGHTS 3.8 runs on with the pair style of its restart file when the script
+        // does not define one (measured); rdem does not decode it.
+        if let Some(pair) = sim.defs.restored.liggghts_pair.take() {
+            if w.pair.is_none() {
+                return Err(format!(
+                    "the LIGGGHTS restart file read holds {pair}, which LIGGGHTS would take from \
+                     the file; rdem does not: define pair_style and pair_coeff again after read_restart"
+                )
+                .into());
+            }
+        }
         w.materials = m;
         // k_finnie for the meshes that wear.
         let ntypes = w.materials.ntypes;

@@ -84,7 +84,8 @@ pub(super) fn write_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
 }
 
 /// `read_restart FILE`: the box, particles, contact histories, groups, step, time and
-/// timestep of a restart file, in place of `create_box`.
+/// timestep of a restart file, in place of `create_box`; a LIGGGHTS 3.8 restart file
+/// gives its box, particles and histories ([`crate::liggghts_restart`]).
 pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let file = a.word("restart file")?;
     a.done()?;
@@ -96,6 +97,16 @@ pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     .into(),
             ),
         ));
+    }
+    if file.contains(['*', '%']) {
+        return Err(a.error_at(
+            1,
+            "read_restart: the '*' (latest step) and '%' (one file per processor) wildcards are not supported yet",
+            Some("name one restart file".into()),
+        ));
+    }
+    if is_liggghts(file) {
+        return read_liggghts_restart(sim, a, file);
     }
     let c = crate::restart_state::read(file).map_err(|m| a.error_at(1, m, None))?;
     let h = &c.head;
@@ -117,6 +128,71 @@ pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
     })
     .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
     sim.outputs.out.line(&format!("  {natoms} atoms"));
+    Ok(())
+}
+
+/// True when `file` begins as a LIGGGHTS binary restart file (an unreadable file is
+/// left to the rdem reader, which names the failure).
+fn is_liggghts(file: &str) -> bool {
+    use std::io::Read;
+    let mut head = Vec::with_capacity(32);
+    std::fs::File::open(file)
+        .and_then(|f| f.take(32).read_to_end(&mut head))
+        .is_ok_and(|_| rdem_io::liggghts_restart::is_liggghts_restart(&head))
+}
+
+/// `read_restart` of a LIGGGHTS restart file: what was read is printed, what the file
+/// holds that rdem does not take is one warning.
+fn read_liggghts_restart(sim: &mut Sim, a: &mut Args, file: &str) -> CmdResult {
+    let f = rdem_io::liggghts_restart::read_liggghts_restart(std::path::Path::new(file))
+        .map_err(|e| a.error_at(1, e.to_string(), None))?;
+    let g = crate::variables::g;
+    sim.outputs.out.line(&format!(
+        "Reading LIGGGHTS restart file ...\n  written by {} on {} processor(s) at step {}\n  orthogonal box = ({} {} {}) to ({} {} {})",
+        f.version.strip_prefix("Version ").unwrap_or(&f.version),
+        f.nprocs,
+        f.step,
+        g(f.boxlo[0]),
+        g(f.boxlo[1]),
+        g(f.boxlo[2]),
+        g(f.boxhi[0]),
+        g(f.boxhi[1]),
+        g(f.boxhi[2])
+    ));
+    let taken = crate::liggghts_restart::restore(sim, &f, |sim, w| {
+        decompose(sim, w, a, 1).map_err(|e| e.message)
+    })
+    .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
+    let out = &mut sim.outputs.out;
+    out.line(&format!("  {} atoms", f.natoms));
+    out.line(&format!(
+        "  {} pair contact histories, wall histories of {} fix(es){}{}",
+        taken.contacts,
+        taken.walls.len(),
+        if taken.walls.is_empty() { "" } else { ": " },
+        taken.walls.join(" ")
+    ));
+    if !taken.kept.is_empty() {
+        out.line(&format!(
+            "  per-particle values of fix(es) {} kept for fix property/atom defined again with that ID",
+            taken.kept.join(" ")
+        ));
+    }
+    let mut skipped = Vec::new();
+    if let Some(p) = &f.pair {
+        skipped.push(format!(
+            "pair style {} and its coefficients (define them again after read_restart)",
+            p.style
+        ));
+    }
+    skipped.extend(taken.not_taken);
+    if skipped.is_empty() {
+        return Ok(());
+    }
+    sim.warn_once(&format!(
+        "read_restart: {file} is a LIGGGHTS restart file; not taken from it: {}",
+        skipped.join("; ")
+    ));
     Ok(())
 }
 

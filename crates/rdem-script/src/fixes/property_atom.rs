@@ -43,8 +43,9 @@ pub struct PropertyAtom {
 }
 
 impl ScriptFix for PropertyAtom {
-    fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
         let restored = sim.defs.restored.props.remove(&self.name);
+        let from_liggghts = sim.defs.restored.peratom.remove(&head.id);
         let p = &mut sim.world_mut(a)?.particles;
         let id = p
             .add_property(&self.name, self.defaults.len(), &self.defaults)
@@ -53,6 +54,26 @@ impl ScriptFix for PropertyAtom {
             let prop = &mut p.props[id.0];
             for c in prop.data.chunks_exact_mut(self.defaults.len()) {
                 c.copy_from_slice(&self.defaults);
+            }
+        }
+        if let Some(v) = from_liggghts.filter(|_| self.restart) {
+            // A LIGGGHTS restart file's values for the fix of this ID, by tag (as
+            // LIGGGHTS gives a fix defined again with its ID its per-atom state).
+            let width = self.defaults.len();
+            if v.width != width {
+                return Err(a.error_at(
+                    4,
+                    format!(
+                        "the LIGGGHTS restart file holds {} value(s) per particle for fix {}, this definition {width}",
+                        v.width, head.id
+                    ),
+                    None,
+                ));
+            }
+            for i in 0..p.nlocal() {
+                if let Some(vals) = v.of(p.tag[i]) {
+                    p.props[id.0].get_mut(i).copy_from_slice(vals);
+                }
             }
         }
         if self.forward {
