@@ -162,7 +162,12 @@ pub fn main(args: &[String]) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     if cli.version {
-        println!("rdem {}", env!("CARGO_PKG_VERSION"));
+        let mpi = if cfg!(feature = "mpi") {
+            " (with MPI)"
+        } else {
+            ""
+        };
+        println!("rdem {}{mpi}", env!("CARGO_PKG_VERSION"));
         return ExitCode::SUCCESS;
     }
     // Under mpirun every rank runs this; MPI ends when the guard is dropped at exit.

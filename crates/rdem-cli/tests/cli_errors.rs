@@ -100,6 +100,13 @@ fn options_exit_codes() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("Usage: rdem"));
     let out = run(&dir, &["--version"]);
     assert_eq!(out.status.code(), Some(0));
-    assert!(String::from_utf8_lossy(&out.stdout).starts_with("rdem "));
+    let version = String::from_utf8_lossy(&out.stdout);
+    assert!(version.starts_with("rdem "));
+    // The benchmark script tells from it whether the 2-rank runs can be made.
+    assert_eq!(
+        version.contains("(with MPI)"),
+        cfg!(feature = "mpi"),
+        "{version}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
