@@ -5,7 +5,7 @@
 # mpirun; VTK's Python reader, with which tests read our VTK files), then formatting,
 # clippy with warnings as errors (with and without MPI), the doc tests and the whole test
 # suite with the `mpi` feature (cargo-nextest, release), then the Python package: a
-# virtual environment (target/pyenv) with maturin, numpy and pytest from pip, the wheel
+# virtual environment (target/pyenv) with maturin, numpy, pytest and meshio (for the .pvd example) from pip, the wheel
 # built and installed in it, and the Python tests. `.ci/run` calls this script.
 # Usage: bash scripts/test.sh
 set -euo pipefail
@@ -51,7 +51,7 @@ cargo nextest run --workspace --release --features rdem-cli/mpi
 
 # The Python package: the wheel built by maturin, installed in a virtual environment.
 python3 -m venv target/pyenv
-target/pyenv/bin/python -m pip install --quiet --upgrade maturin numpy pytest
+target/pyenv/bin/python -m pip install --quiet --upgrade maturin numpy pytest meshio
 rm -rf target/wheels-test
 target/pyenv/bin/maturin build --release --quiet --out target/wheels-test
 target/pyenv/bin/python -m pip install --quiet --force-reinstall --no-deps target/wheels-test/rdem-*.whl
