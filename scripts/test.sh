@@ -2,7 +2,7 @@
 # Runs every check on a fresh machine with a Rust toolchain: installs what the tests need
 # (cargo-nextest; the LIGGGHTS tutorial cases from Debian's liggghts-doc package, which the
 # tutorial tests run; OpenMPI and libclang, to build and run rdem's `mpi` feature under
-# mpirun; VTK's Python reader, with which tests read our VTK files), then formatting,
+# mpirun; GNU time, which measures a run's peak memory; VTK's Python reader, with which tests read our VTK files), then formatting,
 # clippy with warnings as errors (with and without MPI), the doc tests and the whole test
 # suite with the `mpi` feature (cargo-nextest, release), then the Python package: a
 # virtual environment (target/pyenv) with maturin, numpy, pytest and meshio (for the .pvd example) from pip, the wheel
@@ -27,6 +27,7 @@ command -v mpirun >/dev/null 2>&1 || packages+=(openmpi-bin)
 [ -e /usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h ] || [ -e /usr/include/mpi.h ] \
   || dpkg -s libopenmpi-dev >/dev/null 2>&1 || packages+=(libopenmpi-dev)
 dpkg -s libclang-dev >/dev/null 2>&1 || packages+=(libclang-dev)
+[ -x /usr/bin/time ] || packages+=(time)
 if [ ${#packages[@]} -gt 0 ]; then
   echo "installing Debian packages: ${packages[*]}" >&2
   sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
