@@ -2,11 +2,12 @@
 # Runs every check on a fresh machine with a Rust toolchain: installs what the tests need
 # (cargo-nextest; the LIGGGHTS tutorial cases from Debian's liggghts-doc package, which the
 # tutorial tests run; OpenMPI and libclang, to build and run rdem's `mpi` feature under
-# mpirun; GNU time, which measures a run's peak memory; VTK's Python reader, with which tests read our VTK files), then formatting,
-# clippy with warnings as errors (with and without MPI), the doc tests and the whole test
-# suite with the `mpi` feature (cargo-nextest, release), then the Python package: a
-# virtual environment (target/pyenv) with maturin, numpy, pytest and meshio (for the .pvd example) from pip, the wheel
-# built and installed in it, and the Python tests. `.ci/run` calls this script.
+# mpirun; GNU time, which measures a run's peak memory; VTK's Python reader, with which
+# tests read our VTK files), then formatting, clippy with warnings as errors (with and
+# without MPI), the doc tests and the whole test suite with the `mpi` feature
+# (cargo-nextest, release), then the Python package: a virtual environment (target/pyenv)
+# with maturin, numpy, pytest and meshio (for the .pvd example) from pip, the wheel built
+# and installed in it, and the Python tests. `.ci/run` calls this script.
 # Usage: bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."

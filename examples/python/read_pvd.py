@@ -67,6 +67,13 @@ def read_series(pvd):
     return sorted(series, key=lambda s: s[0])
 
 
+def kinetic_energy(data):
+    """Translational kinetic energy of one snapshot's point data (mass and velocity: the
+    vector field "v", or vx, vy, vz)."""
+    v = np.column_stack([data[k] for k in ("vx", "vy", "vz")]) if "vx" in data else data["v"]
+    return 0.5 * np.sum(np.ravel(data["mass"]) * np.sum(v**2, axis=1))
+
+
 def main():
     with tempfile.TemporaryDirectory() as d:
         os.chdir(d)
@@ -75,9 +82,7 @@ def main():
         series = read_series("post/bed.pvd")
     print("    time (s)  particles  mean z (mm)  kinetic energy (J)")
     for t, x, data in series:
-        v = np.column_stack([data[k] for k in ("vx", "vy", "vz")]) if "vx" in data else data["v"]
-        ke = 0.5 * np.sum(np.ravel(data["mass"]) * np.sum(v**2, axis=1))
-        print(f"{t:12.3f} {len(x):10d} {1000 * x[:, 2].mean():12.3f} {ke:19.3e}")
+        print(f"{t:12.3f} {len(x):10d} {1000 * x[:, 2].mean():12.3f} {kinetic_energy(data):19.3e}")
     return 0
 
 

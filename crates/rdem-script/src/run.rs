@@ -282,8 +282,10 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
         sim.script.set_up = true;
         stages.end_of_step(sim, start_step, true)?;
         flush_world_warnings(sim);
-        let arrays = sim.world.as_ref().map(|w| w.memory_bytes()).unwrap_or(0);
-        let mem = peak_resident_bytes().unwrap_or(arrays) as f64 / 1048576.0;
+        let mem = peak_resident_bytes()
+            .unwrap_or_else(|| sim.world.as_ref().map_or(0, |w| w.memory_bytes()))
+            as f64
+            / 1048576.0;
         sim.outputs.out.line(&format!(
             "Memory usage per processor = {} Mbytes",
             crate::variables::format_g(mem, 4)
