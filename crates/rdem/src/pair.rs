@@ -23,8 +23,11 @@ use crate::neighbor::{Neighbor, NeighborList};
 use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
 
+mod lanes;
 mod liquid;
 mod local;
+pub use lanes::Isa;
+use lanes::{Batch, LaneModel};
 pub use liquid::{
     BridgeBreak, LiquidState, CONTENT as LIQUID_CONTENT, FLUX as LIQUID_FLUX,
     SOURCE as LIQUID_SOURCE,
@@ -81,6 +84,12 @@ pub struct PairGran {
     pub(crate) ts_warned: bool,
     /// With liquid bridges: the per-particle liquid properties and this pass's breaks.
     pub(crate) liquid: Option<LiquidState>,
+    /// The instruction set of the lane kernel (for the models that have one), or `None`
+    /// for the per-pair kernel. Both give the same bits; set from `RDEM_SIMD`
+    /// ([`Isa::from_env`]).
+    pub simd: Option<Isa>,
+    /// The lane kernel's gathered contacts (single-threaded pass).
+    batch: Batch,
 }
 
 impl PairGran {
@@ -98,6 +107,8 @@ impl PairGran {
             step: 0,
             ts_warned: false,
             liquid: None,
+            simd: Isa::from_env(),
+            batch: Batch::default(),
         }
     }
 
@@ -379,6 +390,17 @@ struct Phase1<'a> {
     lq: &'a [f64],
     /// Where liquid bridges record their breaks (liquid bridges only).
     breaks: Option<&'a liquid::Breaks>,
+    /// The lane kernel's model and instruction set, when the pass uses it.
+    lanes: Option<(LaneModel, Isa)>,
+}
+
+/// Listed pairs gathered into one [`Batch`] by the lane kernel (whole rows, at least
+/// one): small enough that the batch stays in the first-level cache.
+const LANE_PAIRS: u32 = 128;
+
+thread_local! {
+    /// Each pool thread's [`Batch`] for the parallel pass (kept between passes).
+    static BATCH: std::cell::RefCell<Batch> = std::cell::RefCell::new(Batch::default());
 }
 
 impl Phase1<'_> {
@@ -432,6 +454,12 @@ impl Phase1<'_> {
         let near = self.near;
         let k0 = near.first[lo] as usize;
         let h0 = self.list_first[lo] as usize;
+        if !BOND && self.lanes.is_some() {
+            BATCH.with_borrow_mut(|batch| {
+                self.block_lanes::<VIRIAL>(lo, hi, k0, h0, batch, res, rv, hist, own)
+            });
+            return;
+        }
         let mut empty: [f64; 0] = [];
         for i in lo..hi {
             let coeff_row = self.table.row(self.ty[i]);
@@ -711,6 +739,220 @@ impl Phase1<'_> {
     }
 }
 
+/// The lane kernel's side of phase 1 and of the serial pass (models with a lane form, no
+/// bonds): the touching pairs of the rows that hold about [`LANE_PAIRS`] listed pairs are gathered into a
+/// [`Batch`], computed lane-wise, and their results taken in near-list order, as the
+/// per-pair pass takes them.
+impl Phase1<'_> {
+    /// The end of the batch of rows that starts at row `a` (before `hi`).
+    fn batch_end(&self, a: usize, hi: usize) -> usize {
+        let first = &self.near.first;
+        let mut b = a + 1;
+        while b < hi && first[b] - first[a] < LANE_PAIRS {
+            b += 1;
+        }
+        b
+    }
+
+    /// Gathers the touching pairs of rows `lo..hi` into `batch` (history slots relative
+    /// to list pair `h0`, whose history `hist` starts at), clears the history of the
+    /// others, calls `apart(k)` for every listed pair (k: near-list position; the touching
+    /// ones are taken after) and computes.
+    ///
+    /// Each row is walked twice: first without branches, to pick the touching pairs (a
+    /// third of the listed ones: a branch there is mispredicted about once per contact),
+    /// then over the touching pairs alone, to gather their inputs.
+    fn gather(
+        &self,
+        lo: usize,
+        hi: usize,
+        h0: usize,
+        hist: &mut [f64],
+        batch: &mut Batch,
+        mut apart: impl FnMut(usize),
+    ) {
+        let (model, isa) = self.lanes.expect("a lane model");
+        let w = self.width;
+        let near = self.near;
+        let (x, v, omega, radius, rmass, ty) =
+            (self.x, self.v, self.omega, self.radius, self.rmass, self.ty);
+        batch.clear();
+        batch.uniform = model.uniform;
+        for i in lo..hi {
+            let coeff_row = self.table.row(ty[i]);
+            let (xi, vi, wi, ri, mi) = (x[i], v[i], omega[i], radius[i], rmass[i]);
+            let (k_lo, k_hi) = (near.first[i] as usize, near.first[i + 1] as usize);
+            let touching = batch.select(k_hi - k_lo, |m| {
+                let k = k_lo + m;
+                let j = near.partner[k] as usize;
+                let rsq = (xi - x[j]).length_squared();
+                let radsum = ri + radius[j];
+                // As in `contact`: a NaN distance is no contact.
+                let touch = rsq < radsum * radsum;
+                if w > 0 {
+                    // `clear_history` unless touching, without a branch.
+                    let h = &mut hist[(near.slot[k] as usize - h0) * w..][..w];
+                    let keep = touch | h.iter().all(|&a| a == 0.0);
+                    let mask = (keep as u64).wrapping_neg();
+                    for a in h {
+                        *a = f64::from_bits(a.to_bits() & mask);
+                    }
+                }
+                apart(k);
+                touch
+            });
+            for t in 0..touching {
+                let k = k_lo + batch.picked(t);
+                let j = near.partner[k] as usize;
+                let slot = near.slot[k] as usize - h0;
+                let d = xi - x[j];
+                let h = if w > 0 {
+                    [hist[slot * w], hist[slot * w + 1], hist[slot * w + 2]]
+                } else {
+                    [0.0; 3]
+                };
+                let (vr, wj) = (vi - v[j], omega[j]);
+                batch.push(
+                    j as u32,
+                    slot as u32,
+                    k as u32,
+                    [
+                        d.x, d.y, d.z, ri, radius[j], mi, rmass[j], vr.x, vr.y, vr.z, wi.x, wi.y,
+                        wi.z, wj.x, wj.y, wj.z, h[0], h[1], h[2],
+                    ],
+                    || lanes::coeff_cols(&coeff_row[ty[j] as usize - 1]),
+                );
+            }
+        }
+        batch.compute(isa, model, self.flags, self.dt, self.update);
+    }
+
+    /// The serial pass with the lane kernel (see [`Phase1::serial`]).
+    fn serial_lanes<const VIRIAL: bool>(
+        &self,
+        batch: &mut Batch,
+        hist: &mut [f64],
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        virial: &mut [[f64; 6]],
+    ) {
+        let h0 = self.list_first[0] as usize;
+        let mut lo = 0;
+        while lo < self.nlocal {
+            let hi = self.batch_end(lo, self.nlocal);
+            self.gather(lo, hi, h0, hist, batch, |_| {});
+            let mut c = 0;
+            for i in lo..hi {
+                let e = self.near.first[i + 1];
+                let mut fi = DVec3::ZERO;
+                let mut tqi = DVec3::ZERO;
+                while c < batch.n && batch.k[c] < e {
+                    let (fc, ti, tj, d) = self.take(batch, c, hist);
+                    let j = batch.j[c] as usize;
+                    if VIRIAL {
+                        let w = virial_of(d, fc);
+                        for (a, b) in virial[i].iter_mut().zip(&w) {
+                            *a += b;
+                        }
+                        for (a, b) in virial[j].iter_mut().zip(&w) {
+                            *a += b;
+                        }
+                    }
+                    fi += fc;
+                    tqi += ti;
+                    f[j] -= fc;
+                    torque[j] += tj;
+                    c += 1;
+                }
+                f[i] += fi;
+                torque[i] += tqi;
+            }
+            lo = hi;
+        }
+    }
+
+    /// One block of phase 1 with the lane kernel (see [`Phase1::block`]): rows `lo..hi`,
+    /// whose first near pair is `k0` and first list pair `h0`.
+    #[allow(clippy::too_many_arguments)]
+    fn block_lanes<const VIRIAL: bool>(
+        &self,
+        lo: usize,
+        hi: usize,
+        k0: usize,
+        h0: usize,
+        batch: &mut Batch,
+        res: &mut [PairOut],
+        rv: &mut [[f64; 6]],
+        hist: &mut [f64],
+        own: &mut [OwnSum],
+    ) {
+        let mut a = lo;
+        while a < hi {
+            let b = self.batch_end(a, hi);
+            self.gather(a, b, h0, hist, batch, |k| {
+                res[k - k0] = PairOut::default();
+                if VIRIAL {
+                    rv[k - k0] = [0.0; 6];
+                }
+            });
+            let mut c = 0;
+            for i in a..b {
+                let e = self.near.first[i + 1];
+                let mut sum = OwnSum::default();
+                while c < batch.n && batch.k[c] < e {
+                    let (fc, ti, tj, d) = self.take(batch, c, hist);
+                    let r = batch.k[c] as usize - k0;
+                    if VIRIAL {
+                        rv[r] = virial_of(d, fc);
+                    }
+                    res[r] = PairOut { f_i: fc, t_j: tj };
+                    sum.f += fc;
+                    sum.t += ti;
+                    c += 1;
+                }
+                own[i - lo] = sum;
+            }
+            a = b;
+        }
+    }
+
+    /// Contact `c` of the batch: writes its new spring back to its history slot and gives
+    /// the force on i, the torques on i and j, and r = x_i − x_j.
+    #[inline(always)]
+    fn take(&self, batch: &Batch, c: usize, hist: &mut [f64]) -> (DVec3, DVec3, DVec3, DVec3) {
+        let o = batch.out(c);
+        let w = self.width;
+        if w > 0 && self.update {
+            let slot = batch.slot[c] as usize;
+            hist[slot * w..slot * w + 3].copy_from_slice(&o[9..12]);
+        }
+        let d = DVec3::new(
+            batch.at(lanes::Col::Dx, c),
+            batch.at(lanes::Col::Dy, c),
+            batch.at(lanes::Col::Dz, c),
+        );
+        (
+            DVec3::new(o[0], o[1], o[2]),
+            DVec3::new(o[3], o[4], o[5]),
+            DVec3::new(o[6], o[7], o[8]),
+            d,
+        )
+    }
+}
+
+/// A contact's virial, ½ r ⊗ F (xx yy zz xy xz yz), as each of its two particles gets it.
+#[inline(always)]
+fn virial_of(d: DVec3, f: DVec3) -> [f64; 6] {
+    [
+        0.5 * (d.x * f.x),
+        0.5 * (d.y * f.y),
+        0.5 * (d.z * f.z),
+        0.5 * (d.x * f.y),
+        0.5 * (d.x * f.z),
+        0.5 * (d.y * f.z),
+    ]
+}
+
 /// Phase 2's read-only inputs.
 struct Phase2<'a> {
     near: &'a NearList,
@@ -842,6 +1084,8 @@ impl PairPass<'_> {
             step,
             ts_warned: _,
             liquid,
+            simd,
+            batch,
         } = pair;
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
@@ -870,10 +1114,19 @@ impl PairPass<'_> {
                 .as_ref()
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: liquid.as_ref().map(|l| &l.breaks),
+            lanes: match (BOND, *simd) {
+                (false, Some(isa)) => LaneModel::of(model, table).map(|m| (m, isa)),
+                _ => None,
+            },
         };
         if rayon::current_num_threads() == 1 {
             let (f, torque) = (&mut p.f, &mut p.torque);
-            ph1.serial::<K, VIRIAL, BOND>(&mut list.hist[h0..h1], f, torque, virial);
+            let hist = &mut list.hist[h0..h1];
+            if ph1.lanes.is_some() {
+                ph1.serial_lanes::<VIRIAL>(batch, hist, f, torque, virial);
+            } else {
+                ph1.serial::<K, VIRIAL, BOND>(hist, f, torque, virial);
+            }
             return;
         }
         let npairs = near.partner.len();

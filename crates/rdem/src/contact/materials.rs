@@ -496,6 +496,11 @@ impl CoeffTable {
         &self.coeffs[(ti as usize - 1) * n..ti as usize * n]
     }
 
+    /// Every type pair's coefficients (row-major).
+    pub fn all(&self) -> &[PairCoeff] {
+        &self.coeffs
+    }
+
     /// Coefficients of the 1-based type pair `(ti, tj)`.
     #[inline(always)]
     pub fn get(&self, ti: u32, tj: u32) -> &PairCoeff {

@@ -137,6 +137,7 @@ impl Visitor for Records<'_> {
                 .as_ref()
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: None,
+            lanes: None,
         };
         // The contact law's values sit after the bond's vectors when there are bonds.
         let off = if pair.bond.is_some() { bond::VEC } else { 0 };
