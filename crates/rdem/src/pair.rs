@@ -482,15 +482,7 @@ impl Phase1<'_> {
                     continue;
                 };
                 if VIRIAL {
-                    let f = out.f_i;
-                    rv[r] = [
-                        0.5 * (d.x * f.x),
-                        0.5 * (d.y * f.y),
-                        0.5 * (d.z * f.z),
-                        0.5 * (d.x * f.y),
-                        0.5 * (d.x * f.z),
-                        0.5 * (d.y * f.z),
-                    ];
+                    rv[r] = virial_of(d, out.f_i);
                 }
                 res[r] = PairOut {
                     f_i: out.f_i,
@@ -712,15 +704,7 @@ impl Phase1<'_> {
                     continue;
                 };
                 if VIRIAL {
-                    let f = out.f_i;
-                    let w = [
-                        0.5 * (d.x * f.x),
-                        0.5 * (d.y * f.y),
-                        0.5 * (d.z * f.z),
-                        0.5 * (d.x * f.y),
-                        0.5 * (d.x * f.z),
-                        0.5 * (d.y * f.z),
-                    ];
+                    let w = virial_of(d, out.f_i);
                     for (a, b) in virial[i].iter_mut().zip(&w) {
                         *a += b;
                     }
