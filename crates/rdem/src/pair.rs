@@ -60,6 +60,29 @@ struct NearList {
     factor: f64,
 }
 
+impl NearList {
+    /// Makes the reverse CSR (`rfirst`, `rk`) over `n` particles by counting sort (stable:
+    /// increasing k within each partner).
+    fn build_reverse(&mut self, n: usize) {
+        self.rfirst.clear();
+        self.rfirst.resize(n + 2, 0);
+        for &j in &self.partner {
+            self.rfirst[j as usize + 2] += 1;
+        }
+        for a in 2..n + 2 {
+            self.rfirst[a] += self.rfirst[a - 1];
+        }
+        self.rk.clear();
+        self.rk.resize(self.partner.len(), 0);
+        for (k, &j) in self.partner.iter().enumerate() {
+            let c = &mut self.rfirst[j as usize + 1];
+            self.rk[*c as usize] = k as u32;
+            *c += 1;
+        }
+        self.rfirst.truncate(n + 1);
+    }
+}
+
 /// The granular pair style: a contact model, its mixed coefficients and the near list.
 #[derive(Debug, Clone)]
 pub struct PairGran {
@@ -175,6 +198,16 @@ impl PairGran {
         }
     }
 
+    /// Gives back the near list's buffers and phase 1's (called when the neighbor list is
+    /// about to be rebuilt, which makes them stale): they are not resident while the
+    /// neighbor search runs. The next force pass builds the near list anew.
+    pub fn release_near_list(&mut self) {
+        self.near = NearList::default();
+        self.res = Vec::new();
+        self.own = Vec::new();
+        self.res_virial = Vec::new();
+    }
+
     /// Rebuilds the near list from the neighbor list.
     pub fn build_near_list(&mut self, p: &Particles, neighbor: &Neighbor) {
         let near = &mut self.near;
@@ -238,24 +271,13 @@ impl PairGran {
                 near.slot.extend_from_slice(&slot);
             }
         }
-        // Reverse CSR by counting sort (stable: increasing k within each partner).
-        let n = p.len();
         near.rfirst.clear();
-        near.rfirst.resize(n + 2, 0);
-        for &j in &near.partner {
-            near.rfirst[j as usize + 2] += 1;
-        }
-        for a in 2..n + 2 {
-            near.rfirst[a] += near.rfirst[a - 1];
-        }
         near.rk.clear();
-        near.rk.resize(near.partner.len(), 0);
-        for (k, &j) in near.partner.iter().enumerate() {
-            let c = &mut near.rfirst[j as usize + 1];
-            near.rk[*c as usize] = k as u32;
-            *c += 1;
+        // The reverse CSR is only read by the parallel pass, so a one-thread pool never
+        // makes it (at a million particles it is 16 MB).
+        if rayon::current_num_threads() > 1 {
+            near.build_reverse(p.len());
         }
-        near.rfirst.truncate(n + 1);
     }
 
     /// Adds contact forces and torques for every pair of the near list in contact (to
@@ -1072,7 +1094,10 @@ impl PairPass<'_> {
             batch,
         } = pair;
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
-        debug_assert_eq!(near.rfirst.len(), n + 1, "near list built for these ghosts");
+        let threaded = rayon::current_num_threads() > 1;
+        if threaded && near.rfirst.len() != n + 1 {
+            near.build_reverse(n);
+        }
         let h0 = list.first[0] as usize * w;
         let h1 = list.first[nlocal] as usize * w;
         let ph1 = Phase1 {
@@ -1103,7 +1128,7 @@ impl PairPass<'_> {
                 _ => None,
             },
         };
-        if rayon::current_num_threads() == 1 {
+        if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
             if ph1.lanes.is_some() {

@@ -271,6 +271,9 @@ impl World {
     pub(crate) fn reneighbor(&mut self) -> Result<()> {
         let t0 = Instant::now();
         self.save_history();
+        if let Some(pair) = &mut self.pair {
+            pair.release_near_list();
+        }
         self.particles.clear_ghosts();
         self.remove_marked();
         self.remap_periodic();
