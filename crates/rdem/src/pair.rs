@@ -45,7 +45,9 @@ struct NearList {
     partner: Vec<u32>,
     slot: Vec<u32>,
     /// Reverse CSR over all particles (ghosts too): `rk[rfirst[j]..rfirst[j + 1]]` are the
-    /// near-list positions of the pairs whose partner is j, increasing.
+    /// near-list positions of the pairs whose partner is j, increasing. Only the parallel
+    /// pass reads it, and it makes it ([`NearList::build_reverse`]) when it finds it empty:
+    /// a one-thread run never holds it.
     rfirst: Vec<u32>,
     rk: Vec<u32>,
     xref: Vec<DVec3>,
@@ -271,13 +273,9 @@ impl PairGran {
                 near.slot.extend_from_slice(&slot);
             }
         }
+        // The reverse CSR of the old list is stale: the parallel pass makes it anew.
         near.rfirst.clear();
         near.rk.clear();
-        // The reverse CSR is only read by the parallel pass, so a one-thread pool never
-        // makes it (at a million particles it is 16 MB).
-        if rayon::current_num_threads() > 1 {
-            near.build_reverse(p.len());
-        }
     }
 
     /// Adds contact forces and torques for every pair of the near list in contact (to
@@ -765,9 +763,8 @@ impl Phase1<'_> {
     /// others, calls `apart(k)` for every listed pair (k: near-list position; the touching
     /// ones are taken after) and computes.
     ///
-    /// Each row is walked twice: first without branches, to pick the touching pairs (a
-    /// third of the listed ones: a branch there is mispredicted about once per contact),
-    /// then over the touching pairs alone, to gather their inputs.
+    /// Each row is walked twice: first without branches, to pick the touching pairs, then
+    /// over the touching pairs alone, to gather their inputs.
     fn gather(
         &self,
         lo: usize,
