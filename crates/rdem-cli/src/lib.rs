@@ -189,12 +189,7 @@ pub fn main(args: &[String]) -> ExitCode {
             // All cores, shared between the ranks started on this machine.
             Err(_) => {
                 let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-                let local = std::env::var("OMPI_COMM_WORLD_LOCAL_SIZE")
-                    .ok()
-                    .and_then(|v| v.parse::<usize>().ok())
-                    .unwrap_or(nprocs)
-                    .max(1);
-                (cores / local).max(1)
+                (cores / rdem::par::local_processes()).max(1)
             }
         },
     };

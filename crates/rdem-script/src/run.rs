@@ -311,6 +311,33 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     }
     let t0 = Instant::now();
     sim.script.run_started = t0;
+    // The pool's other threads wait for the steps' parallel loops awake (see
+    // `rdem::par::with_busy_pool`).
+    let (done, stopped) =
+        rdem::par::with_busy_pool(|| step_loop(sim, &stages, start_step, nsteps))?;
+    if let Some(p) = &mut sim.outputs.progress {
+        p(done, done);
+    }
+    let nsteps = done;
+    let loop_time = t0.elapsed().as_secs_f64();
+    // The set-up's build is not counted (as in LIGGGHTS).
+    let builds0 = (builds0.0 + u64::from(setup), builds0.1);
+    report(sim, loop_time, nsteps, builds0, chunk.summary);
+    stages.end_of_run(sim)?;
+    match stopped {
+        Some(m) => Err(m.into()),
+        None => Ok(()),
+    }
+}
+
+/// The steps of a run after its set-up, with their output: the number of steps done
+/// (fewer than `nsteps` when the step hook ended the run) and the hook's error, if any.
+fn step_loop(
+    sim: &mut Sim,
+    stages: &RunStages,
+    start_step: u64,
+    nsteps: u64,
+) -> Result<(u64, Option<String>), RunError> {
     let mut last_progress = Instant::now();
     let mut done = nsteps;
     let mut stopped = None;
@@ -356,19 +383,7 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
             }
         }
     }
-    if let Some(p) = &mut sim.outputs.progress {
-        p(done, done);
-    }
-    let nsteps = done;
-    let loop_time = t0.elapsed().as_secs_f64();
-    // The set-up's build is not counted (as in LIGGGHTS).
-    let builds0 = (builds0.0 + u64::from(setup), builds0.1);
-    report(sim, loop_time, nsteps, builds0, chunk.summary);
-    stages.end_of_run(sim)?;
-    match stopped {
-        Some(m) => Err(m.into()),
-        None => Ok(()),
-    }
+    Ok((done, stopped))
 }
 
 /// The fixes due in a step's pre-exchange stage (insertion), out of `Sim::fixes` while
