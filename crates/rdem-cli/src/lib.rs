@@ -187,10 +187,7 @@ pub fn main(args: &[String]) -> ExitCode {
                 }
             },
             // All cores, shared between the ranks started on this machine.
-            Err(_) => {
-                let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-                (cores / rdem::par::local_processes()).max(1)
-            }
+            Err(_) => rdem::par::cores_per_process(),
         },
     };
     if cli.check {

@@ -120,12 +120,19 @@ pub(crate) fn zero(a: &mut [DVec3], b: &mut [DVec3]) {
 
 /// The processes of this run on this machine: Open MPI's `OMPI_COMM_WORLD_LOCAL_SIZE`
 /// when it is set, else all the run's processes.
-pub fn local_processes() -> usize {
+fn local_processes() -> usize {
     std::env::var("OMPI_COMM_WORLD_LOCAL_SIZE")
         .ok()
         .and_then(|v| v.parse::<usize>().ok())
         .unwrap_or_else(|| crate::comm::process_rank_size().1)
         .max(1)
+}
+
+/// This machine's cores shared between the run's processes on it (at least 1): the
+/// default thread count of a process.
+pub fn cores_per_process() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    (cores / local_processes()).max(1)
 }
 
 /// Runs `f` on the calling pool thread while the pool's other threads keep looking for
@@ -141,16 +148,15 @@ pub fn local_processes() -> usize {
 /// `std::thread::yield_now` whenever it finds none: another process with work on the
 /// same core runs then (two 2-thread runs of the dense bench at once on 2 cores took
 /// 10.4 s and 10.6 s with a helper that spun with `spin_loop`, 6.3 s and 6.5 s with
-/// helpers that slept, 6.2 s and 6.5 s with this). Nothing `f` computes depends on which thread
-/// runs a job, so the results are unchanged. On a pool of one thread, outside a pool, or
-/// when this machine's processes of the run have more threads than it has cores (a
-/// helper would keep taking a core from a thread of the run that has work), `f` just
-/// runs.
+/// helpers that slept, 6.2 s and 6.5 s with this). Nothing `f` computes depends on which
+/// thread runs a job, so the results are unchanged. On a pool of one thread, outside a
+/// pool, or with more threads than [`cores_per_process`] (this machine's processes of
+/// the run would have more threads than it has cores, and a helper would keep taking a
+/// core from a thread of the run that has work), `f` just runs.
 pub fn with_busy_pool<R>(f: impl FnOnce() -> R) -> R {
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     let n = rayon::current_num_threads();
-    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
-    if n <= 1 || n * local_processes() > cores || rayon::current_thread_index().is_none() {
+    if n <= 1 || n > cores_per_process() || rayon::current_thread_index().is_none() {
         return f();
     }
     let done = AtomicBool::new(false);
