@@ -475,9 +475,10 @@ struct Bins {
     bin_of: Vec<u32>,
     /// Slot ranges of the locals per bin (`nbins + 1` offsets into `slots`).
     lstart: Vec<u32>,
-    /// Slot ranges of the ghosts per bin (offsets into `slots`, from `nlocal` on).
+    /// Slot ranges of the ghosts per bin (offsets into `slots`, from `nlocal` on; empty
+    /// without ghosts).
     gstart: Vec<u32>,
-    /// Fill cursors (per bin, then per row).
+    /// Fill cursors of the list's rows.
     cursor: Vec<u32>,
     /// Particles in bin order: locals, then ghosts.
     slots: Vec<Slot>,
@@ -577,12 +578,16 @@ impl Bins {
         }
 
         // Counting sort into bins: locals in slots 0..nlocal, ghosts in nlocal..n, each
-        // in index order within a bin.
+        // in index order within a bin. Without ghosts there are no ghost bins (at a
+        // million particles the bin arrays are about 20 MB each).
+        let ghosts = n > nlocal;
         self.bin_of.clear();
         self.lstart.clear();
         self.lstart.resize(nbins + 1, 0);
         self.gstart.clear();
-        self.gstart.resize(nbins + 1, 0);
+        if ghosts {
+            self.gstart.resize(nbins + 1, 0);
+        }
         for (i, &x) in p.x.iter().enumerate() {
             let c = (x - lo) * inv;
             let [cx, cy, cz] = [0, 1, 2].map(|a| (c[a].max(0.0) as usize).min(nb[a] - 1));
@@ -594,36 +599,45 @@ impl Bins {
                 self.gstart[b + 1] += 1;
             }
         }
-        self.gstart[0] = nlocal as u32;
         for b in 0..nbins {
             self.lstart[b + 1] += self.lstart[b];
-            self.gstart[b + 1] += self.gstart[b];
+        }
+        if ghosts {
+            self.gstart[0] = nlocal as u32;
+            for b in 0..nbins {
+                self.gstart[b + 1] += self.gstart[b];
+            }
         }
         self.slots.clear();
         self.slots.resize(n, Slot::default());
         self.index.clear();
         self.index.resize(n, 0);
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.lstart[..nbins]);
-        for i in 0..n {
-            if i == nlocal {
-                self.cursor.clear();
-                self.cursor.extend_from_slice(&self.gstart[..nbins]);
+        // Filled from the end of each bin backwards, the last particle first, with the
+        // bin's end as its cursor (no cursor array): start[b + 1] then holds the start
+        // of bin b, and the starts are shifted back into place after.
+        let mut fill = |start: &mut Vec<u32>, range: std::ops::Range<usize>| {
+            for i in range.clone().rev() {
+                let b = self.bin_of[i] as usize;
+                start[b + 1] -= 1;
+                let s = start[b + 1] as usize;
+                self.slots[s] = Slot {
+                    x: p.x[i],
+                    r: p.radius[i],
+                };
+                self.index[s] = i as u32;
             }
-            let b = self.bin_of[i] as usize;
-            let s = self.cursor[b] as usize;
-            self.cursor[b] += 1;
-            self.slots[s] = Slot {
-                x: p.x[i],
-                r: p.radius[i],
-            };
-            self.index[s] = i as u32;
+            let end = range.end as u32;
+            start.copy_within(1..nbins + 1, 0);
+            start[nbins] = end;
+        };
+        fill(&mut self.lstart, 0..nlocal);
+        if ghosts {
+            fill(&mut self.gstart, nlocal..n);
         }
 
         // Bins within reach of a ghost: the ghost bins dilated by the stencil's box, one
         // axis at a time (rows of bins overlap at their ends, which only adds bins), so
         // that bins far from every ghost skip the ghost search.
-        let ghosts = n > nlocal;
         if ghosts {
             let (near, tmp) = (&mut self.near, &mut self.near_tmp);
             tmp.clear();

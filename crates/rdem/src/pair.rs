@@ -37,10 +37,22 @@ pub use local::PairContacts;
 /// Fraction of the skin that the near list adds to r_i + r_j.
 const NEAR_MARGIN: f64 = 0.1;
 
+/// When at least this fraction of the listed pairs is near at a neighbor build, the
+/// passes walk the neighbor list itself (see [`NearList::whole`]).
+const WHOLE_FRACTION: f64 = 0.9;
+
 /// The pairs of the neighbor list that may be in contact before any particle moves more
 /// than half the margin; `slot` points back into the neighbor list (history).
 #[derive(Debug, Clone, Default)]
 struct NearList {
+    /// Whether the near list is the whole neighbor list: at the neighbor build nearly
+    /// every listed pair ([`WHOLE_FRACTION`]) was near, as in a packed bed whose skin is
+    /// small beside the particles. A copy would then hold almost the same pairs again
+    /// (with the positions and slots, about 52 bytes per particle at a million), so the
+    /// passes walk the neighbor list ([`NearList::rows`]) and `first`, `partner`, `slot`
+    /// and `xref` stay empty. The pairs beyond the margin are then tested each step and
+    /// never touch; the list stays valid as long as the neighbor list does.
+    whole: bool,
     first: Vec<u32>,
     partner: Vec<u32>,
     slot: Vec<u32>,
@@ -62,26 +74,82 @@ struct NearList {
     factor: f64,
 }
 
+/// The rows the passes walk: the near list's, or with [`NearList::whole`] the neighbor
+/// list's (whose history slot is then the pair's own position).
+#[derive(Debug, Clone, Copy)]
+struct Rows<'a> {
+    first: &'a [u32],
+    partner: &'a [u32],
+    /// Each pair's position in the neighbor list (`None`: the same as in `partner`).
+    slot: Option<&'a [u32]>,
+}
+
+impl Rows<'_> {
+    /// The history slot (neighbor-list position) of pair `k`.
+    #[inline(always)]
+    fn slot(&self, k: usize) -> usize {
+        match self.slot {
+            Some(s) => s[k] as usize,
+            None => k,
+        }
+    }
+
+    /// The pairs of positions `s..e`: partner and history slot.
+    #[inline(always)]
+    fn pairs(&self, s: usize, e: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.partner[s..e]
+            .iter()
+            .zip(s..e)
+            .map(|(&j, k)| (j as usize, self.slot(k)))
+    }
+}
+
 impl NearList {
-    /// Makes the reverse CSR (`rfirst`, `rk`) over `n` particles by counting sort (stable:
-    /// increasing k within each partner).
-    fn build_reverse(&mut self, n: usize) {
-        self.rfirst.clear();
-        self.rfirst.resize(n + 2, 0);
-        for &j in &self.partner {
-            self.rfirst[j as usize + 2] += 1;
+    /// The rows to walk, over the neighbor list whose rows are `first` and `partner`.
+    fn rows<'a>(&'a self, first: &'a [u32], partner: &'a [u32]) -> Rows<'a> {
+        if self.whole {
+            Rows {
+                first,
+                partner,
+                slot: None,
+            }
+        } else {
+            Rows {
+                first: &self.first,
+                partner: &self.partner,
+                slot: Some(&self.slot),
+            }
+        }
+    }
+
+    /// Makes the reverse CSR (`rfirst`, `rk`) over `n` particles by counting sort
+    /// (stable: increasing k within each partner), over the neighbor list's `partner`
+    /// when the near list is [`NearList::whole`].
+    fn build_reverse(&mut self, list_partner: &[u32], n: usize) {
+        let NearList {
+            whole,
+            partner,
+            rfirst,
+            rk,
+            ..
+        } = self;
+        let partner = if *whole { list_partner } else { &partner[..] };
+        rfirst.clear();
+        rfirst.resize(n + 2, 0);
+        for &j in partner {
+            rfirst[j as usize + 2] += 1;
         }
         for a in 2..n + 2 {
-            self.rfirst[a] += self.rfirst[a - 1];
+            rfirst[a] += rfirst[a - 1];
         }
-        self.rk.clear();
-        self.rk.resize(self.partner.len(), 0);
-        for (k, &j) in self.partner.iter().enumerate() {
-            let c = &mut self.rfirst[j as usize + 1];
-            self.rk[*c as usize] = k as u32;
+        rk.clear();
+        rk.resize(partner.len(), 0);
+        for (k, &j) in partner.iter().enumerate() {
+            let c = &mut rfirst[j as usize + 1];
+            rk[*c as usize] = k as u32;
             *c += 1;
         }
-        self.rfirst.truncate(n + 1);
+        rfirst.truncate(n + 1);
     }
 }
 
@@ -115,6 +183,9 @@ pub struct PairGran {
     pub simd: Option<Isa>,
     /// The lane kernel's gathered contacts (single-threaded pass).
     batch: Batch,
+    /// The near fraction from which the passes walk the whole neighbor list
+    /// ([`WHOLE_FRACTION`]; tests raise it past 1 to keep a near list).
+    whole_fraction: f64,
 }
 
 impl PairGran {
@@ -134,6 +205,7 @@ impl PairGran {
             liquid: None,
             simd: Isa::from_env(),
             batch: Batch::default(),
+            whole_fraction: WHOLE_FRACTION,
         }
     }
 
@@ -180,10 +252,13 @@ impl PairGran {
     /// decides for its own list without asking the others.
     pub fn near_list_stale(&self, x: &[DVec3], neighbor: &Neighbor) -> bool {
         let near = &self.near;
-        if near.built_for != neighbor.nbuilds
-            || near.xref.len() != x.len()
-            || near.factor != neighbor.factor()
-        {
+        if near.built_for != neighbor.nbuilds || near.factor != neighbor.factor() {
+            return true;
+        }
+        if near.whole {
+            return false;
+        }
+        if near.xref.len() != x.len() {
             return true;
         }
         // Radius growth since the build eats into the margin as in `Neighbor::moved_too_far`.
@@ -214,21 +289,64 @@ impl PairGran {
     pub fn build_near_list(&mut self, p: &Particles, neighbor: &Neighbor) {
         let near = &mut self.near;
         let list = &neighbor.list;
+        let whole_fraction = self.whole_fraction;
         near.margin = NEAR_MARGIN * neighbor.settings.skin;
-        near.built_for = neighbor.nbuilds;
         near.growth_ref = neighbor.growth;
         near.reach = self.bond.as_ref().map_or(0.0, |b| b.pair_reach);
         near.factor = neighbor.factor();
         let reach = near.reach;
         let factor = near.factor;
         let nlocal = p.nlocal();
+        let margin = near.margin;
+        let is_near = |i: usize, j: usize| {
+            let rc = ((p.radius[i] + p.radius[j]) * factor).max(reach) + margin;
+            (p.x[j] - p.x[i]).length_squared() < rc * rc
+        };
+        // The first build for this neighbor list decides whether the near list is the
+        // whole list (the later ones, after particles moved half the margin, keep a
+        // near list).
+        let fresh = near.built_for != neighbor.nbuilds;
+        near.built_for = neighbor.nbuilds;
+        near.whole = false;
+        // The reverse CSR of the old list is stale: the parallel pass makes it anew.
+        near.rfirst.clear();
+        near.rk.clear();
+        if fresh {
+            let count = |lo: usize, hi: usize| {
+                (lo..hi)
+                    .map(|i| {
+                        let ks = list.first[i] as usize..list.first[i + 1] as usize;
+                        list.partner[ks]
+                            .iter()
+                            .filter(|&&j| is_near(i, j as usize))
+                            .count()
+                    })
+                    .sum::<usize>()
+            };
+            let n_near = if parallel(nlocal) {
+                (0..nlocal.div_ceil(CHUNK))
+                    .into_par_iter()
+                    .map(|c| count(c * CHUNK, ((c + 1) * CHUNK).min(nlocal)))
+                    .sum()
+            } else {
+                count(0, nlocal)
+            };
+            let listed = list.first[nlocal] as usize - list.first[0] as usize;
+            if n_near as f64 >= whole_fraction * listed as f64 {
+                near.whole = true;
+                near.first = Vec::new();
+                near.partner = Vec::new();
+                near.slot = Vec::new();
+                near.xref = Vec::new();
+                return;
+            }
+        }
         near.xref.clear();
         near.xref.extend_from_slice(&p.x);
         near.first.clear();
         near.partner.clear();
         near.slot.clear();
         near.first.push(0);
-        let margin = near.margin;
         // Rows lo..hi: the pairs within the margin, appended in list order, and the end
         // of each row (relative to the first pair of row lo).
         let rows = |lo: usize,
@@ -238,12 +356,9 @@ impl PairGran {
                     ends: &mut Vec<u32>| {
             let base = partner.len();
             for i in lo..hi {
-                let xi = p.x[i];
-                let ri = p.radius[i];
                 for k in list.first[i] as usize..list.first[i + 1] as usize {
                     let j = list.partner[k] as usize;
-                    let rc = ((ri + p.radius[j]) * factor).max(reach) + margin;
-                    if (p.x[j] - xi).length_squared() < rc * rc {
+                    if is_near(i, j) {
                         partner.push(j as u32);
                         slot.push(k as u32);
                     }
@@ -273,9 +388,6 @@ impl PairGran {
                 near.slot.extend_from_slice(&slot);
             }
         }
-        // The reverse CSR of the old list is stale: the parallel pass makes it anew.
-        near.rfirst.clear();
-        near.rk.clear();
     }
 
     /// Adds contact forces and torques for every pair of the near list in contact (to
@@ -284,7 +396,7 @@ impl PairGran {
     /// [`PairGran::near_list_stale`]). Runs on the current rayon pool; the result is
     /// bit-identical whatever its size (see [`PairPass`]).
     pub fn compute(&mut self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
-        debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
+        debug_assert!(self.near.whole || self.near.first.len() == p.nlocal() + 1);
         self.begin_liquid(p, update);
         let model = self.model;
         model.dispatch(PairPass {
@@ -311,7 +423,7 @@ impl PairGran {
         update: bool,
         virial: &mut [[f64; 6]],
     ) {
-        debug_assert_eq!(self.near.first.len(), p.nlocal() + 1);
+        debug_assert!(self.near.whole || self.near.first.len() == p.nlocal() + 1);
         assert!(virial.len() >= p.len(), "one virial entry per particle");
         self.begin_liquid(p, update);
         let model = self.model;
@@ -386,7 +498,7 @@ impl Visitor for PairPass<'_> {
 
 /// Phase 1's read-only inputs.
 struct Phase1<'a> {
-    near: &'a NearList,
+    near: Rows<'a>,
     table: &'a CoeffTable,
     flags: crate::contact::Flags,
     list_first: &'a [u32],
@@ -484,11 +596,10 @@ impl Phase1<'_> {
         for i in lo..hi {
             let coeff_row = self.table.row(self.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-            let pairs = near.partner[s..e].iter().zip(&near.slot[s..e]);
             let mut sum = OwnSum::default();
-            for (kk, (&j, &slot)) in pairs.enumerate() {
+            for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
                 let r = s - k0 + kk;
-                let (j, slot) = (j as usize, slot as usize - h0);
+                let slot = slot - h0;
                 let hist: &mut [f64] = if w > 0 {
                     &mut hist[slot * w..(slot + 1) * w]
                 } else {
@@ -713,8 +824,8 @@ impl Phase1<'_> {
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
             let mut fi = DVec3::ZERO;
             let mut tqi = DVec3::ZERO;
-            for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
-                let (j, slot) = (j as usize, slot as usize - h0);
+            for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
+                let slot = slot - h0;
                 let hist: &mut [f64] = if w > 0 {
                     &mut hist[slot * w..(slot + 1) * w]
                 } else {
@@ -794,7 +905,7 @@ impl Phase1<'_> {
                 let touch = rsq < radsum * radsum;
                 if w > 0 {
                     // `clear_history` unless touching, without a branch.
-                    let h = &mut hist[(near.slot[k] as usize - h0) * w..][..w];
+                    let h = &mut hist[(near.slot(k) - h0) * w..][..w];
                     let keep = touch | h.iter().all(|&a| a == 0.0);
                     let mask = (keep as u64).wrapping_neg();
                     for a in h {
@@ -807,7 +918,7 @@ impl Phase1<'_> {
             for t in 0..touching {
                 let k = k_lo + batch.picked(t);
                 let j = near.partner[k] as usize;
-                let slot = near.slot[k] as usize - h0;
+                let slot = near.slot(k) - h0;
                 let d = xi - x[j];
                 let h = if w > 0 {
                     [hist[slot * w], hist[slot * w + 1], hist[slot * w + 2]]
@@ -958,7 +1069,9 @@ fn virial_of(d: DVec3, f: DVec3) -> [f64; 6] {
 
 /// Phase 2's read-only inputs.
 struct Phase2<'a> {
-    near: &'a NearList,
+    near: Rows<'a>,
+    rfirst: &'a [u32],
+    rk: &'a [u32],
     res: &'a [PairOut],
     own: &'a [OwnSum],
     rv: &'a [[f64; 6]],
@@ -1004,13 +1117,13 @@ impl Phase2<'_> {
         tq: &mut [DVec3],
         vir: &mut [[f64; 6]],
     ) {
-        let near = self.near;
+        let (near, rfirst, rk) = (self.near, self.rfirst, self.rk);
         let (res, rv) = (self.res, self.rv);
         let lo = b * BLOCK;
         let hi = ((b + 1) * BLOCK).min(self.n);
         for q in lo..hi {
             let a = q - lo;
-            let rs = &near.rk[near.rfirst[q] as usize..near.rfirst[q + 1] as usize];
+            let rs = &rk[rfirst[q] as usize..rfirst[q + 1] as usize];
             let (own_pairs, before, after) = if q < self.nlocal {
                 let (s, e) = (near.first[q], near.first[q + 1]);
                 let split = rs.partition_point(|&k| k < s);
@@ -1089,16 +1202,17 @@ impl PairPass<'_> {
             liquid,
             simd,
             batch,
+            whole_fraction: _,
         } = pair;
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         let threaded = rayon::current_num_threads() > 1;
         if threaded && near.rfirst.len() != n + 1 {
-            near.build_reverse(n);
+            near.build_reverse(&list.partner, n);
         }
         let h0 = list.first[0] as usize * w;
         let h1 = list.first[nlocal] as usize * w;
         let ph1 = Phase1 {
-            near,
+            near: near.rows(&list.first, &list.partner),
             table,
             flags: model.flags,
             list_first: &list.first,
@@ -1135,7 +1249,7 @@ impl PairPass<'_> {
             }
             return;
         }
-        let npairs = near.partner.len();
+        let npairs = ph1.near.partner.len();
         res.resize(npairs, PairOut::default());
         if VIRIAL {
             res_virial.resize(npairs, [0.0; 6]);
@@ -1147,7 +1261,9 @@ impl PairPass<'_> {
             ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], own);
         }
         let ph2 = Phase2 {
-            near,
+            near: ph1.near,
+            rfirst: &near.rfirst,
+            rk: &near.rk,
             res,
             own,
             rv: if VIRIAL { res_virial } else { &[] },
@@ -1168,6 +1284,92 @@ mod tests {
         Boundary, ContactModel, DVec3, Domain, Fix, FixKind, Materials, NewParticle, PairGran,
         PrimitiveWall, WallShape, World,
     };
+
+    /// A simple cubic lattice of slightly overlapping spheres (spacing 2 mm, diameter
+    /// 2.01 mm, skin 0.4 mm) settling on a floor under gravity, after `steps` steps on
+    /// `threads` threads; `whole_fraction` as in [`PairGran`]. Gives the particles' and
+    /// the history's bits and whether the passes walked the whole neighbor list.
+    fn lattice(
+        threads: usize,
+        whole_fraction: f64,
+        steps: u64,
+    ) -> (Vec<[u64; 12]>, Vec<u64>, bool) {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let n = 14;
+            let side = n as f64 * 0.002;
+            let mut w = World::new(
+                Domain::new(DVec3::ZERO, DVec3::splat(side), [Boundary::Fixed; 3]).unwrap(),
+            );
+            w.materials = Materials::uniform(1, 5e6, 0.45, 0.3, 0.5);
+            let mut pair = PairGran::new(ContactModel::hertz_history());
+            pair.whole_fraction = whole_fraction;
+            w.pair = Some(pair);
+            w.neighbor.settings.skin = 0.0004;
+            w.neighbor.settings.delay = 0;
+            w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
+                .unwrap();
+            w.add_fix(
+                Fix::new(
+                    "g",
+                    1,
+                    FixKind::Gravity {
+                        accel: DVec3::new(0.0, 0.0, -9.81),
+                    },
+                )
+                .unwrap(),
+            )
+            .unwrap();
+            let shape = WallShape::Plane { axis: 2, pos: 0.0 };
+            let floor = PrimitiveWall::new("floor", ContactModel::hertz_history(), 1, shape);
+            w.add_fix(Fix::new("floor", 1, FixKind::WallGran(Box::new(floor.unwrap()))).unwrap())
+                .unwrap();
+            for a in 0..n {
+                for b in 0..n {
+                    for c in 0..n {
+                        let x = DVec3::new(a as f64 + 0.5, b as f64 + 0.5, c as f64 + 0.5) * 0.002;
+                        w.add_particle(&NewParticle::at(x, 0.001005, 2500.0))
+                            .unwrap();
+                    }
+                }
+            }
+            w.set_timestep(1e-5).unwrap();
+            w.run(steps).unwrap();
+            let p = &w.particles;
+            let state = (0..p.nlocal())
+                .map(|i| {
+                    let v = [p.x[i], p.v[i], p.f[i], p.omega[i]];
+                    std::array::from_fn(|k| v[k / 3].to_array()[k % 3].to_bits())
+                })
+                .collect();
+            let hist = w.neighbor.list.hist.iter().map(|h| h.to_bits()).collect();
+            (state, hist, w.pair.as_ref().unwrap().near.whole)
+        })
+    }
+
+    /// In a packed lattice every listed pair is near, so the passes walk the neighbor list
+    /// itself; the run is then the one with a near list, bit for bit, on 1 and 2 threads.
+    #[test]
+    fn walking_the_whole_list_changes_no_bit() {
+        let (want, want_hist, whole) = lattice(1, f64::INFINITY, 300);
+        assert!(!whole);
+        assert!(
+            want_hist.iter().filter(|&&h| h != 0).count() > 3000,
+            "the lattice must be in contact"
+        );
+        for threads in [1, 2] {
+            let (got, got_hist, whole) = lattice(threads, super::WHOLE_FRACTION, 300);
+            assert!(whole, "{threads} threads: the near list was kept");
+            assert!(got == want, "{threads} threads: the particles differ");
+            assert!(
+                got_hist == want_hist,
+                "{threads} threads: the history differs"
+            );
+        }
+    }
 
     /// Every touching pair of a moving, colliding gas in a walled box is in the near list at
     /// every step, every particle touching a wall is among that wall's candidates, and the

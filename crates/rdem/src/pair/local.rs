@@ -110,11 +110,11 @@ impl Visitor for Records<'_> {
             width: if bonds { list.width } else { K::HIST },
             ..PairContacts::default()
         };
-        if pair.near.first.len() != nlocal + 1 {
+        if !pair.near.whole && pair.near.first.len() != nlocal + 1 {
             return out;
         }
         let ph1 = Phase1 {
-            near: &pair.near,
+            near: pair.near.rows(&list.first, &list.partner),
             table: &pair.table,
             flags: pair.model.flags,
             list_first: &list.first,
@@ -146,12 +146,11 @@ impl Visitor for Records<'_> {
             return bond_records::<K>(&ph1, pair, p, list, out);
         }
         let mut scratch = vec![0.0; K::HIST];
-        let near = &pair.near;
+        let near = ph1.near;
         for i in 0..nlocal {
             let coeff_row = pair.table.row(p.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-            for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
-                let (j, slot) = (j as usize, slot as usize);
+            for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
                 let d = p.x[i] - p.x[j];
                 let rsq = d.length_squared();
                 let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
@@ -183,12 +182,11 @@ fn bond_records<K: ContactKernel>(
     let w = list.width;
     let flag = w - bond::PAIR_TAIL;
     let mut scratch = vec![0.0; w];
-    let near = &pair.near;
+    let near = ph1.near;
     for i in 0..p.nlocal() {
         let coeff_row = pair.table.row(p.ty[i]);
         let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-        for (kk, (&j, &slot)) in near.partner[s..e].iter().zip(&near.slot[s..e]).enumerate() {
-            let (j, slot) = (j as usize, slot as usize);
+        for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
             let h = &list.hist[slot * w..(slot + 1) * w];
             if !bond::is_bonded(&h[flag..]) {
                 continue;
