@@ -105,6 +105,12 @@ impl Rows<'_> {
 }
 
 impl NearList {
+    /// Whether there are rows for `nlocal` owned particles to walk (a near list made
+    /// for them, or the whole neighbor list).
+    fn has_rows(&self, nlocal: usize) -> bool {
+        self.whole || self.first.len() == nlocal + 1
+    }
+
     /// The rows to walk, over the neighbor list whose rows are `first` and `partner`.
     fn rows<'a>(&'a self, first: &'a [u32], partner: &'a [u32]) -> Rows<'a> {
         if self.whole {
@@ -396,7 +402,7 @@ impl PairGran {
     /// [`PairGran::near_list_stale`]). Runs on the current rayon pool; the result is
     /// bit-identical whatever its size (see [`PairPass`]).
     pub fn compute(&mut self, p: &mut Particles, list: &mut NeighborList, dt: f64, update: bool) {
-        debug_assert!(self.near.whole || self.near.first.len() == p.nlocal() + 1);
+        debug_assert!(self.near.has_rows(p.nlocal()));
         self.begin_liquid(p, update);
         let model = self.model;
         model.dispatch(PairPass {
@@ -423,7 +429,7 @@ impl PairGran {
         update: bool,
         virial: &mut [[f64; 6]],
     ) {
-        debug_assert!(self.near.whole || self.near.first.len() == p.nlocal() + 1);
+        debug_assert!(self.near.has_rows(p.nlocal()));
         assert!(virial.len() >= p.len(), "one virial entry per particle");
         self.begin_liquid(p, update);
         let model = self.model;

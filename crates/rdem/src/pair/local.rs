@@ -110,7 +110,7 @@ impl Visitor for Records<'_> {
             width: if bonds { list.width } else { K::HIST },
             ..PairContacts::default()
         };
-        if !pair.near.whole && pair.near.first.len() != nlocal + 1 {
+        if !pair.near.has_rows(nlocal) {
             return out;
         }
         let ph1 = Phase1 {
