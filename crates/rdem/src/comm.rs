@@ -328,14 +328,14 @@ impl Comm for Serial {
         let nlocal = p.nlocal();
         for (k, &s) in self.shift.iter().enumerate() {
             let g = nlocal + k;
-            p.copy_forward(g, p.origin[g], s);
+            p.copy_forward(g, p.origin(g), s);
         }
     }
 
     fn reverse(&mut self, p: &mut Particles) {
         let nlocal = p.nlocal();
         for g in nlocal..p.len() {
-            let o = p.origin[g];
+            let o = p.origin(g);
             let (f, t) = (p.f[g], p.torque[g]);
             p.f[o] += f;
             p.torque[o] += t;
@@ -345,7 +345,7 @@ impl Comm for Serial {
     fn reverse_virial(&mut self, p: &Particles, virial: &mut [[f64; 6]]) {
         let nlocal = p.nlocal();
         for g in nlocal..p.len() {
-            let o = p.origin[g];
+            let o = p.origin(g);
             let w = virial[g];
             for (a, b) in virial[o].iter_mut().zip(&w) {
                 *a += b;
@@ -355,7 +355,7 @@ impl Comm for Serial {
 
     fn reverse_scalar(&self, p: &Particles, c: &mut [f64]) {
         for g in p.nlocal()..p.len() {
-            c[p.origin[g]] += c[g];
+            c[p.origin(g)] += c[g];
         }
     }
 

@@ -234,7 +234,7 @@ impl HistoryStore {
     /// others) have no row yet. Partners that no longer exist are skipped: dropped ghosts
     /// (beyond `tags`), and, once particles were appended (which drops the ghosts), every
     /// index past the original locals.
-    fn save(&mut self, list: &NeighborList, tags: &[Tag], origin: &[usize], nlocal: usize) {
+    fn save(&mut self, list: &NeighborList, tags: &[Tag], ghost_origin: &[usize], nlocal: usize) {
         self.clear();
         let w = list.width;
         let rows = list.first.len().saturating_sub(1);
@@ -272,8 +272,9 @@ impl HistoryStore {
             let owner = if j < rows {
                 j as u32
             } else {
-                // A ghost: its owner's row, if the owner is one of the old locals.
-                match origin.get(j) {
+                // A ghost (`rows` is `nlocal` here: with fewer rows, no partner is
+                // past them): its owner's row, if the owner is one of the old locals.
+                match ghost_origin.get(j - rows) {
                     Some(&o) if o < rows && tags[o] == tags[j] => o as u32,
                     Some(&o) if o >= REMOTE_GHOST => {
                         let rank = o - REMOTE_GHOST;
@@ -708,6 +709,21 @@ impl Bins {
                 ctx.layer(sz + l, part);
             });
         }
+        // The bins and slots are given back before the list is laid out (about 60 bytes
+        // per particle at a million: the build's peak is then the search, not the
+        // layout).
+        for v in [
+            &mut self.bin_of,
+            &mut self.lstart,
+            &mut self.gstart,
+            &mut self.index,
+        ] {
+            *v = Vec::new();
+        }
+        self.slots = Vec::new();
+        self.near = Vec::new();
+        self.near_tmp = Vec::new();
+        let parts = &self.parts;
         let pairs = parts.iter().flat_map(|part| &part.pairs[..part.np]);
         let np = parts.iter().map(|part| part.np).sum();
 
@@ -1080,7 +1096,8 @@ impl Neighbor {
         if !self.live {
             return;
         }
-        self.store.save(&self.list, &p.tag, &p.origin, p.nlocal());
+        self.store
+            .save(&self.list, &p.tag, p.ghost_origins(), p.nlocal());
         self.live = false;
     }
 

@@ -145,9 +145,10 @@ pub struct Particles {
     pub density: Vec<f64>,
     /// Periodic image counts.
     pub image: Vec<[i32; 3]>,
-    /// For a ghost: index of the particle it copies (the owner, for serial periodic images).
-    /// For a local particle: its own index.
-    pub origin: Vec<usize>,
+    /// For each ghost (index `g - nlocal`): index of the particle it copies (the owner,
+    /// for serial periodic images), or [`REMOTE_GHOST`] plus the owner's rank. A local
+    /// particle is its own origin and has no entry (see [`Particles::origin`]).
+    ghost_origin: Vec<usize>,
     /// Named per-particle properties added by fixes.
     pub props: Vec<Property>,
 }
@@ -345,7 +346,6 @@ impl Particles {
             [0; 3],
         );
         let i = self.len() - 1;
-        self.origin[i] = i;
         for prop in &mut self.props {
             prop.data.extend_from_slice(&prop.default);
         }
@@ -379,13 +379,12 @@ impl Particles {
         self.rmass.push(rmass);
         self.density.push(density);
         self.image.push(image);
-        self.origin.push(0);
     }
 
     /// Appends a ghost copy of particle `src` displaced by `shift`; returns its index.
     /// Properties are copied too, so pair code may read them on ghosts.
     pub fn push_ghost(&mut self, src: usize, shift: DVec3) -> usize {
-        let origin = self.origin[src];
+        let origin = self.origin(src);
         self.push_raw(
             self.tag[src],
             self.ty[src],
@@ -399,7 +398,7 @@ impl Particles {
             self.image[src],
         );
         let i = self.len() - 1;
-        self.origin[i] = origin;
+        self.ghost_origin.push(origin);
         for prop in &mut self.props {
             let w = prop.width;
             prop.data.extend_from_within(src * w..(src + 1) * w);
@@ -468,9 +467,9 @@ impl Particles {
             k += prop.width;
         }
         match ghost_of {
-            Some(rank) => self.origin[i] = REMOTE_GHOST + rank,
+            Some(rank) => self.ghost_origin.push(REMOTE_GHOST + rank),
             None => {
-                self.origin[i] = i;
+                debug_assert_eq!(i, self.nlocal, "an owned particle unpacked after ghosts");
                 self.nlocal += 1;
             }
         }
@@ -531,7 +530,24 @@ impl Particles {
 
     /// The rank owning ghost `g` when it copies another rank's particle.
     pub fn remote_owner(&self, g: usize) -> Option<usize> {
-        self.origin[g].checked_sub(REMOTE_GHOST)
+        self.ghost_origin[g - self.nlocal].checked_sub(REMOTE_GHOST)
+    }
+
+    /// The particle that particle `i` copies: itself for an owned particle; for a ghost,
+    /// its owner's index (serial periodic images), the index of the particle it was
+    /// copied from, or [`REMOTE_GHOST`] plus the owner's rank.
+    #[inline]
+    pub fn origin(&self, i: usize) -> usize {
+        if i < self.nlocal {
+            i
+        } else {
+            self.ghost_origin[i - self.nlocal]
+        }
+    }
+
+    /// [`Particles::origin`] of every ghost, in ghost order (index `g - nlocal`).
+    pub fn ghost_origins(&self) -> &[usize] {
+        &self.ghost_origin
     }
 
     /// Drops all ghosts.
@@ -549,9 +565,32 @@ impl Particles {
         self.rmass.truncate(n);
         self.density.truncate(n);
         self.image.truncate(n);
-        self.origin.truncate(n);
+        self.ghost_origin.clear();
         for prop in &mut self.props {
             prop.data.truncate(n * prop.width);
+        }
+    }
+
+    /// Gives back the capacity of the per-particle arrays beyond `len` particles (at
+    /// least the current count). Arrays grown one particle at a time by doubling hold up
+    /// to twice what they use: 5 % at a million particles, 26 % at 800,000.
+    pub fn shrink_to(&mut self, len: usize) {
+        let n = len.max(self.len());
+        self.tag.shrink_to(n);
+        self.ty.shrink_to(n);
+        self.mask.shrink_to(n);
+        self.x.shrink_to(n);
+        self.v.shrink_to(n);
+        self.omega.shrink_to(n);
+        self.f.shrink_to(n);
+        self.torque.shrink_to(n);
+        self.radius.shrink_to(n);
+        self.rmass.shrink_to(n);
+        self.density.shrink_to(n);
+        self.image.shrink_to(n);
+        self.ghost_origin.shrink_to(n - self.nlocal);
+        for prop in &mut self.props {
+            prop.data.shrink_to(n * prop.width);
         }
     }
 
@@ -589,9 +628,6 @@ impl Particles {
         let removed = n - dst;
         self.nlocal = dst;
         self.clear_ghosts();
-        for (i, o) in self.origin.iter_mut().enumerate() {
-            *o = i;
-        }
         removed
     }
 
@@ -705,7 +741,7 @@ impl Particles {
             + (self.radius.capacity() + self.rmass.capacity() + self.density.capacity())
                 * size_of::<f64>()
             + self.image.capacity() * size_of::<[i32; 3]>()
-            + self.origin.capacity() * size_of::<usize>()
+            + self.ghost_origin.capacity() * size_of::<usize>()
             + self
                 .props
                 .iter()

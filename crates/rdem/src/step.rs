@@ -100,6 +100,7 @@ use std::time::Instant;
 use crate::error::Result;
 use crate::timers::Stage;
 use crate::world::World;
+use crate::Particles;
 
 /// Front-end stages the step calls at their place in the order (LAMMPS' fix masks): a
 /// hook that the front end leaves out costs nothing.
@@ -257,7 +258,7 @@ impl World {
         self.apply_restored_history();
         self.setup_walls()?;
         self.move_meshes();
-        self.reneighbor()?;
+        self.reneighbor_then(|p| p.shrink_to(0))?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
         self.needs_reneighbor = false;
@@ -269,6 +270,13 @@ impl World {
     /// remap, shrink-wrap, lost particles, migration, spatial sort when due, ghosts,
     /// neighbor list (history carried by tag), wall candidates.
     pub(crate) fn reneighbor(&mut self) -> Result<()> {
+        self.reneighbor_then(|_| ())
+    }
+
+    /// [`World::reneighbor`], with `before_build` applied to the particles (ghosts
+    /// included) just before the neighbor list is built. The set-up of a run gives back
+    /// the arrays' spare capacity there, before the largest allocation of the run.
+    fn reneighbor_then(&mut self, before_build: impl FnOnce(&mut Particles)) -> Result<()> {
         let t0 = Instant::now();
         self.save_history();
         if let Some(pair) = &mut self.pair {
@@ -289,6 +297,7 @@ impl World {
         let t3 = self.timers.lap(Stage::Neigh, t2);
         self.comm.borders(&mut self.particles, &self.domain, cutoff);
         let t4 = self.timers.lap(Stage::Comm, t3);
+        before_build(&mut self.particles);
         self.neighbor.build(&self.particles, self.step);
         self.build_wall_candidates();
         self.timers.lap(Stage::Neigh, t4);

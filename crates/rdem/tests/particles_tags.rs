@@ -217,9 +217,9 @@ fn radius_per_type() {
     assert!(p.check_radius_per_type().is_ok());
 }
 
-/// Bytes of one particle record in the fixed arrays: tag, type, mask, 5 vectors,
-/// radius/mass/density, image, origin.
-const RECORD: usize = 8 + 4 + 4 + 5 * 24 + 3 * 8 + 12 + 8;
+/// Bytes of one owned particle's record in the fixed arrays: tag, type, mask, 5 vectors,
+/// radius/mass/density, image (only ghosts have an origin entry).
+const RECORD: usize = 8 + 4 + 4 + 5 * 24 + 3 * 8 + 12;
 
 #[test]
 fn memory_grows_with_particles_and_properties() {
@@ -362,6 +362,6 @@ fn every_per_particle_array_follows_a_permutation() {
         assert!((p.rmass[i] - m).abs() <= 1e-15 * m);
         assert_eq!(p.image[i], [k as i32, -(k as i32), 2 * k as i32]);
         assert_eq!(p.props[h.0].get(i), &[f, f * f, -f]);
-        assert_eq!(p.origin[i], i, "a local particle is its own origin");
+        assert_eq!(p.origin(i), i, "a local particle is its own origin");
     }
 }
