@@ -528,9 +528,10 @@ impl Particles {
         }
     }
 
-    /// The rank owning ghost `g` when it copies another rank's particle.
-    pub fn remote_owner(&self, g: usize) -> Option<usize> {
-        self.ghost_origin[g - self.nlocal].checked_sub(REMOTE_GHOST)
+    /// The rank owning particle `i` when it is a ghost of another rank's particle (none
+    /// for an owned particle or a copy of one of this rank's).
+    pub fn remote_owner(&self, i: usize) -> Option<usize> {
+        self.origin(i).checked_sub(REMOTE_GHOST)
     }
 
     /// The particle that particle `i` copies: itself for an owned particle; for a ghost,
@@ -794,6 +795,34 @@ mod tests {
             .unwrap();
         }
         p
+    }
+
+    /// Owned particles are their own origin and have no remote owner; a periodic image
+    /// names its owner, a ghost from another rank that rank; dropping the ghosts, a
+    /// permutation and a removal keep this.
+    #[test]
+    fn origins_of_locals_and_ghosts() {
+        let mut p = three();
+        let image = p.push_ghost(2, DVec3::X);
+        let image_of_image = p.push_ghost(image, DVec3::Y);
+        let mut buf = Vec::new();
+        p.pack(1, DVec3::ZERO, &mut buf);
+        p.unpack(&buf, Some(5));
+        let remote = p.len() - 1;
+        assert_eq!((0..3).map(|i| p.origin(i)).collect::<Vec<_>>(), [0, 1, 2]);
+        assert!((0..3).all(|i| p.remote_owner(i).is_none()));
+        assert_eq!(p.origin(image), 2);
+        assert_eq!(p.origin(image_of_image), 2);
+        assert_eq!(p.remote_owner(image), None);
+        assert_eq!(p.remote_owner(remote), Some(5));
+        assert_eq!(p.ghost_origins(), [2, 2, REMOTE_GHOST + 5]);
+        p.permute(&[2, 0, 1]);
+        assert!(p.ghost_origins().is_empty());
+        p.push_ghost(0, DVec3::X);
+        p.remove_locals(&[false, true, false]);
+        assert_eq!(p.len(), 2);
+        assert!(p.ghost_origins().is_empty());
+        assert_eq!((p.origin(0), p.origin(1)), (0, 1));
     }
 
     #[test]
