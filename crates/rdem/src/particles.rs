@@ -572,26 +572,25 @@ impl Particles {
         }
     }
 
-    /// Gives back the capacity of the per-particle arrays beyond `len` particles (at
-    /// least the current count). Arrays grown one particle at a time by doubling hold up
-    /// to twice what they use: 5 % at a million particles, 26 % at 800,000.
-    pub fn shrink_to(&mut self, len: usize) {
-        let n = len.max(self.len());
-        self.tag.shrink_to(n);
-        self.ty.shrink_to(n);
-        self.mask.shrink_to(n);
-        self.x.shrink_to(n);
-        self.v.shrink_to(n);
-        self.omega.shrink_to(n);
-        self.f.shrink_to(n);
-        self.torque.shrink_to(n);
-        self.radius.shrink_to(n);
-        self.rmass.shrink_to(n);
-        self.density.shrink_to(n);
-        self.image.shrink_to(n);
-        self.ghost_origin.shrink_to(n - self.nlocal);
+    /// Gives back the capacity of the per-particle arrays (ghosts included) beyond the
+    /// current count. Arrays grown one particle at a time by doubling hold up to twice
+    /// what they use: 5 % more at a million particles, 31 % more at 800,000.
+    pub fn shrink_to_fit(&mut self) {
+        self.tag.shrink_to_fit();
+        self.ty.shrink_to_fit();
+        self.mask.shrink_to_fit();
+        self.x.shrink_to_fit();
+        self.v.shrink_to_fit();
+        self.omega.shrink_to_fit();
+        self.f.shrink_to_fit();
+        self.torque.shrink_to_fit();
+        self.radius.shrink_to_fit();
+        self.rmass.shrink_to_fit();
+        self.density.shrink_to_fit();
+        self.image.shrink_to_fit();
+        self.ghost_origin.shrink_to_fit();
         for prop in &mut self.props {
-            prop.data.shrink_to(n * prop.width);
+            prop.data.shrink_to_fit();
         }
     }
 

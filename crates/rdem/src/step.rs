@@ -258,7 +258,7 @@ impl World {
         self.apply_restored_history();
         self.setup_walls()?;
         self.move_meshes();
-        self.reneighbor_then(|p| p.shrink_to(0))?;
+        self.reneighbor_then(Particles::shrink_to_fit)?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
         self.needs_reneighbor = false;
