@@ -721,7 +721,7 @@ impl DataFile {
                     diameter: 2.0 * p.radius[i],
                     density: p.density[i],
                     x: p.x[i],
-                    image: p.image[i],
+                    image: p.image[i].get(),
                     line: 0,
                 })
                 .collect(),

@@ -298,7 +298,7 @@ mod tests {
         p.tag[0] = 3;
         p.ty[0] = 1;
         p.x[0].x = 0.21002;
-        p.image[0][0] = 1;
+        p.image[0] = [1, 0, 0].into();
         p.v[0].x = 0.02;
         let c = cols(&["id", "type", "x", "ix", "vx"]);
         let formats = parse_line_format("%5d %-3i %12.4e %+d %10.3f extra", 5).unwrap();

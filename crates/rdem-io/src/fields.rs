@@ -137,7 +137,8 @@ impl Field {
     /// The value for particle `i` (integers exactly, as long as tags stay below 2^53).
     pub fn value(self, p: &Particles, d: &Domain, i: usize) -> f64 {
         let scaled = |a: usize| (p.x[i][a] - d.boxlo[a]) / (d.boxhi[a] - d.boxlo[a]);
-        let unwrapped = |a: usize| p.x[i][a] + p.image[i][a] as f64 * (d.boxhi[a] - d.boxlo[a]);
+        let unwrapped =
+            |a: usize| p.x[i][a] + p.image[i].get()[a] as f64 * (d.boxhi[a] - d.boxlo[a]);
         match self {
             Field::Id => p.tag[i] as f64,
             Field::Type => p.ty[i] as f64,
@@ -151,9 +152,9 @@ impl Field {
             Field::Xu => unwrapped(0),
             Field::Yu => unwrapped(1),
             Field::Zu => unwrapped(2),
-            Field::Ix => p.image[i][0] as f64,
-            Field::Iy => p.image[i][1] as f64,
-            Field::Iz => p.image[i][2] as f64,
+            Field::Ix => p.image[i].get()[0] as f64,
+            Field::Iy => p.image[i].get()[1] as f64,
+            Field::Iz => p.image[i].get()[2] as f64,
             Field::Vx => p.v[i].x,
             Field::Vy => p.v[i].y,
             Field::Vz => p.v[i].z,
@@ -177,9 +178,9 @@ impl Field {
         match self {
             Field::Id => Value::Int(i64::try_from(p.tag[i]).unwrap_or(i64::MAX)),
             Field::Type => Value::Int(p.ty[i] as i64),
-            Field::Ix => Value::Int(p.image[i][0] as i64),
-            Field::Iy => Value::Int(p.image[i][1] as i64),
-            Field::Iz => Value::Int(p.image[i][2] as i64),
+            Field::Ix => Value::Int(p.image[i].get()[0] as i64),
+            Field::Iy => Value::Int(p.image[i].get()[1] as i64),
+            Field::Iz => Value::Int(p.image[i].get()[2] as i64),
             _ => Value::Float(self.value(p, d, i)),
         }
     }
@@ -270,7 +271,7 @@ pub(crate) mod tests {
         .unwrap();
         p.add_local(&NewParticle::at(DVec3::new(1.5, 0.5, 3.0), 0.05, 1000.0).with_tag(3))
             .unwrap();
-        p.image[0] = [-1, 0, 2];
+        p.image[0] = [-1, 0, 2].into();
         p.f[1] = DVec3::new(4.0, 5.0, 6.0);
         p.torque[1] = DVec3::new(-7.0, -8.0, -9.0);
         (p, d)

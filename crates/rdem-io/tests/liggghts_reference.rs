@@ -33,7 +33,7 @@ fn reference_state() -> (Particles, Domain) {
     let mut p = Particles::new();
     for (np, image) in f.new_particles() {
         let i = p.add_local(&np).unwrap();
-        p.image[i] = image;
+        p.image[i] = image.into();
         p.f[i] = DVec3::new(0.0, 0.0, -9.81 * p.rmass[i]);
     }
     (p, d)
@@ -401,7 +401,7 @@ fn data_file_round_trip_through_particles() {
         let i = p.find_tag(a.id).unwrap();
         assert_eq!(a.x, p.x[i]);
         assert_eq!(a.diameter, 2.0 * p.radius[i]);
-        assert_eq!(a.image, p.image[i]);
+        assert_eq!(a.image, p.image[i].get());
     }
     for v in &f.velocities {
         let i = p.find_tag(v.id).unwrap();

@@ -372,7 +372,7 @@ impl Context for Ctx<'_> {
             ("xcm", 2) => {
                 let a = dim(raw.get(1))?;
                 let size = w.domain.boxhi - w.domain.boxlo;
-                weighted(&|i| p.x[i][a] + p.image[i][a] as f64 * size[a])
+                weighted(&|i| p.x[i][a] + p.image[i].get()[a] as f64 * size[a])
             }
             ("vcm", 2) => {
                 let a = dim(raw.get(1))?;

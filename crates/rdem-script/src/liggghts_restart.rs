@@ -155,7 +155,7 @@ pub(crate) fn restore(
         let i = w.add_particle(&np).map_err(|e| e.to_string())?;
         let p = &mut w.particles;
         p.rmass[i] = a.rmass[k];
-        p.image[i] = a.image[k];
+        p.image[i] = a.image[k].into();
         for &(fix, prop) in &walls {
             p.props[prop.0]
                 .get_mut(i)

@@ -32,9 +32,11 @@ use glam::DVec3;
 
 use rayon::prelude::*;
 
+mod hold;
+
 use crate::comm::Carried;
 use crate::error::{check, Error, Result};
-use crate::par::{parallel, parallel_light, CHUNK};
+use crate::par::{parallel, CHUNK};
 use crate::particles::{Particles, Tag, REMOTE_GHOST};
 
 /// `neighbor` and `neigh_modify` settings.
@@ -469,7 +471,7 @@ struct Slot {
     r: f64,
 }
 
-/// Scratch buffers of the binned search (dropped after each build).
+/// Scratch buffers of the binned search (given back by the end of each build).
 #[derive(Debug, Clone, Default)]
 struct Bins {
     /// Bin of each particle.
@@ -479,8 +481,6 @@ struct Bins {
     /// Slot ranges of the ghosts per bin (offsets into `slots`, from `nlocal` on; empty
     /// without ghosts).
     gstart: Vec<u32>,
-    /// Fill cursors of the list's rows.
-    cursor: Vec<u32>,
     /// Particles in bin order: locals, then ghosts.
     slots: Vec<Slot>,
     /// Particle index of each slot.
@@ -635,6 +635,9 @@ impl Bins {
         if ghosts {
             fill(&mut self.gstart, nlocal..n);
         }
+        // The search reads the bins through the slots: each particle's bin is not needed
+        // any more (4 bytes a particle off the build's peak).
+        self.bin_of = Vec::new();
 
         // Bins within reach of a ghost: the ghost bins dilated by the stencil's box, one
         // axis at a time (rows of bins overlap at their ends, which only adds bins), so
@@ -709,21 +712,13 @@ impl Bins {
                 ctx.layer(sz + l, part);
             });
         }
-        // The bins and slots are given back before the list is laid out (about 60 bytes
-        // per particle at a million: the build's peak is then the search, not the
-        // layout).
-        for v in [
-            &mut self.bin_of,
-            &mut self.lstart,
-            &mut self.gstart,
-            &mut self.index,
-        ] {
-            *v = Vec::new();
-        }
-        self.slots = Vec::new();
-        self.near = Vec::new();
-        self.near_tmp = Vec::new();
-        let parts = &self.parts;
+        // All but the pairs found is given back before the list is laid out (the bins and
+        // slots: about 60 bytes per particle at a million; the build's peak is then the
+        // search, not the layout), and the pairs when this returns. Builds are rare, and
+        // the scratch kept between them was a quarter of the resident memory at a
+        // million particles.
+        let parts = std::mem::take(&mut self.parts);
+        *self = Bins::default();
         let pairs = parts.iter().flat_map(|part| &part.pairs[..part.np]);
         let np = parts.iter().map(|part| part.np).sum();
 
@@ -736,9 +731,7 @@ impl Bins {
         for i in 0..nlocal {
             list.first[i + 1] += list.first[i];
         }
-        let cursor = &mut self.cursor;
-        cursor.clear();
-        cursor.extend_from_slice(&list.first[..nlocal]);
+        let mut cursor = list.first[..nlocal].to_vec();
         list.partner.clear();
         list.partner.resize(np, 0);
         for &(a, b) in pairs {
@@ -960,7 +953,7 @@ pub struct Neighbor {
     /// True from a build until the history is saved: the list's indices still refer to
     /// the particles (ghosts included) it was built for.
     live: bool,
-    xhold: Vec<DVec3>,
+    xhold: hold::Hold,
     store: HistoryStore,
     bins: Bins,
 }
@@ -1067,24 +1060,18 @@ impl Neighbor {
         moved
     }
 
-    /// True if any particle moved more than skin/2 − [`Neighbor::growth`] since the last
-    /// build (or the particle count changed). With r_i + r_j grown by at most 2·growth and
-    /// each centre moved at most skin/2 − growth, no pair can close more than the skin.
+    /// True if any particle may have moved more than skin/2 − [`Neighbor::growth`] since
+    /// the last build (or the particle count changed). With r_i + r_j grown by at most
+    /// 2·growth and each centre moved at most skin/2 − growth, no pair can close more than
+    /// the skin. The positions at the build are held in single precision where the
+    /// coordinates allow ([`hold`]): the allowance is then smaller by their rounding, at
+    /// most 1/16 of skin/2.
     pub fn moved_too_far(&self, x: &[DVec3]) -> bool {
         if x.len() != self.xhold.len() {
             return true;
         }
-        let half = 0.5 * self.settings.skin - self.growth;
-        if half <= 0.0 {
-            return true;
-        }
-        let lim = half * half;
-        let far = |(a, b): (&DVec3, &DVec3)| (*a - *b).length_squared() > lim;
-        if parallel_light(x.len()) {
-            x.par_iter().zip(&self.xhold).any(far)
-        } else {
-            x.iter().zip(&self.xhold).any(far)
-        }
+        self.xhold
+            .moved_beyond(x, 0.5 * self.settings.skin - self.growth)
     }
 
     /// Saves the contact history of the current list by tag pair (contacts whose history
@@ -1135,8 +1122,7 @@ impl Neighbor {
         self.nbuilds += 1;
         self.growth = 0.0;
         self.live = true;
-        self.xhold.clear();
-        self.xhold.extend_from_slice(&p.x[..nlocal]);
+        self.xhold = hold::Hold::new(&p.x[..nlocal], skin);
         // The old list's buffers are given back before the search allocates its own
         // (its history is in the store by now): the peak of a build is then the new
         // list, the store and the search's scratch, not the old list as well.
@@ -1148,12 +1134,9 @@ impl Neighbor {
             return;
         }
         let factor = self.factor();
+        // The search gives its scratch back (see its end).
         self.bins
             .search(p, cut, skin, self.reach, factor, &mut self.list);
-        // The search's scratch (bins, slots, pairs found: about 14 bytes per bin and 45
-        // per particle) is dropped rather than kept: builds are rare, and kept it was
-        // a quarter of the resident memory at a million particles.
-        self.bins = Bins::default();
         if !self.exclude.is_empty() {
             self.drop_excluded(p);
         }
@@ -1255,8 +1238,14 @@ impl Neighbor {
         }
     }
 
-    /// Positions at the last build (for tests and diagnostics).
-    pub fn xhold(&self) -> &[DVec3] {
-        &self.xhold
+    /// Positions at the last build (for tests and diagnostics), as held: in single
+    /// precision where that costs the rebuild check little (see [`hold`]).
+    pub fn xhold(&self) -> Vec<DVec3> {
+        self.xhold.positions()
+    }
+
+    /// Bytes held by the positions at the last build.
+    pub fn xhold_bytes(&self) -> usize {
+        self.xhold.memory_bytes()
     }
 }

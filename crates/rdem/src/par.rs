@@ -48,7 +48,7 @@ pub(crate) struct View<'a> {
 }
 
 impl<'a> View<'a> {
-    /// The view of `p`'s arrays, with its forces, torques and properties split off
+    /// The view of `p`'s arrays, with its forces, torques and properties (dense and sparse) split off
     /// mutably.
     pub fn split(
         p: &'a mut Particles,
@@ -57,6 +57,7 @@ impl<'a> View<'a> {
         &'a mut Vec<DVec3>,
         &'a mut Vec<DVec3>,
         &'a mut Vec<crate::particles::Property>,
+        &'a mut Vec<crate::particles::SparseProperty>,
     ) {
         let Particles {
             x,
@@ -69,6 +70,7 @@ impl<'a> View<'a> {
             f,
             torque,
             props,
+            sparse,
             ..
         } = p;
         let view = View {
@@ -80,7 +82,7 @@ impl<'a> View<'a> {
             ty,
             mask,
         };
-        (view, f, torque, props)
+        (view, f, torque, props, sparse)
     }
 }
 

@@ -7,6 +7,11 @@ use glam::DVec3;
 
 use crate::error::{check, Error, Result};
 
+mod image;
+mod sparse;
+pub use image::Image;
+pub use sparse::{SparseId, SparseProperty};
+
 /// Global particle identifier. 0 means "not yet assigned".
 pub type Tag = u64;
 
@@ -143,14 +148,16 @@ pub struct Particles {
     pub rmass: Vec<f64>,
     /// Densities.
     pub density: Vec<f64>,
-    /// Periodic image counts.
-    pub image: Vec<[i32; 3]>,
+    /// Periodic image counts, packed ([`Image`]).
+    pub image: Vec<Image>,
     /// For each ghost (index `g - nlocal`): index of the particle it copies (the owner,
     /// for serial periodic images), or [`REMOTE_GHOST`] plus the owner's rank. A local
     /// particle is its own origin and has no entry (see [`Particles::origin`]).
     ghost_origin: Vec<usize>,
     /// Named per-particle properties added by fixes.
     pub props: Vec<Property>,
+    /// Named properties held for few owned particles ([`SparseProperty`]).
+    pub sparse: Vec<SparseProperty>,
 }
 
 /// Applies `new[i] = old[perm[i]]` in place, cycle by cycle with one temporary
@@ -240,6 +247,12 @@ impl Particles {
                 ),
             });
         }
+        if self.sparse_property(name).is_some() {
+            return Err(Error::Invalid {
+                what: "per-particle property",
+                reason: format!("'{name}' exists as a wall's contact history"),
+            });
+        }
         if let Some(id) = self.property(name) {
             if self.props[id.0].width == width {
                 return Ok(id);
@@ -291,6 +304,55 @@ impl Particles {
             return None;
         }
         self.props.iter().position(|p| p.name == name).map(PropId)
+    }
+
+    /// Adds a sparse property ([`SparseProperty`]) with `width` values per particle, zero
+    /// for every particle. Adding an existing name with the same width returns the
+    /// existing handle; a dense property of that name and width (read from a restart
+    /// file) becomes the sparse one, its non-zero values kept.
+    pub fn add_sparse_property(&mut self, name: &str, width: usize) -> Result<SparseId> {
+        let exists = |w: usize| Error::Invalid {
+            what: "per-particle property",
+            reason: format!("'{name}' exists with width {w}, not {width}"),
+        };
+        if let Some(id) = self.sparse_property(name) {
+            return match self.sparse[id.0].width {
+                w if w == width => Ok(id),
+                w => Err(exists(w)),
+            };
+        }
+        let n = self.nlocal;
+        let mut prop = SparseProperty::new(name, width, 0);
+        match self.property(name) {
+            Some(id) if self.props[id.0].width != width => {
+                return Err(exists(self.props[id.0].width))
+            }
+            Some(id) => {
+                let dense = &mut self.props[id.0];
+                for i in 0..n {
+                    prop.push(dense.get(i));
+                }
+                // Retired: no lookup finds it, and it holds no values (width 0).
+                dense.name.clear();
+                dense.width = 0;
+                dense.default.clear();
+                dense.data = Vec::new();
+            }
+            None => (0..n).for_each(|_| prop.push_none()),
+        }
+        self.sparse.push(prop);
+        Ok(SparseId(self.sparse.len() - 1))
+    }
+
+    /// Handle of the sparse property called `name`.
+    pub fn sparse_property(&self, name: &str) -> Option<SparseId> {
+        if name.is_empty() {
+            return None;
+        }
+        self.sparse
+            .iter()
+            .position(|p| p.name == name)
+            .map(SparseId)
     }
 
     /// Retires the property called `name` (`unfix` of the fix that defined it): no lookup
@@ -349,6 +411,9 @@ impl Particles {
         for prop in &mut self.props {
             prop.data.extend_from_slice(&prop.default);
         }
+        for prop in &mut self.sparse {
+            prop.push_none();
+        }
         self.nlocal += 1;
         Ok(i)
     }
@@ -378,7 +443,7 @@ impl Particles {
         self.radius.push(radius);
         self.rmass.push(rmass);
         self.density.push(density);
-        self.image.push(image);
+        self.image.push(Image::new(image));
     }
 
     /// Appends a ghost copy of particle `src` displaced by `shift`; returns its index.
@@ -395,7 +460,7 @@ impl Particles {
             self.radius[src],
             self.rmass[src],
             self.density[src],
-            self.image[src],
+            self.image[src].get(),
         );
         let i = self.len() - 1;
         self.ghost_origin.push(origin);
@@ -408,7 +473,9 @@ impl Particles {
 
     /// Number of `f64` values [`Particles::pack`] writes per particle.
     pub fn packed_len(&self) -> usize {
-        PACK_FIXED + self.props.iter().map(|p| p.width).sum::<usize>()
+        PACK_FIXED
+            + self.props.iter().map(|p| p.width).sum::<usize>()
+            + self.sparse.iter().map(|p| p.width).sum::<usize>()
     }
 
     /// Appends particle `i` (every per-particle array except forces, named properties
@@ -416,7 +483,7 @@ impl Particles {
     /// ghost copy on another rank. Integers travel as `f64` (exact below 2^53).
     pub fn pack(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
         let x = self.x[i] + shift;
-        let (v, w, im) = (self.v[i], self.omega[i], self.image[i]);
+        let (v, w, im) = (self.v[i], self.omega[i], self.image[i].get());
         buf.extend_from_slice(&[
             self.tag[i] as f64,
             self.ty[i] as f64,
@@ -438,6 +505,9 @@ impl Particles {
             im[2] as f64,
         ]);
         for prop in &self.props {
+            buf.extend_from_slice(prop.get(i));
+        }
+        for prop in &self.sparse {
             buf.extend_from_slice(prop.get(i));
         }
     }
@@ -464,6 +534,13 @@ impl Particles {
         let mut k = PACK_FIXED;
         for prop in &mut self.props {
             prop.data.extend_from_slice(&buf[k..k + prop.width]);
+            k += prop.width;
+        }
+        for prop in &mut self.sparse {
+            // Ghosts hold no rows.
+            if ghost_of.is_none() {
+                prop.push(&buf[k..k + prop.width]);
+            }
             k += prop.width;
         }
         match ghost_of {
@@ -592,6 +669,9 @@ impl Particles {
         for prop in &mut self.props {
             prop.data.shrink_to_fit();
         }
+        for prop in &mut self.sparse {
+            prop.shrink_to_fit();
+        }
     }
 
     /// Removes the owned particles for which `remove[i]` is true, keeping the order of
@@ -622,8 +702,15 @@ impl Particles {
                     let w = prop.width;
                     prop.data.copy_within(src * w..(src + 1) * w, dst * w);
                 }
+                for prop in &mut self.sparse {
+                    let slots = prop.slots_mut();
+                    slots[dst] = slots[src];
+                }
             }
             dst += 1;
+        }
+        for prop in &mut self.sparse {
+            prop.truncate(dst);
         }
         let removed = n - dst;
         self.nlocal = dst;
@@ -651,6 +738,9 @@ impl Particles {
         permute_in_place(&mut self.image, perm, &mut done);
         for prop in &mut self.props {
             permute_chunks_in_place(&mut prop.data, prop.width, perm, &mut done);
+        }
+        for prop in &mut self.sparse {
+            permute_in_place(prop.slots_mut(), perm, &mut done);
         }
     }
 
@@ -740,12 +830,17 @@ impl Particles {
                 * size_of::<DVec3>()
             + (self.radius.capacity() + self.rmass.capacity() + self.density.capacity())
                 * size_of::<f64>()
-            + self.image.capacity() * size_of::<[i32; 3]>()
+            + self.image.capacity() * size_of::<Image>()
             + self.ghost_origin.capacity() * size_of::<usize>()
             + self
                 .props
                 .iter()
                 .map(|p| p.data.capacity() * size_of::<f64>())
+                .sum::<usize>()
+            + self
+                .sparse
+                .iter()
+                .map(SparseProperty::memory_bytes)
                 .sum::<usize>()
     }
 

@@ -127,6 +127,16 @@ impl World {
                 forward: q.forward,
                 data: q.data[..n * q.width].to_vec(),
             })
+            .chain(p.sparse.iter().filter(|q| !q.name.is_empty()).map(|q| {
+                // Written as a dense property: the file does not depend on the layout.
+                PropertyState {
+                    name: q.name.clone(),
+                    width: q.width,
+                    default: vec![0.0; q.width],
+                    forward: false,
+                    data: q.dense(n),
+                }
+            }))
             .collect();
         let particles = ParticleState {
             tag: p.tag[..n].to_vec(),
@@ -138,7 +148,7 @@ impl World {
             radius: p.radius[..n].to_vec(),
             rmass: p.rmass[..n].to_vec(),
             density: p.density[..n].to_vec(),
-            image: p.image[..n].to_vec(),
+            image: p.image[..n].iter().map(|m| m.get()).collect(),
             props,
         };
         RankState {
@@ -189,11 +199,20 @@ impl World {
                 reason: "its particle arrays have different lengths".into(),
             });
         }
+        // A dense property, or the sparse one of that name (a wall's history, when the
+        // wall is defined already).
+        enum Target {
+            Dense(crate::particles::PropId),
+            Sparse(crate::particles::SparseId),
+        }
         let mut ids = Vec::with_capacity(s.props.len());
         for q in &s.props {
-            let id = self.particles.add_property(&q.name, q.width, &q.default)?;
-            if q.forward {
-                self.particles.set_forward(id);
+            let id = match self.particles.sparse_property(&q.name) {
+                Some(_) => Target::Sparse(self.particles.add_sparse_property(&q.name, q.width)?),
+                None => Target::Dense(self.particles.add_property(&q.name, q.width, &q.default)?),
+            };
+            if let (Target::Dense(id), true) = (&id, q.forward) {
+                self.particles.set_forward(*id);
             }
             ids.push(id);
         }
@@ -216,12 +235,17 @@ impl World {
             let i = self.add_particle(&np)?;
             let p = &mut self.particles;
             p.rmass[i] = s.rmass[k];
-            p.image[i] = s.image[k];
+            p.image[i] = s.image[k].into();
             for (q, id) in s.props.iter().zip(&ids) {
                 let w = q.width;
-                p.props[id.0]
-                    .get_mut(i)
-                    .copy_from_slice(&q.data[k * w..(k + 1) * w]);
+                let values = &q.data[k * w..(k + 1) * w];
+                match id {
+                    Target::Dense(id) => p.props[id.0].get_mut(i).copy_from_slice(values),
+                    Target::Sparse(id) if values.iter().any(|v| v.to_bits() != 0) => {
+                        p.sparse[id.0].get_mut(i).copy_from_slice(values)
+                    }
+                    Target::Sparse(_) => {}
+                }
             }
             added += 1;
         }

@@ -145,7 +145,9 @@ impl World {
         let nlocal = self.particles.nlocal();
         let p = &mut self.particles;
         for i in 0..nlocal {
-            self.domain.remap(&mut p.x[i], &mut p.image[i]);
+            let mut im = p.image[i].get();
+            self.domain.remap(&mut p.x[i], &mut im);
+            p.image[i] = im.into();
         }
     }
 

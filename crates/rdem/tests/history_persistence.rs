@@ -75,7 +75,7 @@ fn state(w: &World) -> State {
                     p.torque[i],
                     p.v[i],
                     p.omega[i],
-                    w.domain.unmap(p.x[i], p.image[i]),
+                    w.domain.unmap(p.x[i], p.image[i].get()),
                 ],
             )
         })
@@ -244,7 +244,7 @@ fn sheared_pair_across_periodic_face_is_bit_identical_with_sorting_and_rebuilds(
     let p = &every.particles;
     for t in [1, 2] {
         let i = p.find_tag(t).unwrap();
-        assert_eq!(p.image[i], [1, 0, 0], "tag {t} at {}", p.x[i]);
+        assert_eq!(p.image[i].get(), [1, 0, 0], "tag {t} at {}", p.x[i]);
     }
 }
 
@@ -454,13 +454,23 @@ fn identical_runs_are_bit_identical() {
             for (qa, qb) in pa.props.iter().zip(&pb.props) {
                 assert_eq!(qa.data, qb.data, "property {} at step {step}", qa.name);
             }
+            let n = pa.nlocal();
+            for (qa, qb) in pa.sparse.iter().zip(&pb.sparse) {
+                assert_eq!(
+                    qa.dense(n),
+                    qb.dense(n),
+                    "history {} at step {step}",
+                    qa.name
+                );
+            }
             contacts_seen += a.neighbor.list.hist.iter().filter(|&&h| h != 0.0).count();
             for (k, name) in ["wallhist_floor", "wallhist_ylo", "wallhist_yhi"]
                 .iter()
                 .enumerate()
             {
-                let id = pa.property(name).expect("wall history property");
-                wall_contacts[k] += pa.props[id.0].data.iter().filter(|&&h| h != 0.0).count();
+                let id = pa.sparse_property(name).expect("wall history property");
+                let h = pa.sparse[id.0].dense(pa.nlocal());
+                wall_contacts[k] += h.iter().filter(|&&h| h != 0.0).count();
             }
         }
     }

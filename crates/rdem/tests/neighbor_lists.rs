@@ -384,7 +384,7 @@ fn check_yes_triggers_strictly_beyond_half_the_skin() {
     assert!(nb.decide(1, &y, |b| b));
     // A different particle count (particles added or lost) forces a rebuild.
     assert!(nb.decide(1, &x[..4], |b| b));
-    assert_eq!(nb.xhold(), &x[..]);
+    assert_eq!(nb.xhold(), x);
 }
 
 #[test]
@@ -433,7 +433,7 @@ fn decision_counts_from_the_last_build() {
     }
     p.extend_tags();
     nb.build(&p, 16);
-    assert_eq!(nb.xhold(), &far[..]);
+    assert_eq!(nb.xhold(), far);
     assert_eq!(decisions(&mut nb, &far, 17, 30), Vec::<u64>::new());
     let farther = moved(&far, 1.0);
     assert_eq!(

@@ -340,7 +340,7 @@ fn every_per_particle_array_follows_a_permutation() {
         p.mask[i] |= 1 << (k + 1);
         p.f[i] = DVec3::splat(f * 0.5);
         p.torque[i] = DVec3::splat(f * 0.25);
-        p.image[i] = [k as i32, -(k as i32), 2 * k as i32];
+        p.image[i] = [k as i32, -(k as i32), 2 * k as i32].into();
         p.props[h.0].get_mut(i).copy_from_slice(&[f, f * f, -f]);
     }
     p.extend_tags();
@@ -360,7 +360,7 @@ fn every_per_particle_array_follows_a_permutation() {
         assert_eq!(p.density[i], 1000.0 + f);
         let m = (1000.0 + f) * 4.0 / 3.0 * std::f64::consts::PI * (0.01 * (1.0 + f)).powi(3);
         assert!((p.rmass[i] - m).abs() <= 1e-15 * m);
-        assert_eq!(p.image[i], [k as i32, -(k as i32), 2 * k as i32]);
+        assert_eq!(p.image[i].get(), [k as i32, -(k as i32), 2 * k as i32]);
         assert_eq!(p.props[h.0].get(i), &[f, f * f, -f]);
         assert_eq!(p.origin(i), i, "a local particle is its own origin");
     }

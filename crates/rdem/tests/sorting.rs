@@ -182,7 +182,9 @@ fn records(w: &World) -> (BTreeMap<u64, Record>, BTreeMap<u64, (DVec3, DVec3)>) 
         let props: Vec<u64> = p
             .props
             .iter()
-            .flat_map(|q| q.get(i).iter().map(|v| v.to_bits()))
+            .map(|q| q.get(i))
+            .chain(p.sparse.iter().map(|q| q.get(i)))
+            .flat_map(|v| v.iter().map(|v| v.to_bits()))
             .collect();
         let r = (
             p.ty[i],
@@ -195,7 +197,7 @@ fn records(w: &World) -> (BTreeMap<u64, Record>, BTreeMap<u64, (DVec3, DVec3)>) 
                 p.rmass[i].to_bits(),
                 p.density[i].to_bits(),
             ],
-            p.image[i],
+            p.image[i].get(),
             props,
         );
         assert!(rec.insert(p.tag[i], r).is_none(), "tag {} twice", p.tag[i]);

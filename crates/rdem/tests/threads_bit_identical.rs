@@ -246,8 +246,9 @@ fn wall_forces_are_bit_identical_on_1_2_and_4_threads() {
                 let mut cands = Vec::new();
                 for fix in &w.fixes {
                     if let FixKind::WallGran(wall) = &fix.kind {
-                        let id = p.property(&wall.history_name).unwrap();
-                        hist.push(p.props[id.0].data.iter().map(|h| h.to_bits()).collect());
+                        let id = p.sparse_property(&wall.history_name).unwrap();
+                        let h = p.sparse[id.0].dense(n);
+                        hist.push(h.iter().map(|h| h.to_bits()).collect());
                         cands.push(wall.candidates().to_vec());
                     }
                 }

@@ -48,7 +48,7 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         let i = w
             .add_particle(&p)
             .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
-        w.particles.image[i] = image;
+        w.particles.image[i] = image.into();
     }
     sim.outputs
         .out

@@ -287,14 +287,14 @@ pub(super) fn read_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         };
         replaced += 1;
         if !cols.wrapped {
-            p.image[i] = [0; 3];
+            p.image[i] = Default::default();
         }
         for &(f, c) in &cols.fields {
             set_field(p, i, f, row, c, &coord);
         }
-        let (mut x, mut im) = (p.x[i], p.image[i]);
+        let (mut x, mut im) = (p.x[i], p.image[i].get());
         w.domain.remap(&mut x, &mut im);
-        (p.x[i], p.image[i]) = (x, im);
+        (p.x[i], p.image[i]) = (x, im.into());
     }
     let mut trimmed = 0;
     if r.trim {
@@ -337,7 +337,7 @@ pub(super) fn read_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         let i = w
             .add_particle(&np)
             .map_err(|e| a.error_cmd(e.to_string(), None))?;
-        w.particles.image[i] = image;
+        w.particles.image[i] = image.into();
         w.particles.radius[i] = radius;
     }
     w.extend_tags();
@@ -376,9 +376,11 @@ fn set_field(
         "vx" => p.v[i].x = v,
         "vy" => p.v[i].y = v,
         "vz" => p.v[i].z = v,
-        "ix" => p.image[i][0] = v as i32,
-        "iy" => p.image[i][1] = v as i32,
-        "iz" => p.image[i][2] = v as i32,
+        "ix" | "iy" | "iz" => {
+            let mut im = p.image[i].get();
+            im[(f.as_bytes()[1] - b'x') as usize] = v as i32;
+            p.image[i] = im.into();
+        }
         _ => p.radius[i] = v,
     }
 }

@@ -30,7 +30,7 @@ pub struct DisplaceAtom {
 fn unwrapped(w: &World, i: usize) -> DVec3 {
     let p = &w.particles;
     let size = w.domain.boxhi - w.domain.boxlo;
-    p.x[i] + DVec3::from_array(p.image[i].map(f64::from)) * size
+    p.x[i] + DVec3::from_array(p.image[i].get().map(f64::from)) * size
 }
 
 impl ScriptCompute for DisplaceAtom {

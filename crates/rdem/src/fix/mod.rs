@@ -175,7 +175,7 @@ impl Fix {
     /// The post-force action on the owned particles.
     pub fn apply_post_force(&self, p: &mut Particles) {
         let n = p.nlocal();
-        let (view, f, torque, _) = View::split(p);
+        let (view, f, torque, _, _) = View::split(p);
         self.post_force_range(&view, 0, &mut f[..n], &mut torque[..n]);
     }
 
@@ -387,23 +387,36 @@ fn post_force_pass(
     update: bool,
 ) -> bool {
     let n = p.nlocal();
-    // The walls' history and `store_force` properties (ID, width), taken out of the
-    // particles meanwhile.
-    let taken: Vec<[Option<(usize, usize)>; 2]> = fixes
+    // The walls' history (sparse property ID, width, the particles holding its rows)
+    // and `store_force` property (ID, width), taken out of the particles meanwhile.
+    #[allow(clippy::type_complexity)]
+    let taken: Vec<(Option<(usize, usize, &[u32])>, Option<(usize, usize)>)> = fixes
         .iter()
         .map(|fix| {
-            let (hist, store) = match &fix.kind {
-                FixKind::WallGran(wall) => (wall.history_prop(), wall.store_prop()),
-                FixKind::MeshWall(wall) => (wall.history_prop(), wall.store_prop()),
-                _ => (None, None),
+            let (hist, rows, store) = match &fix.kind {
+                FixKind::WallGran(wall) => {
+                    (wall.history_prop(), wall.candidates(), wall.store_prop())
+                }
+                FixKind::MeshWall(wall) => (wall.history_prop(), wall.rows(), wall.store_prop()),
+                _ => (None, &[][..], None),
             };
-            [hist, store].map(|id| id.map(|id| (id.0, p.props[id.0].width)))
+            let hist = hist.map(|id| {
+                let h = &p.sparse[id.0];
+                debug_assert!(h.rows_match(rows), "wall history rows out of date");
+                (id.0, h.width, rows)
+            });
+            (hist, store.map(|id| (id.0, p.props[id.0].width)))
         })
         .collect();
-    let (view, f, torque, props) = View::split(p);
+    let (view, f, torque, props, sparse) = View::split(p);
     let mut data: Vec<[Vec<f64>; 2]> = taken
         .iter()
-        .map(|t| t.map(|h| h.map_or_else(Vec::new, |(id, _)| std::mem::take(&mut props[id].data))))
+        .map(|(h, s)| {
+            [
+                h.map_or_else(Vec::new, |(id, _, _)| std::mem::take(&mut sparse[id].data)),
+                s.map_or_else(Vec::new, |(id, _)| std::mem::take(&mut props[id].data)),
+            ]
+        })
         .collect();
     let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [[&mut [f64]; 2]]| {
         for (fix, [h, store]) in fixes.iter().zip(hs.iter_mut()) {
@@ -428,19 +441,20 @@ fn post_force_pass(
         let mut hs: Vec<[&mut [f64]; 2]> = data
             .iter_mut()
             .zip(&taken)
-            .map(|([h, s], [hid, sid])| [cut(h, hid, n), cut(s, sid, n)])
+            .map(|([h, s], (_, sid))| [&mut h[..], cut(s, sid, n)])
             .collect();
         chunk(0, &mut f[..n], &mut torque[..n], &mut hs)
     } else {
         let mut per: Vec<Vec<[&mut [f64]; 2]>> = (0..n.div_ceil(CHUNK))
             .map(|_| Vec::with_capacity(fixes.len()))
             .collect();
-        for ([h, s], [hid, sid]) in data.iter_mut().zip(&taken) {
-            let hw = hid.map_or(0, |(_, w)| w);
+        for ([h, s], (hid, sid)) in data.iter_mut().zip(&taken) {
+            let (hw, rows) = hid.map_or((0, &[][..]), |(_, w, rows)| (w, rows));
             let sw = sid.map_or(0, |(_, w)| w);
+            let hists = crate::wall::chunk_rows(rows, h, hw, n);
             for (c, (hc, sc)) in per
                 .iter_mut()
-                .zip(chunk_hist(h, n, hw).into_iter().zip(chunk_hist(s, n, sw)))
+                .zip(hists.into_iter().zip(chunk_hist(s, n, sw)))
             {
                 c.push([hc, sc]);
             }
@@ -454,11 +468,12 @@ fn post_force_pass(
             .collect();
         oks.into_iter().all(|ok| ok)
     };
-    for (d, t) in data.into_iter().zip(&taken) {
-        for (v, id) in d.into_iter().zip(t) {
-            if let Some((id, _)) = id {
-                props[*id].data = v;
-            }
+    for ([h, s], (hid, sid)) in data.into_iter().zip(&taken) {
+        if let Some((id, _, _)) = hid {
+            sparse[*id].data = h;
+        }
+        if let Some((id, _)) = sid {
+            props[*id].data = s;
         }
     }
     ok

@@ -187,10 +187,11 @@ impl Move {
             if mask[i] & groupbit == 0 {
                 continue;
             }
+            let im = image[i].get();
             let shift = DVec3::new(
-                image[i][0] as f64 * prd.x,
-                image[i][1] as f64 * prd.y,
-                image[i][2] as f64 * prd.z,
+                im[0] as f64 * prd.x,
+                im[1] as f64 * prd.y,
+                im[2] as f64 * prd.z,
             );
             let rec = x0s.get_mut(i);
             if rec[3] == 0.0 {

@@ -7,8 +7,9 @@
 //! it is touched on its face, and a corner when a face or edge that has it is touched, so
 //! a sphere rolling across a shared edge or corner feels exactly one contact.
 //!
-//! History: each particle has [`SLOTS`] contact slots (a per-particle property, so it
-//! travels with the particle through sorting and migration), each a feature key and the
+//! History: each particle with candidate triangles has [`SLOTS`] contact slots (a sparse
+//! per-particle property, [`crate::particles::SparseProperty`], so it travels with the
+//! particle through sorting and migration), each a feature key and the
 //! contact model's history. A contact keeps the slot of its feature; a new contact takes
 //! over the slot of an ended contact whose feature shares a vertex with its own (the
 //! sphere rolled from a face to its edge, or from one triangle to its neighbour), else
@@ -37,7 +38,7 @@ use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, V
 use crate::error::{Error, Result};
 use crate::mesh::{Feature, TriMesh};
 use crate::par::View;
-use crate::particles::{Particles, PropId};
+use crate::particles::{Particles, PropId, SparseId};
 
 /// Contact slots per particle and mesh wall.
 pub const SLOTS: usize = 6;
@@ -165,7 +166,7 @@ pub struct MeshWall {
     pub store_force: Option<String>,
     store: Option<PropId>,
     table: CoeffTable,
-    hist: Option<PropId>,
+    hist: Option<SparseId>,
     /// Per-slot values after the contact history when a mesh records stress
     /// ([`crate::wall::mesh_stress::EXTRA`]), else 0.
     pub(crate) extra: usize,
@@ -181,6 +182,9 @@ pub struct MeshWall {
     /// as (mesh, triangle).
     cand_first: Vec<u32>,
     cand: Vec<(u32, u32)>,
+    /// The owned particles with candidate triangles, ascending: they alone hold history
+    /// rows, row `c` for particle `rows[c]`.
+    rows: Vec<u32>,
 }
 
 /// The key of a feature in a history slot: 0 is "empty".
@@ -276,6 +280,7 @@ impl MeshWall {
             step: 0,
             cand_first: Vec::new(),
             cand: Vec::new(),
+            rows: Vec::new(),
         })
     }
 
@@ -311,14 +316,20 @@ impl MeshWall {
             SLOTS * self.stride <= MAX_WIDTH,
             "mesh wall history too wide"
         );
-        self.hist = Some(p.add_property(&self.history_name, w, &vec![0.0; w])?);
+        self.hist = Some(p.add_sparse_property(&self.history_name, w)?);
         self.store = super::store_prop(self.store_force.as_deref(), p)?;
         Ok(())
     }
 
     /// The history property's ID.
-    pub(crate) fn history_prop(&self) -> Option<PropId> {
+    pub(crate) fn history_prop(&self) -> Option<SparseId> {
         self.hist
+    }
+
+    /// The owned particles holding history rows, in row order (since the last
+    /// [`MeshWall::build_candidates`]).
+    pub(crate) fn rows(&self) -> &[u32] {
+        &self.rows
     }
 
     /// The `store_force` property's ID (after [`MeshWall::setup`]).
@@ -337,7 +348,7 @@ impl MeshWall {
     }
 
     /// Lists, for each owned particle of group `groupbit`, the triangles within r + `skin`
-    /// (call at every re-neighboring); particles with none get their history cleared.
+    /// (call at every re-neighboring); particles with none lose their history.
     pub fn build_candidates(
         &mut self,
         all: &[MeshSurface],
@@ -354,12 +365,12 @@ impl MeshWall {
         self.cand_first.clear();
         self.cand.clear();
         self.cand_first.push(0);
+        self.rows.clear();
         let grids: Vec<Grid> = self
             .meshes
             .iter()
             .map(|&m| Grid::new(&all[m].mesh, reach))
             .collect();
-        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
         let mut found: Vec<(u32, u32)> = Vec::new();
         for i in 0..n {
             found.clear();
@@ -377,20 +388,24 @@ impl MeshWall {
                 found.sort_unstable();
                 found.dedup();
             }
-            if found.is_empty() && w > 0 {
-                let id = self.hist.unwrap().0;
-                let h = &mut p.props[id].data[i * w..(i + 1) * w];
+            if found.is_empty() {
                 // Beyond the reach of every triangle: a bond there is broken.
-                if self
-                    .bond_flag_at()
-                    .is_some_and(|at| bond::is_bonded(&h[at..]))
-                {
-                    self.bond_events.count(Event::Broken);
+                let bonded =
+                    |id: SparseId, at: usize| bond::is_bonded(&p.sparse[id.0].get(i)[at..]);
+                if let (Some(id), Some(at)) = (self.hist, self.bond_flag_at()) {
+                    if bonded(id, at) {
+                        self.bond_events.count(Event::Broken);
+                    }
                 }
-                h.fill(0.0);
+            } else {
+                self.rows.push(i as u32);
             }
             self.cand.extend_from_slice(&found);
             self.cand_first.push(self.cand.len() as u32);
+        }
+        if let Some(id) = self.hist {
+            let rows = &self.rows;
+            p.sparse[id.0].keep_rows(rows.iter().map(|&i| i as usize), rows.len());
         }
     }
 
@@ -405,8 +420,7 @@ impl MeshWall {
         mut f: impl FnMut(&MeshSurface, f64),
     ) {
         let Some(id) = self.hist else { return };
-        let prop = &p.props[id.0];
-        let h = &prop.data[i * prop.width..i * prop.width + SLOTS * self.stride];
+        let h = &p.sparse[id.0].get(i)[..SLOTS * self.stride];
         let x = p.x[i];
         for s in 0..SLOTS {
             let Some((mi, feature)) = unkey(h[s * self.stride]) else {
@@ -449,8 +463,9 @@ impl MeshWall {
         self.cand_first.len() > n
     }
 
-    /// Adds the wall forces on particles `lo..lo + f.len()`; `hist` (the history
-    /// property's values) starts at particle `lo`.
+    /// Adds the wall forces on particles `lo..lo + f.len()`; `hist` (the history rows)
+    /// starts at the row of the first particle from `lo` on that has one (see
+    /// [`super::chunk_rows`]).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn apply_range(
         &self,
@@ -709,13 +724,14 @@ impl MeshPass<'_> {
         let mut found = [none; MAX_TOUCH];
         let mut keep = [true; MAX_TOUCH];
         let mut old = [0.0f64; MAX_WIDTH];
-        for k in 0..f.len() {
-            let i = lo + k;
+        let hi = lo + f.len();
+        let a = wall.rows.partition_point(|&i| (i as usize) < lo);
+        let b = a + wall.rows[a..].partition_point(|&i| (i as usize) < hi);
+        for (c, &i) in wall.rows[a..b].iter().enumerate() {
+            let i = i as usize;
+            let k = i - lo;
             let cands = wall.candidates_of(i);
-            let (h, bh) = hist[k * pw..(k + 1) * pw].split_at_mut(width);
-            if cands.is_empty() {
-                continue;
-            }
+            let (h, bh) = hist[c * pw..(c + 1) * pw].split_at_mut(width);
             if BOND {
                 let (bf, bt) = wall_bond(wall, surfaces, p, i, cands, bh, dt, update, create_now);
                 f[k] += bf;

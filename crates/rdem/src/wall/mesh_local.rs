@@ -105,8 +105,7 @@ impl MeshWall {
         let Some(id) = self.history_prop() else {
             return out;
         };
-        let w = p.props[id.0].width;
-        let mut hist = p.props[id.0].data[..n * w].to_vec();
+        let mut hist = p.sparse[id.0].data.clone();
         let mut f = vec![DVec3::ZERO; n];
         let mut torque = vec![DVec3::ZERO; n];
         let view = View {

@@ -138,12 +138,11 @@ pub fn accumulate(
         let (Some(id), true) = (wall.history_prop(), wall.extra > 0) else {
             continue;
         };
-        let data = &p.props[id.0].data;
-        let width = p.props[id.0].width;
+        let hist = &p.sparse[id.0];
         let stride = wall.stride;
         let hw = stride - 1 - wall.extra;
         for i in 0..n {
-            let h = &data[i * width..(i + 1) * width];
+            let h = hist.get(i);
             for s in 0..super::mesh::SLOTS {
                 let slot = &h[s * stride..(s + 1) * stride];
                 let Some((mi, _)) = super::mesh::unkey(slot[0]) else {

@@ -14,28 +14,50 @@ pub use primitive::{PrimitiveWall, WallShape};
 /// property `hist` at offset `flag` (none without bonds).
 pub(crate) fn bonded<'a>(
     p: &'a crate::particles::Particles,
-    hist: Option<crate::particles::PropId>,
+    hist: Option<crate::particles::SparseId>,
     flag: Option<usize>,
 ) -> impl Iterator<Item = bool> + 'a {
     let rows = match (hist, flag) {
-        (Some(id), Some(flag)) => {
-            let prop = &p.props[id.0];
-            let w = prop.width;
-            Some((prop.data[..p.nlocal() * w].chunks_exact(w), flag))
-        }
+        (Some(id), Some(flag)) => Some((&p.sparse[id.0], flag)),
         _ => None,
     };
-    rows.into_iter()
-        .flat_map(|(rows, flag)| rows.map(move |h| crate::bond::is_bonded(&h[flag..])))
+    rows.into_iter().flat_map(move |(h, flag)| {
+        (0..p.nlocal()).map(move |i| crate::bond::is_bonded(&h.get(i)[flag..]))
+    })
 }
 
 /// Intact wall bonds of the owned particles ([`bonded`]).
 pub(crate) fn count_bonded(
     p: &crate::particles::Particles,
-    hist: Option<crate::particles::PropId>,
+    hist: Option<crate::particles::SparseId>,
     flag: Option<usize>,
 ) -> u64 {
     bonded(p, hist, flag).filter(|&b| b).count() as u64
+}
+
+/// A wall's history rows (`w` values each; row `c` belongs to particle `rows[c]`,
+/// `rows` ascending, as [`crate::particles::SparseProperty::keep_rows`] lays them out)
+/// cut at the particle chunks ([`crate::par::CHUNK`]) of `n` particles: piece `k` holds
+/// the rows of the particles in chunk `k`.
+pub(crate) fn chunk_rows<'a>(
+    rows: &[u32],
+    mut data: &'a mut [f64],
+    w: usize,
+    n: usize,
+) -> Vec<&'a mut [f64]> {
+    let chunk = crate::par::CHUNK;
+    let mut out = Vec::with_capacity(n.div_ceil(chunk));
+    let mut a = 0;
+    for k in 0..n.div_ceil(chunk) {
+        let hi = ((k + 1) * chunk).min(n);
+        let b = a + rows[a..].partition_point(|&i| (i as usize) < hi);
+        let len = if w > 0 { (b - a) * w } else { 0 };
+        let (head, tail) = std::mem::take(&mut data).split_at_mut(len);
+        out.push(head);
+        data = tail;
+        a = b;
+    }
+    out
 }
 
 /// Registers (or finds) the `store_force` property `name`: 3 values per particle, 0 for

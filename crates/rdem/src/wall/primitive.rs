@@ -1,7 +1,8 @@
 //! `fix wall/gran ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder`:
 //! a flat or cylindrical wall of infinite radius and mass, with the particle–particle
-//! contact law and one history slot per particle, stored as a named per-particle property
-//! so it moves with its particle through sorting and migration.
+//! contact law and one history slot per particle near the wall, stored as a sparse
+//! per-particle property ([`crate::particles::SparseProperty`]) so it moves with its
+//! particle through sorting and migration.
 
 use glam::DVec3;
 
@@ -13,7 +14,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::par::{parallel, View, CHUNK};
-use crate::particles::{Particles, PropId};
+use crate::particles::{Particles, PropId, SparseId};
 
 /// Shape of a primitive wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -134,7 +135,7 @@ pub struct PrimitiveWall {
     /// Fixed temperature of the wall for heat conduction (`temperature T`), if any.
     pub temperature: Option<f64>,
     table: CoeffTable,
-    hist: Option<PropId>,
+    hist: Option<SparseId>,
     /// Owned particles of the group within r + skin of the wall at the last
     /// re-neighboring: the only ones that can touch it before the next (the wall is
     /// fixed and no particle moves more than skin/2 in between).
@@ -194,7 +195,7 @@ impl PrimitiveWall {
         self.bond = BondTable::for_model(&self.model, materials)?;
         let w = self.model.wall_history_width();
         self.hist = if w > 0 {
-            Some(p.add_property(&self.history_name, w, &vec![0.0; w])?)
+            Some(p.add_sparse_property(&self.history_name, w)?)
         } else {
             None
         };
@@ -203,51 +204,44 @@ impl PrimitiveWall {
     }
 
     /// Lists the owned particles of group `groupbit` within max(r, bond reach) + `skin` of
-    /// the wall (call at every re-neighboring) and zeroes the history of all others. In
-    /// parallel over chunks of particles, the lists joined in chunk order.
+    /// the wall (call at every re-neighboring) and gives history rows to them alone (the
+    /// others' history is dropped). In parallel over chunks of particles, the lists
+    /// joined in chunk order.
     pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
         let reach = self.bond.as_ref().map_or(0.0, |b| b.wall_reach);
         self.candidates.clear();
         let n = p.nlocal();
-        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
-        let (view, _, _, props) = View::split(p);
+        let (x, radius, mask) = (&p.x[..n], &p.radius[..n], &p.mask[..n]);
         let shape = self.shape;
-        let mut empty: [f64; 0] = [];
-        let hist: &mut [f64] = match self.hist {
-            Some(id) if w > 0 => &mut props[id.0].data[..n * w],
-            _ => &mut empty,
-        };
-        // Appends the candidates among particles lo..lo + len to `out`; `hist` starts at
-        // particle lo (or is empty).
-        let scan = |lo: usize, len: usize, hist: &mut [f64], out: &mut Vec<u32>| {
-            for k in 0..len {
-                let i = lo + k;
-                let near = view.mask[i] & groupbit != 0
-                    && shape.distance(view.x[i]).0 < view.radius[i].max(reach) + skin;
+        // Appends the candidates among particles lo..lo + len to `out`.
+        let scan = |lo: usize, len: usize, out: &mut Vec<u32>| {
+            for i in lo..lo + len {
+                let near =
+                    mask[i] & groupbit != 0 && shape.distance(x[i]).0 < radius[i].max(reach) + skin;
                 if near {
                     out.push(i as u32);
-                } else if w > 0 {
-                    hist[k * w..(k + 1) * w].fill(0.0);
                 }
             }
         };
         if !parallel(n) {
-            scan(0, n, hist, &mut self.candidates);
-            return;
+            scan(0, n, &mut self.candidates);
+        } else {
+            let parts: Vec<Vec<u32>> = (0..n.div_ceil(CHUNK))
+                .into_par_iter()
+                .map(|c| {
+                    let lo = c * CHUNK;
+                    let mut out = Vec::new();
+                    scan(lo, CHUNK.min(n - lo), &mut out);
+                    out
+                })
+                .collect();
+            for part in parts {
+                self.candidates.extend_from_slice(&part);
+            }
         }
-        let hists = chunk_hist(hist, n, w);
-        let parts: Vec<Vec<u32>> = hists
-            .into_par_iter()
-            .enumerate()
-            .map(|(c, h)| {
-                let lo = c * CHUNK;
-                let mut out = Vec::new();
-                scan(lo, CHUNK.min(n - lo), h, &mut out);
-                out
-            })
-            .collect();
-        for part in parts {
-            self.candidates.extend_from_slice(&part);
+        if let Some(id) = self.hist {
+            let cand = &self.candidates;
+            p.sparse[id.0].keep_rows(cand.iter().map(|&i| i as usize), cand.len());
         }
     }
 
@@ -272,16 +266,14 @@ impl PrimitiveWall {
     /// [`PrimitiveWall::build_candidates`].
     pub fn apply(&mut self, p: &mut Particles, dt: f64, update: bool) {
         let n = p.nlocal();
-        let w = self.hist.map(|id| p.props[id.0].width).unwrap_or(0);
-        let (view, f, torque, props) = View::split(p);
-        let mut empty: [f64; 0] = [];
+        let (view, f, torque, props, sparse) = View::split(p);
         let mut store = self
             .store
             .map(|id| std::mem::take(&mut props[id.0].data))
             .unwrap_or_default();
         let hist: &mut [f64] = match self.hist {
-            Some(id) if w > 0 => &mut props[id.0].data[..n * w],
-            _ => &mut empty,
+            Some(id) => &mut sparse[id.0].data,
+            None => &mut [],
         };
         if self.store.is_some() {
             super::store_begin(&mut f[..n], &mut store[..3 * n]);
@@ -294,7 +286,7 @@ impl PrimitiveWall {
     }
 
     /// The history property's ID, if the model has history.
-    pub(crate) fn history_prop(&self) -> Option<PropId> {
+    pub(crate) fn history_prop(&self) -> Option<SparseId> {
         self.hist
     }
 
@@ -303,9 +295,9 @@ impl PrimitiveWall {
         self.store
     }
 
-    /// [`PrimitiveWall::apply`] on the particles `lo..lo + f.len()`: `f`, `torque` and
-    /// `hist` (the history property's values, or empty without history) start at
-    /// particle `lo`.
+    /// [`PrimitiveWall::apply`] on the particles `lo..lo + f.len()`: `f` and `torque`
+    /// start at particle `lo`, `hist` (the history rows, or empty without history) at the
+    /// row of the first candidate from `lo` on (see [`super::chunk_rows`]).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn apply_range(
         &self,
@@ -391,13 +383,13 @@ impl WallPass<'_> {
             K::HIST
         };
         let create_now = update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
-        for &i in cand {
+        for (c, &i) in cand.iter().enumerate() {
             let i = i as usize;
             let k = i - lo;
             let r = p.radius[i];
             let (d, n) = wall.shape.distance(p.x[i]);
             let hist: &mut [f64] = if w > 0 {
-                &mut hist_data[k * w..(k + 1) * w]
+                &mut hist_data[c * w..(c + 1) * w]
             } else {
                 &mut empty
             };
