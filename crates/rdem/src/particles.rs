@@ -322,7 +322,7 @@ impl Particles {
             };
         }
         let n = self.nlocal;
-        let mut prop = SparseProperty::new(name, width, 0);
+        let mut prop = SparseProperty::new(name, width);
         match self.property(name) {
             Some(id) if self.props[id.0].width != width => {
                 return Err(exists(self.props[id.0].width))
@@ -330,7 +330,7 @@ impl Particles {
             Some(id) => {
                 let dense = &mut self.props[id.0];
                 for i in 0..n {
-                    prop.push(dense.get(i));
+                    prop.push(i, dense.get(i));
                 }
                 // Retired: no lookup finds it, and it holds no values (width 0).
                 dense.name.clear();
@@ -338,7 +338,7 @@ impl Particles {
                 dense.default.clear();
                 dense.data = Vec::new();
             }
-            None => (0..n).for_each(|_| prop.push_none()),
+            None => {}
         }
         self.sparse.push(prop);
         Ok(SparseId(self.sparse.len() - 1))
@@ -410,9 +410,6 @@ impl Particles {
         let i = self.len() - 1;
         for prop in &mut self.props {
             prop.data.extend_from_slice(&prop.default);
-        }
-        for prop in &mut self.sparse {
-            prop.push_none();
         }
         self.nlocal += 1;
         Ok(i)
@@ -539,7 +536,7 @@ impl Particles {
         for prop in &mut self.sparse {
             // Ghosts hold no rows.
             if ghost_of.is_none() {
-                prop.push(&buf[k..k + prop.width]);
+                prop.push(i, &buf[k..k + prop.width]);
             }
             k += prop.width;
         }
@@ -702,15 +699,11 @@ impl Particles {
                     let w = prop.width;
                     prop.data.copy_within(src * w..(src + 1) * w, dst * w);
                 }
-                for prop in &mut self.sparse {
-                    let slots = prop.slots_mut();
-                    slots[dst] = slots[src];
-                }
             }
             dst += 1;
         }
         for prop in &mut self.sparse {
-            prop.truncate(dst);
+            prop.remove(remove);
         }
         let removed = n - dst;
         self.nlocal = dst;
@@ -740,7 +733,7 @@ impl Particles {
             permute_chunks_in_place(&mut prop.data, prop.width, perm, &mut done);
         }
         for prop in &mut self.sparse {
-            permute_in_place(prop.slots_mut(), perm, &mut done);
+            prop.permute(perm);
         }
     }
 

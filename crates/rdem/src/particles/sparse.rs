@@ -1,6 +1,7 @@
 //! Per-particle values that few owned particles hold: a wall's contact history, non-zero
-//! only for the particles near the wall. Each owned particle has a row index (4 bytes)
-//! instead of `width` values; a particle without a row reads zeros.
+//! only for the particles near the wall. The container keeps the list of particles that
+//! hold values (4 bytes each) and their rows; every other particle reads zeros. Nothing
+//! is stored per particle without values.
 //!
 //! The rows follow their particles through the container's operations (sorting,
 //! removal, migration), like a dense property's values. The owner of the values (the
@@ -8,9 +9,6 @@
 //! ([`SparseProperty::keep_rows`]), in candidate order, so that a pass over the
 //! candidates walks the rows in order and chunks of candidates own disjoint row ranges.
 //! Ghosts hold no rows.
-
-/// Row index of a particle without values.
-const NONE: u32 = u32::MAX;
 
 /// Handle of a sparse per-particle property.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -24,22 +22,21 @@ pub struct SparseProperty {
     pub name: String,
     /// Values per particle.
     pub width: usize,
-    /// Row of each owned particle in `data`, or [`NONE`].
-    slot: Vec<u32>,
-    /// Rows of `width` values; rows of removed particles stay until the next
-    /// [`SparseProperty::keep_rows`].
+    /// The owned particles holding rows, ascending: row `c` belongs to `owner[c]`.
+    owner: Vec<u32>,
+    /// Rows of `width` values, one per entry of `owner`.
     pub(crate) data: Vec<f64>,
     /// `width` zeros: the values of a particle without a row.
     zeros: Vec<f64>,
 }
 
 impl SparseProperty {
-    /// An empty property for `nlocal` owned particles (none with a row).
-    pub(crate) fn new(name: &str, width: usize, nlocal: usize) -> Self {
+    /// An empty property (no particle holds values).
+    pub(crate) fn new(name: &str, width: usize) -> Self {
         Self {
             name: name.to_string(),
             width,
-            slot: vec![NONE; nlocal],
+            owner: Vec::new(),
             data: Vec::new(),
             zeros: vec![0.0; width],
         }
@@ -55,113 +52,128 @@ impl SparseProperty {
 
     /// The row of owned particle `i`, if it has one.
     pub fn row_of(&self, i: usize) -> Option<usize> {
-        self.slot
-            .get(i)
-            .copied()
-            .filter(|&s| s != NONE)
-            .map(|s| s as usize)
+        u32::try_from(i)
+            .ok()
+            .and_then(|i| self.owner.binary_search(&i).ok())
     }
 
-    /// Mutable values of owned particle `i`, given a row if it has none.
+    /// Mutable values of owned particle `i`, given a row (of zeros) if it has none.
     pub fn get_mut(&mut self, i: usize) -> &mut [f64] {
         let w = self.width;
-        let r = match self.row_of(i) {
-            Some(r) => r,
-            None => {
-                let r = self.data.len() / w.max(1);
-                self.data.resize((r + 1) * w, 0.0);
-                self.slot[i] = r as u32;
+        let r = match self.owner.binary_search(&(i as u32)) {
+            Ok(r) => r,
+            Err(r) => {
+                self.owner.insert(r, i as u32);
+                self.data.splice(r * w..r * w, self.zeros.iter().copied());
                 r
             }
         };
         &mut self.data[r * w..(r + 1) * w]
     }
 
-    /// Gives rows to exactly the owned particles `keep` (`n` of them): row `c` holds the
-    /// values of `keep[c]` (zeros for one that had none); every other particle loses its
-    /// values.
+    /// Gives rows to exactly the owned particles `keep` (`n` of them, ascending): row `c`
+    /// holds the values of `keep[c]` (zeros for one that had none); every other particle
+    /// loses its values.
     pub fn keep_rows(&mut self, keep: impl IntoIterator<Item = usize>, n: usize) {
         let w = self.width;
+        let mut owner = Vec::with_capacity(n);
         let mut data = Vec::with_capacity(n * w);
-        let old = std::mem::take(&mut self.data);
-        let mut kept: Vec<(usize, u32)> = Vec::with_capacity(n);
-        for (c, i) in keep.into_iter().enumerate() {
-            match self.row_of(i) {
-                Some(r) => data.extend_from_slice(&old[r * w..(r + 1) * w]),
-                None => data.extend_from_slice(&self.zeros),
-            }
-            kept.push((i, c as u32));
+        for i in keep {
+            debug_assert!(owner.last().is_none_or(|&l| (l as usize) < i), "ascending");
+            data.extend_from_slice(self.get(i));
+            owner.push(i as u32);
         }
-        debug_assert_eq!(kept.len(), n);
-        self.slot.fill(NONE);
-        for (i, c) in kept {
-            self.slot[i] = c;
-        }
+        self.owner = owner;
         self.data = data;
     }
 
     /// True when rows `0..rows.len()` belong to the particles `rows` (as after
     /// [`SparseProperty::keep_rows`] with them).
     pub fn rows_match(&self, rows: &[u32]) -> bool {
-        self.data.len() >= rows.len() * self.width
-            && rows
-                .iter()
-                .enumerate()
-                .all(|(c, &i)| self.row_of(i as usize) == Some(c))
+        self.owner == rows
     }
 
     /// The values of the owned particles `0..n`, `width` each (zeros for those without a
     /// row), as a dense property holds them.
     pub fn dense(&self, n: usize) -> Vec<f64> {
-        let mut out = Vec::with_capacity(n * self.width);
-        for i in 0..n {
-            out.extend_from_slice(self.get(i));
+        let mut out = vec![0.0; n * self.width];
+        let w = self.width;
+        for (c, &i) in self.owner.iter().enumerate() {
+            let i = i as usize;
+            if i < n {
+                out[i * w..(i + 1) * w].copy_from_slice(&self.data[c * w..(c + 1) * w]);
+            }
         }
         out
     }
 
     /// Owned particles with a row.
     pub fn rows(&self) -> usize {
-        self.slot.iter().filter(|&&s| s != NONE).count()
+        self.owner.len()
     }
 
-    /// Appends an owned particle with `values` (a row only when one is non-zero).
-    pub(crate) fn push(&mut self, values: &[f64]) {
+    /// Records `values` for the owned particle `i` just appended (a row only when one is
+    /// non-zero: -0.0 counts as non-zero, as in the pair history).
+    pub(crate) fn push(&mut self, i: usize, values: &[f64]) {
         debug_assert_eq!(values.len(), self.width);
-        if values.iter().all(|&v| v == 0.0 && !v.is_sign_negative()) {
-            self.slot.push(NONE);
-        } else {
-            let r = self.data.len() / self.width.max(1);
+        debug_assert!(self.owner.last().is_none_or(|&l| (l as usize) < i));
+        if values.iter().any(|v| v.to_bits() != 0) {
+            self.owner.push(i as u32);
             self.data.extend_from_slice(values);
-            self.slot.push(r as u32);
         }
     }
 
-    /// Appends an owned particle without values.
-    pub(crate) fn push_none(&mut self) {
-        self.slot.push(NONE);
+    /// Follows a reordering of the owned particles: new index `i` holds what was at
+    /// `perm[i]`.
+    pub(crate) fn permute(&mut self, perm: &[usize]) {
+        if self.owner.is_empty() {
+            return;
+        }
+        let w = self.width;
+        let mut owner = Vec::with_capacity(self.owner.len());
+        let mut data = Vec::with_capacity(self.data.len());
+        for (i, &old) in perm.iter().enumerate() {
+            if let Some(r) = self.row_of(old) {
+                owner.push(i as u32);
+                data.extend_from_slice(&self.data[r * w..(r + 1) * w]);
+            }
+        }
+        self.owner = owner;
+        self.data = data;
     }
 
-    /// Keeps the owned particles `0..n` (called when particles are removed from the end).
-    pub(crate) fn truncate(&mut self, n: usize) {
-        self.slot.truncate(n);
-    }
-
-    /// The row indices, one per owned particle (for the container's permutation and
-    /// compaction).
-    pub(crate) fn slots_mut(&mut self) -> &mut Vec<u32> {
-        &mut self.slot
+    /// Follows the removal of the owned particles with `remove[i]` true (the others
+    /// keep their order).
+    pub(crate) fn remove(&mut self, remove: &[bool]) {
+        let w = self.width;
+        let (mut kept, mut gone, mut c) = (0, 0usize, 0);
+        let mut next = 0;
+        for r in 0..self.owner.len() {
+            let i = self.owner[r] as usize;
+            // Removed particles below i.
+            gone += remove[next..i].iter().filter(|&&g| g).count();
+            next = i;
+            if remove[i] {
+                continue;
+            }
+            self.owner[kept] = (i - gone) as u32;
+            self.data.copy_within(r * w..(r + 1) * w, c);
+            kept += 1;
+            c += w;
+        }
+        self.owner.truncate(kept);
+        self.data.truncate(c);
     }
 
     /// Gives back spare capacity.
     pub(crate) fn shrink_to_fit(&mut self) {
-        self.slot.shrink_to_fit();
+        self.owner.shrink_to_fit();
         self.data.shrink_to_fit();
     }
 
     /// Bytes held.
     pub(crate) fn memory_bytes(&self) -> usize {
-        self.slot.capacity() * std::mem::size_of::<u32>()
+        self.owner.capacity() * std::mem::size_of::<u32>()
             + (self.data.capacity() + self.zeros.capacity()) * std::mem::size_of::<f64>()
     }
 }
@@ -172,7 +184,7 @@ mod tests {
 
     #[test]
     fn rows_follow_keep_and_zeros_elsewhere() {
-        let mut s = SparseProperty::new("h", 2, 4);
+        let mut s = SparseProperty::new("h", 2);
         assert_eq!(s.get(2), &[0.0, 0.0]);
         s.get_mut(2).copy_from_slice(&[1.0, 2.0]);
         s.get_mut(0).copy_from_slice(&[3.0, 4.0]);
@@ -189,14 +201,40 @@ mod tests {
 
     #[test]
     fn push_gives_rows_to_non_zero_values_only() {
-        let mut s = SparseProperty::new("h", 2, 0);
-        s.push(&[0.0, 0.0]);
-        s.push(&[0.0, -0.0]);
-        s.push(&[5.0, 0.0]);
+        let mut s = SparseProperty::new("h", 2);
+        s.push(0, &[0.0, 0.0]);
+        s.push(1, &[0.0, -0.0]);
+        s.push(2, &[5.0, 0.0]);
         assert_eq!(s.rows(), 2, "-0.0 is kept, as the pair history keeps it");
         assert_eq!(s.get(1), &[0.0, -0.0]);
         assert_eq!(s.get(2), &[5.0, 0.0]);
-        s.truncate(1);
-        assert_eq!(s.rows(), 0);
+        assert_eq!(s.dense(3), vec![0.0, 0.0, 0.0, -0.0, 5.0, 0.0]);
+    }
+
+    #[test]
+    fn rows_follow_permutation_and_removal() {
+        // Particles 0..6, values 10 + i for 1, 3, 4.
+        let mut s = SparseProperty::new("h", 1);
+        for i in [1, 3, 4] {
+            s.get_mut(i)[0] = 10.0 + i as f64;
+        }
+        let perm = [4, 0, 5, 1, 3, 2];
+        s.permute(&perm);
+        let want: Vec<f64> = perm
+            .iter()
+            .map(|&o| {
+                if [1, 3, 4].contains(&o) {
+                    10.0 + o as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        assert_eq!(s.dense(6), want);
+        // Remove new indices 0 (old 4, with values), 2 (old 5) and 5 (old 2).
+        let remove = [true, false, true, false, false, true];
+        s.remove(&remove);
+        assert_eq!(s.dense(3), vec![0.0, 11.0, 13.0]);
+        assert!(s.rows_match(&[1, 2]));
     }
 }
