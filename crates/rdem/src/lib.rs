@@ -22,6 +22,7 @@ pub mod mesh_motion;
 pub mod mesh_servo;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;
+pub mod multisphere;
 pub mod neighbor;
 pub mod pair;
 pub mod par;
