@@ -100,18 +100,28 @@ pub struct Exclusions {
     pub types: Vec<(u32, u32)>,
     /// `exclude group G1 G2` as group bit masks: one particle in G1, the other in G2.
     pub groups: Vec<(u32, u32)>,
+    /// Pairs whose values of this per-particle property are equal and not zero: the
+    /// spheres of one rigid clump ([`crate::multisphere`]; LIGGGHTS' `fix multisphere`
+    /// excludes them so).
+    pub same_body: Option<crate::particles::PropId>,
 }
 
 impl Exclusions {
     /// True when nothing is excluded.
     pub fn is_empty(&self) -> bool {
-        self.types.is_empty() && self.groups.is_empty()
+        self.types.is_empty() && self.groups.is_empty() && self.same_body.is_none()
     }
 
     /// True when the pair (i, j) is excluded.
     pub fn excludes(&self, p: &Particles, i: usize, j: usize) -> bool {
         let (ti, tj) = (p.ty[i], p.ty[j]);
         let (mi, mj) = (p.mask[i], p.mask[j]);
+        if let Some(id) = self.same_body {
+            let b = &p.props[id.0].data;
+            if b[i] != 0.0 && b[i] == b[j] {
+                return true;
+            }
+        }
         self.types
             .iter()
             .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))

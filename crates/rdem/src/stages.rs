@@ -340,6 +340,7 @@ impl World {
                 _ => {}
             }
         }
+        self.initial_integrate_bodies();
     }
 
     /// Step 3: the meshes with `fix move/mesh` motions moved to the current time.
@@ -560,6 +561,7 @@ impl World {
                 _ => {}
             }
         }
+        self.final_integrate_bodies();
         if let Some(pair) = &self.pair {
             pair.integrate_liquid(&mut self.particles, self.dt);
         }

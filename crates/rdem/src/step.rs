@@ -15,7 +15,8 @@
 //! 1. `step += 1`
 //! 2. initial integrate (`nve/sphere`: half kick, drift; `move`: the prescribed positions
 //!    and velocities, velocity Verlet for its NULL components; heat conduction: the heat
-//!    flows zeroed) [Modify]
+//!    flows zeroed); then the rigid clumps (`rdem::multisphere`): each body's half kick,
+//!    drift and rotation, its spheres placed and moving with it [Modify]
 //! 3. mesh motion (`move/mesh`) to the step's time; servo meshes
 //!    (`mesh/surface/stress/servo`) translated by the velocity their controller set at
 //!    the end of the previous step (LIGGGHTS moves them in `initial_integrate`) [Modify]
@@ -49,7 +50,8 @@
 //!     controllers: each active servo
 //!     reads its mesh's total force of step 11 (summed over ranks) and sets the wall
 //!     velocity for the next step (LIGGGHTS' `final_integrate`, after the force pass)
-//!     [Modify]
+//!     [Modify]; then the rigid clumps: each body's force and torque summed from its
+//!     spheres (gravity at the centre of mass), its half kick, its spheres' velocities
 //! 14. finiteness check of positions and velocities [Other]
 //! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
 //! 16. the front end's end-of-step fixes (rdem-script's `Stages::END_OF_STEP`:
@@ -72,10 +74,12 @@
 //!    within the material table when a pair style or a wall uses it
 //! 2. pair style: coefficient mixing and bond table, contact history layout, bond reach
 //!    (at most 10 diameters of the smallest particle), the `tsCreateBond` warning
-//! 3. walls in definition order: coefficient tables, history properties
+//! 3. walls in definition order: coefficient tables, history properties; rigid clumps:
+//!    one rank and no periodic boundary so far, a body's spheres excluded from each other
 //! 4. mesh motion to the current time
 //! 5. full re-neighboring (below)
-//! 6. forces: steps 6–12 of a timestep, without advancing contact history (as LIGGGHTS)
+//! 6. forces: steps 6–12 of a timestep, without advancing contact history (as LIGGGHTS);
+//!    each rigid clump's force and torque summed from them
 //!
 //! # Full re-neighboring ([`World::reneighbor`])
 //!
@@ -257,10 +261,12 @@ impl World {
         self.setup_pair()?;
         self.apply_restored_history();
         self.setup_walls()?;
+        self.setup_multisphere()?;
         self.move_meshes();
         self.reneighbor_then(Particles::shrink_to_fit)?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
+        self.sum_body_forces();
         self.needs_reneighbor = false;
         self.rebuild_next = false;
         Ok(())

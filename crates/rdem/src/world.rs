@@ -97,6 +97,8 @@ pub struct World {
     pub virial_step: Option<u64>,
     /// Heat conduction through contacts (`fix heat/gran/conduction`), if any.
     pub heat: Option<crate::heat::HeatConduction>,
+    /// Rigid clumps (`fix multisphere`), if any.
+    pub multisphere: Option<crate::multisphere::Multisphere>,
     pub(crate) next_sort: u64,
     /// Contact histories read from a restart file, for the next set-up.
     pub(crate) restored_history: Option<crate::restart::HistoryState>,
@@ -128,6 +130,7 @@ impl World {
             virial: Vec::new(),
             virial_step: None,
             heat: None,
+            multisphere: None,
             next_sort: 0,
             restored_history: None,
             needs_reneighbor: true,

@@ -1,0 +1,239 @@
+//! The rigid clumps of a world (`fix multisphere`) and their place in the step.
+//!
+//! Each clump is a [`RigidBody`] and a set of member spheres, ordinary particles that
+//! carry two named properties: the body's tag ([`BODY_PROP`], 0 for a free sphere) and
+//! their centre in the body frame ([`OFFSET_PROP`]). Being properties, both travel with
+//! their particles through sorting, removal and restarts. The step:
+//!
+//! - initial integrate: every body's half kick, drift and rotation, then its spheres put
+//!   where the body says (x = X + R d, v = V + ω × R d, ω of the body);
+//! - the forces as usual; pairs of spheres of one body are left out of the neighbor list
+//!   ([`crate::neighbor::Exclusions::same_body`]);
+//! - final integrate: each body's force and torque summed from its spheres, its half
+//!   kick, and its spheres' velocities set again.
+//!
+//! Gravity: `fix gravity` acts on the spheres as on any particle (their masses are the
+//! body's mass shared in proportion to their volumes, so they add up to it), but the
+//! torque about the centre of mass leaves it out: gravity acts at the centre of mass, as
+//! LIGGGHTS applies it to the body and not to its spheres.
+//!
+//! Not yet: contacts use the spheres' own masses for the effective mass m* (LIGGGHTS uses
+//! the body's), and bodies on periodic boundaries or on several ranks are refused.
+
+use std::collections::HashMap;
+
+use glam::{DQuat, DVec3};
+
+use super::{ClumpTemplate, RigidBody};
+use crate::error::{Error, Result};
+use crate::fix::FixKind;
+use crate::particles::{NewParticle, PropId};
+use crate::world::World;
+
+/// Per-particle property: the tag of the body a sphere belongs to (0: none).
+pub const BODY_PROP: &str = "multisphere_body";
+/// Per-particle property: a member sphere's centre in its body's frame.
+pub const OFFSET_PROP: &str = "multisphere_offset";
+
+/// The rigid clumps of a world.
+#[derive(Debug, Clone, Default)]
+pub struct Multisphere {
+    /// The bodies.
+    pub bodies: Vec<RigidBody>,
+    /// Each body's tag (from 1), as its spheres' [`BODY_PROP`] holds it.
+    pub tags: Vec<u64>,
+}
+
+impl Multisphere {
+    /// The index in [`Multisphere::bodies`] of each body tag.
+    fn slots(&self) -> HashMap<u64, usize> {
+        self.tags.iter().enumerate().map(|(k, &t)| (t, k)).collect()
+    }
+}
+
+/// A clump to add: where, how it is turned and how it moves.
+#[derive(Debug, Clone, Copy)]
+pub struct NewClump {
+    /// Centre of mass.
+    pub x: DVec3,
+    /// Orientation (body frame to space frame).
+    pub q: DQuat,
+    /// Velocity of the centre of mass.
+    pub v: DVec3,
+    /// Angular velocity (space frame).
+    pub omega: DVec3,
+    /// Atom type of the spheres.
+    pub ty: u32,
+    /// Group bit mask of the spheres.
+    pub mask: u32,
+}
+
+impl World {
+    /// Adds a clump of `template` as `c` says: its spheres as particles, its body to
+    /// [`World::multisphere`] (made if there is none). Returns the body's tag.
+    pub fn add_clump(&mut self, template: &ClumpTemplate, c: &NewClump) -> Result<u64> {
+        let (body_id, offset_id) = self.multisphere_props()?;
+        let ms = self.multisphere.get_or_insert_with(Multisphere::default);
+        let tag = ms.tags.last().map_or(1, |t| t + 1);
+        let mut body = RigidBody::at_rest(template.props.mass, template.moments, c.x, c.q);
+        body.v = c.v;
+        body.set_omega(c.omega);
+        let vol: f64 = template.spheres.iter().map(|s| s.r.powi(3)).sum();
+        let omega = body.omega();
+        for s in &template.spheres {
+            let (x, v) = body.point(s.x);
+            // The sphere's share of the body's mass, by volume.
+            let share = template.props.mass * s.r.powi(3) / vol;
+            let density = share / (4.0 / 3.0 * std::f64::consts::PI * s.r.powi(3));
+            let i = self.add_particle(&NewParticle {
+                tag: 0,
+                ty: c.ty,
+                mask: c.mask,
+                x,
+                v,
+                omega,
+                radius: s.r,
+                density,
+            })?;
+            let p = &mut self.particles;
+            p.props[body_id.0].data[i] = tag as f64;
+            p.props[offset_id.0].data[3 * i..3 * i + 3].copy_from_slice(&s.x.to_array());
+        }
+        let ms = self.multisphere.get_or_insert_with(Multisphere::default);
+        ms.bodies.push(body);
+        ms.tags.push(tag);
+        Ok(tag)
+    }
+
+    /// The two member properties, added if missing.
+    fn multisphere_props(&mut self) -> Result<(PropId, PropId)> {
+        let p = &mut self.particles;
+        let body = match p.property(BODY_PROP) {
+            Some(id) => id,
+            None => p.add_property(BODY_PROP, 1, &[0.0])?,
+        };
+        let offset = match p.property(OFFSET_PROP) {
+            Some(id) => id,
+            None => p.add_property(OFFSET_PROP, 3, &[0.0; 3])?,
+        };
+        Ok((body, offset))
+    }
+
+    /// Set-up: the checks, and the spheres of one body excluded from each other.
+    pub(crate) fn setup_multisphere(&mut self) -> Result<()> {
+        if self.multisphere.is_none() {
+            return Ok(());
+        }
+        if self.comm.size() > 1 {
+            return Err(Error::Invalid {
+                what: "fix multisphere",
+                reason: "runs on one rank only so far (LIGGGHTS-PUBLIC too)".into(),
+            });
+        }
+        if self.domain.periodicity().iter().any(|&p| p) {
+            return Err(Error::Invalid {
+                what: "fix multisphere",
+                reason: "periodic boundaries are not supported with clumps yet".into(),
+            });
+        }
+        let (body, _) = self.multisphere_props()?;
+        self.neighbor.exclude.same_body = Some(body);
+        Ok(())
+    }
+
+    /// Step 2 (after the integrating fixes): every body's first half step, then its
+    /// spheres placed and moving with it.
+    pub(crate) fn initial_integrate_bodies(&mut self) {
+        let Some(ms) = &mut self.multisphere else {
+            return;
+        };
+        for b in &mut ms.bodies {
+            b.initial_integrate(self.dt);
+        }
+        self.place_members(true);
+    }
+
+    /// Step 13 (after the integrating fixes): every body's force and torque from its
+    /// spheres, its second half kick, and its spheres' velocities.
+    pub(crate) fn final_integrate_bodies(&mut self) {
+        if self.multisphere.is_none() {
+            return;
+        }
+        self.sum_body_forces();
+        if let Some(ms) = &mut self.multisphere {
+            for b in &mut ms.bodies {
+                b.final_integrate(self.dt);
+            }
+        }
+        self.place_members(false);
+    }
+
+    /// Each body's total force and torque about its centre of mass from its owned
+    /// spheres, in particle order; the torque leaves out the gravity of the `fix gravity`
+    /// fixes (gravity acts at the centre of mass).
+    pub(crate) fn sum_body_forces(&mut self) {
+        let Some(ms) = &mut self.multisphere else {
+            return;
+        };
+        let p = &self.particles;
+        let (Some(body_id), Some(offset_id)) = (p.property(BODY_PROP), p.property(OFFSET_PROP))
+        else {
+            return;
+        };
+        let gravity: Vec<(u32, DVec3)> = self
+            .fixes
+            .iter()
+            .filter_map(|f| match f.kind {
+                FixKind::Gravity { accel } => Some((f.groupbit, accel)),
+                _ => None,
+            })
+            .collect();
+        let slots = ms.slots();
+        for b in &mut ms.bodies {
+            b.force = DVec3::ZERO;
+            b.torque = DVec3::ZERO;
+        }
+        let (tags, offsets) = (&p.props[body_id.0].data, &p.props[offset_id.0].data);
+        for i in 0..p.nlocal() {
+            let Some(&k) = slots.get(&(tags[i] as u64)) else {
+                continue;
+            };
+            let b = &mut ms.bodies[k];
+            let d = b.q * DVec3::from_slice(&offsets[3 * i..3 * i + 3]);
+            let g: DVec3 = gravity
+                .iter()
+                .filter(|(bit, _)| p.mask[i] & bit != 0)
+                .map(|(_, a)| p.rmass[i] * *a)
+                .sum();
+            b.force += p.f[i];
+            b.torque += d.cross(p.f[i] - g) + p.torque[i];
+        }
+    }
+
+    /// The spheres of every body where it says (with `positions`) and moving with it.
+    fn place_members(&mut self, positions: bool) {
+        let Some(ms) = &self.multisphere else {
+            return;
+        };
+        let p = &mut self.particles;
+        let (Some(body_id), Some(offset_id)) = (p.property(BODY_PROP), p.property(OFFSET_PROP))
+        else {
+            return;
+        };
+        let slots = ms.slots();
+        let omegas: Vec<DVec3> = ms.bodies.iter().map(RigidBody::omega).collect();
+        for i in 0..p.nlocal() {
+            let Some(&k) = slots.get(&(p.props[body_id.0].data[i] as u64)) else {
+                continue;
+            };
+            let b = &ms.bodies[k];
+            let off = &p.props[offset_id.0].data[3 * i..3 * i + 3];
+            let r = b.q * DVec3::from_slice(off);
+            if positions {
+                p.x[i] = b.x + r;
+            }
+            p.v[i] = b.v + omegas[k].cross(r);
+            p.omega[i] = omegas[k];
+        }
+    }
+}
