@@ -114,14 +114,14 @@ impl Exclusions {
 
     /// True when the pair (i, j) is excluded.
     pub fn excludes(&self, p: &Particles, i: usize, j: usize) -> bool {
-        let (ti, tj) = (p.ty[i], p.ty[j]);
-        let (mi, mj) = (p.mask[i], p.mask[j]);
         if let Some(id) = self.same_body {
             let b = &p.props[id.0].data;
             if b[i] != 0.0 && b[i] == b[j] {
                 return true;
             }
         }
+        let (ti, tj) = (p.ty[i], p.ty[j]);
+        let (mi, mj) = (p.mask[i], p.mask[j]);
         self.types
             .iter()
             .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))

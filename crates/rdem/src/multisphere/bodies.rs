@@ -27,7 +27,7 @@ use glam::{DQuat, DVec3};
 use super::{ClumpTemplate, RigidBody};
 use crate::error::{Error, Result};
 use crate::fix::FixKind;
-use crate::particles::{NewParticle, PropId};
+use crate::particles::{sphere_mass, NewParticle, PropId};
 use crate::world::World;
 
 /// Per-particle property: the tag of the body a sphere belongs to (0: none).
@@ -73,8 +73,8 @@ impl World {
     /// [`World::multisphere`] (made if there is none). Returns the body's tag.
     pub fn add_clump(&mut self, template: &ClumpTemplate, c: &NewClump) -> Result<u64> {
         let (body_id, offset_id) = self.multisphere_props()?;
-        let ms = self.multisphere.get_or_insert_with(Multisphere::default);
-        let tag = ms.tags.last().map_or(1, |t| t + 1);
+        let last = self.multisphere.as_ref().and_then(|ms| ms.tags.last());
+        let tag = last.map_or(1, |t| t + 1);
         let mut body = RigidBody::at_rest(template.props.mass, template.moments, c.x, c.q);
         body.v = c.v;
         body.set_omega(c.omega);
@@ -84,7 +84,7 @@ impl World {
             let (x, v) = body.point(s.x);
             // The sphere's share of the body's mass, by volume.
             let share = template.props.mass * s.r.powi(3) / vol;
-            let density = share / (4.0 / 3.0 * std::f64::consts::PI * s.r.powi(3));
+            let density = share / sphere_mass(1.0, s.r);
             let i = self.add_particle(&NewParticle {
                 tag: 0,
                 ty: c.ty,
@@ -117,6 +117,14 @@ impl World {
             None => p.add_property(OFFSET_PROP, 3, &[0.0; 3])?,
         };
         Ok((body, offset))
+    }
+
+    /// The two member properties and each body tag's index in [`Multisphere::bodies`]
+    /// (`None` without clumps).
+    fn members(&self) -> Option<(PropId, PropId, HashMap<u64, usize>)> {
+        let ms = self.multisphere.as_ref()?;
+        let p = &self.particles;
+        Some((p.property(BODY_PROP)?, p.property(OFFSET_PROP)?, ms.slots()))
     }
 
     /// Set-up: the checks, and the spheres of one body excluded from each other.
@@ -172,14 +180,13 @@ impl World {
     /// spheres, in particle order; the torque leaves out the gravity of the `fix gravity`
     /// fixes (gravity acts at the centre of mass).
     pub(crate) fn sum_body_forces(&mut self) {
+        let Some((body_id, offset_id, slots)) = self.members() else {
+            return;
+        };
         let Some(ms) = &mut self.multisphere else {
             return;
         };
         let p = &self.particles;
-        let (Some(body_id), Some(offset_id)) = (p.property(BODY_PROP), p.property(OFFSET_PROP))
-        else {
-            return;
-        };
         let gravity: Vec<(u32, DVec3)> = self
             .fixes
             .iter()
@@ -188,7 +195,6 @@ impl World {
                 _ => None,
             })
             .collect();
-        let slots = ms.slots();
         for b in &mut ms.bodies {
             b.force = DVec3::ZERO;
             b.torque = DVec3::ZERO;
@@ -212,15 +218,13 @@ impl World {
 
     /// The spheres of every body where it says (with `positions`) and moving with it.
     fn place_members(&mut self, positions: bool) {
+        let Some((body_id, offset_id, slots)) = self.members() else {
+            return;
+        };
         let Some(ms) = &self.multisphere else {
             return;
         };
         let p = &mut self.particles;
-        let (Some(body_id), Some(offset_id)) = (p.property(BODY_PROP), p.property(OFFSET_PROP))
-        else {
-            return;
-        };
-        let slots = ms.slots();
         let omegas: Vec<DVec3> = ms.bodies.iter().map(RigidBody::omega).collect();
         for i in 0..p.nlocal() {
             let Some(&k) = slots.get(&(p.props[body_id.0].data[i] as u64)) else {
