@@ -69,11 +69,14 @@ pub enum Field {
     Diameter,
     /// `density`.
     Density,
+    /// `mol`: the tag of the clump a sphere belongs to (`fix multisphere`), 0 for a free
+    /// sphere, as LIGGGHTS writes it.
+    Mol,
 }
 
 impl Field {
     /// Every field, in the order of [`Field::NAMES`].
-    pub const ALL: [Field; 30] = [
+    pub const ALL: [Field; 31] = [
         Field::Id,
         Field::Type,
         Field::Mass,
@@ -104,13 +107,14 @@ impl Field {
         Field::Radius,
         Field::Diameter,
         Field::Density,
+        Field::Mol,
     ];
 
     /// Every valid name, for error messages ("expected one of ...").
-    pub const NAMES: [&'static str; 30] = [
+    pub const NAMES: [&'static str; 31] = [
         "id", "type", "mass", "x", "y", "z", "xs", "ys", "zs", "xu", "yu", "zu", "ix", "iy", "iz",
         "vx", "vy", "vz", "fx", "fy", "fz", "omegax", "omegay", "omegaz", "tqx", "tqy", "tqz",
-        "radius", "diameter", "density",
+        "radius", "diameter", "density", "mol",
     ];
 
     /// The field called `name` in a `dump custom` command.
@@ -126,11 +130,11 @@ impl Field {
         Self::NAMES[self as usize]
     }
 
-    /// True for integer quantities (`id`, `type`, `ix`, `iy`, `iz`), written with `%d`.
+    /// True for integer quantities (`id`, `type`, `ix`, `iy`, `iz`, `mol`), written with `%d`.
     pub fn is_integer(self) -> bool {
         matches!(
             self,
-            Field::Id | Field::Type | Field::Ix | Field::Iy | Field::Iz
+            Field::Id | Field::Type | Field::Ix | Field::Iy | Field::Iz | Field::Mol
         )
     }
 
@@ -170,6 +174,9 @@ impl Field {
             Field::Radius => p.radius[i],
             Field::Diameter => 2.0 * p.radius[i],
             Field::Density => p.density[i],
+            Field::Mol => p
+                .property(rdem::multisphere::bodies::BODY_PROP)
+                .map_or(0.0, |id| p.props[id.0].data[i]),
         }
     }
 
@@ -181,6 +188,7 @@ impl Field {
             Field::Ix => Value::Int(p.image[i].get()[0] as i64),
             Field::Iy => Value::Int(p.image[i].get()[1] as i64),
             Field::Iz => Value::Int(p.image[i].get()[2] as i64),
+            Field::Mol => Value::Int(self.value(p, d, i) as i64),
             _ => Value::Float(self.value(p, d, i)),
         }
     }

@@ -22,7 +22,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use rdem::restart::{HistoryState, RankState, WorldValues};
+use rdem::restart::{HistoryState, ParticleState, RankState, WorldValues};
 use rdem::{Boundary, Domain, World};
 use serde::{Deserialize, Serialize};
 
@@ -247,7 +247,19 @@ fn decode(payload: &[u8]) -> Result<RestartContents, String> {
     let nb = c.len()?;
     let mut ranks = Vec::with_capacity(nb.min(1 << 16));
     for _ in 0..nb {
-        ranks.push(c.block()?);
+        let n = c.len()?;
+        let bytes = c.take(n)?;
+        // Files of rdem before clumps end a rank's block at its histories.
+        let rank = postcard::from_bytes::<RankState>(bytes).or_else(|e| {
+            postcard::from_bytes::<(ParticleState, HistoryState)>(bytes)
+                .map(|(particles, history)| RankState {
+                    particles,
+                    history,
+                    bodies: None,
+                })
+                .map_err(|_| e.to_string())
+        })?;
+        ranks.push(rank);
     }
     Ok(RestartContents { head, ranks })
 }
@@ -282,6 +294,9 @@ pub(crate) fn restore(
     for r in &c.ranks {
         w.restore_particles(&r.particles)
             .map_err(|e| e.to_string())?;
+        if let Some(b) = &r.bodies {
+            w.restore_bodies(b);
+        }
         props.extend(r.particles.props.iter().map(|q| q.name.clone()));
         if !r.history.entries.is_empty() {
             history.width = r.history.width;

@@ -1228,7 +1228,11 @@ impl PairPass<'_> {
             v: &p.v,
             omega: &p.omega,
             radius: &p.radius,
-            rmass: &p.rmass,
+            rmass: if p.mass_of_contact.is_empty() {
+                &p.rmass
+            } else {
+                &p.mass_of_contact
+            },
             ty: &p.ty,
             dt,
             update,

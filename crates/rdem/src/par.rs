@@ -43,6 +43,8 @@ pub(crate) struct View<'a> {
     pub omega: &'a [DVec3],
     pub radius: &'a [f64],
     pub rmass: &'a [f64],
+    /// The contact masses ([`crate::particles::Particles::contact_mass`]).
+    pub mcontact: &'a [f64],
     pub ty: &'a [u32],
     pub mask: &'a [u32],
 }
@@ -71,6 +73,7 @@ impl<'a> View<'a> {
             torque,
             props,
             sparse,
+            mass_of_contact,
             ..
         } = p;
         let view = View {
@@ -78,6 +81,11 @@ impl<'a> View<'a> {
             v,
             omega,
             radius,
+            mcontact: if mass_of_contact.is_empty() {
+                rmass
+            } else {
+                mass_of_contact
+            },
             rmass,
             ty,
             mask,

@@ -158,6 +158,11 @@ pub struct Particles {
     pub props: Vec<Property>,
     /// Named properties held for few owned particles ([`SparseProperty`]).
     pub sparse: Vec<SparseProperty>,
+    /// With rigid clumps only (else empty): the mass each particle's contacts use for
+    /// their effective mass, its body's for a clump's sphere and its own otherwise (as
+    /// LIGGGHTS does), refreshed before each force computation
+    /// ([`Particles::contact_mass`]).
+    pub mass_of_contact: Vec<f64>,
 }
 
 /// Applies `new[i] = old[perm[i]]` in place, cycle by cycle with one temporary
@@ -296,6 +301,16 @@ impl Particles {
                 .filter(|p| p.forward)
                 .map(|p| p.width)
                 .sum::<usize>()
+    }
+
+    /// The masses contacts use for their effective mass: [`Particles::mass_of_contact`]
+    /// when clumps exist, else [`Particles::rmass`].
+    pub fn contact_mass(&self) -> &[f64] {
+        if self.mass_of_contact.is_empty() {
+            &self.rmass
+        } else {
+            &self.mass_of_contact
+        }
     }
 
     /// Handle of the property called `name`.

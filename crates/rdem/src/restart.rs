@@ -84,6 +84,29 @@ pub struct HistoryState {
     pub entries: Vec<f64>,
 }
 
+/// One rigid clump of a restart file ([`crate::multisphere::RigidBody`] and its tag).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct BodyState {
+    /// The tag its spheres carry.
+    pub tag: u64,
+    /// Mass.
+    pub mass: f64,
+    /// Principal moments of inertia.
+    pub moments: [f64; 3],
+    /// Centre of mass.
+    pub x: [f64; 3],
+    /// Velocity of the centre of mass.
+    pub v: [f64; 3],
+    /// Orientation (body frame to space frame): x, y, z, w.
+    pub q: [f64; 4],
+    /// Angular momentum (space frame).
+    pub angmom: [f64; 3],
+    /// Translational switches.
+    pub fflag: [bool; 3],
+    /// Rotational switches.
+    pub tflag: [bool; 3],
+}
+
 /// One rank's share of a restart file.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct RankState {
@@ -91,6 +114,8 @@ pub struct RankState {
     pub particles: ParticleState,
     /// Its contact histories.
     pub history: HistoryState,
+    /// Its rigid clumps (`fix multisphere`), `None` without that fix.
+    pub bodies: Option<Vec<BodyState>>,
 }
 
 /// World-wide engine values of a restart file.
@@ -154,6 +179,48 @@ impl World {
         RankState {
             particles,
             history: self.neighbor.history_state(p),
+            bodies: self.multisphere.as_ref().map(|ms| {
+                ms.bodies
+                    .iter()
+                    .zip(&ms.tags)
+                    .map(|(b, &tag)| BodyState {
+                        tag,
+                        mass: b.mass,
+                        moments: arr(b.moments),
+                        x: arr(b.x),
+                        v: arr(b.v),
+                        q: b.q.to_array(),
+                        angmom: arr(b.angmom),
+                        fflag: b.fflag,
+                        tflag: b.tflag,
+                    })
+                    .collect()
+            }),
+        }
+    }
+
+    /// Adds the rigid clumps of a restart file (their spheres come with the particles).
+    pub fn restore_bodies(&mut self, bodies: &[BodyState]) {
+        let ms = self.multisphere.get_or_insert_with(Default::default);
+        for b in bodies {
+            let mut body = crate::multisphere::RigidBody::at_rest(
+                b.mass,
+                DVec3::from(b.moments),
+                DVec3::from(b.x),
+                glam::DQuat::from_array(b.q),
+            );
+            body.v = DVec3::from(b.v);
+            body.angmom = DVec3::from(b.angmom);
+            body.fflag = b.fflag;
+            body.tflag = b.tflag;
+            ms.bodies.push(body);
+            ms.tags.push(b.tag);
+        }
+        if let Some(id) = self
+            .particles
+            .property(crate::multisphere::bodies::BODY_PROP)
+        {
+            self.neighbor.exclude.same_body = Some(id);
         }
     }
 

@@ -203,6 +203,8 @@ impl World {
                 step: self.step,
             });
         }
+        let mut lost = lost;
+        self.remove_whole_bodies(&mut lost);
         self.particles.remove_locals(&lost);
         self.lost += nlost;
         if self.lost_policy == LostPolicy::Warn {
@@ -459,6 +461,7 @@ impl World {
     /// Step 6: forces and torques zeroed; the walls told the step (bonds are created at
     /// a given step).
     pub(crate) fn clear_forces(&mut self) {
+        self.refresh_contact_mass();
         let p = &mut self.particles;
         crate::par::zero(&mut p.f, &mut p.torque);
         for fix in &mut self.fixes {

@@ -176,14 +176,16 @@ impl World {
     }
 
     /// Removes the owned particles whose `remove` entry is true (their contact history
-    /// goes with them); the next step re-neighbors (without a new set-up: the others
+    /// goes with them; a clump goes whole with any of its spheres); the next step re-neighbors (without a new set-up: the others
     /// carry on as if nothing happened).
     pub fn remove_particles(&mut self, remove: &[bool]) -> usize {
         if self.particles.nghost() > 0 {
             self.neighbor.save_history(&self.particles);
             self.particles.clear_ghosts();
         }
-        let n = self.particles.remove_locals(remove);
+        let mut remove = remove.to_vec();
+        self.remove_whole_bodies(&mut remove);
+        let n = self.particles.remove_locals(&remove);
         self.rebuild_next = true;
         self.virial_step = None;
         n
@@ -211,7 +213,8 @@ impl World {
         if flags.iter().all(|&v| v == 0.0) {
             return;
         }
-        let marked: Vec<bool> = flags.iter().map(|&v| v != 0.0).collect();
+        let mut marked: Vec<bool> = flags.iter().map(|&v| v != 0.0).collect();
+        self.remove_whole_bodies(&mut marked);
         self.particles.remove_locals(&marked);
         self.virial_step = None;
     }

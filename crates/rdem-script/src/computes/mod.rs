@@ -12,6 +12,7 @@ mod energy_atom;
 mod erotate_sphere;
 mod ke;
 pub mod kernels;
+mod multisphere;
 mod nbond_atom;
 mod pair_gran_local;
 mod pair_gran_local_bond;
@@ -155,6 +156,8 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
     rows: &[
         erotate_sphere::ROW,
         erotate_sphere::ROW_ALL,
+        multisphere::ROW_EROTATE,
+        multisphere::ROW_KE,
         energy_atom::ROW_EROTATE,
         ke::ROW,
         energy_atom::ROW_KE,

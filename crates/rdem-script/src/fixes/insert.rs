@@ -3,7 +3,7 @@
 //! N steps or at a rate. They act in the step's pre-exchange stage, after the initial
 //! integration, as LIGGGHTS' insertion fixes do.
 
-use rdem::insert::{InsertPack, PackTarget, VelocityLaw};
+use rdem::insert::{InsertPack, Orientation, PackTarget, VelocityLaw};
 use rdem::World;
 
 use glam::DVec3;
@@ -14,12 +14,36 @@ use crate::diagnostic::one_of;
 use crate::sim::Sim;
 use crate::variables::format_e;
 
+/// `orientation random|template|constant q0 q1 q2 q3` (the words after the keyword): how
+/// inserted clumps are turned; a constant quaternion (normalised) turns the template as
+/// its spheres were given.
+pub(super) fn orientation_law(a: &mut Args) -> CmdResult<Orientation> {
+    Ok(
+        match a.keyword("orientation", &["random", "template", "constant"])? {
+            "random" => Orientation::Random,
+            "template" => Orientation::Template,
+            _ => {
+                let at = a.pos();
+                let mut q = [0.0; 4];
+                for (k, c) in ["q0", "q1", "q2", "q3"].iter().enumerate() {
+                    q[k] = a.f64(&format!("quaternion {c}"))?;
+                }
+                let quat = glam::DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
+                if quat.length() == 0.0 || !quat.is_finite() {
+                    return Err(a.error_at(at, "the quaternion must not be zero", None));
+                }
+                Orientation::Constant(quat.normalize())
+            }
+        },
+    )
+}
+
 /// The registry row of `insert/pack`.
 pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
-    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `start`; `ntry_mc`, `verbose`",
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`",
 )
 .notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not")
 .atoi();
@@ -134,7 +158,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let stream = style == "insert/stream";
     let rate = style == "insert/rate/region" || stream;
     // Keywords of every style, then each style's own (in LIGGGHTS' manual order).
-    const COMMON: [&str; 10] = [
+    const COMMON: [&str; 11] = [
         "seed",
         "distributiontemplate",
         "verbose",
@@ -145,6 +169,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         "random_distribute",
         "vel",
         "omega",
+        "orientation",
     ];
     let own: &[&'static str] = if stream {
         &[
@@ -209,6 +234,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let (mut overlap, mut all_in, mut maxattempt, mut verbose) = (true, false, 50usize, true);
     let mut vel = VelocityLaw::Constant(DVec3::ZERO);
     let mut omega = DVec3::ZERO;
+    let mut orientation = Orientation::Random;
     let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
     let mut every_once = false;
     let (mut face, mut extrude, mut duration) = (None, None, None);
@@ -262,6 +288,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 a.keyword("omega distribution", &["constant"])?;
                 omega = a.vec3("omega")?;
             }
+            "orientation" => orientation = orientation_law(a)?,
             "region" => region = Some(sim.fixed_region(a, &format!("fix {style}"))?),
             "volumefraction_region" => {
                 let f = a.f64("volume fraction")?;
@@ -325,6 +352,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 s.all_in = all_in;
                 s.max_attempt = maxattempt;
                 s.omega = omega;
+                s.orientation = orientation;
                 s.start = start;
             },
             vel,
@@ -409,6 +437,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     pack.max_attempt = maxattempt;
     pack.velocity = vel;
     pack.omega = omega;
+    pack.orientation = orientation;
     pack.start = start;
     Ok(Box::new(Inserter {
         pack: InsertEngine::Pack(pack),

@@ -171,6 +171,16 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             Some("a bounded region to fill".into()),
         )
     })?;
+    if let Some(t) = dist.templates.iter().find(|t| t.clump.is_some()) {
+        return Err(a.error_at(
+            STYLE_WORD,
+            format!(
+                "insert/pack/dense packs spheres; template '{}' is a multisphere clump",
+                t.id
+            ),
+            Some("insert clumps with insert/pack, insert/rate/region or insert/stream".into()),
+        ));
+    }
     sim.world_ref(a)?;
     let mut phi = fraction.1;
     if phi > MAX_VOLUME_FRACTION {

@@ -32,7 +32,9 @@ mod mesh_surface;
 mod modify;
 mod move_mesh;
 mod move_particles;
+mod multisphere;
 mod particledistribution_discrete;
+mod particletemplate_multisphere;
 mod particletemplate_sphere;
 mod pour;
 mod print;
@@ -339,6 +341,8 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         wall_gran_old::ROW_HOOKE_HISTORY,
         wall_gran_old::ROW_HOOKE,
         particletemplate_sphere::ROW,
+        particletemplate_multisphere::ROW,
+        multisphere::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,
         particledistribution_discrete::ROW_NUMBER,
@@ -370,7 +374,6 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         couple_cfd::ROW_IMPLICIT,
         balance::ROW,
         Row::not_yet("bond/gran", "bonds"),
-        Row::not_yet("particletemplate/multisphere", "multisphere particles"),
     ],
 };
 

@@ -34,6 +34,21 @@ impl ScriptFix for Template {
     }
 }
 
+/// A template's `atom_type T` (the word after the keyword): a type of the box.
+pub(super) fn atom_type(sim: &Sim, a: &mut Args) -> CmdResult<u32> {
+    let t = a.count("atom type")?;
+    if sim.ntypes() > 0 && t as usize > sim.ntypes() {
+        return Err(a.error_prev(
+            format!(
+                "atom type {t} is larger than the box's {} type(s)",
+                sim.ntypes()
+            ),
+            None,
+        ));
+    }
+    Ok(t as u32)
+}
+
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     // LIGGGHTS 3.8 stops too: "this fix is for 3D simulations only".
     if sim.setup.dimension == 2 {
@@ -51,19 +66,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             "particletemplate/sphere keyword",
             &["atom_type", "density", "radius", "volume_limit", "relative"],
         )? {
-            "atom_type" => {
-                let t = a.count("atom type")?;
-                if sim.ntypes() > 0 && t as usize > sim.ntypes() {
-                    return Err(a.error_prev(
-                        format!(
-                            "atom type {t} is larger than the box's {} type(s)",
-                            sim.ntypes()
-                        ),
-                        None,
-                    ));
-                }
-                ty = t as u32;
-            }
+            "atom_type" => ty = atom_type(sim, a)?,
             "density" => {
                 a.keyword("density distribution", &["constant"])?;
                 density = Some(a.positive("density")?);

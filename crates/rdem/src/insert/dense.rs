@@ -541,6 +541,7 @@ impl DensePack {
             x,
             radius: real,
             v: draw_velocity(self.velocity, &mut self.rng),
+            q: glam::DQuat::IDENTITY,
         });
     }
 }

@@ -13,9 +13,9 @@ pub mod template;
 
 pub use dense::{DensePack, DenseReport};
 pub use distribution::{Distribution, Weighting};
-pub use pack::{FallFromTop, InsertPack, InsertReport, PackTarget, VelocityLaw};
+pub use pack::{FallFromTop, InsertPack, InsertReport, Orientation, PackTarget, VelocityLaw};
 pub use stream::{InsertStream, StreamFace};
-pub use template::{ParticleTemplate, RadiusDist};
+pub use template::{ClumpShape, ParticleTemplate, RadiusDist};
 
 /// The generator used for insertion: PCG64, reproducible across platforms and crate
 /// versions (unlike `StdRng`).

@@ -35,6 +35,18 @@ pub enum VelocityLaw {
     Gaussian(DVec3, DVec3),
 }
 
+/// How inserted clumps are turned (`orientation`; spheres ignore it).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Orientation {
+    /// `orientation random`: uniform over all rotations (the default).
+    #[default]
+    Random,
+    /// `orientation template`: as the template's spheres were given.
+    Template,
+    /// `orientation constant q0 q1 q2 q3`: this rotation of the template as given.
+    Constant(glam::DQuat),
+}
+
 /// `fix pour`'s vertical velocity: each particle gets the speed it would have reached
 /// falling from the top of the insertion volume, at height `top`, with initial vertical
 /// speed `vz`, under gravity `g` (> 0, along −z): v_z = −√(vz² + 2 g (top − z)) (as LAMMPS'
@@ -87,6 +99,8 @@ pub struct InsertPack {
     pub velocity: VelocityLaw,
     /// Angular velocity (`omega constant wx wy wz`).
     pub omega: DVec3,
+    /// How clumps are turned.
+    pub orientation: Orientation,
     /// `fix pour`: the vertical velocity is that of a fall from the top (replaces the
     /// velocity law's z component).
     pub fall: Option<FallFromTop>,
@@ -141,6 +155,7 @@ impl InsertPack {
             max_attempt: 50,
             velocity: VelocityLaw::Constant(DVec3::ZERO),
             omega: DVec3::ZERO,
+            orientation: Orientation::Random,
             fall: None,
             rng: super::rng(seed),
             last: None,
@@ -248,6 +263,7 @@ impl InsertPack {
             wanted,
             self.max_attempt,
             grid.as_mut(),
+            self.orientation,
             |rng, r| {
                 for _ in 0..1000 {
                     match region.sample(domain, || rng.gen(), 1000) {

@@ -4,14 +4,38 @@
 
 use std::collections::HashMap;
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 use rand::Rng;
 use rand_distr::{Distribution as _, Normal};
 
-use super::{Distribution, InsertRng, VelocityLaw};
+use super::{ClumpShape, Distribution, InsertRng, Orientation, VelocityLaw};
 use crate::error::Result;
+use crate::multisphere::NewClump;
 use crate::particles::NewParticle;
 use crate::world::World;
+
+/// A rotation drawn uniformly over all rotations (Shoemake's method: a uniform point on
+/// the unit 3-sphere from three uniform numbers).
+pub(crate) fn random_rotation(rng: &mut InsertRng) -> DQuat {
+    let (u1, u2, u3): (f64, f64, f64) = (rng.gen(), rng.gen(), rng.gen());
+    let tau = std::f64::consts::TAU;
+    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+    DQuat::from_xyzw(
+        a * (tau * u2).sin(),
+        a * (tau * u2).cos(),
+        b * (tau * u3).sin(),
+        b * (tau * u3).cos(),
+    )
+}
+
+/// The orientation of a new clump of `shape` (body frame to space frame).
+fn draw_orientation(law: Orientation, shape: &ClumpShape, rng: &mut InsertRng) -> DQuat {
+    match law {
+        Orientation::Random => random_rotation(rng),
+        Orientation::Template => shape.q_template(),
+        Orientation::Constant(q) => (q * shape.q_template()).normalize(),
+    }
+}
 
 /// Draws a velocity from `law`.
 pub(crate) fn draw_velocity(law: VelocityLaw, rng: &mut InsertRng) -> DVec3 {
@@ -37,17 +61,19 @@ pub(crate) fn draw_velocity(law: VelocityLaw, rng: &mut InsertRng) -> DVec3 {
     }
 }
 
-/// One sphere to be inserted.
+/// One sphere, or one clump, to be inserted.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Placed {
     /// Template index in the distribution.
     pub template: usize,
-    /// Centre.
+    /// Centre (a clump: its centre of mass).
     pub x: DVec3,
-    /// Radius.
+    /// Radius (a clump: its bounding radius).
     pub radius: f64,
     /// Velocity.
     pub v: DVec3,
+    /// A clump's orientation (spheres: the identity).
+    pub q: DQuat,
 }
 
 /// Existing particles (of every rank) near an insertion volume, on a grid of cells two
@@ -158,18 +184,21 @@ impl OverlapGrid {
     }
 }
 
-/// Chooses positions for up to `wanted` spheres of `dist` (the per-template counts of
+/// Chooses positions for up to `wanted` particles of `dist` (the per-template counts of
 /// [`Distribution::counts_for`], largest first). `sample(rng, r)` draws a centre where a
-/// sphere of radius `r` may go (`None`: the volume has no room at all); with `grid` given
-/// the spheres may not overlap its spheres or each other. `max_attempt` tries per
-/// particle are pooled over the insertion. Each placed sphere's velocity is drawn right
-/// after its position.
+/// sphere of radius `r` may go (`None`: the volume has no room at all; a clump is drawn
+/// with its bounding radius, as LIGGGHTS does); with `grid` given the spheres (each
+/// sphere of a clump, turned as `orientation` says, drawn with each try) may not overlap
+/// its spheres or each other. `max_attempt` tries per particle are pooled over the
+/// insertion. Each placed particle's velocity is drawn right after its position.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn choose(
     dist: &mut Distribution,
     rng: &mut InsertRng,
     wanted: u64,
     max_attempt: usize,
     mut grid: Option<&mut OverlapGrid>,
+    orientation: Orientation,
     mut sample: impl FnMut(&mut InsertRng, f64) -> Option<DVec3>,
     velocity: VelocityLaw,
 ) -> Vec<Placed> {
@@ -177,43 +206,93 @@ pub(crate) fn choose(
     let mut out = Vec::with_capacity(wanted as usize);
     let mut budget = wanted.saturating_mul(max_attempt.max(1) as u64);
     for (k, &count) in counts.iter().enumerate() {
+        let clump = dist.templates[k].clump.clone();
         for _ in 0..count {
             let r = dist.templates[k].draw_radius();
             let mut placed = None;
             while budget > 0 {
                 budget -= 1;
                 let Some(x) = sample(rng, r) else { break };
-                if grid.as_ref().is_none_or(|g| g.is_free(x, r)) {
-                    placed = Some(x);
+                let q = clump
+                    .as_ref()
+                    .map_or(DQuat::IDENTITY, |c| draw_orientation(orientation, c, rng));
+                let free = grid.as_ref().is_none_or(|g| match &clump {
+                    None => g.is_free(x, r),
+                    Some(c) => (c.template.spheres.iter()).all(|s| g.is_free(x + q * s.x, s.r)),
+                });
+                if free {
+                    placed = Some((x, q));
                     break;
                 }
             }
-            let Some(x) = placed else { continue };
+            let Some((x, q)) = placed else { continue };
             if let Some(g) = grid.as_mut() {
-                g.push(x, r);
+                match &clump {
+                    None => g.push(x, r),
+                    Some(c) => c
+                        .template
+                        .spheres
+                        .iter()
+                        .for_each(|s| g.push(x + q * s.x, s.r)),
+                }
             }
             out.push(Placed {
                 template: k,
                 x,
                 radius: r,
                 v: draw_velocity(velocity, rng),
+                q,
             });
         }
     }
     out
 }
 
-/// Adds the placed sphere `pl` (of a template of `dist`, spinning at `omega`, in the
-/// groups `groupbit` and `all`) to `world` if this rank owns its position; returns its
-/// mass and, when added, its index.
+/// Adds the placed sphere or clump `pl` (of a template of `dist`, spinning at `omega`,
+/// in the groups `groupbit` and `all`) to `world` if this rank owns its position (a
+/// clump's centre of mass); returns its mass and, when added, the indices of its
+/// particles (one sphere, or a clump's spheres).
 pub(crate) fn add_placed(
     world: &mut World,
     dist: &Distribution,
     pl: &Placed,
     omega: DVec3,
     groupbit: u32,
-) -> Result<(f64, Option<usize>)> {
+) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     let t = &dist.templates[pl.template];
+    if let Some(c) = &t.clump {
+        if world.multisphere.is_none() {
+            return Err(crate::error::Error::Invalid {
+                what: "particletemplate/multisphere",
+                reason: format!(
+                    "inserting clumps of template '{}' needs a fix multisphere",
+                    t.id
+                ),
+            });
+        }
+        if !world.owns_inserted(pl.x) {
+            return Ok((c.template.props.mass, None));
+        }
+        let first = world.particles.nlocal();
+        let tag = world.add_clump(
+            &c.template,
+            &NewClump {
+                x: pl.x,
+                q: pl.q,
+                v: pl.v,
+                omega,
+                ty: t.ty,
+                mask: 1 | groupbit,
+            },
+        )?;
+        let ms = world.multisphere.as_mut().expect("a clump was added");
+        debug_assert_eq!(ms.tags.last(), Some(&tag));
+        let body = ms.bodies.last_mut().expect("a clump was added");
+        body.fflag = c.fflag;
+        body.tflag = c.tflag;
+        let last = world.particles.nlocal();
+        return Ok((c.template.props.mass, Some(first..last)));
+    }
     let mut np = NewParticle::at(pl.x, pl.radius, t.density)
         .with_type(t.ty)
         .with_omega(omega);
@@ -221,7 +300,8 @@ pub(crate) fn add_placed(
     np.mask = 1 | groupbit;
     let mass = crate::particles::sphere_mass(np.density, pl.radius);
     let index = if world.owns_inserted(pl.x) {
-        Some(world.add_particle(&np)?)
+        let i = world.add_particle(&np)?;
+        Some(i..i + 1)
     } else {
         None
     };

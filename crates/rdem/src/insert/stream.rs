@@ -201,6 +201,8 @@ pub struct InsertStream {
     pub velocity: VelocityLaw,
     /// Angular velocity (`omega constant wx wy wz`).
     pub omega: DVec3,
+    /// How clumps are turned.
+    pub orientation: super::Orientation,
     /// `overlapcheck yes`.
     pub overlap_check: bool,
     /// `all_in yes`: whole spheres inside the insertion volume.
@@ -255,6 +257,7 @@ impl InsertStream {
             mesh,
             velocity,
             omega: DVec3::ZERO,
+            orientation: super::Orientation::Random,
             overlap_check: true,
             all_in: false,
             max_attempt: 50,
@@ -359,6 +362,7 @@ impl InsertStream {
             wanted,
             self.max_attempt,
             grid.as_mut(),
+            self.orientation,
             |rng, r| {
                 for _ in 0..1000 {
                     let p = face.sample(rng);
@@ -384,7 +388,7 @@ impl InsertStream {
             let (m, added) = add_placed(world, &self.dist, pl, self.omega, self.groupbit)?;
             mass += m;
             inserted += 1;
-            if let Some(i) = added {
+            if let Some(added) = added {
                 // Steps until the centre reaches the face.
                 let depth = (p0 - pl.x).dot(n).max(0.0);
                 let vn = pl.v.dot(n);
@@ -393,7 +397,7 @@ impl InsertStream {
                 } else {
                     0.0
                 };
-                world.particles.props[hold.0].data[i] = step as f64 + steps;
+                world.particles.props[hold.0].data[added].fill(step as f64 + steps);
             }
         }
         world.extend_tags();

@@ -1,5 +1,9 @@
-//! `fix particletemplate/sphere`: the type, density and radius law of inserted spheres.
+//! `fix particletemplate/sphere`: the type, density and radius law of inserted spheres;
+//! `fix particletemplate/multisphere`: a rigid clump's shape in place of the radius law.
 
+use std::sync::Arc;
+
+use glam::DQuat;
 use rand::Rng;
 use rand_distr::{Distribution as _, Normal};
 
@@ -17,7 +21,26 @@ pub enum RadiusDist {
     Gaussian(f64, f64),
 }
 
-/// A sphere template.
+/// The shape of a multisphere template: the clump, and the flags its bodies start with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClumpShape {
+    /// The spheres and mass properties.
+    pub template: crate::multisphere::ClumpTemplate,
+    /// `fflag`: the translational degrees of freedom (x, y, z) that move.
+    pub fflag: [bool; 3],
+    /// `tflag`: the rotational degrees of freedom (x, y, z) that move.
+    pub tflag: [bool; 3],
+}
+
+impl ClumpShape {
+    /// The orientation (body frame to space frame) that shows the clump as its spheres
+    /// were given (`orientation template`).
+    pub fn q_template(&self) -> DQuat {
+        DQuat::from_mat3(&self.template.axes).normalize()
+    }
+}
+
+/// A particle template: a sphere's radius law, or a clump's shape.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParticleTemplate {
     /// Fix ID of the template.
@@ -26,8 +49,10 @@ pub struct ParticleTemplate {
     pub ty: u32,
     /// Density (`density constant ρ`).
     pub density: f64,
-    /// Radius law.
+    /// Radius law (a clump: its bounding radius, constant).
     pub radius: RadiusDist,
+    /// A multisphere template's clump (`None`: spheres).
+    pub clump: Option<Arc<ClumpShape>>,
     pub(crate) rng: InsertRng,
 }
 
@@ -69,8 +94,18 @@ impl ParticleTemplate {
             ty,
             density,
             radius,
+            clump: None,
             rng: super::rng(seed),
         })
+    }
+
+    /// A multisphere template of `shape`, its spheres of type `ty`. `density` is the
+    /// clump's mass over its volume (the volume inserted per clump is its mass over it).
+    pub fn clump(id: &str, seed: u64, ty: u32, density: f64, shape: ClumpShape) -> Result<Self> {
+        let bound = shape.template.bound_radius;
+        let mut t = Self::new(id, seed, ty, density, RadiusDist::Constant(bound))?;
+        t.clump = Some(Arc::new(shape));
+        Ok(t)
     }
 
     /// Draws one radius.
@@ -99,10 +134,13 @@ impl ParticleTemplate {
         }
     }
 
-    /// Mean mass of one particle (to convert mass fractions to number fractions): exact
+    /// Mean mass of one particle (a clump: its mass; to convert mass fractions to number fractions): exact
     /// for constant and uniform radii; for gaussian from E[r³] = μ³ + 3μσ² (ignoring the
     /// redraw of non-positive radii, negligible for σ < μ/3).
     pub fn mean_mass(&self) -> f64 {
+        if let Some(c) = &self.clump {
+            return c.template.props.mass;
+        }
         let r3 = match self.radius {
             RadiusDist::Constant(r) => r * r * r,
             RadiusDist::Uniform(lo, hi) => {

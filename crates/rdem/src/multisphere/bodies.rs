@@ -17,10 +17,10 @@
 //! torque about the centre of mass leaves it out: gravity acts at the centre of mass, as
 //! LIGGGHTS applies it to the body and not to its spheres.
 //!
-//! Not yet: contacts use the spheres' own masses for the effective mass m* (LIGGGHTS uses
-//! the body's), and bodies on periodic boundaries or on several ranks are refused.
-
-use std::collections::HashMap;
+//! Contacts: a clump's sphere takes its body's mass into the effective mass m* of its
+//! contacts, as LIGGGHTS does ([`crate::particles::Particles::mass_of_contact`]).
+//!
+//! Not yet: bodies on periodic boundaries or on several ranks are refused.
 
 use glam::{DQuat, DVec3};
 
@@ -46,8 +46,41 @@ pub struct Multisphere {
 
 impl Multisphere {
     /// The index in [`Multisphere::bodies`] of each body tag.
-    fn slots(&self) -> HashMap<u64, usize> {
-        self.tags.iter().enumerate().map(|(k, &t)| (t, k)).collect()
+    fn slots(&self) -> Slots {
+        let top = self.tags.iter().copied().max().unwrap_or(0) as usize;
+        let mut of = vec![usize::MAX; top + 1];
+        for (k, &t) in self.tags.iter().enumerate() {
+            of[t as usize] = k;
+        }
+        Slots {
+            of,
+            n: self.tags.len(),
+        }
+    }
+}
+
+/// Each body tag's index in [`Multisphere::bodies`], by a table indexed by tag (tags are
+/// given in order, so the table is dense; a lookup per sphere and step must be cheap).
+struct Slots {
+    of: Vec<usize>,
+    n: usize,
+}
+
+impl Slots {
+    /// The body of a sphere whose [`BODY_PROP`] value is `tag` (`None`: a free sphere,
+    /// or a body that is gone).
+    #[inline]
+    fn get(&self, tag: f64) -> Option<usize> {
+        let t = tag as usize;
+        if t == 0 {
+            return None;
+        }
+        self.of.get(t).copied().filter(|&k| k != usize::MAX)
+    }
+
+    /// The number of bodies.
+    fn len(&self) -> usize {
+        self.n
     }
 }
 
@@ -72,7 +105,10 @@ impl World {
     /// Adds a clump of `template` as `c` says: its spheres as particles, its body to
     /// [`World::multisphere`] (made if there is none). Returns the body's tag.
     pub fn add_clump(&mut self, template: &ClumpTemplate, c: &NewClump) -> Result<u64> {
+        self.check_multisphere()?;
         let (body_id, offset_id) = self.multisphere_props()?;
+        // Clumps added during a run: their spheres are kept apart from the first.
+        self.neighbor.exclude.same_body = Some(body_id);
         let last = self.multisphere.as_ref().and_then(|ms| ms.tags.last());
         let tag = last.map_or(1, |t| t + 1);
         let mut body = RigidBody::at_rest(template.props.mass, template.moments, c.x, c.q);
@@ -105,6 +141,83 @@ impl World {
         Ok(tag)
     }
 
+    /// What clumps cannot do yet: several ranks, periodic boundaries.
+    fn check_multisphere(&self) -> Result<()> {
+        if self.comm.size() > 1 {
+            return Err(Error::Invalid {
+                what: "fix multisphere",
+                reason: "runs on one rank only so far (LIGGGHTS-PUBLIC too)".into(),
+            });
+        }
+        if self.domain.periodicity().iter().any(|&p| p) {
+            return Err(Error::Invalid {
+                what: "fix multisphere",
+                reason: "periodic boundaries are not supported with clumps yet".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Extends `remove` (a flag for each owned particle) to every sphere of each body one
+    /// of whose spheres it holds, and drops those bodies (LIGGGHTS removes a body when
+    /// any of its spheres goes). Returns how many bodies were dropped.
+    pub fn remove_whole_bodies(&mut self, remove: &mut [bool]) -> usize {
+        let Some((body_id, _, slots)) = self.members() else {
+            return 0;
+        };
+        let tags = &self.particles.props[body_id.0].data;
+        let n = remove.len().min(self.particles.nlocal());
+        let mut gone = vec![false; slots.len()];
+        for i in 0..n {
+            if remove[i] {
+                if let Some(k) = slots.get(tags[i]) {
+                    gone[k] = true;
+                }
+            }
+        }
+        if !gone.iter().any(|&g| g) {
+            return 0;
+        }
+        for i in 0..n {
+            if let Some(k) = slots.get(tags[i]) {
+                remove[i] |= gone[k];
+            }
+        }
+        let ms = self.multisphere.as_mut().expect("members() found bodies");
+        let mut k = 0;
+        ms.bodies.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
+        let mut k = 0;
+        ms.tags.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
+        gone.iter().filter(|&&g| g).count()
+    }
+
+    /// Before a force computation: the contact mass of every particle, its body's for a
+    /// clump's sphere, else its own ([`crate::particles::Particles::mass_of_contact`]).
+    pub(crate) fn refresh_contact_mass(&mut self) {
+        let Some((body_id, _, slots)) = self.members() else {
+            return;
+        };
+        let Some(ms) = &self.multisphere else {
+            return;
+        };
+        let p = &mut self.particles;
+        let n = p.len();
+        let tags = &p.props[body_id.0].data;
+        p.mass_of_contact.clear();
+        p.mass_of_contact.extend((0..n).map(
+            |i| match slots.get(tags.get(i).copied().unwrap_or(0.0)) {
+                Some(k) => ms.bodies[k].mass,
+                None => p.rmass[i],
+            },
+        ));
+    }
+
     /// The two member properties, added if missing.
     fn multisphere_props(&mut self) -> Result<(PropId, PropId)> {
         let p = &mut self.particles;
@@ -121,7 +234,7 @@ impl World {
 
     /// The two member properties and each body tag's index in [`Multisphere::bodies`]
     /// (`None` without clumps).
-    fn members(&self) -> Option<(PropId, PropId, HashMap<u64, usize>)> {
+    fn members(&self) -> Option<(PropId, PropId, Slots)> {
         let ms = self.multisphere.as_ref()?;
         let p = &self.particles;
         Some((p.property(BODY_PROP)?, p.property(OFFSET_PROP)?, ms.slots()))
@@ -132,18 +245,7 @@ impl World {
         if self.multisphere.is_none() {
             return Ok(());
         }
-        if self.comm.size() > 1 {
-            return Err(Error::Invalid {
-                what: "fix multisphere",
-                reason: "runs on one rank only so far (LIGGGHTS-PUBLIC too)".into(),
-            });
-        }
-        if self.domain.periodicity().iter().any(|&p| p) {
-            return Err(Error::Invalid {
-                what: "fix multisphere",
-                reason: "periodic boundaries are not supported with clumps yet".into(),
-            });
-        }
+        self.check_multisphere()?;
         let (body, _) = self.multisphere_props()?;
         self.neighbor.exclude.same_body = Some(body);
         Ok(())
@@ -178,7 +280,8 @@ impl World {
 
     /// Each body's total force and torque about its centre of mass from its owned
     /// spheres, in particle order; the torque leaves out the gravity of the `fix gravity`
-    /// fixes (gravity acts at the centre of mass).
+    /// fixes (gravity acts at the centre of mass), and spheres `insert/stream` holds add
+    /// nothing (the body drifts until released).
     pub(crate) fn sum_body_forces(&mut self) {
         let Some((body_id, offset_id, slots)) = self.members() else {
             return;
@@ -200,10 +303,16 @@ impl World {
             b.torque = DVec3::ZERO;
         }
         let (tags, offsets) = (&p.props[body_id.0].data, &p.props[offset_id.0].data);
+        // Spheres `insert/stream` still holds (their forces are zero) carry their body.
+        let held = p.property(crate::insert::stream::HOLD_PROPERTY);
+        let step = self.step as f64;
         for i in 0..p.nlocal() {
-            let Some(&k) = slots.get(&(tags[i] as u64)) else {
+            let Some(k) = slots.get(tags[i]) else {
                 continue;
             };
+            if held.is_some_and(|h| p.props[h.0].data[i] > step) {
+                continue;
+            }
             let b = &mut ms.bodies[k];
             let d = b.q * DVec3::from_slice(&offsets[3 * i..3 * i + 3]);
             let g: DVec3 = gravity
@@ -227,7 +336,7 @@ impl World {
         let p = &mut self.particles;
         let omegas: Vec<DVec3> = ms.bodies.iter().map(RigidBody::omega).collect();
         for i in 0..p.nlocal() {
-            let Some(&k) = slots.get(&(p.props[body_id.0].data[i] as u64)) else {
+            let Some(k) = slots.get(p.props[body_id.0].data[i]) else {
                 continue;
             };
             let b = &ms.bodies[k];

@@ -124,7 +124,7 @@ impl Visitor for Records<'_> {
             v: &p.v,
             omega: &p.omega,
             radius: &p.radius,
-            rmass: &p.rmass,
+            rmass: p.contact_mass(),
             ty: &p.ty,
             dt,
             update: false,

@@ -872,7 +872,7 @@ impl MeshPass<'_> {
                 let surface = &surfaces[wall.meshes[t.mesh as usize]];
                 let v_wall = surface.wall_velocity(t.tri, t.q);
                 let vr = p.v[i] - v_wall;
-                let g = Geom::wall(t.n, t.dist, r, p.rmass[i], vr, p.omega[i], dt, update);
+                let g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
                 f[k] += out.f_i;

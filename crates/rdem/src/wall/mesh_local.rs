@@ -114,6 +114,7 @@ impl MeshWall {
             omega: &p.omega,
             radius: &p.radius,
             rmass: &p.rmass,
+            mcontact: p.contact_mass(),
             ty: &p.ty,
             mask: &p.mask,
         };

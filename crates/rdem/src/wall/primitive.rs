@@ -440,7 +440,7 @@ impl WallPass<'_> {
                 n,
                 d,
                 r,
-                p.rmass[i],
+                p.mcontact[i],
                 p.v[i] - wall.velocity,
                 p.omega[i],
                 dt,

@@ -1,0 +1,298 @@
+//! `fix ID group particletemplate/multisphere seed atom_type T density constant RHO
+//! nspheres N ntry M spheres ... type MT [mass M inertia_tensor ... use_volume|use_density]
+//! [fflag ...] [tflag ...]`: a rigid clump of overlapping spheres that distributions and
+//! insertion fixes draw from, as LIGGGHTS 3.8 defines it.
+//!
+//! The spheres come inline (`spheres x1 y1 z1 r1 x2 ...`) or from a file (`spheres file F`,
+//! a line `x y z r` per sphere, `#` starting a comment); `scale s` multiplies positions and
+//! radii (after either form). The clump's volume, centre of mass and inertia tensor come
+//! from `ntry` Monte Carlo points (`rdem::multisphere::ClumpTemplate`), and its mass is the
+//! density times that volume. With `mass` and `inertia_tensor` (about the centre of mass,
+//! in the frame the spheres are given in) the mass and inertia are taken as given, and the
+//! density is the mass over the Monte Carlo volume (`use_volume`) or the given density
+//! (`use_density`, the volume then the mass over it).
+
+use rdem::insert::{ClumpShape, ParticleTemplate};
+use rdem::multisphere::{ClumpTemplate, MassSource, Sphere};
+
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "particletemplate/multisphere",
+    parse,
+    Stages::NONE,
+    "`atom_type`, `density constant`, `nspheres`, `ntry`, `spheres x y z r ...\\|file F`, `scale`, `type`, `mass` with `inertia_tensor` and `use_volume\\|use_density`, `fflag`, `tflag`; `volume_limit` accepted",
+)
+.notes("the Monte Carlo mass properties use rdem's own generator: they differ from LIGGGHTS' within the stated standard errors, which the verbose output prints")
+.atoi();
+
+/// A defined clump template: it lives in `Sim::templates` under the fix ID.
+pub struct MultisphereTemplate {
+    parsed: Option<ParticleTemplate>,
+    /// What the definition prints (the mass properties).
+    report: String,
+}
+
+impl ScriptFix for MultisphereTemplate {
+    fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
+        if let Some(t) = self.parsed.take() {
+            sim.outputs.out.line(&self.report);
+            sim.defs.templates.insert(head.id.clone(), t);
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        sim.defs.templates.remove(&head.id);
+    }
+}
+
+/// Where the spheres come from.
+enum Source {
+    Inline(Vec<Sphere>),
+    File { path: String, at: usize },
+}
+
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    if sim.setup.dimension == 2 {
+        return Err(a.error_at(
+            STYLE_WORD,
+            "particletemplate/multisphere is for 3d simulations only",
+            None,
+        ));
+    }
+    let id = head.id.as_str();
+    let seed = a.seed()?;
+    let (mut ty, mut density, mut nspheres, mut ntry) = (1u32, None, None, None);
+    let (mut source, mut scale, mut ms_type) = (None, 1.0, None);
+    let (mut mass, mut inertia, mut use_volume, mut use_density) = (None, None, false, false);
+    let (mut fflag, mut tflag) = ([true; 3], [true; 3]);
+    const KEYS: [&str; 15] = [
+        "atom_type",
+        "density",
+        "volume_limit",
+        "nspheres",
+        "ntry",
+        "spheres",
+        "scale",
+        "type",
+        "mass",
+        "inertia_tensor",
+        "use_volume",
+        "use_density",
+        "fflag",
+        "tflag",
+        "relative",
+    ];
+    while !a.is_done() {
+        match a.keyword("particletemplate/multisphere keyword", &KEYS)? {
+            "atom_type" => ty = super::particletemplate_sphere::atom_type(sim, a)?,
+            "density" => {
+                a.keyword("density distribution", &["constant"])?;
+                density = Some(a.positive("density")?);
+            }
+            "volume_limit" => {
+                a.positive("volume limit")?;
+            }
+            "nspheres" => nspheres = Some(a.count("number of spheres")? as usize),
+            "ntry" => ntry = Some(a.count("number of Monte Carlo points")?),
+            "spheres" => {
+                let Some(n) = nspheres else {
+                    return Err(a.error_prev(
+                        "'spheres' must come after 'nspheres N'",
+                        Some("LIGGGHTS reads nspheres first: '... nspheres 3 ntry 1000000 spheres ...'".into()),
+                    ));
+                };
+                if a.peek() == Some("file") {
+                    a.seek(a.pos() + 1);
+                    let at = a.pos();
+                    let path = a.word("sphere file name")?.to_string();
+                    source = Some(Source::File { path, at });
+                } else {
+                    let mut v = Vec::with_capacity(n);
+                    for k in 1..=n {
+                        let x = a.vec3(&format!("sphere {k} centre"))?;
+                        let r = a.positive(&format!("sphere {k} radius"))?;
+                        v.push(Sphere { x, r });
+                    }
+                    source = Some(Source::Inline(v));
+                }
+            }
+            "scale" => scale = a.positive("scale factor")?,
+            "type" => ms_type = Some(a.count("multisphere type")?),
+            "mass" => mass = Some(a.positive("mass")?),
+            "inertia_tensor" => {
+                let mut t = [0.0; 6];
+                for (k, name) in ["Ixx", "Ixy", "Ixz", "Iyy", "Iyz", "Izz"]
+                    .iter()
+                    .enumerate()
+                {
+                    t[k] = a.f64(name)?;
+                }
+                inertia = Some(t);
+            }
+            "use_volume" => use_volume = true,
+            "use_density" => use_density = true,
+            "fflag" | "tflag" => {
+                let key = a.words()[a.pos() - 1].text.clone();
+                let mut f = [true; 3];
+                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                    f[k] = a.yes_no(&format!("{key} {axis} (on or off)"))?;
+                }
+                if key == "fflag" {
+                    fflag = f;
+                } else {
+                    tflag = f;
+                }
+            }
+            _ => {
+                if a.yes_no("relative")? {
+                    return Err(a.error_prev("relative radii are not supported", None));
+                }
+            }
+        }
+    }
+    let need = |what: &str, help: &str| {
+        a.error_at(
+            STYLE_WORD,
+            format!("particletemplate/multisphere needs {what}"),
+            Some(help.into()),
+        )
+    };
+    let nspheres = nspheres.ok_or_else(|| need("'nspheres N'", "the number of spheres"))?;
+    let ntry = ntry.ok_or_else(|| {
+        need(
+            "'ntry N'",
+            "the number of Monte Carlo points for the mass properties, e.g. 'ntry 1000000'",
+        )
+    })?;
+    let source = source.ok_or_else(|| {
+        need(
+            "'spheres'",
+            "'spheres x1 y1 z1 r1 ...' or 'spheres file F [scale s]'",
+        )
+    })?;
+    if ms_type.is_none() {
+        return Err(need(
+            "'type MT'",
+            "the multisphere type of the template, from 1",
+        ));
+    }
+    let mut spheres = match source {
+        Source::Inline(v) => v,
+        Source::File { path, at } => read_spheres(&path, nspheres)
+            .map_err(|e| a.error_at(at, format!("{path}: {e}"), None))?,
+    };
+    for s in &mut spheres {
+        s.x *= scale;
+        s.r *= scale;
+    }
+    let source = match (mass, inertia) {
+        (None, None) => {
+            let rho = density.ok_or_else(|| {
+                need(
+                    "a density",
+                    "add 'density constant RHO' (kg/m^3), or 'mass M inertia_tensor ...'",
+                )
+            })?;
+            MassSource::Density(rho)
+        }
+        (Some(mass), Some(inertia)) => MassSource::Given { mass, inertia },
+        _ => return Err(need(
+            "'mass' and 'inertia_tensor' together",
+            "give both, or neither (then they come from the density and the Monte Carlo volume)",
+        )),
+    };
+    if let MassSource::Given { .. } = source {
+        if use_volume == use_density {
+            return Err(need(
+                "one of 'use_volume' and 'use_density' with 'mass'",
+                "use_volume: density = mass / Monte Carlo volume; use_density: volume = mass / density",
+            ));
+        }
+    }
+    let template = ClumpTemplate::new(&spheres, ntry, seed, source)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    let p = &template.props;
+    let density = match source {
+        MassSource::Given { mass, .. } if use_volume => mass / p.volume,
+        MassSource::Given { .. } => density.ok_or_else(|| {
+            need(
+                "a density with 'use_density'",
+                "add 'density constant RHO' (kg/m^3)",
+            )
+        })?,
+        MassSource::Density(rho) => rho,
+    };
+    let m = template.moments;
+    let report = format!(
+        "Multisphere template {id}: {nspheres} spheres, Monte Carlo volume {:e} (± {:e}), mass {:e}, \
+         centre of mass ({:e}, {:e}, {:e}) (± {:e}), principal moments of inertia ({:e}, {:e}, {:e}), \
+         bounding radius {:e}",
+        p.volume,
+        p.volume_err,
+        p.mass,
+        p.com.x,
+        p.com.y,
+        p.com.z,
+        p.com_err.max_element(),
+        m.x,
+        m.y,
+        m.z,
+        template.bound_radius
+    );
+    let shape = ClumpShape {
+        template,
+        fflag,
+        tflag,
+    };
+    let t = ParticleTemplate::clump(id, seed, ty, density, shape)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(Box::new(MultisphereTemplate {
+        parsed: Some(t),
+        report,
+    }))
+}
+
+/// The spheres of a template file: a line `x y z r` per sphere, `#` starting a comment,
+/// blank lines skipped; exactly `n` spheres.
+fn read_spheres(path: &str, n: usize) -> Result<Vec<Sphere>, String> {
+    let text = std::fs::read(path).map_err(|e| e.to_string())?;
+    let text = String::from_utf8_lossy(&text);
+    let mut out = Vec::with_capacity(n);
+    for (k, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let v: Vec<&str> = line.split_whitespace().collect();
+        let nums: Option<Vec<f64>> = v.iter().map(|w| crate::args::parse_f64(w)).collect();
+        match nums {
+            Some(x) if x.len() == 4 => {
+                if x[3].is_nan() || x[3] <= 0.0 {
+                    return Err(format!("line {}: radius {} must be > 0", k + 1, x[3]));
+                }
+                out.push(Sphere {
+                    x: glam::DVec3::new(x[0], x[1], x[2]),
+                    r: x[3],
+                });
+            }
+            _ => {
+                return Err(format!(
+                    "line {}: expected four numbers 'x y z r', got '{line}'",
+                    k + 1
+                ))
+            }
+        }
+    }
+    if out.len() != n {
+        return Err(format!(
+            "holds {} sphere(s), but nspheres says {n}",
+            out.len()
+        ));
+    }
+    Ok(out)
+}

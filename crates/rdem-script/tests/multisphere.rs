@@ -1,0 +1,516 @@
+//! Multisphere clumps through the interpreter: `fix particletemplate/multisphere` (inline
+//! and file spheres, `scale`, `mass`/`inertia_tensor`), insertion of whole clumps by
+//! `insert/pack` and `insert/rate/region` with the overlap check on their spheres and
+//! their orientation, `fix multisphere` (`fix_modify fflag/tflag`), the clump energies,
+//! whole clumps removed at a fixed face, and the located errors.
+
+use std::f64::consts::PI;
+
+use rdem_script::{Interpreter, Output, Sim};
+
+mod common;
+use common::render;
+
+const HEAD: &str = "\
+atom_style sphere
+atom_modify map array sort 0 0
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block -0.02 0.02 -0.02 0.02 0.0 0.04 units box
+create_box 1 reg
+neighbor 0.0002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1.e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+";
+
+/// A dumbbell: spheres of 1 mm and 0.8 mm radius, centres 1.6 mm apart.
+const DUMBBELL: &str = "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 1000000 spheres 0 0 0 0.001 0.0016 0 0 0.0008 type 1\n";
+
+/// The exact volume of the dumbbell: two balls less their lens, π (R + r − d)² (d² + 2dr
+/// − 3r² + 2dR + 6rR − 3R²) / (12 d).
+fn dumbbell_volume() -> f64 {
+    let (r1, r2, d): (f64, f64, f64) = (1e-3, 0.8e-3, 1.6e-3);
+    let lens = PI
+        * (r1 + r2 - d).powi(2)
+        * (d * d + 2.0 * d * r2 - 3.0 * r2 * r2 + 2.0 * d * r1 + 6.0 * r2 * r1 - 3.0 * r1 * r1)
+        / (12.0 * d);
+    4.0 / 3.0 * PI * (r1.powi(3) + r2.powi(3)) - lens
+}
+
+fn run(tail: &str) -> Result<(Interpreter, String), String> {
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let r = i.run_source("in.ms", &format!("{HEAD}{tail}"));
+    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    match r {
+        Ok(()) => Ok((i, out)),
+        Err(e) => Err(render(&e)),
+    }
+}
+
+fn bodies(i: &Interpreter) -> &[rdem::multisphere::RigidBody] {
+    let ms = i.sim.world.as_ref().unwrap().multisphere.as_ref();
+    ms.map_or(&[][..], |m| &m.bodies[..])
+}
+
+/// The template's mass is the density times the Monte Carlo volume: 2500 × 6.27978 mm³
+/// within 0.5 % (10⁶ points in a box of about 3.4 × 2 × 2 mm³: a standard error near
+/// 0.1 %); the file form with `scale` gives the same template as the inline one (the
+/// same seed, so the same points).
+#[test]
+fn template_mass_and_file_form() {
+    let dir = std::env::temp_dir().join(format!("rdem-ms-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("dumbbell.txt");
+    std::fs::write(
+        &file,
+        "# x y z r, in mm\n0 0 0 1\n1.6 0 0 0.8   # the small one\n\n",
+    )
+    .unwrap();
+    let (i, out) = run(&format!(
+        "{DUMBBELL}fix pts2 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 1000000 spheres file {} scale 0.001 type 2\n",
+        file.display()
+    ))
+    .unwrap();
+    let t1 = &i.sim.defs.templates["pts1"];
+    let t2 = &i.sim.defs.templates["pts2"];
+    let (c1, c2) = (t1.clump.as_ref().unwrap(), t2.clump.as_ref().unwrap());
+    let want = 2500.0 * dumbbell_volume();
+    let m = c1.template.props.mass;
+    assert!(((m - want) / want).abs() < 5e-3, "{m} against {want}");
+    assert!((c2.template.props.mass - m).abs() < 1e-12 * m);
+    assert_eq!(t1.mean_mass(), m);
+    // The bounding radius is about the centre of mass: the far side of the small sphere.
+    let far = c1
+        .template
+        .spheres
+        .iter()
+        .map(|s| s.x.length() + s.r)
+        .fold(0.0, f64::max);
+    assert_eq!(c1.template.bound_radius, far);
+    assert!(far > 1.7e-3 && far < 1.9e-3, "{far}");
+    assert!(
+        out.contains("Multisphere template pts1: 2 spheres"),
+        "{out}"
+    );
+}
+
+/// `insert/pack` of 40 dumbbells with the overlap check: 80 spheres, 40 bodies, no
+/// sphere overlapping one of another clump, each body's spheres 1.6 mm apart; all move
+/// at the inserted velocity, so `ke/multisphere` is Σ ½ M v² = ½ (40 M) v² and
+/// `erotate/multisphere` is 0; after a free fall of 1000 steps (no contacts: the gaps
+/// stay) each centre has fallen by v t + ½ g t².
+#[test]
+fn insert_pack_places_whole_clumps_without_overlaps() {
+    let (i, _) = run(&format!(
+        "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+region bc block -0.012 0.012 -0.012 0.012 0.01 0.03 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0. 0. -0.5 insert_every once overlapcheck yes all_in yes region bc particles_in_region 40
+fix integr all multisphere
+compute ke all ke/multisphere
+compute er all erotate/multisphere
+thermo_style custom step atoms c_ke c_er
+thermo_modify norm no
+run 1
+variable ke0 equal c_ke
+variable er0 equal c_er
+print \"KE ${{ke0}} ER ${{er0}}\"
+"
+    ))
+    .unwrap();
+    let w = i.sim.world.as_ref().unwrap();
+    assert_eq!(w.particles.nlocal(), 80);
+    let b = bodies(&i);
+    assert_eq!(b.len(), 40);
+    let m = b[0].mass;
+    let p = &w.particles;
+    let body = p.property(rdem::multisphere::bodies::BODY_PROP).unwrap();
+    let tags = &p.props[body.0].data;
+    for a in 0..80 {
+        for c in a + 1..80 {
+            let d = (p.x[a] - p.x[c]).length();
+            if tags[a] == tags[c] {
+                assert!((d - 1.6e-3).abs() < 1e-12, "{d}");
+            } else {
+                assert!(
+                    d >= p.radius[a] + p.radius[c],
+                    "spheres {a} and {c} overlap"
+                );
+            }
+        }
+    }
+    // The region holds whole bounding spheres (all_in yes).
+    for bd in b {
+        assert!(
+            bd.x.z > 0.01 + 1.69e-3 && bd.x.z < 0.03 - 1.69e-3,
+            "{}",
+            bd.x
+        );
+    }
+    let v = 0.5 + 9.81 * 1e-6 / 2.0;
+    let ke: f64 = b.iter().map(|x| x.kinetic_energy().0).sum();
+    assert!((ke - 0.5 * 40.0 * m * v * v).abs() < 1e-12 * ke);
+}
+
+/// `orientation constant q` turns the template as its spheres were given: q = (cos 30°,
+/// 0, sin 30°, 0) turns the dumbbell's axis (+x) by 60° about y, so the small sphere sits
+/// at 1.6 mm × (cos 60°, 0, −sin 60°) from the large one; LIGGGHTS 3.8 placed it there
+/// (x 0.2065070 → 1.0065070 mm, z 4.9200771 → 3.5344364 mm: Δ = (0.8, 0, −1.38564) mm).
+/// `orientation template` keeps the axis along +x.
+#[test]
+fn orientation_constant_turns_the_template_as_given() {
+    for (law, want) in [
+        (
+            "constant 0.8660254037844387 0 0.5 0",
+            [0.8e-3, 0.0, -1.6e-3 * (60f64).to_radians().sin()],
+        ),
+        ("template", [1.6e-3, 0.0, 0.0]),
+    ] {
+        let (i, _) = run(&format!(
+            "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc block -0.001 0.001 -0.001 0.001 0.004 0.006 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 orientation {law} insert_every once region bc particles_in_region 1
+fix integr all multisphere
+run 1
+"
+        ))
+        .unwrap();
+        let p = &i.sim.world.as_ref().unwrap().particles;
+        let d = p.x[1] - p.x[0];
+        for k in 0..3 {
+            assert!(
+                (d[k] - want[k]).abs() < 1e-12,
+                "{law}: {d} against {want:?}"
+            );
+        }
+    }
+}
+
+/// `insert/rate/region` makes clumps during the run; `fix_modify ms fflag off off off
+/// tflag off off off` then keeps every existing clump's velocity and spin (no force or
+/// torque acts on them, as LIGGGHTS' switches do) while the free spheres of another
+/// template fall.
+#[test]
+fn rate_insertion_and_fflag() {
+    let (mut i, _) = run(&format!(
+        "{DUMBBELL}fix pts3 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0005
+fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+fix pdd2 all particledistribution/discrete 15485869 1 pts3 1.0
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+region bc block -0.012 0.012 -0.012 0.012 0.01 0.03 units box
+fix ins all insert/rate/region seed 32452843 distributiontemplate pdd1 nparticles 10 particlerate 1000000 insert_every 100 overlapcheck yes region bc
+fix ms all multisphere
+fix nve all nve/sphere
+run 200
+"
+    ))
+    .unwrap();
+    let before: Vec<_> = bodies(&i).iter().map(|b| (b.v, b.omega())).collect();
+    assert_eq!(before.len(), 10);
+    assert!(before.iter().all(|(v, _)| v.z < -1e-3), "they fall");
+    i.run_source(
+        "in.more",
+        "unfix ins
+fix_modify ms fflag off off off tflag off off off
+region top block -0.012 0.012 -0.012 0.012 0.032 0.039 units box
+fix ins2 all insert/pack seed 32452867 distributiontemplate pdd2 insert_every once overlapcheck yes region top particles_in_region 30
+run 1000
+",
+    )
+    .map_err(|e| render(&e))
+    .unwrap();
+    let b = bodies(&i);
+    assert_eq!(b.len(), 10);
+    for (bd, (v, w)) in b.iter().zip(&before) {
+        assert!(bd.fflag == [false; 3] && bd.tflag == [false; 3]);
+        assert_eq!(bd.v, *v);
+        assert!((bd.omega() - *w).length() <= 1e-12 * w.length().max(1.0));
+    }
+    let w = i.sim.world.as_ref().unwrap();
+    assert_eq!(w.particles.nlocal(), 20 + 30);
+    let falling = (0..w.particles.nlocal())
+        .filter(|&k| w.particles.v[k].z < -0.005)
+        .count();
+    assert_eq!(falling, 30);
+}
+
+/// A clump crossing a fixed face (`boundary f`, `thermo_modify lost ignore`) goes whole
+/// as soon as one of its spheres is out, as LIGGGHTS removes the body.
+#[test]
+fn a_clump_leaving_the_box_goes_whole() {
+    let (i, _) = run(&format!(
+        "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc block -0.001 0.001 -0.001 0.001 0.0015 0.0016 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0 0 -1 orientation constant 0.7071067811865476 0 0.7071067811865476 0 insert_every once region bc particles_in_region 1
+fix ms all multisphere
+thermo_modify lost ignore
+run 1
+"
+    ))
+    .unwrap();
+    assert_eq!(bodies(&i).len(), 1);
+    let mut i = i;
+    i.run_source("in.more", "run 1000\n")
+        .map_err(|e| render(&e))
+        .unwrap();
+    assert_eq!(bodies(&i).len(), 0);
+    assert_eq!(i.sim.world.as_ref().unwrap().particles.nlocal(), 0);
+}
+
+/// The errors, each at its word.
+#[test]
+fn errors_point_at_the_word() {
+    let cases: [(&str, &str); 6] = [
+        (
+            "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 spheres 0 0 0 0.001 nspheres 1 ntry 100000 type 1\n",
+            "'spheres' must come after 'nspheres N'",
+        ),
+        (
+            "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 3 ntry 100000 spheres file /nonexistent/file.txt type 1\n",
+            "/nonexistent/file.txt",
+        ),
+        (
+            "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.001 0.0016 0 0 0.0008 type 1 mass 1e-5\n",
+            "'mass' and 'inertia_tensor' together",
+        ),
+        (
+            "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.001 0.0016 0 0 0.0008\n",
+            "needs 'type MT'",
+        ),
+        (
+            &format!("{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0\nregion bc block -0.01 0.01 -0.01 0.01 0.01 0.03 units box\nfix ins all insert/pack seed 32452843 distributiontemplate pdd1 insert_every once region bc particles_in_region 3\nrun 1\n"),
+            "needs a fix multisphere",
+        ),
+        (
+            &format!("{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0\nregion bc block -0.01 0.01 -0.01 0.01 0.01 0.03 units box\nfix ins all insert/pack/dense seed 32452843 distributiontemplate pdd1 region bc volumefraction_region 0.3\n"),
+            "is a multisphere clump",
+        ),
+    ];
+    for (tail, want) in cases {
+        let e = run(tail)
+            .err()
+            .unwrap_or_else(|| panic!("no error for {tail}"));
+        assert!(e.contains(want), "{want}: {e}");
+        assert!(e.contains("in.ms:"), "{e}");
+    }
+}
+
+/// A flat-bottomed silo of 674 dumbbells (24 × 24 mm, walls as planes, a bottom plate
+/// of STL triangles with a 14 × 14 mm orifice) filled, settled on a plug for 0.15 s,
+/// then discharged: the clumps that leave between 0.075 s and 0.3 s after the plug is
+/// removed (they fall out through a fixed face 20 mm below), against LIGGGHTS 3.8 on the
+/// same script within 10 %.
+///
+/// How the LIGGGHTS figures were got: this script (the plate written by the same
+/// rectangles) run by `liggghts -in in.silo -log none`, twice, with the insertion seeds
+/// 32452843 and 49979687; the atom counts of its thermo output at steps 22500 and 45000
+/// were 1256 → 512 and 1266 → 518, so 372 and 374 clumps left (the two seeds differ by
+/// 0.5 %; their counts at other times by up to 10 %).
+#[test]
+fn silo_discharge_against_liggghts() {
+    let dir = std::env::temp_dir().join(format!("rdem-ms-silo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plate = dir.join("plate.stl");
+    let (l, h) = (0.012, 0.007);
+    let mut stl = String::from("solid plate\n");
+    for (x0, x1, y0, y1) in [
+        (-l, l, -l, -h),
+        (-l, l, h, l),
+        (-l, -h, -h, h),
+        (h, l, -h, h),
+    ] {
+        for tri in [
+            [(x0, y0), (x1, y0), (x1, y1)],
+            [(x0, y0), (x1, y1), (x0, y1)],
+        ] {
+            stl.push_str("facet normal 0 0 1\n outer loop\n");
+            for (x, y) in tri {
+                stl.push_str(&format!("  vertex {x} {y} 0.0\n"));
+            }
+            stl.push_str(" endloop\nendfacet\n");
+        }
+    }
+    stl.push_str("endsolid plate\n");
+    std::fs::write(&plate, stl).unwrap();
+    let script = format!(
+        "atom_style sphere
+atom_modify map array sort 0 0
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block -0.012 0.012 -0.012 0.012 -0.02 0.07 units box
+create_box 1 reg
+neighbor 0.0004 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1.e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-5
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix xlo all wall/gran model hertz tangential history primitive type 1 xplane -0.012
+fix xhi all wall/gran model hertz tangential history primitive type 1 xplane 0.012
+fix ylo all wall/gran model hertz tangential history primitive type 1 yplane -0.012
+fix yhi all wall/gran model hertz tangential history primitive type 1 yplane 0.012
+fix plate all mesh/surface file {} type 1
+fix bottom all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate
+fix plug all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc block -0.0105 0.0105 -0.0105 0.0105 0.004 0.068 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 insert_every once overlapcheck yes all_in yes region bc volumefraction_region 0.15 ntry_mc 1000000
+fix integr all multisphere
+thermo 5000
+thermo_modify lost ignore norm no
+run 15000
+",
+        plate.display()
+    );
+    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    i.run_source("in.silo", &script)
+        .map_err(|e| render(&e))
+        .unwrap();
+    let inserted = bodies(&i).len();
+    assert!(
+        (660..=690).contains(&inserted),
+        "{inserted} clumps inserted (LIGGGHTS: 674)"
+    );
+    i.run_source("in.silo1", "unfix plug\nrun 7500\n")
+        .map_err(|e| render(&e))
+        .unwrap();
+    let n0 = i.sim.natoms();
+    i.run_source("in.silo2", "run 22500\n")
+        .map_err(|e| render(&e))
+        .unwrap();
+    let n1 = i.sim.natoms();
+    assert_eq!(
+        n1 as usize,
+        2 * bodies(&i).len(),
+        "spheres left without their clump"
+    );
+    let left = (n0 - n1) as f64 / 2.0;
+    let liggghts = (372.0 + 374.0) / 2.0;
+    eprintln!("rdem: {left} clumps discharged ({n0} -> {n1} spheres); LIGGGHTS 372, 374");
+    assert!(
+        (left / liggghts - 1.0).abs() < 0.1,
+        "{left} clumps discharged against LIGGGHTS' {liggghts}"
+    );
+}
+
+/// Restart files carry the clumps: 40 dumbbells poured on a floor for 3000 steps,
+/// `write_restart`, 2000 more steps; a second interpreter reads the file, defines the
+/// same settings and fixes, and runs the 2000 steps: every body ends where the unbroken
+/// run's does, to round-off (its spheres are rewritten in their file order, so contact
+/// sums may differ in the last bits).
+#[test]
+fn restart_files_carry_the_clumps() {
+    let dir = std::env::temp_dir().join(format!("rdem-ms-restart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ms.restart");
+    let settings = "fix m1 all property/global youngsModulus peratomtype 1.e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+";
+    let (mut i, _) = run(&format!(
+        "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+region bc block -0.008 0.008 -0.008 0.008 0.002 0.012 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0. 0. -0.5 insert_every once overlapcheck yes region bc particles_in_region 40
+fix ms all multisphere
+run 3000
+unfix ins
+write_restart {}
+",
+        file.display()
+    ))
+    .unwrap();
+    i.run_source("in.more", "run 2000\n")
+        .map_err(|e| render(&e))
+        .unwrap();
+    let mut j = Interpreter::new(Sim::new(Output::captured()));
+    j.run_source(
+        "in.back",
+        &format!(
+            "read_restart {}\nneighbor 0.0002 bin\nneigh_modify delay 0\n{settings}fix ms all multisphere\nrun 2000\n",
+            file.display()
+        ),
+    )
+    .map_err(|e| render(&e))
+    .unwrap();
+    let (a, b) = (bodies(&i), bodies(&j));
+    assert_eq!(a.len(), 40);
+    assert_eq!(b.len(), 40);
+    let moved: f64 = a.iter().map(|x| x.v.length()).sum::<f64>();
+    assert!(moved > 0.0);
+    for (x, y) in a.iter().zip(b) {
+        assert!((x.x - y.x).length() < 1e-12, "{} against {}", x.x, y.x);
+        assert!((x.v - y.v).length() < 1e-9, "{} against {}", x.v, y.v);
+        assert!((x.q.dot(y.q)).abs() > 1.0 - 1e-12);
+    }
+}
+
+/// `dump custom ... mol` writes each sphere's clump tag, as LIGGGHTS does (its
+/// multisphere tutorial's dump has `mol` 1 for the first clump's 50 spheres and 2 for the
+/// second's), and 0 for a free sphere.
+#[test]
+fn dump_mol_is_the_clump_tag() {
+    let dir = std::env::temp_dir().join(format!("rdem-ms-dump-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("d.txt");
+    run(&format!(
+        "{DUMBBELL}fix pts3 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0005
+fix pdd1 all particledistribution/discrete 15485867 2 pts1 0.5 pts3 0.5
+region bc block -0.012 0.012 -0.012 0.012 0.01 0.03 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 insert_every once overlapcheck yes region bc particles_in_region 20
+fix ms all multisphere
+run 1
+dump d all custom 1 {} id mol radius
+run 0
+",
+        file.display()
+    ))
+    .unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    let rows: Vec<(u64, u64, f64)> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("ITEM: ATOMS"))
+        .skip(1)
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            (
+                w[0].parse().unwrap(),
+                w[1].parse().unwrap(),
+                w[2].parse().unwrap(),
+            )
+        })
+        .collect();
+    assert!(!rows.is_empty());
+    let mut per_body = std::collections::BTreeMap::new();
+    for &(_, mol, r) in &rows {
+        if r == 0.0005 {
+            assert_eq!(mol, 0, "a free sphere");
+        } else {
+            *per_body.entry(mol).or_insert(0) += 1;
+        }
+    }
+    assert!(per_body.len() >= 2);
+    assert!(per_body.keys().all(|&m| m >= 1));
+    assert!(per_body.values().all(|&n| n == 2), "{per_body:?}");
+}
