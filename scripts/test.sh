@@ -42,6 +42,8 @@ if ! python3 -c "import vtk" >/dev/null 2>&1; then
   python3 -m pip install --quiet vtk
 fi
 
+# Each traced command shows the seconds since the start, so a slow step stands out.
+export PS4='+ [${SECONDS}s] '
 set -x
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
@@ -49,7 +51,7 @@ cargo clippy --workspace --all-targets --features rdem-cli/mpi -- -D warnings
 # Doc tests first, so that the last summary printed is the test suite's.
 cargo test --workspace --doc --release
 # The MPI tests start mpirun themselves (--oversubscribe, so they run on 2 cores too).
-cargo nextest run --workspace --release --features rdem-cli/mpi
+cargo nextest run --workspace --release --features rdem-cli/mpi --no-fail-fast
 
 # The Python package: the wheel built by maturin, installed in a virtual environment.
 python3 -m venv target/pyenv

@@ -292,7 +292,7 @@ pub(crate) mod tests {
             assert_eq!(f, Field::ALL[k]);
             assert_eq!(f.name(), n);
         }
-        assert_eq!(Field::parse("mol"), None);
+        assert_eq!(Field::parse("molecule"), None);
         assert_eq!(Field::parse("X"), None);
         assert_eq!(Field::parse("c_foo"), None);
     }

@@ -28,10 +28,10 @@
 
 use std::collections::VecDeque;
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use rand::Rng;
 
-use super::place::{add_placed, draw_velocity, Placed};
+use super::place::{add_placed, draw_velocity, random_rotation, Placed};
 use super::{Distribution, InsertRng, VelocityLaw};
 use crate::error::{Error, Result};
 use crate::region::Region;
@@ -216,20 +216,6 @@ fn trilaterate(p1: DVec3, h1: f64, p2: DVec3, h2: f64, p3: DVec3, h3: f64) -> [O
         return [Some(base), None];
     }
     [Some(base + z * ez), Some(base - z * ez)]
-}
-
-/// A rotation drawn uniformly (Shoemake's method).
-fn random_rotation(rng: &mut InsertRng) -> DQuat {
-    let (u1, u2, u3): (f64, f64, f64) = (rng.gen(), rng.gen(), rng.gen());
-    let tau = std::f64::consts::TAU;
-    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-    DQuat::from_xyzw(
-        a * (tau * u2).sin(),
-        a * (tau * u2).cos(),
-        b * (tau * u3).sin(),
-        b * (tau * u3).cos(),
-    )
-    .normalize()
 }
 
 impl DensePack {

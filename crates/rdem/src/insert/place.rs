@@ -26,6 +26,7 @@ pub(crate) fn random_rotation(rng: &mut InsertRng) -> DQuat {
         b * (tau * u3).sin(),
         b * (tau * u3).cos(),
     )
+    .normalize()
 }
 
 /// The orientation of a new clump of `shape` (body frame to space frame).
