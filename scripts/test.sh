@@ -44,12 +44,16 @@ fi
 
 # Each traced command shows the seconds since the start, so a slow step stands out.
 export PS4='+ [${SECONDS}s] '
+# No debug info in the release builds of this script (the workspace keeps it for
+# profiling): the builds and links are the longest part of the run.
+export CARGO_PROFILE_RELEASE_DEBUG=0
 set -x
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 cargo clippy --workspace --all-targets --features rdem-cli/mpi -- -D warnings
-# Doc tests first, so that the last summary printed is the test suite's.
-cargo test --workspace --doc --release
+# Doc tests first, so that the last summary printed is the test suite's; with the features
+# of the suite, so that both use one release build of the libraries.
+cargo test --workspace --doc --release --features rdem-cli/mpi
 # The MPI tests start mpirun themselves (--oversubscribe, so they run on 2 cores too).
 cargo nextest run --workspace --release --features rdem-cli/mpi --no-fail-fast
 

@@ -69,14 +69,17 @@ pub enum Field {
     Diameter,
     /// `density`.
     Density,
-    /// `mol`: the tag of the clump a sphere belongs to (`fix multisphere`), 0 for a free
-    /// sphere, as LIGGGHTS writes it.
+    /// `mol`: the tag of the clump a sphere belongs to (`fix multisphere`), -1 for a free
+    /// sphere, as LIGGGHTS 3.8 writes it (which refuses the column without
+    /// `fix multisphere`; rdem writes -1 for every sphere then).
     Mol,
+    /// `id_multisphere`: the same as `mol` in LIGGGHTS 3.8.
+    IdMultisphere,
 }
 
 impl Field {
     /// Every field, in the order of [`Field::NAMES`].
-    pub const ALL: [Field; 31] = [
+    pub const ALL: [Field; 32] = [
         Field::Id,
         Field::Type,
         Field::Mass,
@@ -108,13 +111,43 @@ impl Field {
         Field::Diameter,
         Field::Density,
         Field::Mol,
+        Field::IdMultisphere,
     ];
 
     /// Every valid name, for error messages ("expected one of ...").
-    pub const NAMES: [&'static str; 31] = [
-        "id", "type", "mass", "x", "y", "z", "xs", "ys", "zs", "xu", "yu", "zu", "ix", "iy", "iz",
-        "vx", "vy", "vz", "fx", "fy", "fz", "omegax", "omegay", "omegaz", "tqx", "tqy", "tqz",
-        "radius", "diameter", "density", "mol",
+    pub const NAMES: [&'static str; 32] = [
+        "id",
+        "type",
+        "mass",
+        "x",
+        "y",
+        "z",
+        "xs",
+        "ys",
+        "zs",
+        "xu",
+        "yu",
+        "zu",
+        "ix",
+        "iy",
+        "iz",
+        "vx",
+        "vy",
+        "vz",
+        "fx",
+        "fy",
+        "fz",
+        "omegax",
+        "omegay",
+        "omegaz",
+        "tqx",
+        "tqy",
+        "tqz",
+        "radius",
+        "diameter",
+        "density",
+        "mol",
+        "id_multisphere",
     ];
 
     /// The field called `name` in a `dump custom` command.
@@ -130,11 +163,18 @@ impl Field {
         Self::NAMES[self as usize]
     }
 
-    /// True for integer quantities (`id`, `type`, `ix`, `iy`, `iz`, `mol`), written with `%d`.
+    /// True for integer quantities (`id`, `type`, `ix`, `iy`, `iz`, `mol`,
+    /// `id_multisphere`), written with `%d`.
     pub fn is_integer(self) -> bool {
         matches!(
             self,
-            Field::Id | Field::Type | Field::Ix | Field::Iy | Field::Iz | Field::Mol
+            Field::Id
+                | Field::Type
+                | Field::Ix
+                | Field::Iy
+                | Field::Iz
+                | Field::Mol
+                | Field::IdMultisphere
         )
     }
 
@@ -174,9 +214,16 @@ impl Field {
             Field::Radius => p.radius[i],
             Field::Diameter => 2.0 * p.radius[i],
             Field::Density => p.density[i],
-            Field::Mol => p
-                .property(rdem::multisphere::bodies::BODY_PROP)
-                .map_or(0.0, |id| p.props[id.0].data[i]),
+            Field::Mol | Field::IdMultisphere => {
+                let body = p
+                    .property(rdem::multisphere::bodies::BODY_PROP)
+                    .map_or(0.0, |id| p.props[id.0].data[i]);
+                if body == 0.0 {
+                    -1.0
+                } else {
+                    body
+                }
+            }
         }
     }
 
@@ -188,7 +235,7 @@ impl Field {
             Field::Ix => Value::Int(p.image[i].get()[0] as i64),
             Field::Iy => Value::Int(p.image[i].get()[1] as i64),
             Field::Iz => Value::Int(p.image[i].get()[2] as i64),
-            Field::Mol => Value::Int(self.value(p, d, i) as i64),
+            Field::Mol | Field::IdMultisphere => Value::Int(self.value(p, d, i) as i64),
             _ => Value::Float(self.value(p, d, i)),
         }
     }

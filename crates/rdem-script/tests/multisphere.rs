@@ -311,9 +311,10 @@ fn errors_point_at_the_word() {
 ///
 /// How the LIGGGHTS figures were got: this script (the plate written by the same
 /// rectangles) run by `liggghts -in in.silo -log none`, twice, with the insertion seeds
-/// 32452843 and 49979687; the atom counts of its thermo output at steps 22500 and 45000
-/// were 1256 → 512 and 1266 → 518, so 372 and 374 clumps left (the two seeds differ by
-/// 0.5 %; their counts at other times by up to 10 %).
+/// 32452843 and 49979687 (no `orientation` keyword: LIGGGHTS 3.8 and rdem both insert
+/// the dumbbells as the template has them, along x); the atom counts of its thermo
+/// output at steps 22500 and 45000 were 1256 → 536 and 1266 → 542, so 360 and 362
+/// clumps left (measured 2026-12-02; the two seeds differ by 0.5 %).
 #[test]
 fn silo_discharge_against_liggghts() {
     let dir = std::env::temp_dir().join(format!("rdem-ms-silo-{}", std::process::id()));
@@ -399,8 +400,8 @@ run 15000
         "spheres left without their clump"
     );
     let left = (n0 - n1) as f64 / 2.0;
-    let liggghts = (372.0 + 374.0) / 2.0;
-    eprintln!("rdem: {left} clumps discharged ({n0} -> {n1} spheres); LIGGGHTS 372, 374");
+    let liggghts = (360.0 + 362.0) / 2.0;
+    eprintln!("rdem: {left} clumps discharged ({n0} -> {n1} spheres); LIGGGHTS 360, 362");
     assert!(
         (left / liggghts - 1.0).abs() < 0.1,
         "{left} clumps discharged against LIGGGHTS' {liggghts}"
@@ -466,9 +467,10 @@ write_restart {}
     }
 }
 
-/// `dump custom ... mol` writes each sphere's clump tag, as LIGGGHTS does (its
-/// multisphere tutorial's dump has `mol` 1 for the first clump's 50 spheres and 2 for the
-/// second's), and 0 for a free sphere.
+/// `dump custom ... mol id_multisphere` writes each sphere's clump tag twice, as LIGGGHTS
+/// 3.8 does (its multisphere tutorial's dump has `mol` 1 for the first clump's 50 spheres
+/// and 2 for the second's), and -1 for a free sphere (LIGGGHTS 3.8, measured on a mix of
+/// dumbbells and spheres: `1 -1 -1 1 ...` for a sphere, `3 2 2 1 ...` for a clump's).
 #[test]
 fn dump_mol_is_the_clump_tag() {
     let dir = std::env::temp_dir().join(format!("rdem-ms-dump-{}", std::process::id()));
@@ -476,24 +478,25 @@ fn dump_mol_is_the_clump_tag() {
     let file = dir.join("d.txt");
     run(&format!(
         "{DUMBBELL}fix pts3 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0005
-fix pdd1 all particledistribution/discrete 15485867 2 pts1 0.5 pts3 0.5
+fix pdd1 all particledistribution/discrete 15485867 2 pts1 0.9 pts3 0.1
 region bc block -0.012 0.012 -0.012 0.012 0.01 0.03 units box
 fix ins all insert/pack seed 32452843 distributiontemplate pdd1 insert_every once overlapcheck yes region bc particles_in_region 20
 fix ms all multisphere
 run 1
-dump d all custom 1 {} id mol radius
+dump d all custom 1 {} id mol radius id_multisphere
 run 0
 ",
         file.display()
     ))
     .unwrap();
     let text = std::fs::read_to_string(&file).unwrap();
-    let rows: Vec<(u64, u64, f64)> = text
+    let rows: Vec<(u64, i64, f64)> = text
         .lines()
         .skip_while(|l| !l.starts_with("ITEM: ATOMS"))
         .skip(1)
         .map(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
+            assert_eq!(w[1], w[3], "mol and id_multisphere: {l}");
             (
                 w[0].parse().unwrap(),
                 w[1].parse().unwrap(),
@@ -505,12 +508,136 @@ run 0
     let mut per_body = std::collections::BTreeMap::new();
     for &(_, mol, r) in &rows {
         if r == 0.0005 {
-            assert_eq!(mol, 0, "a free sphere");
+            assert_eq!(mol, -1, "a free sphere");
         } else {
             *per_body.entry(mol).or_insert(0) += 1;
         }
     }
-    assert!(per_body.len() >= 2);
+    assert!(per_body.len() >= 2, "{rows:?}");
     assert!(per_body.keys().all(|&m| m >= 1));
     assert!(per_body.values().all(|&n| n == 2), "{per_body:?}");
+}
+
+/// Reads the rows of the last snapshot of a `dump local` text file.
+fn local_rows(path: &std::path::Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let last = text.rfind("ITEM: ENTRIES").unwrap();
+    text[last..]
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+        .collect()
+}
+
+/// `compute multisphere property ...` in `dump local` and `compute multisphere/single` in
+/// a variable, against LIGGGHTS 3.8 on the same script: three dumbbells inserted by
+/// `insert/pack` (template orientation, the default), v = (0.1, 0, −0.5) m/s,
+/// ω = (1, 2, 3) rad/s, flying free under gravity for 1000 steps of 1 µs. LIGGGHTS'
+/// row (the same for each body), from `liggghts -in in.ms` with this test's commands
+/// (insertion seed 67867967, as LIGGGHTS asks the seeds to differ):
+/// vcm 0.1 0 −0.509805, fcm 0 0 −0.000154169, torque 0 0 0, angmom 5.54731e-12
+/// 2.92325e-11 4.38592e-11, omega 0.999992 2.00186 2.99876, density 2500, atomtype 1,
+/// clumptype 1, masstotal 1.57154e-05, inertia 5.55682e-12 1.46169e-11 1.46205e-11,
+/// ex_space 0.999994 0.00313995 −0.00174285. Tolerances: exact for velocity, force and
+/// the integers (the same gravity and start), 0.5 % for what follows from the Monte
+/// Carlo mass properties (each code draws its own points: a standard error near 0.1 %).
+/// The placement differs (each code draws its own positions), so `xcm` is checked
+/// against the bodies' own state and the single compute against the local one.
+#[test]
+fn body_output_against_liggghts() {
+    let dir = std::env::temp_dir().join(format!("rdem-ms-local-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (f1, f2) = (dir.join("l1.txt"), dir.join("l2.txt"));
+    let (i, out) = run(&format!(
+        "fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix zwalls all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+{DUMBBELL}fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
+region bc block -0.01 0.01 -0.01 0.01 0.002 0.01 units box
+fix ins all insert/pack seed 67867967 distributiontemplate pdd1 vel constant 0.1 0. -0.5 omega constant 1 2 3 insert_every once overlapcheck yes all_in yes region bc particles_in_region 3
+fix ms all multisphere
+compute cx all multisphere property xcm
+compute cv all multisphere property vcm
+compute cf all multisphere property fcm
+compute ct all multisphere property torque
+compute cq all rigid property quat
+compute ca all multisphere property angmom
+compute co all multisphere property omega
+compute cd all multisphere property density
+compute cty all multisphere property atomtype
+compute cct all multisphere property clumptype
+compute cid all multisphere property id_multisphere
+compute cm all multisphere property masstotal
+compute ci all multisphere property inertia
+compute cex all multisphere property ex_space
+compute s1 all multisphere/single id 2 property xcm
+compute s2 all multisphere/single id 2 property masstotal
+dump d1 all local 1000 {} c_cid c_cx[1] c_cx[2] c_cx[3] c_cv[1] c_cv[2] c_cv[3] c_cf[1] c_cf[2] c_cf[3] c_ct[1] c_ct[2] c_ct[3]
+dump d2 all local 1000 {} c_cid c_cq[1] c_cq[2] c_cq[3] c_cq[4] c_ca[1] c_ca[2] c_ca[3] c_co[1] c_co[2] c_co[3] c_cd c_cty c_cct c_cm c_ci[1] c_ci[2] c_ci[3] c_cex[1] c_cex[2] c_cex[3]
+run 1000
+variable z2 equal c_s1[3]
+variable m2 equal c_s2
+print \"BODY2 ${{z2}} ${{m2}}\"
+",
+        f1.display(),
+        f2.display()
+    ))
+    .unwrap();
+    let (r1, r2) = (local_rows(&f1), local_rows(&f2));
+    assert_eq!(r1.len(), 3);
+    assert_eq!(r2.len(), 3);
+    let close = |got: f64, want: f64, tol: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= tol * want.abs().max(1e-300),
+            "{what}: rdem {got}, LIGGGHTS {want}"
+        );
+    };
+    let b = bodies(&i);
+    for (k, (a, c)) in r1.iter().zip(&r2).enumerate() {
+        assert_eq!(a[0], (k + 1) as f64, "rows in tag order");
+        assert_eq!(c[0], a[0]);
+        for j in 0..3 {
+            // %g: six significant digits.
+            let want = b[k].x[j];
+            assert!((a[1 + j] - want).abs() < 1e-5 * want.abs(), "xcm {a:?}");
+        }
+        close(a[4], 0.1, 1e-12, "vcm x");
+        assert_eq!(a[5], 0.0, "vcm y");
+        close(a[6], -0.509805, 1e-6, "vcm z");
+        assert_eq!((a[7], a[8]), (0.0, 0.0), "fcm x, y");
+        close(a[9], -0.000154169, 5e-3, "fcm z");
+        for j in 10..13 {
+            assert!(a[j].abs() < 1e-20, "torque {a:?}");
+        }
+        // quat (w, x, y, z): the x axis it turns is ex_space.
+        let q = glam::DQuat::from_xyzw(c[2], c[3], c[4], c[1]);
+        assert!((q.length() - 1.0).abs() < 1e-5, "{q}");
+        let ex = glam::DVec3::new(c[18], c[19], c[20]);
+        assert!((q * glam::DVec3::X - ex).length() < 1e-5, "{q} {ex}");
+        for (j, want) in [5.54731e-12, 2.92325e-11, 4.38592e-11].iter().enumerate() {
+            close(c[5 + j], *want, 5e-3, "angmom");
+        }
+        for (j, want) in [0.999992, 2.00186, 2.99876].iter().enumerate() {
+            close(c[8 + j], *want, 5e-3, "omega");
+        }
+        assert_eq!(
+            &c[11..14],
+            &[2500.0, 1.0, 1.0],
+            "density, atomtype, clumptype"
+        );
+        close(c[14], 1.57154e-05, 5e-3, "masstotal");
+        for (j, want) in [5.55682e-12, 1.46169e-11, 1.46205e-11].iter().enumerate() {
+            close(c[15 + j], *want, 5e-3, "inertia");
+        }
+        // The long axis, up to its sign.
+        let want = glam::DVec3::new(0.999994, 0.00313995, -0.00174285);
+        assert!(ex.dot(want).abs() > 1.0 - 1e-5, "ex_space {ex}");
+    }
+    let line = out.lines().find(|l| l.starts_with("BODY2")).unwrap();
+    let w: Vec<f64> = line
+        .split_whitespace()
+        .skip(1)
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!((w[0] - b[1].x.z).abs() < 1e-9, "{line}");
+    assert!((w[1] - b[1].mass).abs() < 1e-9 * b[1].mass, "{line}");
 }

@@ -105,6 +105,12 @@ pub struct BodyState {
     pub fflag: [bool; 3],
     /// Rotational switches.
     pub tflag: [bool; 3],
+    /// Density of its template.
+    pub density: f64,
+    /// Atom type of its spheres.
+    pub atom_type: u32,
+    /// Multisphere type of its template.
+    pub clump_type: u32,
 }
 
 /// One rank's share of a restart file.
@@ -183,7 +189,8 @@ impl World {
                 ms.bodies
                     .iter()
                     .zip(&ms.tags)
-                    .map(|(b, &tag)| BodyState {
+                    .zip(&ms.info)
+                    .map(|((b, &tag), info)| BodyState {
                         tag,
                         mass: b.mass,
                         moments: arr(b.moments),
@@ -193,6 +200,9 @@ impl World {
                         angmom: arr(b.angmom),
                         fflag: b.fflag,
                         tflag: b.tflag,
+                        density: info.density,
+                        atom_type: info.atom_type,
+                        clump_type: info.clump_type,
                     })
                     .collect()
             }),
@@ -213,8 +223,12 @@ impl World {
             body.angmom = DVec3::from(b.angmom);
             body.fflag = b.fflag;
             body.tflag = b.tflag;
-            ms.bodies.push(body);
-            ms.tags.push(b.tag);
+            let info = crate::multisphere::BodyInfo {
+                density: b.density,
+                atom_type: b.atom_type,
+                clump_type: b.clump_type,
+            };
+            ms.push(body, b.tag, info);
         }
         if let Some(id) = self
             .particles

@@ -20,6 +20,7 @@ mod pe;
 mod pressure;
 mod property_atom;
 pub mod reduce;
+mod rigid;
 mod stress_atom;
 pub mod temp;
 mod wall_gran_local;
@@ -158,6 +159,9 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         erotate_sphere::ROW_ALL,
         multisphere::ROW_EROTATE,
         multisphere::ROW_KE,
+        rigid::ROW,
+        rigid::ROW_RIGID,
+        rigid::ROW_SINGLE,
         energy_atom::ROW_EROTATE,
         ke::ROW,
         energy_atom::ROW_KE,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use rdem::comm::Comm;
 use rdem::{DVec3, Particles};
-use rdem_io::Column;
+use rdem_io::{Column, Field};
 
 use super::DumpHead;
 use crate::args::{suggest, Args, CmdResult};
@@ -133,6 +133,20 @@ pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String>
     args.iter()
         .map(|arg| {
             if let Some(c) = Column::field(arg) {
+                // A sphere's clump is a named property, which the gathered copies lack:
+                // its values go as a column of their own.
+                if let Column::Field(f @ (Field::Mol | Field::IdMultisphere)) = c {
+                    let w = sim
+                        .world
+                        .as_ref()
+                        .ok_or("dump before the simulation box is defined")?;
+                    let p = &w.particles;
+                    let values = (0..p.nlocal()).map(|i| f.value(p, &w.domain, i)).collect();
+                    return Ok(Column::Custom {
+                        name: arg.clone(),
+                        values,
+                    });
+                }
                 return Ok(c);
             }
             let values = match split_reference(arg) {

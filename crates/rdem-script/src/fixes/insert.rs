@@ -234,7 +234,8 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let (mut overlap, mut all_in, mut maxattempt, mut verbose) = (true, false, 50usize, true);
     let mut vel = VelocityLaw::Constant(DVec3::ZERO);
     let mut omega = DVec3::ZERO;
-    let mut orientation = Orientation::Random;
+    // LIGGGHTS 3.8's default (measured; see `Orientation::Template`).
+    let mut orientation = Orientation::Template;
     let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
     let mut every_once = false;
     let (mut face, mut extrude, mut duration) = (None, None, None);

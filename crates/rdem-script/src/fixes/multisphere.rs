@@ -17,7 +17,7 @@ pub(super) const ROW: FixRow = style(
     Stages::NONE,
     "`allow_group_and_set yes\\|no`, `allow_heatsource no`; `fix_modify ID fflag on\\|off ×3 tflag on\\|off ×3`",
 )
-.notes("one MPI rank and non-periodic boundaries only for now (LIGGGHTS-PUBLIC 3.8: serial only); `group` and `set` are not refused without `allow_group_and_set yes` (LIGGGHTS refuses them), but a clump's spheres always move with their body; `allow_heatsource yes` and `CAddRhoFluid` stop with an error");
+.notes("one MPI rank only for now (LIGGGHTS-PUBLIC 3.8: serial only); `group` and `set` are not refused without `allow_group_and_set yes` (LIGGGHTS refuses them), but a clump's spheres always move with their body; `allow_heatsource yes` and `CAddRhoFluid` stop with an error");
 
 /// The fix: its state is the world's clumps (`World::multisphere`).
 pub struct MultisphereFix;

@@ -175,12 +175,12 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             "'spheres x1 y1 z1 r1 ...' or 'spheres file F [scale s]'",
         )
     })?;
-    if ms_type.is_none() {
+    let Some(clump_type) = ms_type else {
         return Err(need(
             "'type MT'",
             "the multisphere type of the template, from 1",
         ));
-    }
+    };
     let mut spheres = match source {
         Source::Inline(v) => v,
         Source::File { path, at } => read_spheres(&path, nspheres)
@@ -248,6 +248,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         template,
         fflag,
         tflag,
+        clump_type: u32::try_from(clump_type).unwrap_or(u32::MAX),
     };
     let t = ParticleTemplate::clump(id, seed, ty, density, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;

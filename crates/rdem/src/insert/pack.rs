@@ -38,10 +38,12 @@ pub enum VelocityLaw {
 /// How inserted clumps are turned (`orientation`; spheres ignore it).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Orientation {
-    /// `orientation random`: uniform over all rotations (the default).
-    #[default]
+    /// `orientation random`: uniform over all rotations.
     Random,
-    /// `orientation template`: as the template's spheres were given.
+    /// `orientation template`: as the template's spheres were given. The default, as in
+    /// LIGGGHTS 3.8 (its manual names none; three dumbbells inserted by `insert/pack`
+    /// without the keyword all had the template's orientation, measured).
+    #[default]
     Template,
     /// `orientation constant q0 q1 q2 q3`: this rotation of the template as given.
     Constant(glam::DQuat),
@@ -155,7 +157,7 @@ impl InsertPack {
             max_attempt: 50,
             velocity: VelocityLaw::Constant(DVec3::ZERO),
             omega: DVec3::ZERO,
-            orientation: Orientation::Random,
+            orientation: Orientation::Template,
             fall: None,
             rng: super::rng(seed),
             last: None,

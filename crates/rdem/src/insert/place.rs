@@ -291,6 +291,9 @@ pub(crate) fn add_placed(
         let body = ms.bodies.last_mut().expect("a clump was added");
         body.fflag = c.fflag;
         body.tflag = c.tflag;
+        let info = ms.info.last_mut().expect("a clump was added");
+        info.density = t.density;
+        info.clump_type = c.clump_type;
         let last = world.particles.nlocal();
         return Ok((c.template.props.mass, Some(first..last)));
     }

@@ -257,7 +257,7 @@ impl InsertStream {
             mesh,
             velocity,
             omega: DVec3::ZERO,
-            orientation: super::Orientation::Random,
+            orientation: super::Orientation::Template,
             overlap_check: true,
             all_in: false,
             max_attempt: 50,

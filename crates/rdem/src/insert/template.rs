@@ -30,6 +30,8 @@ pub struct ClumpShape {
     pub fflag: [bool; 3],
     /// `tflag`: the rotational degrees of freedom (x, y, z) that move.
     pub tflag: [bool; 3],
+    /// The template's multisphere type (`type MT`, from 1).
+    pub clump_type: u32,
 }
 
 impl ClumpShape {

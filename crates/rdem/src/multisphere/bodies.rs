@@ -20,7 +20,10 @@
 //! Contacts: a clump's sphere takes its body's mass into the effective mass m* of its
 //! contacts, as LIGGGHTS does ([`crate::particles::Particles::mass_of_contact`]).
 //!
-//! Not yet: bodies on periodic boundaries or on several ranks are refused.
+//! Periodic boundaries: a body's centre of mass is never wrapped; each sphere is wrapped
+//! by re-neighboring as any particle, and placed at the image its image counts say.
+//!
+//! Not yet: bodies on several ranks are refused.
 
 use glam::{DQuat, DVec3};
 
@@ -42,25 +45,66 @@ pub struct Multisphere {
     pub bodies: Vec<RigidBody>,
     /// Each body's tag (from 1), as its spheres' [`BODY_PROP`] holds it.
     pub tags: Vec<u64>,
+    /// What each body is made of (for output).
+    pub info: Vec<BodyInfo>,
+    /// Each tag's index in `bodies`, kept by [`Multisphere::reindex`].
+    slots: Slots,
+    /// Scratch of the step: each body's angular velocity.
+    omegas: Vec<DVec3>,
+    /// Scratch of the step: the gravity fixes (group bit, acceleration).
+    gravity: Vec<(u32, DVec3)>,
+}
+
+/// What a body is made of, as `compute multisphere` reports it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyInfo {
+    /// Density of its template (`density constant`).
+    pub density: f64,
+    /// Atom type of its spheres.
+    pub atom_type: u32,
+    /// Multisphere type of its template (`type MT` of `fix particletemplate/multisphere`;
+    /// 0 if not from a template).
+    pub clump_type: u32,
 }
 
 impl Multisphere {
-    /// The index in [`Multisphere::bodies`] of each body tag.
-    fn slots(&self) -> Slots {
+    /// Rebuilds the index of each body tag in [`Multisphere::bodies`]; to call whenever
+    /// bodies are added or dropped.
+    pub(crate) fn reindex(&mut self) {
         let top = self.tags.iter().copied().max().unwrap_or(0) as usize;
-        let mut of = vec![usize::MAX; top + 1];
+        let of = &mut self.slots.of;
+        of.clear();
+        of.resize(top + 1, usize::MAX);
         for (k, &t) in self.tags.iter().enumerate() {
             of[t as usize] = k;
         }
-        Slots {
-            of,
-            n: self.tags.len(),
+        self.slots.n = self.tags.len();
+    }
+
+    /// The index in [`Multisphere::bodies`] of the body whose tag a sphere's
+    /// [`BODY_PROP`] value `tag` holds (`None`: a free sphere, or a body that is gone).
+    #[inline]
+    pub fn body_of(&self, tag: f64) -> Option<usize> {
+        self.slots.get(tag)
+    }
+
+    /// Appends a body (and keeps the index).
+    pub(crate) fn push(&mut self, body: RigidBody, tag: u64, info: BodyInfo) {
+        self.bodies.push(body);
+        self.tags.push(tag);
+        self.info.push(info);
+        let t = tag as usize;
+        if self.slots.of.len() <= t {
+            self.slots.of.resize(t + 1, usize::MAX);
         }
+        self.slots.of[t] = self.bodies.len() - 1;
+        self.slots.n = self.bodies.len();
     }
 }
 
 /// Each body tag's index in [`Multisphere::bodies`], by a table indexed by tag (tags are
 /// given in order, so the table is dense; a lookup per sphere and step must be cheap).
+#[derive(Debug, Clone, Default)]
 struct Slots {
     of: Vec<usize>,
     n: usize,
@@ -136,23 +180,21 @@ impl World {
             p.props[offset_id.0].data[3 * i..3 * i + 3].copy_from_slice(&s.x.to_array());
         }
         let ms = self.multisphere.get_or_insert_with(Multisphere::default);
-        ms.bodies.push(body);
-        ms.tags.push(tag);
+        let info = BodyInfo {
+            density: template.props.mass / template.props.volume,
+            atom_type: c.ty,
+            clump_type: 0,
+        };
+        ms.push(body, tag, info);
         Ok(tag)
     }
 
-    /// What clumps cannot do yet: several ranks, periodic boundaries.
+    /// What clumps cannot do yet: several ranks.
     fn check_multisphere(&self) -> Result<()> {
         if self.comm.size() > 1 {
             return Err(Error::Invalid {
                 what: "fix multisphere",
                 reason: "runs on one rank only so far (LIGGGHTS-PUBLIC too)".into(),
-            });
-        }
-        if self.domain.periodicity().iter().any(|&p| p) {
-            return Err(Error::Invalid {
-                what: "fix multisphere",
-                reason: "periodic boundaries are not supported with clumps yet".into(),
             });
         }
         Ok(())
@@ -162,9 +204,14 @@ impl World {
     /// of whose spheres it holds, and drops those bodies (LIGGGHTS removes a body when
     /// any of its spheres goes). Returns how many bodies were dropped.
     pub fn remove_whole_bodies(&mut self, remove: &mut [bool]) -> usize {
-        let Some((body_id, _, slots)) = self.members() else {
+        let Some((body_id, _)) = self.members() else {
             return 0;
         };
+        let slots = &self
+            .multisphere
+            .as_ref()
+            .expect("members() found bodies")
+            .slots;
         let tags = &self.particles.props[body_id.0].data;
         let n = remove.len().min(self.particles.nlocal());
         let mut gone = vec![false; slots.len()];
@@ -194,13 +241,19 @@ impl World {
             k += 1;
             !gone[k - 1]
         });
+        let mut k = 0;
+        ms.info.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
+        ms.reindex();
         gone.iter().filter(|&&g| g).count()
     }
 
     /// Before a force computation: the contact mass of every particle, its body's for a
     /// clump's sphere, else its own ([`crate::particles::Particles::mass_of_contact`]).
     pub(crate) fn refresh_contact_mass(&mut self) {
-        let Some((body_id, _, slots)) = self.members() else {
+        let Some((body_id, _)) = self.members() else {
             return;
         };
         let Some(ms) = &self.multisphere else {
@@ -210,12 +263,12 @@ impl World {
         let n = p.len();
         let tags = &p.props[body_id.0].data;
         p.mass_of_contact.clear();
-        p.mass_of_contact.extend((0..n).map(
-            |i| match slots.get(tags.get(i).copied().unwrap_or(0.0)) {
+        p.mass_of_contact.extend((0..n).map(|i| {
+            match ms.slots.get(tags.get(i).copied().unwrap_or(0.0)) {
                 Some(k) => ms.bodies[k].mass,
                 None => p.rmass[i],
-            },
-        ));
+            }
+        }));
     }
 
     /// The two member properties, added if missing.
@@ -232,12 +285,11 @@ impl World {
         Ok((body, offset))
     }
 
-    /// The two member properties and each body tag's index in [`Multisphere::bodies`]
-    /// (`None` without clumps).
-    fn members(&self) -> Option<(PropId, PropId, Slots)> {
-        let ms = self.multisphere.as_ref()?;
+    /// The two member properties (`None` without clumps).
+    fn members(&self) -> Option<(PropId, PropId)> {
+        self.multisphere.as_ref()?;
         let p = &self.particles;
-        Some((p.property(BODY_PROP)?, p.property(OFFSET_PROP)?, ms.slots()))
+        Some((p.property(BODY_PROP)?, p.property(OFFSET_PROP)?))
     }
 
     /// Set-up: the checks, and the spheres of one body excluded from each other.
@@ -283,21 +335,19 @@ impl World {
     /// fixes (gravity acts at the centre of mass), and spheres `insert/stream` holds add
     /// nothing (the body drifts until released).
     pub(crate) fn sum_body_forces(&mut self) {
-        let Some((body_id, offset_id, slots)) = self.members() else {
+        let Some((body_id, offset_id)) = self.members() else {
             return;
         };
         let Some(ms) = &mut self.multisphere else {
             return;
         };
         let p = &self.particles;
-        let gravity: Vec<(u32, DVec3)> = self
-            .fixes
-            .iter()
-            .filter_map(|f| match f.kind {
+        ms.gravity.clear();
+        ms.gravity
+            .extend(self.fixes.iter().filter_map(|f| match f.kind {
                 FixKind::Gravity { accel } => Some((f.groupbit, accel)),
                 _ => None,
-            })
-            .collect();
+            }));
         for b in &mut ms.bodies {
             b.force = DVec3::ZERO;
             b.torque = DVec3::ZERO;
@@ -307,7 +357,7 @@ impl World {
         let held = p.property(crate::insert::stream::HOLD_PROPERTY);
         let step = self.step as f64;
         for i in 0..p.nlocal() {
-            let Some(k) = slots.get(tags[i]) else {
+            let Some(k) = ms.slots.get(tags[i]) else {
                 continue;
             };
             if held.is_some_and(|h| p.props[h.0].data[i] > step) {
@@ -315,7 +365,8 @@ impl World {
             }
             let b = &mut ms.bodies[k];
             let d = b.q * DVec3::from_slice(&offsets[3 * i..3 * i + 3]);
-            let g: DVec3 = gravity
+            let g: DVec3 = ms
+                .gravity
                 .iter()
                 .filter(|(bit, _)| p.mask[i] & bit != 0)
                 .map(|(_, a)| p.rmass[i] * *a)
@@ -325,18 +376,23 @@ impl World {
         }
     }
 
-    /// The spheres of every body where it says (with `positions`) and moving with it.
+    /// The spheres of every body where it says (with `positions`) and moving with it. The
+    /// centre of mass is unwrapped; a sphere is put at the periodic image its own image
+    /// counts say, x = X + R d − n ⊙ L, so that it stays where re-neighboring wrapped it.
     fn place_members(&mut self, positions: bool) {
-        let Some((body_id, offset_id, slots)) = self.members() else {
+        let Some((body_id, offset_id)) = self.members() else {
             return;
         };
-        let Some(ms) = &self.multisphere else {
+        let Some(ms) = &mut self.multisphere else {
             return;
         };
+        let periodic = self.domain.periodicity().iter().any(|&p| p);
+        let prd = self.domain.prd();
         let p = &mut self.particles;
-        let omegas: Vec<DVec3> = ms.bodies.iter().map(RigidBody::omega).collect();
+        ms.omegas.clear();
+        ms.omegas.extend(ms.bodies.iter().map(RigidBody::omega));
         for i in 0..p.nlocal() {
-            let Some(k) = slots.get(p.props[body_id.0].data[i]) else {
+            let Some(k) = ms.slots.get(p.props[body_id.0].data[i]) else {
                 continue;
             };
             let b = &ms.bodies[k];
@@ -344,9 +400,13 @@ impl World {
             let r = b.q * DVec3::from_slice(off);
             if positions {
                 p.x[i] = b.x + r;
+                if periodic {
+                    let n = p.image[i].get();
+                    p.x[i] -= DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) * prd;
+                }
             }
-            p.v[i] = b.v + omegas[k].cross(r);
-            p.omega[i] = omegas[k];
+            p.v[i] = b.v + ms.omegas[k].cross(r);
+            p.omega[i] = ms.omegas[k];
         }
     }
 }

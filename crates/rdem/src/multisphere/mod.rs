@@ -9,6 +9,6 @@ pub mod bodies;
 pub mod body;
 pub mod template;
 
-pub use bodies::{Multisphere, NewClump};
+pub use bodies::{BodyInfo, Multisphere, NewClump};
 pub use body::RigidBody;
 pub use template::{ClumpTemplate, MassProperties, MassSource, Sphere};
