@@ -12,7 +12,10 @@ Cases:
   dense    the settled dense bed (8656 spheres, 5000 steps): in.dense_data, and
            in.dense_data.lmp for LAMMPS;
   lattice  1,000,000 spheres settling from a simple cubic lattice (200 steps):
-           in.lattice (-var n N for another size; no LAMMPS script).
+           in.lattice (-var n N for another size; no LAMMPS script);
+  clumps   2301 rigid dumbbells (4602 spheres, fix multisphere) settling in a box, 4000
+           steps after 8000 of filling: scripts/bench/in.clump_bed (no rdem 2-rank run:
+           rdem runs clumps on one rank so far; no LAMMPS script).
 Configurations: rdem with 1 and 2 threads and with 2 MPI ranks of 1 thread each (when the
 binary is built with the `mpi` feature and mpirun exists), LIGGGHTS on 1 and 2 ranks,
 LAMMPS on 1 rank (dense only, when `lmp` or `lmp_serial` is installed).
@@ -24,6 +27,7 @@ ratios rdem/reference of every round and of the medians.
     python3 scripts/bench-compare.py                       # both cases, 3 rounds
     python3 scripts/bench-compare.py --cases dense --rounds 5
     python3 scripts/bench-compare.py --cases lattice --n 50 --rounds 1
+    python3 scripts/bench-compare.py --cases clumps --rounds 3
 """
 
 import argparse
@@ -104,6 +108,7 @@ def main():
         for src in os.listdir(args.bench):
             if src.startswith("in.") or src.endswith(".data"):
                 shutil.copy(os.path.join(args.bench, src), work)
+        shutil.copy(os.path.join(HERE, "bench", "in.clump_bed"), work)
         one = {"RDEM_THREADS": "1", "OMP_NUM_THREADS": "1"}
         two = {"RDEM_THREADS": "2", "OMP_NUM_THREADS": "1"}
         for case in args.cases.split(","):
@@ -111,13 +116,16 @@ def main():
                 script, extra = "in.dense_data", []
             elif case == "lattice":
                 script, extra = "in.lattice", ["-var", "n", str(args.n)]
+            elif case == "clumps":
+                script, extra = "in.clump_bed", []
             else:
-                sys.exit(f"unknown case {case!r}: dense or lattice")
+                sys.exit(f"unknown case {case!r}: dense, lattice or clumps")
+            rdem_ranks = case != "clumps"
             configs = [
                 ("rdem 1 thread", [rdem, "-in", script, "-log", "none"] + extra, one, True),
                 ("rdem 2 threads", [rdem, "-in", script, "-log", "none"] + extra, two, True),
             ]
-            if has_mpi:
+            if has_mpi and rdem_ranks:
                 configs.append(("rdem 2 ranks", mpi + [rdem, "-in", script, "-log", "none"] + extra, one, False))
             configs.append(("LIGGGHTS 1 rank", [liggghts, "-in", script, "-log", "none"] + extra, one, True))
             if mpirun and not args.no_ranks:

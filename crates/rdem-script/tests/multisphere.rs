@@ -268,7 +268,7 @@ run 1
 /// The errors, each at its word.
 #[test]
 fn errors_point_at_the_word() {
-    let cases: [(&str, &str); 6] = [
+    let cases: [(&str, &str); 7] = [
         (
             "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 spheres 0 0 0 0.001 nspheres 1 ntry 100000 type 1\n",
             "'spheres' must come after 'nspheres N'",
@@ -292,6 +292,10 @@ fn errors_point_at_the_word() {
         (
             &format!("{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0\nregion bc block -0.01 0.01 -0.01 0.01 0.01 0.03 units box\nfix ins all insert/pack/dense seed 32452843 distributiontemplate pdd1 region bc volumefraction_region 0.3\n"),
             "is a multisphere clump",
+        ),
+        (
+            "fix ms all multisphere\nset group all density 2000\n",
+            "set may not be used together with fix multisphere 'ms'",
         ),
     ];
     for (tail, want) in cases {
@@ -640,4 +644,55 @@ print \"BODY2 ${{z2}} ${{m2}}\"
         .collect();
     assert!((w[0] - b[1].x.z).abs() < 1e-9, "{line}");
     assert!((w[1] - b[1].mass).abs() < 1e-9 * b[1].mass, "{line}");
+}
+
+/// `delete_atoms region` takes a clump whole when the region holds any of its spheres
+/// (as LIGGGHTS removes a body with any of its spheres), and `set` runs on the spheres
+/// with `allow_group_and_set yes` (LIGGGHTS 3.8 refuses it without).
+#[test]
+fn delete_atoms_takes_whole_clumps_and_set_needs_allow_group_and_set() {
+    let (mut i, _) = run(&format!(
+        "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc block -0.012 0.012 -0.012 0.012 0.01 0.03 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 insert_every once overlapcheck yes region bc particles_in_region 40
+fix ms all multisphere allow_group_and_set yes
+run 1
+"
+    ))
+    .unwrap();
+    // The clumps with no sphere at x >= 0, and those with spheres on both sides.
+    let (mut keep, mut straddle) = (0, 0);
+    {
+        let w = i.sim.world.as_ref().unwrap();
+        let p = &w.particles;
+        let id = p.property(rdem::multisphere::bodies::BODY_PROP).unwrap();
+        let ms = w.multisphere.as_ref().unwrap();
+        for &t in &ms.tags {
+            let xs: Vec<f64> = (0..p.nlocal())
+                .filter(|&k| p.props[id.0].data[k] == t as f64)
+                .map(|k| p.x[k].x)
+                .collect();
+            assert_eq!(xs.len(), 2);
+            keep += xs.iter().all(|&x| x < 0.0) as usize;
+            straddle += (xs.iter().any(|&x| x < 0.0) && xs.iter().any(|&x| x >= 0.0)) as usize;
+        }
+    }
+    assert!(straddle > 0, "no clump straddles x = 0");
+    i.run_source(
+        "in.del",
+        "region half block 0 0.02 -0.02 0.02 0 0.04 units box
+delete_atoms region half
+set group all density 2000
+run 1
+",
+    )
+    .map_err(|e| render(&e))
+    .unwrap();
+    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let w = i.sim.world.as_ref().unwrap();
+    let n = w.particles.nlocal();
+    assert_eq!(bodies(&i).len(), keep);
+    assert_eq!(n, 2 * keep, "spheres left without their clump");
+    assert!(out.contains(&format!("Deleted {} atoms", 80 - n)), "{out}");
+    assert!(w.particles.density[..n].iter().all(|&d| d == 2000.0));
 }

@@ -120,7 +120,8 @@ pub struct RankState {
     pub particles: ParticleState,
     /// Its contact histories.
     pub history: HistoryState,
-    /// Its rigid clumps (`fix multisphere`), `None` without that fix.
+    /// Its rigid clumps (`fix multisphere`: every clump in the first rank's state, none in
+    /// the others', as every rank holds every clump), `None` without that fix.
     pub bodies: Option<Vec<BodyState>>,
 }
 
@@ -185,8 +186,14 @@ impl World {
         RankState {
             particles,
             history: self.neighbor.history_state(p),
+            // Every rank holds every body: the first rank's state carries them.
             bodies: self.multisphere.as_ref().map(|ms| {
-                ms.bodies
+                let n = if self.comm.rank() == 0 {
+                    ms.bodies.len()
+                } else {
+                    0
+                };
+                ms.bodies[..n]
                     .iter()
                     .zip(&ms.tags)
                     .zip(&ms.info)

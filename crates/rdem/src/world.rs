@@ -206,17 +206,24 @@ impl World {
     /// Removes the owned particles marked by [`World::remove_at_reneighbor`] (call with
     /// the ghosts cleared and the history saved).
     pub(crate) fn remove_marked(&mut self) {
-        let Some(id) = self.particles.property(REMOVAL_PROP) else {
-            return;
+        let nlocal = self.particles.nlocal();
+        let mut marked: Vec<bool> = match self.particles.property(REMOVAL_PROP) {
+            Some(id) => self.particles.props[id.0].data[..nlocal]
+                .iter()
+                .map(|&v| v != 0.0)
+                .collect(),
+            None => vec![false; nlocal],
         };
-        let flags = &self.particles.props[id.0].data[..self.particles.nlocal()];
-        if flags.iter().all(|&v| v == 0.0) {
+        // Clumps on several ranks: every rank takes part in dropping whole bodies.
+        let collective = self.multisphere.is_some() && self.comm.size() > 1;
+        if !collective && !marked.iter().any(|&m| m) {
             return;
         }
-        let mut marked: Vec<bool> = flags.iter().map(|&v| v != 0.0).collect();
         self.remove_whole_bodies(&mut marked);
-        self.particles.remove_locals(&marked);
-        self.virial_step = None;
+        if marked.iter().any(|&m| m) {
+            self.particles.remove_locals(&marked);
+            self.virial_step = None;
+        }
     }
 
     /// Adds a fix (its ID must be new).

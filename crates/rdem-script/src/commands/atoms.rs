@@ -63,7 +63,7 @@ fn range(s: &str) -> Option<(u64, u64)> {
 
 pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.keyword("delete_atoms style", &["group", "region"])?;
-    let remove = select(sim, a, style)?;
+    let mut remove = select(sim, a, style)?;
     let mut compress = true;
     while !a.is_done() {
         a.keyword("delete_atoms keyword", &["compress"])?;
@@ -73,6 +73,8 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let w = sim.world_mut(a)?;
     w.neighbor.save_history(&w.particles);
     w.particles.clear_ghosts();
+    // A clump goes whole (LIGGGHTS removes a body with any of its spheres).
+    w.remove_whole_bodies(&mut remove);
     let n = w.comm.sum_count(w.particles.remove_locals(&remove) as u64);
     let mut renumbered = false;
     if compress {
@@ -103,6 +105,12 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
 }
 
 pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    if let Some(why) = crate::fixes::multisphere::refuses_set(sim) {
+        return Err(a.error_cmd(
+            why,
+            Some("add 'allow_group_and_set yes' to the fix multisphere command".into()),
+        ));
+    }
     let style = a.keyword("set style", &["atom", "type", "group", "region"])?;
     let sel = select(sim, a, style)?;
     if a.is_done() {

@@ -52,7 +52,8 @@ impl ScriptCompute for ClumpEnergy {
             return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
         }
         let w = super::world(sim)?;
-        let mine: f64 = w.multisphere.as_ref().map_or(0.0, |ms| {
+        // Every rank holds every clump: the sum is the same on every rank.
+        let all: f64 = w.multisphere.as_ref().map_or(0.0, |ms| {
             ms.bodies
                 .iter()
                 .map(|b| {
@@ -65,6 +66,6 @@ impl ScriptCompute for ClumpEnergy {
                 })
                 .sum()
         });
-        Ok(w.comm.sum(mine))
+        Ok(all)
     }
 }

@@ -4,7 +4,7 @@
 //! local vector (one value) or array (several), one row per body in tag order, for
 //! `dump local`; `multisphere/single` is a global scalar or vector of the body with tag
 //! N, for thermo and variables (0 while no such body exists). The group is ignored, as in
-//! LIGGGHTS.
+//! LIGGGHTS. Every rank holds every clump: on several ranks the first gives the rows.
 //!
 //! The properties and their widths: `xcm` 3 (the centre of mass, wrapped into the
 //! periodic box), `vcm` 3, `fcm` 3 (the total force of the last step, gravity included),
@@ -185,7 +185,8 @@ impl ScriptCompute for BodyProperty {
             return Err(format!("compute {} does not compute local values", c.id));
         }
         let w = super::world(sim)?;
-        let Some(ms) = &w.multisphere else {
+        // Every rank holds every clump: the first rank gives the rows.
+        let Some(ms) = w.multisphere.as_ref().filter(|_| w.comm.rank() == 0) else {
             return Ok(Vec::new());
         };
         let n = self.width();

@@ -32,7 +32,7 @@ mod mesh_surface;
 mod modify;
 mod move_mesh;
 mod move_particles;
-mod multisphere;
+pub(crate) mod multisphere;
 mod particledistribution_discrete;
 mod particletemplate_multisphere;
 mod particletemplate_sphere;

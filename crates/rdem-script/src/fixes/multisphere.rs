@@ -17,10 +17,32 @@ pub(super) const ROW: FixRow = style(
     Stages::NONE,
     "`allow_group_and_set yes\\|no`, `allow_heatsource no`; `fix_modify ID fflag on\\|off ×3 tflag on\\|off ×3`",
 )
-.notes("one MPI rank only for now (LIGGGHTS-PUBLIC 3.8: serial only); `group` and `set` are not refused without `allow_group_and_set yes` (LIGGGHTS refuses them), but a clump's spheres always move with their body; `allow_heatsource yes` and `CAddRhoFluid` stop with an error");
+.notes("`set` is refused without `allow_group_and_set yes`, as in LIGGGHTS 3.8 (`group` is not); with it, a clump's spheres still move with their body; `allow_heatsource yes` and `CAddRhoFluid` stop with an error");
 
 /// The fix: its state is the world's clumps (`World::multisphere`).
-pub struct MultisphereFix;
+pub struct MultisphereFix {
+    /// `allow_group_and_set yes`: the `set` command may change the spheres.
+    pub allow_set: bool,
+}
+
+/// The error of a `set` command while a fix multisphere without `allow_group_and_set
+/// yes` is defined (LIGGGHTS 3.8 refuses it so: "Set command may not be used together
+/// with fix multisphere"), `None` if `set` may run.
+pub fn refuses_set(sim: &Sim) -> Option<String> {
+    let f = sim
+        .defs
+        .fixes
+        .iter()
+        .find(|f| f.head.style == "multisphere")?;
+    let ms = f.downcast::<MultisphereFix>()?;
+    (!ms.allow_set).then(|| {
+        format!(
+            "set may not be used together with fix multisphere '{}' (it would change a \
+             clump's spheres behind its body's back)",
+            f.id()
+        )
+    })
+}
 
 fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     if sim.setup.dimension == 2 {
@@ -45,13 +67,14 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
             None,
         ));
     }
+    let mut allow_set = false;
     while !a.is_done() {
         match a.keyword(
             "fix multisphere keyword",
             &["allow_group_and_set", "allow_heatsource", "CAddRhoFluid"],
         )? {
             "allow_group_and_set" => {
-                a.yes_no("allow_group_and_set")?;
+                allow_set = a.yes_no("allow_group_and_set")?;
             }
             "allow_heatsource" => {
                 if a.yes_no("allow_heatsource")? {
@@ -67,7 +90,7 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
         }
     }
     sim.world_ref(a)?;
-    Ok(Box::new(MultisphereFix))
+    Ok(Box::new(MultisphereFix { allow_set }))
 }
 
 impl ScriptFix for MultisphereFix {

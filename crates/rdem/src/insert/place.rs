@@ -251,8 +251,8 @@ pub(crate) fn choose(
 
 /// Adds the placed sphere or clump `pl` (of a template of `dist`, spinning at `omega`,
 /// in the groups `groupbit` and `all`) to `world` if this rank owns its position (a
-/// clump's centre of mass); returns its mass and, when added, the indices of its
-/// particles (one sphere, or a clump's spheres).
+/// clump's centre of mass; every rank adds a clump's body); returns its mass and, when
+/// added here, the indices of its particles (one sphere, or a clump's spheres).
 pub(crate) fn add_placed(
     world: &mut World,
     dist: &Distribution,
@@ -271,11 +271,10 @@ pub(crate) fn add_placed(
                 ),
             });
         }
-        if !world.owns_inserted(pl.x) {
-            return Ok((c.template.props.mass, None));
-        }
+        // Every rank holds every body; the owner of its centre adds its spheres.
+        let owned = world.owns_inserted(pl.x);
         let first = world.particles.nlocal();
-        let tag = world.add_clump(
+        let tag = world.add_clump_on(
             &c.template,
             &NewClump {
                 x: pl.x,
@@ -285,6 +284,7 @@ pub(crate) fn add_placed(
                 ty: t.ty,
                 mask: 1 | groupbit,
             },
+            owned,
         )?;
         let ms = world.multisphere.as_mut().expect("a clump was added");
         debug_assert_eq!(ms.tags.last(), Some(&tag));
@@ -295,7 +295,7 @@ pub(crate) fn add_placed(
         info.density = t.density;
         info.clump_type = c.clump_type;
         let last = world.particles.nlocal();
-        return Ok((c.template.props.mass, Some(first..last)));
+        return Ok((c.template.props.mass, owned.then_some(first..last)));
     }
     let mut np = NewParticle::at(pl.x, pl.radius, t.density)
         .with_type(t.ty)

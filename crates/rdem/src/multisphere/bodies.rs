@@ -23,12 +23,16 @@
 //! Periodic boundaries: a body's centre of mass is never wrapped; each sphere is wrapped
 //! by re-neighboring as any particle, and placed at the image its image counts say.
 //!
-//! Not yet: bodies on several ranks are refused.
+//! Several ranks: every rank holds every body (the same list, in the same order), and
+//! each rank's spheres are ordinary owned particles that migrate between ranks with
+//! their two properties. Each rank adds up its spheres' forces and torques, the shares
+//! are gathered and added in rank order, and every rank integrates every body alike. A
+//! body goes on every rank when any rank loses one of its spheres.
 
 use glam::{DQuat, DVec3};
 
 use super::{ClumpTemplate, RigidBody};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::fix::FixKind;
 use crate::particles::{sphere_mass, NewParticle, PropId};
 use crate::world::World;
@@ -53,6 +57,8 @@ pub struct Multisphere {
     omegas: Vec<DVec3>,
     /// Scratch of the step: the gravity fixes (group bit, acceleration).
     gravity: Vec<(u32, DVec3)>,
+    /// Scratch of the step: this rank's share of the bodies' forces and torques.
+    reduce: Vec<f64>,
 }
 
 /// What a body is made of, as `compute multisphere` reports it.
@@ -147,9 +153,22 @@ pub struct NewClump {
 
 impl World {
     /// Adds a clump of `template` as `c` says: its spheres as particles, its body to
-    /// [`World::multisphere`] (made if there is none). Returns the body's tag.
+    /// [`World::multisphere`] (made if there is none). Returns the body's tag. On several
+    /// ranks, every rank must add it (see [`World::add_clump_on`]).
     pub fn add_clump(&mut self, template: &ClumpTemplate, c: &NewClump) -> Result<u64> {
-        self.check_multisphere()?;
+        self.add_clump_on(template, c, true)
+    }
+
+    /// [`World::add_clump`], with its spheres only where `spheres` (the rank that owns
+    /// the centre of mass; exchange moves them to their owners at the next
+    /// re-neighboring). Every rank holds every body, so every rank adds each clump, in
+    /// the same order: the tags agree.
+    pub fn add_clump_on(
+        &mut self,
+        template: &ClumpTemplate,
+        c: &NewClump,
+        spheres: bool,
+    ) -> Result<u64> {
         let (body_id, offset_id) = self.multisphere_props()?;
         // Clumps added during a run: their spheres are kept apart from the first.
         self.neighbor.exclude.same_body = Some(body_id);
@@ -160,7 +179,7 @@ impl World {
         body.set_omega(c.omega);
         let vol: f64 = template.spheres.iter().map(|s| s.r.powi(3)).sum();
         let omega = body.omega();
-        for s in &template.spheres {
+        for s in template.spheres.iter().filter(|_| spheres) {
             let (x, v) = body.point(s.x);
             // The sphere's share of the body's mass, by volume.
             let share = template.props.mass * s.r.powi(3) / vol;
@@ -189,35 +208,33 @@ impl World {
         Ok(tag)
     }
 
-    /// What clumps cannot do yet: several ranks.
-    fn check_multisphere(&self) -> Result<()> {
-        if self.comm.size() > 1 {
-            return Err(Error::Invalid {
-                what: "fix multisphere",
-                reason: "runs on one rank only so far (LIGGGHTS-PUBLIC too)".into(),
-            });
-        }
-        Ok(())
-    }
-
     /// Extends `remove` (a flag for each owned particle) to every sphere of each body one
     /// of whose spheres it holds, and drops those bodies (LIGGGHTS removes a body when
-    /// any of its spheres goes). Returns how many bodies were dropped.
+    /// any of its spheres goes). Returns how many bodies were dropped. With clumps on
+    /// several ranks, a collective call: every rank makes it, `remove` empty or not.
     pub fn remove_whole_bodies(&mut self, remove: &mut [bool]) -> usize {
-        let Some((body_id, _)) = self.members() else {
+        let Some(ms) = &self.multisphere else {
             return 0;
         };
-        let slots = &self
-            .multisphere
-            .as_ref()
-            .expect("members() found bodies")
-            .slots;
-        let tags = &self.particles.props[body_id.0].data;
+        let body_id = self.particles.property(BODY_PROP);
         let n = remove.len().min(self.particles.nlocal());
-        let mut gone = vec![false; slots.len()];
-        for i in 0..n {
-            if remove[i] {
-                if let Some(k) = slots.get(tags[i]) {
+        let mut gone = vec![false; ms.slots.len()];
+        if let Some(id) = body_id {
+            let tags = &self.particles.props[id.0].data;
+            for i in (0..n).filter(|&i| remove[i]) {
+                if let Some(k) = ms.slots.get(tags[i]) {
+                    gone[k] = true;
+                }
+            }
+        }
+        if self.comm.size() > 1 {
+            // Every rank holds every body: each drops those any rank lost a sphere of.
+            let mine: Vec<f64> = (0..gone.len())
+                .filter(|&k| gone[k])
+                .map(|k| ms.tags[k] as f64)
+                .collect();
+            for t in self.comm.all_gather(&mine) {
+                if let Some(k) = ms.slots.get(t) {
                     gone[k] = true;
                 }
             }
@@ -225,12 +242,15 @@ impl World {
         if !gone.iter().any(|&g| g) {
             return 0;
         }
-        for i in 0..n {
-            if let Some(k) = slots.get(tags[i]) {
-                remove[i] |= gone[k];
+        if let Some(id) = body_id {
+            let tags = &self.particles.props[id.0].data;
+            for i in 0..n {
+                if let Some(k) = ms.slots.get(tags[i]) {
+                    remove[i] |= gone[k];
+                }
             }
         }
-        let ms = self.multisphere.as_mut().expect("members() found bodies");
+        let ms = self.multisphere.as_mut().expect("checked above");
         let mut k = 0;
         ms.bodies.retain(|_| {
             k += 1;
@@ -297,7 +317,6 @@ impl World {
         if self.multisphere.is_none() {
             return Ok(());
         }
-        self.check_multisphere()?;
         let (body, _) = self.multisphere_props()?;
         self.neighbor.exclude.same_body = Some(body);
         Ok(())
@@ -373,6 +392,27 @@ impl World {
                 .sum();
             b.force += p.f[i];
             b.torque += d.cross(p.f[i] - g) + p.torque[i];
+        }
+        if self.comm.size() > 1 {
+            // Every rank's share, gathered and added in rank order: the same sums, bit for
+            // bit, on every rank, which then integrate every body alike.
+            let buf = &mut ms.reduce;
+            buf.clear();
+            for b in &ms.bodies {
+                buf.extend_from_slice(&b.force.to_array());
+                buf.extend_from_slice(&b.torque.to_array());
+            }
+            let all = self.comm.all_gather(buf);
+            let per_rank = buf.len();
+            for (k, b) in ms.bodies.iter_mut().enumerate() {
+                let (mut f, mut t) = (DVec3::ZERO, DVec3::ZERO);
+                for share in all.chunks_exact(per_rank.max(1)) {
+                    f += DVec3::from_slice(&share[6 * k..6 * k + 3]);
+                    t += DVec3::from_slice(&share[6 * k + 3..6 * k + 6]);
+                }
+                b.force = f;
+                b.torque = t;
+            }
         }
     }
 
