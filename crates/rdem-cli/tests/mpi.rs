@@ -376,26 +376,12 @@ fn clumps_across_subdomain_and_periodic_faces_match_serial() {
     if !have_mpirun() {
         return;
     }
-    let settings = "neighbor 0.001 bin
-neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 0.000005
-";
+    // The common head, without its integrator (clumps integrate themselves); the
+    // settings after the box are what a restarted run gives again.
+    let head = HEAD.strip_suffix("fix integr all nve/sphere\n").unwrap();
+    let settings = &head[head.find("neighbor").unwrap()..];
     let mut script = format!(
-        "atom_style granular
-atom_modify map array
-boundary p f f
-newton off
-communicate single vel yes
-units si
-region reg block 0 0.1 0 0.02 0 0.02 units box
-create_box 1 reg
-{settings}fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.002 0.0032 0 0 0.0016 type 1
+        "{head}fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.002 0.0032 0 0 0.0016 type 1
 fix pdd all particledistribution/discrete 15485867 1 pts 1.0
 fix ms all multisphere
 ",

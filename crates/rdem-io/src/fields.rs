@@ -178,6 +178,12 @@ impl Field {
         )
     }
 
+    /// True for the fields read from a named per-particle property (`mol`,
+    /// `id_multisphere`: the clump of a sphere), which a bare copy of the particles lacks.
+    pub fn reads_properties(self) -> bool {
+        matches!(self, Field::Mol | Field::IdMultisphere)
+    }
+
     /// The value for particle `i` (integers exactly, as long as tags stay below 2^53).
     pub fn value(self, p: &Particles, d: &Domain, i: usize) -> f64 {
         let scaled = |a: usize| (p.x[i][a] - d.boxlo[a]) / (d.boxhi[a] - d.boxlo[a]);

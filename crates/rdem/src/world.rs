@@ -207,18 +207,20 @@ impl World {
     /// the ghosts cleared and the history saved).
     pub(crate) fn remove_marked(&mut self) {
         let nlocal = self.particles.nlocal();
-        let mut marked: Vec<bool> = match self.particles.property(REMOVAL_PROP) {
-            Some(id) => self.particles.props[id.0].data[..nlocal]
-                .iter()
-                .map(|&v| v != 0.0)
-                .collect(),
-            None => vec![false; nlocal],
-        };
+        let flags = self
+            .particles
+            .property(REMOVAL_PROP)
+            .map(|id| &self.particles.props[id.0].data[..nlocal]);
+        let any = flags.is_some_and(|f| f.iter().any(|&v| v != 0.0));
         // Clumps on several ranks: every rank takes part in dropping whole bodies.
         let collective = self.multisphere.is_some() && self.comm.size() > 1;
-        if !collective && !marked.iter().any(|&m| m) {
+        if !any && !collective {
             return;
         }
+        let mut marked: Vec<bool> = match flags {
+            Some(f) => f.iter().map(|&v| v != 0.0).collect(),
+            None => vec![false; nlocal],
+        };
         self.remove_whole_bodies(&mut marked);
         if marked.iter().any(|&m| m) {
             self.particles.remove_locals(&marked);

@@ -132,22 +132,22 @@ pub(super) fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {
 pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String> {
     args.iter()
         .map(|arg| {
-            if let Some(c) = Column::field(arg) {
-                // A sphere's clump is a named property, which the gathered copies lack:
-                // its values go as a column of their own.
-                if let Column::Field(f @ (Field::Mol | Field::IdMultisphere)) = c {
-                    let w = sim
-                        .world
-                        .as_ref()
-                        .ok_or("dump before the simulation box is defined")?;
-                    let p = &w.particles;
-                    let values = (0..p.nlocal()).map(|i| f.value(p, &w.domain, i)).collect();
-                    return Ok(Column::Custom {
-                        name: arg.clone(),
-                        values,
-                    });
+            if let Some(f) = Field::parse(arg) {
+                if !f.reads_properties() {
+                    return Ok(Column::Field(f));
                 }
-                return Ok(c);
+                // A field read from a named property, which the gathered copies lack:
+                // its values go as a column of their own.
+                let w = sim
+                    .world
+                    .as_ref()
+                    .ok_or("dump before the simulation box is defined")?;
+                let p = &w.particles;
+                let values = (0..p.nlocal()).map(|i| f.value(p, &w.domain, i)).collect();
+                return Ok(Column::Custom {
+                    name: arg.clone(),
+                    values,
+                });
             }
             let values = match split_reference(arg) {
                 Some(('c', id, col)) => context::compute_peratom(sim, id, col)?,

@@ -134,6 +134,15 @@ impl Slots {
     }
 }
 
+/// Drops the entries of `v` whose `gone` flag is set (one flag per entry).
+fn drop_gone<T>(v: &mut Vec<T>, gone: &[bool]) {
+    let mut k = 0;
+    v.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+}
+
 /// A clump to add: where, how it is turned and how it moves.
 #[derive(Debug, Clone, Copy)]
 pub struct NewClump {
@@ -251,21 +260,9 @@ impl World {
             }
         }
         let ms = self.multisphere.as_mut().expect("checked above");
-        let mut k = 0;
-        ms.bodies.retain(|_| {
-            k += 1;
-            !gone[k - 1]
-        });
-        let mut k = 0;
-        ms.tags.retain(|_| {
-            k += 1;
-            !gone[k - 1]
-        });
-        let mut k = 0;
-        ms.info.retain(|_| {
-            k += 1;
-            !gone[k - 1]
-        });
+        drop_gone(&mut ms.bodies, &gone);
+        drop_gone(&mut ms.tags, &gone);
+        drop_gone(&mut ms.info, &gone);
         ms.reindex();
         gone.iter().filter(|&&g| g).count()
     }
