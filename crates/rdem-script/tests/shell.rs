@@ -97,7 +97,8 @@ fn shell_acts_as_liggghts() {
     }
 
     // mkdir -p makes parents and is quiet for existing folders; rm -f for missing files;
-    // rm and rmdir act on each name; mv renames; putenv NAME removes NAME.
+    // rm and rmdir act on each name; rm -r, -rf, -R, -fr remove folders with what they
+    // hold; mv renames; putenv NAME removes NAME.
     let script = "shell mkdir -p a/b/c a\n\
          shell mkdir a\n\
          shell echo x > a/b/f1\n\
@@ -105,12 +106,22 @@ fn shell_acts_as_liggghts() {
          shell rm -f a/b/f1 a/b/none\n\
          shell mv a/b/f2 a/g\n\
          shell rmdir a/b/c a/b\n\
+         shell mkdir -p r1/s r2/t r3 r4\n\
+         shell echo z > r1/s/f\n\
+         shell echo z > a/h\n\
+         shell rm -r r1\n\
+         shell rm -rf r2 r2 nothing\n\
+         shell rm -R r3\n\
+         shell rm -fr r4 a/h\n\
          shell putenv RDEM_SHELL_FOO\n\
          variable f getenv RDEM_SHELL_FOO\n\
          print \"[${f}]\"\n";
     let mut i = Interpreter::new(Sim::new(Output::captured()));
     i.run_source("in.shell2", script).unwrap();
     assert_eq!(tree(&d.join("a")), ["g"]);
+    for gone in ["r1", "r2", "r3", "r4"] {
+        assert!(!d.join(gone).exists(), "shell rm -r left {gone}");
+    }
     assert_eq!(std::fs::read_to_string(d.join("a/g")).unwrap(), "y\n");
     assert_eq!(screen(&i), "[]\n");
     assert!(std::env::var_os("RDEM_SHELL_FOO").is_none());

@@ -1,4 +1,4 @@
-//! `shell cmd args...`: `cd`, `mkdir`, `rm`, `rmdir`, `mv` and `putenv` done natively
+//! `shell cmd args...`: `cd`, `mkdir` (`-p`), `rm` (`-f`, `-r`), `rmdir`, `mv` and `putenv` done natively
 //! (`std::fs`, `std::env`), anything else run by `/bin/sh -c` with the words joined by
 //! single spaces (quotes removed), as LAMMPS passes them to `system()`.
 //!
@@ -6,6 +6,9 @@
 //! - `shell mkdir d1 d2/sub` makes `d1` and silently not `d2/sub` (no parents);
 //!   `shell mkdir -p x/y` makes a folder named `-p`. rdem reads `-p` as `mkdir -p` does
 //!   (parents are made), and an existing folder is no failure.
+//! - `shell rm -r d` leaves the folder `d` as it is, without a word, and `shell rm -rf x`
+//!   removes the file `x` (LIGGGHTS unlinks each word, options too). rdem reads `-r`,
+//!   `-R`, `-f` and their joined forms as `rm` does: a folder goes with all it holds.
 //! - `shell cd nonexist`, `shell rm nofile`, `shell rmdir full_dir`, `shell mv nofile x`,
 //!   `shell false` and `shell exit 3` go on without a word; rdem goes on too but prints a
 //!   warning for each failed action or non-zero exit status.
@@ -68,12 +71,19 @@ pub(super) fn shell(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
         "rm" => {
-            let force = args.contains(&"-f");
-            let files = names(a, cmd, &["-f"])?;
+            // `-f`, `-r` (`-R`) and their joined forms (`-rf`, `-fr`, `-Rf`, ...).
+            let opts = rm_options(&args);
+            let files = names(a, cmd, RM_OPTIONS)?;
             if acts {
                 for (k, f) in files {
-                    match std::fs::remove_file(f) {
-                        Err(e) if !(force && e.kind() == std::io::ErrorKind::NotFound) => {
+                    let path = Path::new(f);
+                    let r = if opts.recursive && path.is_dir() && !path.is_symlink() {
+                        std::fs::remove_dir_all(path)
+                    } else {
+                        std::fs::remove_file(path)
+                    };
+                    match r {
+                        Err(e) if !(opts.force && e.kind() == std::io::ErrorKind::NotFound) => {
                             a.warn_at(k, &format!("shell rm: cannot remove '{f}': {e}"))
                         }
                         _ => {}
@@ -152,6 +162,28 @@ pub(super) fn shell(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// The options of `shell rm`: `-f` (no warning for a missing name) and `-r` or `-R`
+/// (folders with everything in them), alone or joined.
+const RM_OPTIONS: &[&str] = &[
+    "-f", "-r", "-R", "-rf", "-fr", "-Rf", "-fR", "-rR", "-Rr", "-rfR", "-Rrf",
+];
+
+/// What the options of `shell rm` ask for.
+struct RmOptions {
+    force: bool,
+    recursive: bool,
+}
+
+/// The options among `args` (the words after `rm`), any of [`RM_OPTIONS`].
+fn rm_options(args: &[&str]) -> RmOptions {
+    let opts = args.iter().filter(|w| RM_OPTIONS.contains(w));
+    let has = |c: char| opts.clone().any(|w| w.contains(c));
+    RmOptions {
+        force: has('f'),
+        recursive: has('r') || has('R'),
+    }
+}
+
 /// The names after `shell mkdir|rm|rmdir` with their word index, the options in
 /// `flags` left out; at least one is needed and other options are errors.
 fn names<'a>(a: &Args<'a>, cmd: &str, flags: &[&str]) -> CmdResult<Vec<(usize, &'a str)>> {
@@ -200,7 +232,7 @@ fn usage(a: &Args) -> &'static str {
     match a.words()[1].text.as_str() {
         "cd" => "cd FOLDER",
         "mkdir" => "mkdir [-p] FOLDER ...",
-        "rm" => "rm [-f] FILE ...",
+        "rm" => "rm [-f] [-r] FILE|FOLDER ...",
         "rmdir" => "rmdir FOLDER ...",
         "mv" => "mv OLD NEW",
         _ => "putenv NAME=VALUE ...",
