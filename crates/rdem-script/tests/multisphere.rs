@@ -165,6 +165,55 @@ print \"KE ${{ke0}} ER ${{er0}}\"
 /// at 1.6 mm × (cos 60°, 0, −sin 60°) from the large one; LIGGGHTS 3.8 placed it there
 /// (x 0.2065070 → 1.0065070 mm, z 4.9200771 → 3.5344364 mm: Δ = (0.8, 0, −1.38564) mm).
 /// `orientation template` keeps the axis along +x.
+/// Ten-sphere rods (4.5 mm long, bounding radius 2.75 mm about the centre) packed by
+/// `insert/pack` without `all_in` into a cylinder region whose top is 0.4 mm below the
+/// box top, with `thermo_modify lost ignore` (a real script's set-up): LIGGGHTS 3.8
+/// draws each centre at least one bounding radius inside every box face, so no sphere
+/// starts outside the box, and it kept all 15,000 spheres of a like script at step 1
+/// (measured 2026-12-04: x within ±0.01947 in a ±0.02 box, top sphere at 0.0568 of
+/// 0.06). rdem stopped at `run 1` with "particle ... outside the simulation box".
+#[test]
+fn packed_clumps_start_inside_the_box() {
+    let rod: String = (0..10)
+        .map(|k| format!(" {} 0 0 0.0005", 0.0005 * k as f64))
+        .collect();
+    let (i, _) = run(&format!(
+        "fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 10 ntry 100000 spheres{rod} type 1
+fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix zlo all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+region bc cylinder z 0. 0. 0.0198 0.004 0.0396 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 orientation random insert_every once overlapcheck yes region bc particles_in_region 150 ntry_mc 10000
+fix integr all multisphere
+thermo_modify lost ignore
+run 1
+"
+    ))
+    .unwrap();
+    let w = i.sim.world.as_ref().unwrap();
+    let p = &w.particles;
+    assert_eq!(bodies(&i).len(), 150);
+    assert_eq!(p.nlocal(), 1500);
+    let rbound = 2.25e-3 + 0.5e-3;
+    for k in 0..p.nlocal() {
+        let (x, r) = (p.x[k], p.radius[k]);
+        assert!(
+            w.domain.is_in_domain(x - r) && w.domain.is_in_domain(x + r),
+            "sphere {k} at {x} (r {r}) is not wholly in the box"
+        );
+    }
+    for b in bodies(&i) {
+        let c = b.x;
+        for a in 0..3 {
+            assert!(
+                c[a] - rbound >= w.domain.boxlo[a] - 1e-12
+                    && c[a] + rbound <= w.domain.boxhi[a] + 1e-12,
+                "centre {c} closer than the bounding radius to a face"
+            );
+        }
+    }
+}
+
 #[test]
 fn orientation_constant_turns_the_template_as_given() {
     for (law, want) in [
@@ -248,7 +297,7 @@ run 1000
 fn a_clump_leaving_the_box_goes_whole() {
     let (i, _) = run(&format!(
         "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
-region bc block -0.001 0.001 -0.001 0.001 0.0015 0.0016 units box
+region bc block -0.001 0.001 -0.001 0.001 0.0019 0.002 units box
 fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0 0 -1 orientation constant 0.7071067811865476 0 0.7071067811865476 0 insert_every once region bc particles_in_region 1
 fix ms all multisphere
 thermo_modify lost ignore
@@ -257,8 +306,14 @@ run 1
     ))
     .unwrap();
     assert_eq!(bodies(&i).len(), 1);
+    // The clump starts wholly in the box (its bounding sphere, 1.86 mm, inside the
+    // faces, as insertion wants) and falls 2 mm: its lower sphere leaves the box while
+    // the upper, 1.6 mm above it, is still inside.
+    let w = i.sim.world.as_ref().unwrap();
+    assert_eq!(w.particles.nlocal(), 2);
+    assert!((0..2).all(|k| w.particles.x[k].z > 0.0));
     let mut i = i;
-    i.run_source("in.more", "run 1000\n")
+    i.run_source("in.more", "run 2000\n")
         .map_err(|e| render(&e))
         .unwrap();
     assert_eq!(bodies(&i).len(), 0);

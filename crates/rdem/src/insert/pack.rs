@@ -258,7 +258,12 @@ impl InsertPack {
         let all_in = self.all_in;
         // A try is a position where the sphere fits the region (LIGGGHTS draws from the
         // region shrunk by the radius), so positions too close to the boundary are drawn
-        // again without using up a try.
+        // again without using up a try. Whatever `all_in` says, the centre is drawn at
+        // least one (bounding) radius inside every face of the box, so that the whole
+        // sphere or clump starts in the box: LIGGGHTS 3.8 does so (measured: spheres of
+        // radius 1 mm drawn in a region as large as the box have their centres within
+        // ±(L/2 − 1 mm), on fixed and periodic faces alike; ten-sphere clumps keep their
+        // bounding sphere in the box).
         let mut placed = choose(
             &mut self.dist,
             &mut self.rng,
@@ -268,7 +273,8 @@ impl InsertPack {
             self.orientation,
             |rng, r| {
                 for _ in 0..1000 {
-                    match region.sample(domain, || rng.gen(), 1000) {
+                    let inside = (domain.0 + DVec3::splat(r), domain.1 - DVec3::splat(r));
+                    match region.sample(inside, || rng.gen(), 1000) {
                         Some(y) if !all_in || region.contains_sphere(y, r) => return Some(y),
                         Some(_) => {}
                         None => return None,
