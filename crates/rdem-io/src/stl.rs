@@ -34,24 +34,53 @@ pub enum StlError {
     },
 }
 
+/// The triangles of an STL file, each with the number by which LIGGGHTS'
+/// `element_exclusion_list` names it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NumberedStl {
+    /// The triangles, in the file's order.
+    pub tris: Vec<Triangle>,
+    /// One number per triangle: in an ASCII file the 1-based line of its `facet` line
+    /// (every line counts, blank and comment lines too), in a binary file its 1-based
+    /// position (LIGGGHTS 3.8 numbers both so).
+    pub numbers: Vec<usize>,
+    /// Whether the file is binary.
+    pub binary: bool,
+}
+
 /// Reads the triangles of the ASCII or binary STL file at `path`.
 pub fn read_stl(path: &Path) -> Result<Vec<Triangle>, StlError> {
+    read_stl_numbered(path).map(|s| s.tris)
+}
+
+/// Reads the STL file at `path` as [`read_stl`] does, with each triangle's number.
+pub fn read_stl_numbered(path: &Path) -> Result<NumberedStl, StlError> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|source| StlError::Io {
         path: name.clone(),
         source,
     })?;
-    parse_stl(&bytes, &name)
+    parse_stl_numbered(&bytes, &name)
 }
 
 /// Parses STL `bytes` (`name` for messages). A file whose size is exactly 84 + 50 n bytes
 /// for the n its header gives is binary (a binary header may also begin with `solid`);
 /// otherwise it must be ASCII.
 pub fn parse_stl(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
+    parse_stl_numbered(bytes, name).map(|s| s.tris)
+}
+
+/// Parses STL `bytes` as [`parse_stl`] does, with each triangle's number.
+pub fn parse_stl_numbered(bytes: &[u8], name: &str) -> Result<NumberedStl, StlError> {
     if bytes.len() >= 84 {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         if bytes.len() == 84 + 50 * n {
-            return parse_binary(bytes, name);
+            let tris = parse_binary(bytes, name)?;
+            return Ok(NumberedStl {
+                numbers: (1..=tris.len()).collect(),
+                tris,
+                binary: true,
+            });
         }
     }
     let text = std::str::from_utf8(bytes).map_err(|_| StlError::Syntax {
@@ -60,7 +89,12 @@ pub fn parse_stl(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
         reason: "neither a binary STL file (size does not match its triangle count) nor ASCII text"
             .into(),
     })?;
-    parse_ascii(text, name)
+    let (tris, numbers) = parse_ascii(text, name)?;
+    Ok(NumberedStl {
+        tris,
+        numbers,
+        binary: false,
+    })
 }
 
 fn parse_binary(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
@@ -85,13 +119,17 @@ fn parse_binary(bytes: &[u8], name: &str) -> Result<Vec<Triangle>, StlError> {
     Ok(out)
 }
 
-fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
+/// The triangles of ASCII STL `text` and the line of each one's `facet` word (of its
+/// `outer loop` line if it has none).
+fn parse_ascii(text: &str, name: &str) -> Result<(Vec<Triangle>, Vec<usize>), StlError> {
     let err = |line: usize, reason: String| StlError::Syntax {
         path: name.into(),
         line,
         reason,
     };
     let mut out = Vec::new();
+    let mut numbers = Vec::new();
+    let mut facet_line = None;
     let mut corners: Vec<DVec3> = Vec::with_capacity(3);
     let mut in_solid = false;
     let mut in_loop = false;
@@ -115,10 +153,12 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
                 if !in_solid {
                     return Err(err(line, format!("'{word}' outside 'solid ... endsolid'")));
                 }
+                facet_line = (word == "facet").then_some(line);
             }
             "outer" => {
                 corners.clear();
                 in_loop = true;
+                facet_line = facet_line.or(Some(line));
             }
             "vertex" => {
                 if !in_loop {
@@ -146,6 +186,7 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
                     ));
                 }
                 out.push([corners[0], corners[1], corners[2]]);
+                numbers.push(facet_line.take().unwrap_or(line));
                 in_loop = false;
             }
             _ => {
@@ -167,7 +208,7 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
     if out.is_empty() {
         return Err(err(0, "no triangle in the file".into()));
     }
-    Ok(out)
+    Ok((out, numbers))
 }
 
 /// ASCII STL text of `tris` (with their unit normals `normals`) as one solid named
@@ -269,6 +310,34 @@ endsolid test
         let e = parse_stl(quad.as_bytes(), "t.stl").unwrap_err().to_string();
         assert!(e.contains("4 vertices"), "{e}");
         assert!(parse_stl(b"\xff\xfe", "x.stl").is_err());
+    }
+
+    /// Each triangle's number is the line of its `facet` word in an ASCII file (comment
+    /// and blank lines count), its position in a binary one.
+    #[test]
+    fn numbered_by_facet_line_or_position() {
+        let text = format!(
+            "# header\n{}",
+            ASCII.replace("  endfacet\n", "  endfacet\n\n  # x\n")
+        );
+        let two = text.replace(
+            "endsolid",
+            "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid",
+        );
+        let s = parse_stl_numbered(two.as_bytes(), "t.stl").unwrap();
+        assert_eq!((s.numbers, s.binary), (vec![3, 12], false));
+        let mut bytes = Vec::new();
+        let tri = stl_io::Triangle {
+            normal: stl_io::Normal::new([0.0, 0.0, 1.0]),
+            vertices: [
+                stl_io::Vertex::new([0.0, 0.0, 0.0]),
+                stl_io::Vertex::new([1.0, 0.0, 0.0]),
+                stl_io::Vertex::new([0.0, 1.0, 0.0]),
+            ],
+        };
+        stl_io::write_stl(&mut bytes, [tri, tri, tri].iter()).unwrap();
+        let s = parse_stl_numbered(&bytes, "b.stl").unwrap();
+        assert_eq!((s.numbers, s.binary), (vec![1, 2, 3], true));
     }
 
     /// What dump mesh/stl writes reads back as the same triangles (to %g's 6 digits).

@@ -12,9 +12,9 @@ pub(super) const ROW: FixRow = style(
     "mesh/surface",
     parse,
     Stages::NONE,
-    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate axis ax ay az angle deg` (in the order given), `surface_vel vx vy vz`, `surface_ang_vel origin .. axis .. omega w`, `precision`, `heal auto_remove_duplicates`, `temperature T` (a wall at fixed temperature for `fix heat/gran`); `curvature`, `curvature_tolerant`, `verbose` accepted; `/stress`: `stress on\\|off`, `wear finnie\\|off` (with `property/global k_finnie peratomtypepair`), `reference_point`",
+    "`file F` (ASCII or binary STL), `type T`, `scale`, `move`, `rotate axis ax ay az angle deg` (in the order given), `surface_vel vx vy vz`, `surface_ang_vel origin .. axis .. omega w`, `precision`, `heal auto_remove_duplicates`, `element_exclusion_list read\\|write F` (a list of triangles, by the line number of their `facet normal` line in an ASCII STL, by their position in a binary one), `temperature T` (a wall at fixed temperature for `fix heat/gran`); `curvature`, `curvature_tolerant`, `verbose` accepted; `/stress`: `stress on\\|off`, `wear finnie\\|off` (with `property/global k_finnie peratomtypepair`), `reference_point`",
 )
-.notes("`curvature` changes nothing in rdem: edges and corners count once whatever their angle; `/planar` refuses a mesh that is not planar; `/stress`: per-triangle force summed in particle order (the same on any thread count), `f_ID[1..9]` total force, torque about the reference point, the point; `surface_vel` is used as given (LIGGGHTS projects it onto each face); `mass_temperature`, `element_exclusion_list`, `extrude_planar` stop with an error; a negative `temperature` is an error (LIGGGHTS 3.8 silently conducts no heat)");
+.notes("`curvature` changes nothing in rdem: edges and corners count once whatever their angle; `/planar` refuses a mesh that is not planar; `/stress`: per-triangle force summed in particle order (the same on any thread count), `f_ID[1..9]` total force, torque about the reference point, the point; `surface_vel` is used as given (LIGGGHTS projects it onto each face); `element_exclusion_list read` stops on a blank line, a line that is not one integer, and a number that is no triangle's (LIGGGHTS 3.8 would then exclude nothing, stop, or ignore that number and every larger one); `write` lists, once each and in increasing order, triangles with an angle below 1e-3 rad (LIGGGHTS 3.8 measured; its manual says 0.0181185 degrees) or two corners within `precision` (LIGGGHTS 3.8 leaves out those with two equal corners), all copies but the last of a repeated triangle (none with `heal`), and triangles with more than 5 edge neighbours, then imports the mesh as without the keyword (LIGGGHTS 3.8 may list a line twice, and stops on slivers and crowded edges); `mass_temperature`, `extrude_planar` stop with an error; a negative `temperature` is an error (LIGGGHTS 3.8 silently conducts no heat)");
 
 /// The registry row of `mesh/surface/planar`.
 pub(super) const ROW_PLANAR: FixRow = style(
@@ -104,7 +104,8 @@ impl ScriptFix for Mesh {
 /// `fix ID group mesh/surface file F type T [keywords]`: the STL file's triangles with
 /// `scale`, `move` and `rotate` applied in the order given, vertices closer than
 /// `precision` merged, `heal auto_remove_duplicates` dropping degenerate and repeated
-/// triangles, and `surface_vel` for a conveyor belt.
+/// triangles, `element_exclusion_list read` leaving out listed triangles (`write` lists
+/// the bad ones), and `surface_vel` for a conveyor belt.
 fn mesh_surface(
     sim: &Sim,
     a: &mut Args,
@@ -119,8 +120,18 @@ fn mesh_surface(
     a.keyword("mesh/surface keyword", &["file"])?;
     let file_at = a.pos();
     let file = a.word("STL file name")?.to_string();
-    let mut soup = rdem_io::stl::read_stl(std::path::Path::new(&file))
+    let rdem_io::stl::NumberedStl {
+        tris: mut soup,
+        mut numbers,
+        binary,
+    } = rdem_io::stl::read_stl_numbered(std::path::Path::new(&file))
         .map_err(|e| a.error_at(file_at, e.to_string(), None))?;
+    let stl = StlNumbering {
+        file: &file,
+        binary,
+        numbers: numbers.clone(),
+    };
+    let mut exclusion_write: Option<(String, usize)> = None;
     let mut wall_type = None;
     let mut precision = 1e-8;
     let mut heal = false;
@@ -128,7 +139,7 @@ fn mesh_surface(
     let mut surface_ang_vel = None;
     let mut coplanar_cos = rdem::wall::mesh::COPLANAR_COS;
     let mut temperature = None;
-    const KEYS: [&str; 12] = [
+    const KEYS: [&str; 13] = [
         "surface_ang_vel",
         "type",
         "precision",
@@ -141,13 +152,9 @@ fn mesh_surface(
         "curvature",
         "curvature_tolerant",
         "temperature",
-    ];
-    const LATER_KEYS: [&str; 4] = [
         "element_exclusion_list",
-        "min_feature_length",
-        "mass_temperature",
-        "extrude_planar",
     ];
+    const LATER_KEYS: [&str; 3] = ["min_feature_length", "mass_temperature", "extrude_planar"];
     const STRESS_KEYS: [&str; 3] = ["stress", "wear", "reference_point"];
     while let Some(w) = a.peek() {
         if LATER_KEYS.contains(&w) {
@@ -224,6 +231,28 @@ fn mesh_surface(
                 a.yes_no("curvature_tolerant")?;
             }
             "temperature" => temperature = Some(wall_temperature(a)?),
+            "element_exclusion_list" => {
+                let mode = a.keyword("element_exclusion_list mode", &["read", "write"])?;
+                let at = a.pos();
+                let list = a.word("element exclusion file name")?.to_string();
+                if mode == "write" {
+                    exclusion_write = Some((list, at));
+                } else {
+                    let excluded = read_exclusion_list(&list, &stl)
+                        .map_err(|(message, help)| a.error_at(at, message, help))?;
+                    let before = soup.len();
+                    let mut k = 0;
+                    soup.retain(|_| {
+                        k += 1;
+                        !excluded.contains(&numbers[k - 1])
+                    });
+                    numbers.retain(|n| !excluded.contains(n));
+                    notes.line(format!(
+                        "  mesh {id}: {} triangle(s) of {file} excluded by {list}",
+                        before - soup.len()
+                    ));
+                }
+            }
             "scale" => {
                 let f = a.positive("scale factor")?;
                 for t in &mut soup {
@@ -262,8 +291,25 @@ fn mesh_surface(
             None,
         ));
     };
+    let mut bad_help = None;
+    if let Some((list, at)) = &exclusion_write {
+        let bad = bad_triangles(&soup, &numbers, precision, heal);
+        let rank0 = rdem::comm::process_rank_size().0 == 0;
+        if rank0 && !sim.script.check {
+            let text: String = bad.iter().map(|n| format!("{n}\n")).collect();
+            rdem_io::write_atomic(std::path::Path::new(list), text.as_bytes())
+                .map_err(|e| a.error_at(*at, format!("element exclusion list: {e}"), None))?;
+        }
+        notes.line(format!(
+            "  mesh {id}: {} bad triangle(s) of {file} listed in {list}",
+            bad.len()
+        ));
+        bad_help = Some(format!(
+            "the bad triangles are listed in {list}: 'element_exclusion_list read {list}' leaves them out"
+        ));
+    }
     let (mesh, report) = rdem::mesh::TriMesh::from_triangles(&soup, precision, heal)
-        .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), None))?;
+        .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), bad_help.clone()))?;
     if !report.degenerate.is_empty() || !report.duplicates.is_empty() {
         notes.warning(format!(
             "mesh/surface {id}: dropped {} degenerate and {} repeated triangle(s) of {file}",
@@ -337,4 +383,144 @@ pub(super) fn wall_temperature(a: &mut Args) -> CmdResult<f64> {
         ));
     }
     Ok(t)
+}
+
+/// How an STL file numbers its triangles for `element_exclusion_list`.
+struct StlNumbering<'f> {
+    /// The STL file's name.
+    file: &'f str,
+    /// Binary (triangles numbered by position) or ASCII (by the line of `facet`).
+    binary: bool,
+    /// The number of each triangle of the file.
+    numbers: Vec<usize>,
+}
+
+/// The numbers of `element_exclusion_list read FILE`: one integer per line, each the
+/// number of a triangle of the STL file, in any order, repeats allowed. As measured on
+/// LIGGGHTS 3.8, a number that names no triangle is silently ignored there together
+/// with every larger number in the list, a blank line anywhere (even last) makes it
+/// exclude nothing, and a line of two numbers or a non-integer stops it. Here each of
+/// those is an error (message and help), so a list rdem accepts leaves out what LIGGGHTS
+/// leaves out.
+fn read_exclusion_list(
+    list: &str,
+    stl: &StlNumbering,
+) -> Result<std::collections::BTreeSet<usize>, (String, Option<String>)> {
+    let what = if stl.binary {
+        format!(
+            "the number (1 to {}) of a triangle of the binary STL file {}",
+            stl.numbers.len(),
+            stl.file
+        )
+    } else {
+        format!(
+            "the line number of a 'facet normal' line of the ASCII STL file {}",
+            stl.file
+        )
+    };
+    let form = format!("one number per line, each {what}");
+    let text = std::fs::read_to_string(list).map_err(|e| {
+        (
+            format!("cannot read element exclusion list {list}: {e}"),
+            Some(form.clone()),
+        )
+    })?;
+    let known: std::collections::HashSet<usize> = stl.numbers.iter().copied().collect();
+    let mut out = std::collections::BTreeSet::new();
+    for (k, line) in text.lines().enumerate() {
+        let at = format!("element exclusion list {list}, line {}", k + 1);
+        let mut words = line.split_whitespace();
+        let Some(word) = words.next() else {
+            return Err((
+                format!("{at} is blank"),
+                Some(format!(
+                    "{form}, and no blank line (LIGGGHTS 3.8 would exclude nothing)"
+                )),
+            ));
+        };
+        if words.next().is_some() {
+            return Err((format!("{at} holds more than one word"), Some(form.clone())));
+        }
+        let n: i64 = word.parse().map_err(|_| {
+            (
+                format!("{at}: '{word}' is not an integer"),
+                Some(form.clone()),
+            )
+        })?;
+        match usize::try_from(n).ok().filter(|n| known.contains(n)) {
+            Some(n) => {
+                out.insert(n);
+            }
+            None => {
+                return Err((
+                    format!("{at}: {n} is not {what}"),
+                    Some(format!(
+                        "{form} (LIGGGHTS 3.8 would silently ignore {n} and every larger number)"
+                    )),
+                ))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The smallest angle of a triangle below which `element_exclusion_list write` lists it
+/// (radians). Measured on LIGGGHTS 3.8 (2026-12-04): it lists a right-angled sliver
+/// whose smallest angle is 0.05729 degrees and not one of 0.057296 (1e-3 rad =
+/// 0.0572958 degrees), and isosceles slivers of 0.057 but not 0.058 degrees whatever
+/// their size; its manual says 0.0181185 degrees.
+const SLIVER_ANGLE: f64 = 1e-3;
+
+/// The numbers (`numbers[k]` of `soup[k]`) that `element_exclusion_list write` lists,
+/// increasing, each once: slivers (an angle below [`SLIVER_ANGLE`], or two corners within
+/// `precision` or degenerate as the engine judges), every copy but the last of a repeated
+/// triangle unless `heal` drops the copies anyway, and triangles with more than 5
+/// neighbours across their edges. On the meshes measured LIGGGHTS 3.8 lists the same set,
+/// but it may write a number twice and out of order, and it does not list a triangle
+/// with two equal corners (which the engine refuses without `heal`).
+fn bad_triangles(
+    soup: &[[rdem::DVec3; 3]],
+    numbers: &[usize],
+    precision: f64,
+    heal: bool,
+) -> Vec<usize> {
+    use rdem::mesh::TriMesh;
+    let n = soup.len();
+    let mut bad = vec![false; n];
+    for (k, t) in soup.iter().enumerate() {
+        // Each corner's angle; an edge within `precision` joins two corners.
+        bad[k] = (0..3).any(|c| {
+            let (u, v) = (t[(c + 1) % 3] - t[c], t[(c + 2) % 3] - t[c]);
+            u.length() <= precision || u.cross(v).length().atan2(u.dot(v)) < SLIVER_ANGLE
+        });
+    }
+    // The engine drops a repeated triangle's later copies: built back to front, the
+    // copies it drops are all but the last.
+    if !heal {
+        let back: Vec<[rdem::DVec3; 3]> = soup.iter().rev().copied().collect();
+        if let Ok((_, report)) = TriMesh::from_triangles(&back, precision, true) {
+            for k in &report.duplicates {
+                bad[n - 1 - k] = true;
+            }
+        }
+    }
+    if let Ok((mesh, report)) = TriMesh::from_triangles(soup, precision, true) {
+        let mut dropped = vec![false; n];
+        for &k in &report.degenerate {
+            (dropped[k], bad[k]) = (true, true);
+        }
+        for &k in &report.duplicates {
+            dropped[k] = true;
+        }
+        let kept = (0..n).filter(|&k| !dropped[k]);
+        for (t, k) in kept.enumerate() {
+            let neighbours: u32 = mesh.tri_edges[t]
+                .iter()
+                .map(|&e| mesh.edge_first[e as usize + 1] - mesh.edge_first[e as usize] - 1)
+                .sum();
+            bad[k] |= neighbours > 5;
+        }
+    }
+    // The numbers increase along the file.
+    (0..n).filter(|&k| bad[k]).map(|k| numbers[k]).collect()
 }
