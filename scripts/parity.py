@@ -1,0 +1,362 @@
+#!/usr/bin/env python3
+"""Helper of scripts/parity.sh (standard library only).
+
+  parity.py reseed FILE VARIANT [--count]
+      Replaces the random seeds of a LIGGGHTS script in place with other primes (VARIANT
+      1 or 2 picks the set) and prints how many it replaced; with --count it only counts
+      and writes nothing. The seeds are the `seed N` of each `fix ... insert/*` and the
+      first number after `particletemplate/*` and `particledistribution/*`.
+
+  parity.py table SCRATCH --budget S --commit C --liggghts V --rdem R --nproc N [--pattern P]
+      Reads the runs parity.sh left in SCRATCH (one folder per script, holding `name` and
+      the runs lig0, rdem, lig1, lig2, each with out, err, rc and secs) and prints the
+      markdown page: a header saying how agreement is judged, then the table.
+"""
+import argparse
+import datetime
+import math
+import os
+import re
+import sys
+
+# --- seeds -----------------------------------------------------------------------------
+
+# LIGGGHTS 3.8 wants each seed to be a prime > 10000; the seeds of one script must differ
+# from each other. Variant k gives its i-th seed the i-th prime from BASES[k] on.
+BASES = {1: 49979687, 2: 86028121}
+
+
+def is_prime(n):
+    if n < 2:
+        return False
+    if n % 2 == 0:
+        return n == 2
+    f = 3
+    while f * f <= n:
+        if n % f == 0:
+            return False
+        f += 2
+    return True
+
+
+def primes_from(n):
+    while True:
+        if is_prime(n):
+            yield n
+        n += 1
+
+
+def commands(lines):
+    """Groups script lines into commands (a line ending with `&` continues on the next)."""
+    i = 0
+    while i < len(lines):
+        j = i
+        while j + 1 < len(lines) and lines[j].split("#")[0].rstrip().endswith("&"):
+            j += 1
+        yield i, j + 1
+        i = j + 1
+
+
+def reseed(text, variant):
+    """The script with its seeds replaced, and how many were replaced."""
+    primes = primes_from(BASES[variant])
+    lines = text.split("\n")
+    count = 0
+    for i, j in commands(lines):
+        words = " ".join(l.split("#")[0].replace("&", " ") for l in lines[i:j]).split()
+        if len(words) < 5 or words[0] != "fix":
+            continue
+        style = words[3]
+        if style.startswith("insert/"):
+            rx = re.compile(r"(\bseed(?:\s|&)+)(\d+)\b")
+        elif style.startswith(("particletemplate/", "particledistribution/")):
+            rx = re.compile(r"(" + re.escape(style) + r"(?:\s|&)+)(\d+)\b")
+        else:
+            continue
+        block, n = rx.subn(lambda m: m.group(1) + str(next(primes)), "\n".join(lines[i:j]), 1)
+        if n:
+            lines[i:j] = block.split("\n")
+            count += 1
+    return "\n".join(lines), count
+
+
+def cmd_reseed(a):
+    with open(a.file) as f:
+        text, count = reseed(f.read(), a.variant)
+    if not a.count:
+        with open(a.file, "w") as f:
+            f.write(text)
+    print(count)
+
+
+# --- reading one run -------------------------------------------------------------------
+
+
+def read(path, default=""):
+    try:
+        with open(path, errors="replace") as f:
+            return f.read()
+    except OSError:
+        return default
+
+
+def error_line(out, err):
+    """The first line of the error a run printed, with where it is, if it says."""
+    for text in (err, out):
+        lines = text.splitlines()
+        for k, line in enumerate(lines):
+            s = line.strip()
+            if "ERROR" in s:  # LIGGGHTS: "ERROR: ..." or "ERROR on proc 0: ..."
+                return re.sub(r"^ERROR( on proc \d+)?:\s*", "", s)
+            if s.startswith("×"):  # rdem: "× message", wrapped on "│ ..." lines
+                msg = s[1:].strip()
+                for more in lines[k + 1 :]:
+                    m = more.strip()
+                    if m.startswith("│"):
+                        msg += " " + m[1:].strip()
+                        continue
+                    loc = re.search(r"╭─\[([^\]]+?):(\d+):\d+\]", m)
+                    if loc:
+                        msg += f" ({loc.group(1)}:{loc.group(2)})"
+                    break
+                return msg
+    lines = [l.strip() for l in err.splitlines() if l.strip()]
+    return lines[-1] if lines else ""
+
+
+def thermo(out):
+    """The last thermo header (list of names) and the last row under it (list of strings)."""
+    head, last_head, last_row = None, None, None
+    for line in out.splitlines():
+        w = line.split()
+        if w[:1] == ["Step"]:
+            head = w
+            continue
+        if head and len(w) == len(head):
+            try:
+                [float(x) for x in w]
+            except ValueError:
+                continue
+            last_head, last_row = head, w
+        elif w[:1] == ["Loop"]:
+            head = None
+    return last_head, last_row
+
+
+class Run:
+    """One program's run of one script: status, seconds, atoms and last thermo row."""
+
+    def __init__(self, d, budget):
+        self.present = os.path.isdir(d)
+        out, err = read(os.path.join(d, "out")), read(os.path.join(d, "err"))
+        rc = read(os.path.join(d, "rc"), "-1").strip()
+        self.secs = float(read(os.path.join(d, "secs"), "nan") or "nan")
+        self.head, self.row = thermo(out)
+        if rc in ("124", "137"):
+            self.status = f"timeout (> {budget} s)"
+        elif rc != "0":
+            signal = f" (signal {int(rc) - 128})" if rc.isdigit() and int(rc) > 128 else ""
+            self.status = "error: " + (error_line(out, err) or f"exit code {rc}{signal}")
+        elif not self.row:
+            self.status = "error: no thermo row printed"
+        else:
+            self.status = "ran"
+        self.ok = self.status == "ran"
+        # Atom count at the end: the last "Loop time ... with N atoms", else the Atoms column.
+        loops = re.findall(r"^Loop time of .* with (\d+) atoms", out, re.M)
+        self.atoms = int(loops[-1]) if loops else None
+        if self.atoms is None and self.row and "Atoms" in self.head:
+            self.atoms = int(float(self.row[self.head.index("Atoms")]))
+        self.cols = {}  # column name (made unique) -> printed value
+        if self.row:
+            for name, v in zip(self.head, self.row):
+                key, k = name, 2
+                while key in self.cols:
+                    key, k = f"{name}#{k}", k + 1
+                self.cols[key] = v
+
+
+# --- comparing -------------------------------------------------------------------------
+
+TIMING = ("CPU", "T/CPU", "S/CPU")  # thermo's cpu, tpcpu, spcpu: shown, not compared
+REL_TOL = 1e-6  # one LIGGGHTS value (or three identical ones): this relative tolerance
+WIDEN = 0.10  # the spread [min, max] of three is widened by 10 % of (max - min) ...
+FLOOR = 1e-9  # ... plus FLOOR * max |value|
+
+
+def spread(values):
+    lo, hi = min(values), max(values)
+    if lo == hi:
+        w = REL_TOL * abs(lo)
+    else:
+        w = WIDEN * (hi - lo) + FLOOR * max(abs(lo), abs(hi))
+    return lo - w, hi + w
+
+
+def fmt(x):
+    return f"{x:.4g}"
+
+
+def pct(x):
+    return f"{x:+.0f} %" if abs(x) >= 10 else f"{x:+.2g} %"
+
+
+def verdict(ligs, r):
+    """`agree`, or the reasons rdem's run does not agree with LIGGGHTS' runs `ligs`."""
+    l0 = ligs[0]
+    if l0.status.startswith("timeout"):
+        return "LIGGGHTS runs longer than the budget"
+    if not l0.ok:
+        return "LIGGGHTS cannot run it"
+    if not r.ok:
+        return "rdem " + r.status.split(":")[0]
+    why = []
+    # Atom count: within max(2, 1 %) of LIGGGHTS' range.
+    counts = [l.atoms for l in ligs if l.atoms is not None]
+    lo, hi = min(counts), max(counts)
+    tol = max(2, 0.01 * hi)
+    if r.atoms is None or not (lo - tol <= r.atoms <= hi + tol):
+        ref = str(lo) if lo == hi else f"{lo}..{hi}"
+        why.append(f"atoms {r.atoms} vs {ref} (allowed ±{tol:g})")
+    for name, v0 in l0.cols.items():
+        if name == "Atoms" or name in TIMING:
+            continue
+        if name not in r.cols:
+            why.append(f"rdem prints no {name} column")
+            continue
+        v = float(r.cols[name])
+        if name == "Step":
+            if v != float(v0):
+                why.append(f"Step {r.cols[name]} vs {v0}")
+            continue
+        values = [float(l.cols[name]) for l in ligs if name in l.cols]
+        lo, hi = spread(values)
+        if not (lo <= v <= hi) or math.isnan(v):
+            bound = hi if v > hi else lo
+            off = pct(100 * (v - bound) / abs(bound)) if bound else f"{v - bound:+.3g}"
+            rng = fmt(values[0]) if len(set(values)) == 1 else f"{fmt(min(values))}..{fmt(max(values))}"
+            why.append(f"{name} {fmt(v)} vs {rng} ({off} off)")
+    return "agree" if not why else "; ".join(why)
+
+
+# --- the page --------------------------------------------------------------------------
+
+
+def cell(s):
+    s = s.replace("|", "\\|")
+    return s if len(s) <= 160 else s[:157] + "..."
+
+
+def row_text(run):
+    if not run.ok:  # a run that stopped early: its last row is not the end
+        return ""
+    return " ".join(f"{k}={v}" for k, v in run.cols.items() if k != "Atoms")
+
+
+def cmd_table(a):
+    rows, tally = [], {}
+    for sub in sorted(os.listdir(a.scratch)):
+        d = os.path.join(a.scratch, sub)
+        if not os.path.isfile(os.path.join(d, "name")):
+            continue
+        name = read(os.path.join(d, "name")).strip()
+        l0 = Run(os.path.join(d, "lig0"), a.budget)
+        r = Run(os.path.join(d, "rdem"), a.budget)
+        if l0.status.startswith("timeout"):
+            r.status = l0.status  # rdem is not run then: both are marked timeout
+        seeds = [Run(os.path.join(d, k), a.budget) for k in ("lig1", "lig2")]
+        seeds = [s for s in seeds if s.present]
+        ligs = [l0] + [s for s in seeds if s.ok]
+        v = verdict(ligs, r)
+        notes = [f"seed run {k + 1}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
+        if notes:
+            v += " (" + "; ".join(notes) + ")"
+        kind = (
+            "agree" if v == "agree"
+            else "LIGGGHTS timeout" if l0.status.startswith("timeout")
+            else "LIGGGHTS error" if not l0.ok
+            else "rdem error/timeout" if not r.ok
+            else "disagree"
+        )
+        tally[kind] = tally.get(kind, 0) + 1
+        ratio = fmt(l0.secs / r.secs) if l0.ok and r.ok and r.secs > 0 else ""
+        rows.append(
+            [
+                name,
+                l0.status,
+                r.status,
+                str(l0.atoms) if l0.ok and l0.atoms is not None else "",
+                str(r.atoms) if r.ok and r.atoms is not None else "",
+                row_text(l0),
+                row_text(r),
+                str(len(ligs)) if l0.ok else "",
+                ratio,
+                v,
+            ]
+        )
+
+    now = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    order = ["agree", "disagree", "rdem error/timeout", "LIGGGHTS error", "LIGGGHTS timeout"]
+    summary = ", ".join(f"{k}: {tally[k]}" for k in order if k in tally)
+    print(f"""# Parity with LIGGGHTS 3.8 on its tutorials
+
+Made by `scripts/parity.sh` (run it again to refresh this page).
+
+- Date: {now}
+- rdem commit: {a.commit}; binary: `{a.rdem}`
+- LIGGGHTS: {a.liggghts}
+- Machine: {a.nproc} cores (`nproc`), load average {a.load} at the start; each run on 1 core (rdem `--threads 1`, LIGGGHTS 1 process), one run at a time
+- Budget: {a.budget} s of wall time per run{f"; scripts matching `{a.pattern}` only" if a.pattern else ""}
+- Result: {summary}
+
+Each `in.*` script of `Tutorials_public/*/` runs unmodified from a fresh copy of its
+folder (`-in SCRIPT -log none`). LIGGGHTS also runs it twice more with other seeds: every
+`seed N` of a `fix insert/*` and the first number after `particletemplate/*` and
+`particledistribution/*` replaced by other primes (from {BASES[1]} and {BASES[2]} on).
+All three kinds are replaced because rdem draws positions, template choices and
+multisphere mass properties from its own random generator, so none of LIGGGHTS' random
+sequences carries over to rdem. The columns "last thermo" are the last thermo row of the
+last run (names from the last `Step` header); atoms is the count of the last `Loop time`
+line. "LIG runs" is the number of LIGGGHTS runs that gave the spread; "time L/R" is
+LIGGGHTS' wall time over rdem's (first seed).
+
+rdem agrees with LIGGGHTS when
+- the atom count is within max(2, 1 %) of the range of LIGGGHTS' counts;
+- the last thermo row has the same Step;
+- every other column of that row (but the timings CPU, T/CPU, S/CPU) lies in LIGGGHTS' spread: [min, max] of its three values
+  widened on each side by {WIDEN:.0%} of (max − min) plus {FLOOR:g} × max |value|. Where the
+  script has no seeds (one LIGGGHTS run) or the three values are identical (a constant
+  such as a volume), the spread is that value ± {REL_TOL:g} × |value|.
+
+A script LIGGGHTS cannot run shows LIGGGHTS' error; one LIGGGHTS does not finish within
+the budget is marked timeout for both and rdem is not run. Otherwise the verdict says
+which column is off, rdem's value against LIGGGHTS' (range of) values, and by how much
+relative to the nearest end of the spread.
+""")
+    heads = ["script", "LIGGGHTS", "rdem", "atoms L", "atoms R", "last thermo L",
+             "last thermo R", "LIG runs", "time L/R", "verdict"]
+    print("| " + " | ".join(heads) + " |")
+    print("|" + "|".join("---" for _ in heads) + "|")
+    for r in rows:
+        print("| " + " | ".join(cell(c) for c in r) + " |")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    s = sub.add_parser("reseed")
+    s.add_argument("file")
+    s.add_argument("variant", type=int, choices=sorted(BASES))
+    s.add_argument("--count", action="store_true")
+    s.set_defaults(func=cmd_reseed)
+    t = sub.add_parser("table")
+    t.add_argument("scratch")
+    for opt in ("budget", "commit", "liggghts", "rdem", "nproc", "load", "pattern"):
+        t.add_argument("--" + opt, default="")
+    t.set_defaults(func=cmd_table)
+    a = p.parse_args()
+    a.func(a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
