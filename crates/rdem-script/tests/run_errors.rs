@@ -98,3 +98,81 @@ fn a_lost_particle_is_reported_at_the_run() {
     assert!(text.contains("in.rt:12:1"), "{text}");
     assert!(text.contains("lost"), "{text}");
 }
+
+/// A particle that tunnels through a thin mesh plate (5 mm a step against a 1 mm
+/// radius) and leaves the box: the report names its tag, where it was found, its
+/// velocity, and the plate's triangle that its path traced back crosses, with the
+/// crossing point (x = 0.01, y = 0.001 + 0.01 · 3/500 = 0.00106 on the straight path).
+#[test]
+fn a_lost_particle_names_the_wall_its_path_crossed() {
+    let dir = std::env::temp_dir().join(format!("rdem-lost-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("plate.stl");
+    let facet = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
+        format!(
+            "facet normal 0 0 0\nouter loop\nvertex {} {} {}\nvertex {} {} {}\nvertex {} {} {}\nendloop\nendfacet\n",
+            a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]
+        )
+    };
+    let (p0, p1, p2, p3) = (
+        [0.01, -0.02, -0.02],
+        [0.01, 0.02, -0.02],
+        [0.01, 0.02, 0.02],
+        [0.01, -0.02, 0.02],
+    );
+    std::fs::write(
+        &stl,
+        format!(
+            "solid plate\n{}{}endsolid plate\n",
+            facet(p0, p1, p2),
+            facet(p0, p2, p3)
+        ),
+    )
+    .unwrap();
+    let src = format!(
+        "units si\n\
+         atom_style sphere\n\
+         atom_modify map array\n\
+         boundary f f f\n\
+         newton off\n\
+         communicate single vel yes\n\
+         region box block -0.02 0.05 -0.02 0.02 -0.02 0.02 units box\n\
+         create_box 2 box\n\
+         neighbor 0.001 bin\n\
+         fix m1 all property/global youngsModulus peratomtype 1.e7 1.e7\n\
+         fix m2 all property/global poissonsRatio peratomtype 0.3 0.3\n\
+         fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5\n\
+         fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5\n\
+         pair_style gran model hertz tangential history\n\
+         pair_coeff * *\n\
+         timestep 1e-5\n\
+         fix plate all mesh/surface file {} type 2\n\
+         fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\n\
+         create_atoms 1 single 0.0 0.001 0.0 units box\n\
+         set atom 1 diameter 0.002 density 2500 vx 500 vy 3\n\
+         fix integr all nve/sphere\n\
+         run 100\n",
+        stl.display()
+    );
+    let r = report(&src);
+    std::fs::remove_dir_all(&dir).ok();
+    let text = render(&r);
+    let words = text
+        .replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert_eq!(r.code(), Some("rdem::run::engine"), "{text}");
+    // Found at the first re-neighboring after it left (x = 0.1 at step 20).
+    assert!(
+        words.contains("first lost tag 1 at (0.1, 0.0016, 0)"),
+        "{text}"
+    );
+    assert!(words.contains("with velocity (500, 3, 0)"), "{text}");
+    assert!(
+        words.contains(
+            "its path crosses mesh 'plate' triangle 0 of wall 'walls' at (0.01, 0.00106, 0)"
+        ),
+        "{text}"
+    );
+}

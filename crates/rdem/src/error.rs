@@ -52,12 +52,15 @@ pub enum Error {
         step: u64,
     },
     /// Particles left a fixed box and the lost-particle policy is `error`.
-    #[error("{count} particle(s) lost at step {step} (they left a fixed boundary); first lost tag {first_tag}")]
+    #[error("{count} particle(s) lost at step {step} (they left a fixed boundary); first lost tag {first_tag} {detail}")]
     LostParticles {
         /// How many were lost at this reneighboring.
         count: usize,
         /// First lost tag.
         first_tag: Tag,
+        /// Where that particle was found, its velocity, and the wall surface its path
+        /// back crosses first ([`crate::lost::crossing`]).
+        detail: String,
         /// Timestep.
         step: u64,
     },

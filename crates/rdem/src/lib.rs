@@ -16,6 +16,7 @@ pub mod euler;
 pub mod fix;
 pub mod heat;
 pub mod insert;
+pub mod lost;
 pub mod massflow;
 pub mod mesh;
 pub mod mesh_motion;

@@ -181,25 +181,26 @@ impl World {
     /// policy (stop, or remove them with or without a warning).
     pub(crate) fn remove_lost(&mut self) -> Result<()> {
         let nlocal = self.particles.nlocal();
-        let lost: Vec<bool> = self.particles.x[..nlocal]
-            .iter()
-            .map(|&x| self.domain.is_lost(x))
-            .collect();
-        let nlost_local = lost.iter().filter(|&&l| l).count();
+        let x = &self.particles.x[..nlocal];
+        let nlost_local = x.iter().filter(|&&x| self.domain.is_lost(x)).count();
         let nlost = self.comm.sum_count(nlost_local as u64);
         if nlost == 0 {
             return Ok(());
         }
+        let lost: Vec<bool> = x.iter().map(|&x| self.domain.is_lost(x)).collect();
         // The lowest of the ranks' first lost tags, the same on every rank.
-        let first_tag = self.comm.min(
-            lost.iter()
-                .position(|&l| l)
-                .map_or(f64::INFINITY, |i| self.particles.tag[i] as f64),
-        ) as Tag;
+        let first = lost.iter().position(|&l| l);
+        let first_tag = self
+            .comm
+            .min(first.map_or(f64::INFINITY, |i| self.particles.tag[i] as f64))
+            as Tag;
+        let owned = first.filter(|&i| self.particles.tag[i] == first_tag);
+        let detail = self.lost_detail(owned);
         if self.lost_policy == LostPolicy::Error {
             return Err(Error::LostParticles {
                 count: nlost as usize,
                 first_tag,
+                detail,
                 step: self.step,
             });
         }
@@ -209,11 +210,63 @@ impl World {
         self.lost += nlost;
         if self.lost_policy == LostPolicy::Warn {
             self.warnings.push(format!(
-                "{nlost} particle(s) lost at step {} (left a fixed boundary)",
+                "{nlost} particle(s) lost at step {} (left a fixed boundary); first lost tag {first_tag} {detail}",
                 self.step
             ));
         }
         Ok(())
+    }
+
+    /// Where the first lost particle (owned particle `owned` on the rank that has it, the
+    /// same text on every rank) was found, its velocity, and the wall surface that its
+    /// path traced back crosses first ([`crate::lost::crossing`]).
+    fn lost_detail(&self, owned: Option<usize>) -> String {
+        // The owner's values; the other ranks give +inf, so a minimum over the ranks
+        // hands the owner's to all (-1 stands for "no crossing").
+        let mut vals = [f64::INFINITY; 10];
+        if let Some(i) = owned {
+            let (x, v) = (self.particles.x[i], self.particles.v[i]);
+            vals[..3].copy_from_slice(&x.to_array());
+            vals[3..6].copy_from_slice(&v.to_array());
+            match crate::lost::crossing(&self.fixes, &self.meshes, x, v) {
+                Some(c) => {
+                    let (m, t) = c.mesh.map_or((-1.0, -1.0), |(m, t)| (m as f64, t as f64));
+                    vals[6..].copy_from_slice(&[c.fix as f64, m, t, c.back]);
+                }
+                None => vals[6..].fill(-1.0),
+            }
+        }
+        for v in &mut vals {
+            *v = self.comm.min(*v);
+        }
+        let [x, y, z, vx, vy, vz, fix, mesh, tri, back] = vals;
+        let (xs, vs) = (DVec3::new(x, y, z), DVec3::new(vx, vy, vz));
+        let mut s = format!(
+            "at {} with velocity {}",
+            crate::lost::show(xs),
+            crate::lost::show(vs)
+        );
+        if fix < 0.0 || !fix.is_finite() {
+            s.push_str("; traced back along its velocity, its path crosses no wall");
+            return s;
+        }
+        // The crossing point, on the path back from the particle.
+        let p = xs - back * vs / vs.length();
+        let id = &self.fixes[fix as usize].id;
+        let surface = if mesh >= 0.0 {
+            format!(
+                "mesh '{}' triangle {} of wall '{id}'",
+                self.meshes[mesh as usize].id, tri as u64
+            )
+        } else {
+            format!("wall '{id}'")
+        };
+        s.push_str(&format!(
+            "; traced back along its velocity, its path crosses {surface} at {}, {} back",
+            crate::lost::show(p),
+            crate::lost::g6(back)
+        ));
+        s
     }
 
     /// Re-neighboring 7: the owned particles sorted by spatial bin when a sort is due.
