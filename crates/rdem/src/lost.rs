@@ -27,7 +27,7 @@ pub struct Crossing {
 /// against the velocity `v` crosses, if any.
 pub fn crossing(fixes: &[Fix], meshes: &[MeshSurface], x: DVec3, v: DVec3) -> Option<Crossing> {
     let speed = v.length();
-    if !(speed > 0.0) || !speed.is_finite() {
+    if speed == 0.0 || !speed.is_finite() {
         return None;
     }
     let d = -v / speed;

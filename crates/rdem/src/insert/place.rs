@@ -190,14 +190,15 @@ impl OverlapGrid {
 /// sphere of radius `r` may go (`None`: the volume has no room at all; a clump is drawn
 /// with its bounding radius, as LIGGGHTS does); with `grid` given the spheres (each
 /// sphere of a clump, turned as `orientation` says, drawn with each try) may not overlap
-/// its spheres or each other. `max_attempt` tries per particle are pooled over the
-/// insertion. Each placed particle's velocity is drawn right after its position.
+/// its spheres or each other. The insertion may make `budget` tries in all (the caller's
+/// `maxattempt` per particle, pooled). Each placed particle's velocity is drawn right
+/// after its position.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn choose(
     dist: &mut Distribution,
     rng: &mut InsertRng,
     wanted: u64,
-    max_attempt: usize,
+    mut budget: u64,
     mut grid: Option<&mut OverlapGrid>,
     orientation: Orientation,
     mut sample: impl FnMut(&mut InsertRng, f64) -> Option<DVec3>,
@@ -205,7 +206,6 @@ pub(crate) fn choose(
 ) -> Vec<Placed> {
     let counts = dist.counts_for(wanted as usize);
     let mut out = Vec::with_capacity(wanted as usize);
-    let mut budget = wanted.saturating_mul(max_attempt.max(1) as u64);
     for (k, &count) in counts.iter().enumerate() {
         let clump = dist.templates[k].clump.clone();
         for _ in 0..count {

@@ -360,7 +360,7 @@ impl InsertStream {
             &mut self.dist,
             &mut self.rng,
             wanted,
-            self.max_attempt,
+            wanted.saturating_mul(self.max_attempt.max(1) as u64),
             grid.as_mut(),
             self.orientation,
             |rng, r| {
