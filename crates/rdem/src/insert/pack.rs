@@ -277,12 +277,7 @@ impl InsertPack {
         // radius 1 mm drawn in a region as large as the box have their centres within
         // ±(L/2 − 1 mm), on fixed and periodic faces alike; ten-sphere clumps keep their
         // bounding sphere in the box).
-        let tries = wanted.saturating_mul(self.max_attempt.max(1) as u64) as f64;
-        let budget = if (0.0..1.0).contains(&filled) {
-            (tries / (1.0 - filled)) as u64
-        } else {
-            tries as u64
-        };
+        let budget = tries(wanted, self.max_attempt, filled);
         let mut placed = choose(
             &mut self.dist,
             &mut self.rng,
@@ -315,6 +310,18 @@ impl InsertPack {
         }
         world.extend_tags();
         Ok((inserted, mass))
+    }
+}
+
+/// The tries an insertion of `wanted` particles may make in all: `max_attempt` per
+/// particle, divided by 1 − `filled` (the fraction of the target already in the region;
+/// see [`InsertPack::place`]).
+fn tries(wanted: u64, max_attempt: usize, filled: f64) -> u64 {
+    let tries = wanted.saturating_mul(max_attempt.max(1) as u64);
+    if (0.0..1.0).contains(&filled) {
+        (tries as f64 / (1.0 - filled)) as u64
+    } else {
+        tries
     }
 }
 
@@ -379,6 +386,18 @@ mod tests {
         ins.all_in = all_in;
         ins.max_attempt = 200;
         (w, ins)
+    }
+
+    /// The try budget grows as the region fills: twice the tries at half full, four
+    /// times at three quarters; an empty or overfull region gets `maxattempt` each.
+    #[test]
+    fn tries_grow_with_the_filled_fraction() {
+        assert_eq!(tries(10, 50, 0.0), 500);
+        assert_eq!(tries(10, 50, 0.5), 1000);
+        assert_eq!(tries(10, 50, 0.75), 2000);
+        assert_eq!(tries(10, 50, 1.0), 500);
+        assert_eq!(tries(10, 50, 1.5), 500);
+        assert_eq!(tries(10, 0, 0.5), 20);
     }
 
     /// in.dense's insertion at a feasible 25 %: the requested volume fraction is reached
