@@ -492,12 +492,19 @@ struct PairPass<'a> {
 impl Visitor for PairPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(mut self) {
-        let bond = self.pair.bond.is_some();
-        match (self.virial.take(), bond) {
-            (None, false) => self.run::<K, false, false>(&mut []),
-            (Some(v), false) => self.run::<K, true, false>(v),
-            (None, true) => self.run::<K, false, true>(&mut []),
-            (Some(v), true) => self.run::<K, true, true>(v),
+        debug_assert_eq!(self.pair.bond.is_some(), K::BONDS);
+        // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
+        let virial = self.virial.take();
+        if K::BONDS {
+            match virial {
+                None => self.run::<K, false, true>(&mut []),
+                Some(v) => self.run::<K, true, true>(v),
+            }
+        } else {
+            match virial {
+                None => self.run::<K, false, false>(&mut []),
+                Some(v) => self.run::<K, true, false>(v),
+            }
         }
     }
 }

@@ -13,6 +13,9 @@ pub trait Cohesion {
     /// True for a liquid-bridge model: it reads the particles' liquid contents, adds a
     /// tangential force, and acts on pairs that do not touch ([`Cohesion::separated`]).
     const BRIDGE: bool = false;
+    /// True for `cohesion bond`: no cohesive force of its own, but the passes carry the
+    /// bonds' history and forces (so only these kernels are compiled with the bond code).
+    const BONDS: bool = false;
 
     /// Attractive force (≥ 0) of a touching pair.
     fn force(g: &Geom, c: &PairCoeff) -> f64;
@@ -54,6 +57,18 @@ pub enum Bridge {
 pub struct Off;
 
 impl Cohesion for Off {
+    #[inline(always)]
+    fn force(_: &Geom, _: &PairCoeff) -> f64 {
+        0.0
+    }
+}
+
+/// `cohesion bond`: no cohesion force (the bonds act in [`crate::bond`]); the kernels
+/// made with it are the only ones the pair and wall passes run with bonds.
+pub struct Bonded;
+
+impl Cohesion for Bonded {
+    const BONDS: bool = true;
     #[inline(always)]
     fn force(_: &Geom, _: &PairCoeff) -> f64 {
         0.0

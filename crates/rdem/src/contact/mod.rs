@@ -242,7 +242,8 @@ impl ContactModel {
         v: V,
     ) -> V::Output {
         match self.cohesion {
-            CohesionKind::Off | CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
+            CohesionKind::Off => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
+            CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Bonded>>(),
             CohesionKind::Sjkr => v.visit::<Kernel<N, T, R, cohesion::Sjkr>>(),
             CohesionKind::Sjkr2 => v.visit::<Kernel<N, T, R, cohesion::Sjkr2>>(),
             CohesionKind::Easo => v.visit::<Kernel<N, T, R, liquid::Easo>>(),
@@ -403,6 +404,9 @@ pub trait ContactKernel {
     const BRIDGE: bool;
     /// History values of the bridge (at the end of the history).
     const BRIDGE_HIST: usize;
+    /// True for the kernels of `cohesion bond` ([`cohesion::Bonded`]): the passes compile
+    /// their bond code only for these.
+    const BONDS: bool;
     /// Force and torques of one contact; `hist` has `HIST` values.
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce;
     /// A listed pair that does not touch (only for `BRIDGE` kernels): `hist` is the
@@ -422,6 +426,7 @@ impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohes
     const HIST_ODD: usize = T::HIST + R::HIST;
     const BRIDGE: bool = C::BRIDGE;
     const BRIDGE_HIST: usize = C::HIST;
+    const BONDS: bool = C::BONDS;
 
     #[inline(always)]
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce {

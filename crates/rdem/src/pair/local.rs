@@ -143,7 +143,12 @@ impl Visitor for Records<'_> {
         let off = if pair.bond.is_some() { bond::VEC } else { 0 };
         let w = list.width;
         if bonds {
-            return bond_records::<K>(&ph1, pair, p, list, out);
+            // Only `cohesion bond` kernels have bonds (and only they compile this path).
+            debug_assert!(K::BONDS);
+            if K::BONDS {
+                return bond_records::<K>(&ph1, pair, p, list, out);
+            }
+            return out;
         }
         let mut scratch = vec![0.0; K::HIST];
         let near = ph1.near;

@@ -608,7 +608,9 @@ pub(super) struct MeshPass<'a> {
 impl Visitor for MeshPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
-        if self.wall.bond.is_some() {
+        debug_assert_eq!(self.wall.bond.is_some(), K::BONDS);
+        // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
+        if K::BONDS {
             self.run::<K, true>()
         } else {
             self.run::<K, false>()
@@ -687,6 +689,111 @@ fn wall_bond(
     (b.f_i, b.t_i)
 }
 
+/// The contacts of a sphere at `x` of radius `r` with its candidate triangles `cands`,
+/// written to the front of `found` (their number is returned): one per feature (edges
+/// and corners of touched faces, and corners of touched edges, do not count again), one
+/// per flat surface (the deeper one), at most [`SLOTS`]. Not generic over the contact
+/// law, so that it is compiled once, not once per kernel.
+fn touches_of(
+    wall: &MeshWall,
+    surfaces: &[MeshSurface],
+    x: DVec3,
+    r: f64,
+    cands: &[(u32, u32)],
+    found: &mut [Touch; MAX_TOUCH],
+) -> usize {
+    let mut keep = [true; MAX_TOUCH];
+    let mut nt = 0;
+    for &(mi, t) in cands {
+        let mesh = &surfaces[wall.meshes[mi as usize]].mesh;
+        let (q, feature) = mesh.closest_point(t, x);
+        let (n, dist) = if let Feature::Face(t) = feature {
+            // On the face: the plane distance (exact for axis-aligned planes).
+            let nt = mesh.normals[t as usize];
+            let s = (x - mesh.verts[mesh.tris[t as usize][0] as usize]).dot(nt);
+            (if s >= 0.0 { nt } else { -nt }, s.abs())
+        } else {
+            let d = x - q;
+            let dist = d.length();
+            (d / dist, dist)
+        };
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(dist < r) || dist == 0.0 {
+            continue;
+        }
+        if nt < MAX_TOUCH {
+            found[nt] = Touch {
+                mesh: mi,
+                feature,
+                tri: t,
+                q,
+                n,
+                dist,
+            };
+            nt += 1;
+        }
+    }
+    // One contact per feature; edges and corners of touched faces (and corners of
+    // touched edges) do not count again.
+    let all = &mut found[..nt];
+    all.sort_unstable_by_key(|t| (t.mesh, t.feature));
+    let mut nd = 0;
+    for q in 0..all.len() {
+        if nd == 0 || (all[nd - 1].mesh, all[nd - 1].feature) != (all[q].mesh, all[q].feature) {
+            all[nd] = all[q];
+            nd += 1;
+        }
+    }
+    let all = &found[..nd];
+    for (q, c) in all.iter().enumerate() {
+        let mesh = &surfaces[wall.meshes[c.mesh as usize]].mesh;
+        keep[q] = match c.feature {
+            Feature::Face(_) => true,
+            Feature::Edge(e) => !all.iter().any(|o| {
+                o.mesh == c.mesh
+                    && matches!(o.feature, Feature::Face(t) if mesh.tri_edges[t as usize].contains(&e))
+            }),
+            Feature::Vertex(v) => !all.iter().any(|o| {
+                o.mesh == c.mesh
+                    && match o.feature {
+                        Feature::Face(t) => mesh.tris[t as usize].contains(&v),
+                        Feature::Edge(e) => mesh.edge_has_vertex(e, v),
+                        Feature::Vertex(_) => false,
+                    }
+            }),
+        };
+    }
+    // One contact per flat surface: of two contacts on neighbouring triangles of
+    // one plane (a sphere over the corner of a hole touches its two rim edges),
+    // the deeper counts.
+    let mut shadowed = [false; MAX_TOUCH];
+    for q in 0..nd {
+        if !keep[q] {
+            continue;
+        }
+        let c = &all[q];
+        let surface = &surfaces[wall.meshes[c.mesh as usize]];
+        let deeper = |o: &Touch, oq: usize| o.dist < c.dist || (o.dist == c.dist && oq < q);
+        if all.iter().enumerate().any(|(oq, o)| {
+            oq != q
+                && keep[oq]
+                && o.mesh == c.mesh
+                && deeper(o, oq)
+                && same_surface(&surface.mesh, o.tri, c.tri, surface.coplanar_cos)
+        }) {
+            shadowed[q] = true;
+        }
+    }
+    let mut nk = 0;
+    for q in 0..nd {
+        if keep[q] && !shadowed[q] && nk < SLOTS {
+            found[nk] = found[q];
+            nk += 1;
+        }
+    }
+    nk
+}
+
 impl MeshPass<'_> {
     /// The pass with kernel `K`, and with `BOND` the wall bonds.
     #[inline(always)]
@@ -722,7 +829,6 @@ impl MeshPass<'_> {
             dist: 0.0,
         };
         let mut found = [none; MAX_TOUCH];
-        let mut keep = [true; MAX_TOUCH];
         let mut old = [0.0f64; MAX_WIDTH];
         let hi = lo + f.len();
         let a = wall.rows.partition_point(|&i| (i as usize) < lo);
@@ -738,96 +844,7 @@ impl MeshPass<'_> {
                 torque[k] += bt;
             }
             let (x, r) = (p.x[i], p.radius[i]);
-            let mut nt = 0;
-            for &(mi, t) in cands {
-                let mesh = &surfaces[wall.meshes[mi as usize]].mesh;
-                let (q, feature) = mesh.closest_point(t, x);
-                let (n, dist) = if let Feature::Face(t) = feature {
-                    // On the face: the plane distance (exact for axis-aligned planes).
-                    let nt = mesh.normals[t as usize];
-                    let s = (x - mesh.verts[mesh.tris[t as usize][0] as usize]).dot(nt);
-                    (if s >= 0.0 { nt } else { -nt }, s.abs())
-                } else {
-                    let d = x - q;
-                    let dist = d.length();
-                    (d / dist, dist)
-                };
-                #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                if !(dist < r) || dist == 0.0 {
-                    continue;
-                }
-                if nt < MAX_TOUCH {
-                    found[nt] = Touch {
-                        mesh: mi,
-                        feature,
-                        tri: t,
-                        q,
-                        n,
-                        dist,
-                    };
-                    nt += 1;
-                }
-            }
-            // One contact per feature; edges and corners of touched faces (and corners of
-            // touched edges) do not count again.
-            let all = &mut found[..nt];
-            all.sort_unstable_by_key(|t| (t.mesh, t.feature));
-            let mut nd = 0;
-            for q in 0..all.len() {
-                if nd == 0
-                    || (all[nd - 1].mesh, all[nd - 1].feature) != (all[q].mesh, all[q].feature)
-                {
-                    all[nd] = all[q];
-                    nd += 1;
-                }
-            }
-            let all = &found[..nd];
-            for (q, c) in all.iter().enumerate() {
-                let mesh = &surfaces[wall.meshes[c.mesh as usize]].mesh;
-                keep[q] = match c.feature {
-                    Feature::Face(_) => true,
-                    Feature::Edge(e) => !all.iter().any(|o| {
-                        o.mesh == c.mesh
-                            && matches!(o.feature, Feature::Face(t) if mesh.tri_edges[t as usize].contains(&e))
-                    }),
-                    Feature::Vertex(v) => !all.iter().any(|o| {
-                        o.mesh == c.mesh
-                            && match o.feature {
-                                Feature::Face(t) => mesh.tris[t as usize].contains(&v),
-                                Feature::Edge(e) => mesh.edge_has_vertex(e, v),
-                                Feature::Vertex(_) => false,
-                            }
-                    }),
-                };
-            }
-            // One contact per flat surface: of two contacts on neighbouring triangles of
-            // one plane (a sphere over the corner of a hole touches its two rim edges),
-            // the deeper counts.
-            let mut shadowed = [false; MAX_TOUCH];
-            for q in 0..nd {
-                if !keep[q] {
-                    continue;
-                }
-                let c = &all[q];
-                let surface = &surfaces[wall.meshes[c.mesh as usize]];
-                let deeper = |o: &Touch, oq: usize| o.dist < c.dist || (o.dist == c.dist && oq < q);
-                if all.iter().enumerate().any(|(oq, o)| {
-                    oq != q
-                        && keep[oq]
-                        && o.mesh == c.mesh
-                        && deeper(o, oq)
-                        && same_surface(&surface.mesh, o.tri, c.tri, surface.coplanar_cos)
-                }) {
-                    shadowed[q] = true;
-                }
-            }
-            let mut nk = 0;
-            for q in 0..nd {
-                if keep[q] && !shadowed[q] && nk < SLOTS {
-                    found[nk] = found[q];
-                    nk += 1;
-                }
-            }
+            let nk = touches_of(wall, surfaces, x, r, cands, &mut found);
             let touches = &found[..nk];
             // Match the contacts with the slots: same feature, else an ended neighbour.
             old[..width].copy_from_slice(h);

@@ -352,7 +352,9 @@ struct WallPass<'a> {
 impl Visitor for WallPass<'_> {
     type Output = ();
     fn visit<K: ContactKernel>(self) {
-        if self.wall.bond.is_some() {
+        debug_assert_eq!(self.wall.bond.is_some(), K::BONDS);
+        // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
+        if K::BONDS {
             self.run::<K, true>()
         } else {
             self.run::<K, false>()
