@@ -104,6 +104,72 @@ run 699
     assert_eq!(at(700.0)[1], 120.0, "nparticles reached: no more packets");
 }
 
+/// An oblique stream (`vel constant 0 -0.5 -2` through the horizontal face): a held
+/// sphere or clump moves along the face normal only, at the normal part of its velocity
+/// (vy = 0, vz = -2), and gains the rest (vy = -0.5) at the step its centre reaches the
+/// face, so it leaves the face where it was placed above it. Measured with LIGGGHTS 3.8
+/// (a 0.2 m square face, `extrude_length 0.1`, `vel constant 0 -0.5 -2` on spheres and
+/// `0 0.5 -1` on two-sphere clumps, dumps of every 10 steps): every held particle had
+/// vy = 0 exactly, and the full velocity from the step its centre crossed the face.
+/// rdem held them at the full velocity, so a stream leaving at an angle crossed the face
+/// plane off the face and never met the particles still held.
+#[test]
+fn an_oblique_stream_moves_along_the_normal_until_the_face() {
+    let sphere = (
+        "fix pdd all particledistribution/discrete 10037 1 pts 1.0\n",
+        "fix nve all nve/sphere\n",
+        5.0,
+    );
+    let clump = (
+        "fix pdd all particledistribution/discrete 10037 1 dumbbell 1.0\n",
+        "fix ms all multisphere\n",
+        10.0,
+    );
+    for (dist, integrator, spheres) in [sphere, clump] {
+        let head = HEAD
+            .replace(
+                "fix pdd all particledistribution/discrete 10037 1 pts 1.0\n",
+                dist,
+            )
+            .replace("fix nve all nve/sphere\n", integrator);
+        let script = format!(
+            "fix dumbbell all particletemplate/multisphere 10039 atom_type 1 density constant \
+             2500 nspheres 2 ntry 100000 spheres 0 0 0 0.004 0.006 0 0 0.004 type 1
+{head}fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 5 \
+         particlerate 200 vel constant 0 -0.5 -2 overlapcheck yes all_in yes \
+         insertion_face face extrude_length 0.05
+compute vy all property/atom vy
+compute vymax all reduce max c_vy
+compute vymin all reduce min c_vy
+thermo_style custom step atoms c_vymax c_vymin c_vmax c_vmin
+thermo 10
+run 1
+run 299
+"
+        );
+        let rows = run(&script);
+        let at = |step: f64| rows.iter().rev().find(|r| r[0] == step).unwrap().clone();
+        let r1 = at(1.0);
+        assert_eq!(r1[1], spheres, "{r1:?}");
+        assert_eq!(
+            &r1[2..],
+            [0.0, 0.0, -2.0, -2.0],
+            "held: the normal part only {r1:?}"
+        );
+        // Halfway, some have crossed (vy = -0.5) and some are still held (vy = 0).
+        let r = at(120.0);
+        assert_eq!((r[2], r[3]), (0.0, -0.5), "{rows:?}");
+        // All have crossed by step 230 (0.046 m at 2 m/s), nothing is added after.
+        let r = at(300.0);
+        assert_eq!(r[1], spheres, "{r:?}");
+        assert!(
+            (r[2] + 0.5).abs() < 1e-12 && (r[3] + 0.5).abs() < 1e-12,
+            "released: the full velocity {r:?}"
+        );
+        assert!(r[4] < -2.05, "gravity acts below the face {r:?}");
+    }
+}
+
 /// A particle rate through `insert_every` (the extrusion follows: 100 steps · 1e-4 s ·
 /// 2 m/s = 0.02 m), and `mass` instead of a count: 30 particles' mass gives 30.
 #[test]

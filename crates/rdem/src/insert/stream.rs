@@ -7,14 +7,19 @@
 //! the extrusion, `extrude_length / (v·n dt)` steps when the length is given — a packet
 //! of `rate · insert_every · dt` particles (a fractional count rounded up with
 //! probability equal to its fraction, as LIGGGHTS does) is placed at random in the
-//! volume. Until a particle reaches the face it moves at its insertion velocity and spin,
-//! feeling no force (its force and torque are zeroed after all forces, see
-//! [`HOLD_PROPERTY`]), so it crosses the face exactly at the velocity asked for.
+//! volume. Until a particle reaches the face it moves straight along the face normal, at
+//! the normal part of its insertion velocity, and spins at its insertion spin, feeling no
+//! force (its force and torque are zeroed after all forces, see [`HOLD_PROPERTY`]); when
+//! it reaches the face it gains the rest of its insertion velocity ([`TANGENT_PROPERTY`]),
+//! so it leaves the face where it was placed behind it, at the velocity asked for. That is
+//! what LIGGGHTS 3.8 does: with an oblique `vel`, a held sphere or clump moved at the
+//! normal part only and took the full velocity on crossing the face (measured on a
+//! horizontal face, `vel constant 0 -0.5 -2` and `0 0.5 -1`).
 
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{add_placed, choose, OverlapGrid};
+use super::place::{add_placed, choose, OverlapGrid, Placed};
 use super::{Distribution, InsertReport, InsertRng, VelocityLaw};
 use crate::error::{Error, Result};
 use crate::mesh::TriMesh;
@@ -25,19 +30,36 @@ use crate::world::World;
 /// ballistically through the insertion volume).
 pub const HOLD_PROPERTY: &str = "insert_stream_release";
 
+/// Per-particle property holding the part of a streamed particle's insertion velocity
+/// along the face, which it gains when released (then zero). A clump's spheres carry
+/// their body's; [`crate::world::World`]'s body sums hand it to the body.
+pub const TANGENT_PROPERTY: &str = "insert_stream_tangent";
+
 /// Zeroes the force and torque of the owned particles an `insert/stream` still holds at
-/// `step` (stage 10 of [`crate::step`]: after the post-force fixes).
+/// `step`, and gives each free sphere released by then the rest of its insertion
+/// velocity (stage 10 of [`crate::step`]: after the post-force fixes). A clump's spheres
+/// are left to their body (see `World::sum_body_forces`).
 pub(crate) fn hold_streamed(p: &mut crate::particles::Particles, step: u64) {
     let Some(id) = p.property(HOLD_PROPERTY) else {
         return;
     };
+    let tangent = p.property(TANGENT_PROPERTY);
+    let body = p.property(crate::multisphere::bodies::BODY_PROP);
     let step = step as f64;
     let n = p.nlocal();
-    let held = &p.props[id.0].data[..n];
-    for (i, &release) in held.iter().enumerate() {
-        if release > step {
+    for i in 0..n {
+        if p.props[id.0].data[i] > step {
             p.f[i] = DVec3::ZERO;
             p.torque[i] = DVec3::ZERO;
+        } else if let Some(t) = tangent {
+            if body.is_some_and(|b| p.props[b.0].data[i] != 0.0) {
+                continue;
+            }
+            let d = &mut p.props[t.0].data[3 * i..3 * i + 3];
+            if d.iter().any(|&c| c != 0.0) {
+                p.v[i] += DVec3::from_slice(d);
+                d.fill(0.0);
+            }
         }
     }
 }
@@ -380,24 +402,34 @@ impl InsertStream {
             self.velocity,
         );
         let hold = world.particles.add_property(HOLD_PROPERTY, 1, &[0.0])?;
+        let tangent = world
+            .particles
+            .add_property(TANGENT_PROPERTY, 3, &[0.0; 3])?;
         let p0 = face.tris[0][0];
         let (mut inserted, mut mass) = (0u64, 0.0);
         let step = world.step;
         let dt = world.dt;
         for pl in &placed {
-            let (m, added) = add_placed(world, &self.dist, pl, self.omega, self.groupbit)?;
+            // Held, it moves along the normal only; the rest comes at the face.
+            let vn = pl.v.dot(n);
+            let along = Placed { v: n * vn, ..*pl };
+            let (m, added) = add_placed(world, &self.dist, &along, self.omega, self.groupbit)?;
             mass += m;
             inserted += 1;
             if let Some(added) = added {
                 // Steps until the centre reaches the face.
                 let depth = (p0 - pl.x).dot(n).max(0.0);
-                let vn = pl.v.dot(n);
                 let steps = if vn > 0.0 {
                     (depth / (vn * dt)).ceil()
                 } else {
                     0.0
                 };
-                world.particles.props[hold.0].data[added].fill(step as f64 + steps);
+                let props = &mut world.particles.props;
+                props[hold.0].data[added.clone()].fill(step as f64 + steps);
+                let rest = (pl.v - n * vn).to_array();
+                for i in added {
+                    props[tangent.0].data[3 * i..3 * i + 3].copy_from_slice(&rest);
+                }
             }
         }
         world.extend_tags();

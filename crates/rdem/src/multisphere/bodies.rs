@@ -57,8 +57,11 @@ pub struct Multisphere {
     omegas: Vec<DVec3>,
     /// Scratch of the step: the gravity fixes (group bit, acceleration).
     gravity: Vec<(u32, DVec3)>,
-    /// Scratch of the step: this rank's share of the bodies' forces and torques.
+    /// Scratch of the step: this rank's share of the bodies' forces and torques (and
+    /// velocity gains, see [`World::sum_body_forces`]).
     reduce: Vec<f64>,
+    /// Scratch of the step: the velocity each body gains as `insert/stream` releases it.
+    gains: Vec<DVec3>,
 }
 
 /// What a body is made of, as `compute multisphere` reports it.
@@ -349,7 +352,10 @@ impl World {
     /// Each body's total force and torque about its centre of mass from its owned
     /// spheres, in particle order; the torque leaves out the gravity of the `fix gravity`
     /// fixes (gravity acts at the centre of mass), and spheres `insert/stream` holds add
-    /// nothing (the body drifts until released).
+    /// nothing (the body drifts until released). A body that `insert/stream` has just
+    /// released gains the rest of its insertion velocity, which its spheres carry
+    /// ([`crate::insert::stream::TANGENT_PROPERTY`]; every copy is the same, and every
+    /// rank takes it from the first rank that has one).
     pub(crate) fn sum_body_forces(&mut self) {
         let Some((body_id, offset_id)) = self.members() else {
             return;
@@ -357,7 +363,7 @@ impl World {
         let Some(ms) = &mut self.multisphere else {
             return;
         };
-        let p = &self.particles;
+        let p = &mut self.particles;
         ms.gravity.clear();
         ms.gravity
             .extend(self.fixes.iter().filter_map(|f| match f.kind {
@@ -368,17 +374,27 @@ impl World {
             b.force = DVec3::ZERO;
             b.torque = DVec3::ZERO;
         }
-        let (tags, offsets) = (&p.props[body_id.0].data, &p.props[offset_id.0].data);
+        ms.gains.clear();
+        ms.gains.resize(ms.bodies.len(), DVec3::ZERO);
         // Spheres `insert/stream` still holds (their forces are zero) carry their body.
         let held = p.property(crate::insert::stream::HOLD_PROPERTY);
+        let tangent = p.property(crate::insert::stream::TANGENT_PROPERTY);
         let step = self.step as f64;
         for i in 0..p.nlocal() {
-            let Some(k) = ms.slots.get(tags[i]) else {
+            let Some(k) = ms.slots.get(p.props[body_id.0].data[i]) else {
                 continue;
             };
             if held.is_some_and(|h| p.props[h.0].data[i] > step) {
                 continue;
             }
+            if let Some(t) = tangent {
+                let d = &mut p.props[t.0].data[3 * i..3 * i + 3];
+                if d.iter().any(|&c| c != 0.0) {
+                    ms.gains[k] = DVec3::from_slice(d);
+                    d.fill(0.0);
+                }
+            }
+            let offsets = &p.props[offset_id.0].data;
             let b = &mut ms.bodies[k];
             let d = b.q * DVec3::from_slice(&offsets[3 * i..3 * i + 3]);
             let g: DVec3 = ms
@@ -395,21 +411,30 @@ impl World {
             // bit, on every rank, which then integrate every body alike.
             let buf = &mut ms.reduce;
             buf.clear();
-            for b in &ms.bodies {
+            for (b, g) in ms.bodies.iter().zip(&ms.gains) {
                 buf.extend_from_slice(&b.force.to_array());
                 buf.extend_from_slice(&b.torque.to_array());
+                buf.extend_from_slice(&g.to_array());
             }
             let all = self.comm.all_gather(buf);
             let per_rank = buf.len();
             for (k, b) in ms.bodies.iter_mut().enumerate() {
-                let (mut f, mut t) = (DVec3::ZERO, DVec3::ZERO);
+                let (mut f, mut t, mut g) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
                 for share in all.chunks_exact(per_rank.max(1)) {
-                    f += DVec3::from_slice(&share[6 * k..6 * k + 3]);
-                    t += DVec3::from_slice(&share[6 * k + 3..6 * k + 6]);
+                    f += DVec3::from_slice(&share[9 * k..9 * k + 3]);
+                    t += DVec3::from_slice(&share[9 * k + 3..9 * k + 6]);
+                    let gain = DVec3::from_slice(&share[9 * k + 6..9 * k + 9]);
+                    if g == DVec3::ZERO {
+                        g = gain;
+                    }
                 }
                 b.force = f;
                 b.torque = t;
+                ms.gains[k] = g;
             }
+        }
+        for (b, g) in ms.bodies.iter_mut().zip(&ms.gains) {
+            b.v += *g;
         }
     }
 
