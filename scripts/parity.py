@@ -9,7 +9,7 @@
 
   parity.py table SCRATCH --budget S --commit C --liggghts V --rdem R --nproc N [--pattern P]
       Reads the runs parity.sh left in SCRATCH (one folder per script, holding `name` and
-      the runs lig0, rdem, lig1, lig2, each with out, err, rc and secs) and prints the
+      the runs lig0, rdem, lig1, lig2, rdem1, rdem2, each with out, err, rc and secs) and prints the
       markdown page: a header saying how agreement is judged, then the table.
 """
 import argparse
@@ -239,6 +239,37 @@ def verdict(ligs, r):
     return "agree" if not why else "; ".join(why)
 
 
+def spread_verdict(ligs, rdems):
+    """`overlap`, or the columns where rdem's seed runs `rdems` and LIGGGHTS' runs `ligs`
+    do not overlap: rdem's [min, max] against LIGGGHTS' spread (widened as in `verdict`),
+    and the atom ranges within max(2, 1 %). One run of each program is a single draw: with
+    three LIGGGHTS draws, a fourth draw of the same distribution lies outside their range
+    half of the time, so `verdict` alone calls many agreeing scripts off."""
+    why = []
+    counts = [l.atoms for l in ligs if l.atoms is not None]
+    rcounts = [r.atoms for r in rdems if r.atoms is not None]
+    tol = max(2, 0.01 * max(counts))
+    if not rcounts or min(rcounts) > max(counts) + tol or max(rcounts) < min(counts) - tol:
+        why.append(f"atoms {rng(rcounts)} vs {rng(counts)}")
+    for name, v0 in ligs[0].cols.items():
+        if name in ("Atoms", "Step") or name in TIMING:
+            continue
+        values = [float(l.cols[name]) for l in ligs if name in l.cols]
+        mine = [float(r.cols[name]) for r in rdems if name in r.cols]
+        lo, hi = spread(values)
+        if not mine or any(math.isnan(v) for v in mine) or min(mine) > hi or max(mine) < lo:
+            why.append(f"{name} {rng(mine, fmt)} vs {rng(values, fmt)}")
+    return "overlap" if not why else "; ".join(why)
+
+
+def rng(values, f=str):
+    """`a` or `a..b`: the range of `values`."""
+    if not values:
+        return "none"
+    lo, hi = min(values), max(values)
+    return f(lo) if lo == hi else f"{f(lo)}..{f(hi)}"
+
+
 # --- the page --------------------------------------------------------------------------
 
 
@@ -254,7 +285,7 @@ def row_text(run):
 
 
 def cmd_table(a):
-    rows, tally = [], {}
+    rows, tally, tally2 = [], {}, {}
     for sub in sorted(os.listdir(a.scratch)):
         d = os.path.join(a.scratch, sub)
         if not os.path.isfile(os.path.join(d, "name")):
@@ -268,6 +299,13 @@ def cmd_table(a):
         seeds = [s for s in seeds if s.present]
         ligs = [l0] + [s for s in seeds if s.ok]
         v = verdict(ligs, r)
+        rseeds = [Run(os.path.join(d, k), a.budget) for k in ("rdem1", "rdem2")]
+        rseeds = [s for s in rseeds if s.present]
+        rdems = [r] + [s for s in rseeds if s.ok]
+        both = len(ligs) > 1 and len(rdems) > 1 and l0.ok and r.ok
+        v2 = spread_verdict(ligs, rdems) if both else ""
+        if v2:
+            tally2[v2 == "overlap"] = tally2.get(v2 == "overlap", 0) + 1
         notes = [f"seed run {k + 1}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
         if notes:
             v += " (" + "; ".join(notes) + ")"
@@ -290,8 +328,10 @@ def cmd_table(a):
                 row_text(l0),
                 row_text(r),
                 str(len(ligs)) if l0.ok else "",
+                str(len(rdems)) if r.ok else "",
                 ratio,
                 v,
+                v2,
             ]
         )
 
@@ -308,6 +348,7 @@ Made by `scripts/parity.sh` (run it again to refresh this page).
 - Machine: {a.nproc} cores (`nproc`), load average {a.load} at the start; each run on 1 core (rdem `--threads 1`, LIGGGHTS 1 process), one run at a time
 - Budget: {a.budget} s of wall time per run{f"; scripts matching `{a.pattern}` only" if a.pattern else ""}
 - Result: {summary}
+- Seed spreads (scripts with seeds that both ran): overlap {tally2.get(True, 0)}, apart {tally2.get(False, 0)}
 
 Each `in.*` script of `Tutorials_public/*/` runs unmodified from a fresh copy of its
 folder (`-in SCRIPT -log none`). LIGGGHTS also runs it twice more with other seeds: every
@@ -328,13 +369,21 @@ rdem agrees with LIGGGHTS when
   script has no seeds (one LIGGGHTS run) or the three values are identical (a constant
   such as a volume), the spread is that value ± {REL_TOL:g} × |value|.
 
+The last column compares the two programs' seed spreads: rdem also runs the script with
+the two other seed sets, and the spreads overlap when, for the atom count and each column,
+rdem's [min, max] over its runs meets LIGGGHTS' spread (as above; atoms within max(2, 1 %)).
+A single run is a single draw: with three LIGGGHTS draws of a random quantity, a fourth
+draw of the same distribution lies outside their range half of the time, so the verdict
+on one rdem run calls many scripts off that agree in distribution; "spreads" is the test
+of the two distributions. It still says nothing finer than three draws of each can.
+
 A script LIGGGHTS cannot run shows LIGGGHTS' error; one LIGGGHTS does not finish within
 the budget is marked timeout for both and rdem is not run. Otherwise the verdict says
 which column is off, rdem's value against LIGGGHTS' (range of) values, and by how much
 relative to the nearest end of the spread.
 """)
     heads = ["script", "LIGGGHTS", "rdem", "atoms L", "atoms R", "last thermo L",
-             "last thermo R", "LIG runs", "time L/R", "verdict"]
+             "last thermo R", "LIG runs", "rdem runs", "time L/R", "verdict", "spreads"]
     print("| " + " | ".join(heads) + " |")
     print("|" + "|".join("---" for _ in heads) + "|")
     for r in rows:

@@ -17,7 +17,8 @@
 #   1. by LIGGGHTS as it is;
 #   2. by rdem as it is (with --threads 1), unless LIGGGHTS ran out of time;
 #   3. by LIGGGHTS twice more with its insertion seeds replaced by other primes, if it
-#      has any and run 1 ended well: the three LIGGGHTS runs give LIGGGHTS' own spread.
+#      has any and run 1 ended well: the three LIGGGHTS runs give LIGGGHTS' own spread;
+#   4. then by rdem with the same two seed sets, if its run 2 ended well: rdem's spread.
 # Every run starts from a fresh copy of the folder, runs in it with `-in SCRIPT -log none`
 # and stdin from /dev/null, under `timeout BUDGET_SECONDS`. One run at a time. Nothing is
 # written outside the scratch folder except docs/parity.md (with --write).
@@ -105,6 +106,10 @@ while IFS= read -r path; do
     [ "$(python3 "$here/scripts/parity.py" reseed "$path" 1 --count)" -gt 0 ]; then
     run_one liggghts "$d/lig1" "$folder" "$script" 1
     run_one liggghts "$d/lig2" "$folder" "$script" 2
+    if [ "$(cat "$d/rdem/rc")" = 0 ]; then
+      run_one rdem "$d/rdem1" "$folder" "$script" 1
+      run_one rdem "$d/rdem2" "$folder" "$script" 2
+    fi
   fi
 done < <(find "$tutorials" -mindepth 2 -maxdepth 2 -type f -name 'in.*' | LC_ALL=C sort)
 [ "$n" -gt 0 ] || { echo "parity: no tutorial script matches '$pattern'" >&2; exit 2; }
