@@ -190,6 +190,10 @@ run 400
     assert_eq!(atoms, [0.0, 10.0, 20.0, 30.0, 30.0], "{rows:?}");
     let last = rows.last().unwrap();
     assert!(last[4] >= -0.5, "{last:?}");
+    // A mass of 30.8 particles stands for 30 (rounded down, as LIGGGHTS 3.8 does: the
+    // tutorial conveyor's 382.99 particles' mass gave 382).
+    let rows = run(&script.replace(&format!("mass {}", 30.0 * m), &format!("mass {}", 30.8 * m)));
+    assert_eq!(rows.last().unwrap()[1], 30.0, "{rows:?}");
 }
 
 /// The packets follow the time step of the run, not the one in force when the fix was

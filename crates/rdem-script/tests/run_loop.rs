@@ -124,6 +124,27 @@ fn insert_rate_region_counts() {
     assert_eq!(i.sim.natoms(), 130);
 }
 
+/// A `mass M` limit stands for M over the expected particle mass, rounded down, as in
+/// LIGGGHTS 3.8: `insert/rate/region ... mass M` with M the mass of 10.8 particles
+/// (r = 5 mm, 2500 kg/m³) inserted 10 there ("10 particles (mass 1.308997e-02)"), and
+/// the tutorial conveyor's `insert/stream ... mass 30.` (382.99 particles' mass) 382.
+/// rdem rounded to the nearest, 11 and 383. A mass of exactly 10 particles gives 10.
+#[test]
+fn a_mass_limit_counts_whole_particles_rounded_down() {
+    let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.005f64.powi(3);
+    for (mass, count) in [(10.8 * m, 10), (10.0 * m, 10), (10.3 * m, 10)] {
+        let i = run(&format!(
+            "{HEAD}fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.005\n\
+             fix pd all particledistribution/discrete 10009 1 pts 1.0\n\
+             region inlet block -0.04 0.04 -0.04 0.04 0.02 0.14 units box\n\
+             fix ins all insert/rate/region seed 10037 distributiontemplate pd mass {mass:.17e} \
+             massrate 1 insert_every 100 overlapcheck yes vel constant 0 0 0 region inlet\n\
+             fix nve all nve/sphere\nrun 3000\n"
+        ));
+        assert_eq!(i.sim.natoms(), count, "mass of {} particles", mass / m);
+    }
+}
+
 /// ave/time: the mean of the samples nfreq − (nrepeat−1)·nevery … nfreq; `ave running`
 /// averages the window means.
 #[test]

@@ -93,7 +93,10 @@ pub(super) fn build(
     };
     let limit = match (s.nparticles, s.massmax) {
         (Some(n), None) => n,
-        (None, Some(m)) => Some((m / s.dist.mean_particle_mass()).round() as u64),
+        (None, Some(m)) => Some(super::insert::count_for_mass(
+            m,
+            s.dist.mean_particle_mass(),
+        )),
         (None, None) => {
             return Err(err(
                 a,
