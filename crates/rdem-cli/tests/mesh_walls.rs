@@ -204,3 +204,83 @@ fn bad_mesh_input_is_a_located_error() {
         assert!(!out.contains("panicked"), "{out}");
     }
 }
+
+/// With `boundary m m m` the box takes in every `fix mesh/surface` mesh, wall or not, plus
+/// the shrink-wrap margin (1e-4 of the first box's edge): a floor on the bottom face of
+/// the box −0.5..0.5 × −0.2..0.2 × −0.2..0.35 widens x, y and the bottom, as LIGGGHTS 3.8
+/// printed on this script (step 0: volume 0.2201100176, x ±0.5001, y ±0.20004, zlo
+/// −0.200055, zhi 0.35). Moving at 1 m/s in x, the mesh drags xhi along at each
+/// re-neighboring (LIGGGHTS: 0.50919 at step 1000, its last re-neighboring before; the mesh
+/// is then at 0.51) while xlo stays at the first box's −0.5. rdem kept the box at 0.22.
+#[test]
+fn shrink_wrapped_box_takes_in_the_meshes() {
+    let floor = "solid floor
+facet normal 0 0 1
+outer loop
+vertex -0.5 -0.2 -0.2
+vertex 0.5 -0.2 -0.2
+vertex 0.5 0.2 -0.2
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex -0.5 -0.2 -0.2
+vertex 0.5 0.2 -0.2
+vertex -0.5 0.2 -0.2
+endloop
+endfacet
+endsolid floor
+";
+    let script = "atom_style granular
+boundary m m m
+newton off
+units si
+region reg block -0.5 0.5 -0.2 0.2 -0.2 0.35 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix floor all mesh/surface file floor.stl type 1
+thermo_style custom step vol xlo xhi ylo yhi zlo zhi
+thermo_modify format float %.15g
+run 0
+fix mv all move/mesh mesh floor linear 1 0 0
+run 1000
+";
+    let out = run_with_files_raw(script, &[("floor.stl", floor)], None);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{text}");
+    let rows = thermo_rows(&text);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    let first = &rows[0];
+    let want = [
+        0.0,
+        0.2201100176,
+        -0.5001,
+        0.5001,
+        -0.20004,
+        0.20004,
+        -0.200055,
+        0.35,
+    ];
+    for (k, (&got, &w)) in first.iter().zip(&want).enumerate() {
+        assert!(
+            close(got, w) || (k == 1 && (got - w).abs() < 1e-10),
+            "column {k}: {got} vs LIGGGHTS {w}: {rows:?}"
+        );
+    }
+    let last = rows.last().unwrap();
+    assert_eq!(last[0], 1000.0, "{rows:?}");
+    assert_eq!(last[2], -0.5, "xlo stays at the first box's {rows:?}");
+    assert!(
+        last[3] > 0.505 && last[3] <= 0.5101 + 1e-12,
+        "xhi follows the mesh to at most 0.51 + margin {rows:?}"
+    );
+    assert!(close(last[6], -0.200055), "{rows:?}");
+}
