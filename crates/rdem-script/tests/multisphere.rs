@@ -751,3 +751,72 @@ run 1
     assert!(out.contains(&format!("Deleted {} atoms", 80 - n)), "{out}");
     assert!(w.particles.density[..n].iter().all(|&d| d == 2000.0));
 }
+
+/// LIGGGHTS 3.8 on this script (three dumbbells dropped at 0.5 m/s onto a floor, where
+/// they bounce and tumble): `erotate/sphere` and the sum of `erotate/sphere/atom` are 0
+/// at every step, a clump's spheres counting nothing; `erotate` equals
+/// `erotate/multisphere`; `check/timestep/gran` takes a clump's sphere with its template's
+/// density and the mass of a sphere of that density: 0.0144442156072523 of the Rayleigh
+/// time, and the Hertz fractions below while they fall (rdem took the spheres' shares of
+/// their body's mass, and counted their spin in erotate/sphere).
+#[test]
+fn clump_spheres_in_erotate_sphere_and_check_timestep_as_liggghts() {
+    let (_, out) = run(&format!(
+        "fix gravi all gravity 9.81 vector 0 0 -1
+fix zw all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc block -0.01 0.01 -0.01 0.01 0.004 0.008 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0 0 -0.5 \
+    insert_every once overlapcheck yes particles_in_region 3 region bc
+fix ms all multisphere
+fix ts all check/timestep/gran 1000 0.1 0.1
+compute 1 all erotate/sphere
+compute 2 all erotate
+compute 3 all erotate/multisphere
+compute 4 all erotate/sphere/atom
+compute 5 all reduce sum c_4
+thermo_style custom step atoms c_1 c_2 c_3 c_5 f_ts[1] f_ts[2]
+thermo_modify format float %.15g
+thermo 1000
+run 1000
+run 20000
+"
+    ))
+    .unwrap();
+    let rows: Vec<Vec<f64>> = out
+        .lines()
+        .filter_map(|l| {
+            let w: Vec<f64> = l
+                .split_whitespace()
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (w.len() == 8 && l.split_whitespace().count() == 8).then_some(w)
+        })
+        .collect();
+    assert!(rows.len() > 20, "{out}");
+    let hertz = [
+        (1000.0, 0.00466089101703584),
+        (3000.0, 0.00469622632346029),
+        (6000.0, 0.00474731398649329),
+    ];
+    for (step, h) in hertz {
+        let r = rows.iter().find(|r| r[0] == step).unwrap();
+        assert!(
+            (r[7] / h - 1.0).abs() < 1e-12,
+            "Hertz fraction {r:?} vs {h}"
+        );
+    }
+    let mut spun = false;
+    for r in &rows[1..] {
+        assert_eq!(r[1], 6.0, "{r:?}");
+        assert_eq!(
+            (r[2], r[5]),
+            (0.0, 0.0),
+            "clump spheres count nothing {r:?}"
+        );
+        assert_eq!(r[3], r[4], "erotate is the clumps' energy {r:?}");
+        assert!((r[6] / 0.0144442156072523 - 1.0).abs() < 1e-12, "{r:?}");
+        spun |= r[4] > 1e-7;
+    }
+    assert!(spun, "the clumps never turned: {out}");
+}

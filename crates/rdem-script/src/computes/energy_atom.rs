@@ -1,5 +1,6 @@
 //! Per-atom energies: `compute ID group ke/atom` (½ m v²) and
-//! `compute ID group erotate/sphere/atom` (½ I ω², I = 2/5 m r²); 0 outside the group.
+//! `compute ID group erotate/sphere/atom` (½ I ω², I = 2/5 m r²); 0 outside the group
+//! and for a clump's spheres (as LIGGGHTS 3.8).
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
@@ -41,13 +42,18 @@ impl ScriptCompute for EnergyAtom {
 
     fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
         super::pick_index(&c.id, col, 1)?;
-        let p = &super::world(sim)?.particles;
+        let w = super::world(sim)?;
+        let p = &w.particles;
+        let clump = super::kernels::clump_spheres(w);
         Ok((0..p.nlocal())
             .map(|i| {
                 if p.mask[i] & c.groupbit == 0 {
                     0.0
                 } else if self.kind == Kind::Translation {
                     0.5 * p.rmass[i] * p.v[i].length_squared()
+                } else if clump(i) {
+                    // A clump's sphere: 0, as LIGGGHTS 3.8 prints (see kernels::erotate).
+                    0.0
                 } else {
                     0.5 * p.inertia(i) * p.omega[i].length_squared()
                 }

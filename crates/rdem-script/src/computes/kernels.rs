@@ -27,11 +27,15 @@ pub struct BondCounterState {
     pub cached: Option<(u64, [f64; 6])>,
 }
 
-/// Σ ½ I ω² over owned particles in `groupbit`.
+/// Σ ½ I ω² over the owned free spheres in `groupbit`, summed over ranks. The spheres of
+/// a `fix multisphere` clump count nothing, as in LIGGGHTS 3.8, whose `erotate/sphere`
+/// printed 0 on the tumbling stones of the tutorial multisphere_stone_restitution (their
+/// spheres' omega up to 26 rad/s); the clumps' own energy is `erotate/multisphere`.
 pub fn erotate(w: &World, groupbit: u32) -> f64 {
     let p = &w.particles;
+    let clump = clump_spheres(w);
     let e: f64 = (0..p.nlocal())
-        .filter(|&i| p.mask[i] & groupbit != 0)
+        .filter(|&i| p.mask[i] & groupbit != 0 && !clump(i))
         .map(|i| 0.5 * p.inertia(i) * p.omega[i].length_squared())
         .sum();
     // An empty sum is -0 in Rust; LIGGGHTS prints 0.
@@ -199,4 +203,20 @@ pub fn reduce(w: &World, mode: &str, groupbit: u32, values: &[f64]) -> f64 {
             }
         }
     }
+}
+
+/// Whether owned particle `i` is a sphere of a `fix multisphere` clump.
+pub fn clump_spheres(w: &World) -> impl Fn(usize) -> bool + '_ {
+    let p = &w.particles;
+    let body = p.property(rdem::multisphere::bodies::BODY_PROP);
+    move |i| body.is_some_and(|b| p.props[b.0].data[i] != 0.0)
+}
+
+/// Σ ½ ω·L over every clump of `fix multisphere` (the group is ignored, as LIGGGHTS does;
+/// every rank holds every clump, so every rank has the whole sum).
+pub fn erotate_clumps(w: &World) -> f64 {
+    let e: f64 = w.multisphere.as_ref().map_or(0.0, |ms| {
+        ms.bodies.iter().map(|b| b.kinetic_energy().1).sum()
+    });
+    e + 0.0 // an empty sum is -0; LIGGGHTS prints 0
 }

@@ -53,19 +53,13 @@ impl ScriptCompute for ClumpEnergy {
         }
         let w = super::world(sim)?;
         // Every rank holds every clump: the sum is the same on every rank.
-        let all: f64 = w.multisphere.as_ref().map_or(0.0, |ms| {
-            ms.bodies
-                .iter()
-                .map(|b| {
-                    let (t, r) = b.kinetic_energy();
-                    if self.rotational {
-                        r
-                    } else {
-                        t
-                    }
-                })
-                .sum()
-        });
+        let all = if self.rotational {
+            super::kernels::erotate_clumps(w)
+        } else {
+            w.multisphere.as_ref().map_or(0.0, |ms| {
+                ms.bodies.iter().map(|b| b.kinetic_energy().0).sum()
+            })
+        };
         Ok(all)
     }
 }

@@ -60,7 +60,9 @@ fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptF
 /// Rayleigh and Hertz times of the current state (LIGGGHTS' check/timestep/gran
 /// estimates): the smallest Rayleigh time π r √(ρ/G)/(0.1631 ν + 0.8766) over particles,
 /// and the Hertz time 2.87 (m²/(r E*² v))^(1/5) per particle, with E* = E/(2(1−ν²)), the
-/// particle's own mass m and radius r, and v the largest particle speed (at least `vmax`)
+/// particle's mass m = ρ 4/3 π r³ (ρ: a clump's sphere, its template's density) and radius
+/// r, and v the largest
+/// particle speed (at least `vmax`)
 /// — the value LIGGGHTS 3.8 reports (checked against it, tests/liggghts_parity.rs).
 pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
     let w = sim.world.as_ref()?;
@@ -73,16 +75,30 @@ pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
         v = v.max(p.v[i].length());
     }
     let v = w.comm.max(v).max(vmax);
+    // A clump's sphere: its template's density, and the mass of a sphere of that density,
+    // as LIGGGHTS 3.8 has them (tutorial multisphere_stone_restitution: 0.039839044 of
+    // the Rayleigh time on every seed, the value of density 2500 and the smallest sphere;
+    // neither the sphere's share of its body's mass nor the body's mass, which its dump
+    // `mass` shows, gives LIGGGHTS' Hertz fractions).
+    let ms = w.multisphere.as_ref();
+    let body = p.property(rdem::multisphere::bodies::BODY_PROP);
+    let density = |i: usize| {
+        let k = ms
+            .zip(body)
+            .and_then(|(ms, b)| ms.body_of(p.props[b.0].data[i]));
+        k.map_or(p.density[i], |k| {
+            ms.map_or(p.density[i], |ms| ms.info[k].density)
+        })
+    };
     for i in 0..p.nlocal() {
         let t = p.ty[i] as usize - 1;
         let (ei, ni) = (*e.values.get(t)?, *nu.values.get(t)?);
         let g = ei / (2.0 * (1.0 + ni));
         let r = p.radius[i];
-        t_r =
-            t_r.min(std::f64::consts::PI * r * (p.density[i] / g).sqrt() / (0.1631 * ni + 0.8766));
+        t_r = t_r.min(std::f64::consts::PI * r * (density(i) / g).sqrt() / (0.1631 * ni + 0.8766));
         if v > 0.0 {
             let e_star = ei / (2.0 * (1.0 - ni * ni));
-            let m = p.rmass[i];
+            let m = density(i) * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
             t_h = t_h.min(2.87 * (m * m / (r * e_star * e_star * v)).powf(0.2));
         }
     }
