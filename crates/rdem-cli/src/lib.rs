@@ -66,9 +66,11 @@ fn parse(args: &[String]) -> Result<Cli, String> {
             }
             "-var" | "-v" => {
                 let name = value(i, a)?;
-                let mut vals = Vec::new();
-                i += 2;
-                while i < args.len() && !args[i].starts_with('-') {
+                // The first value is taken whatever it looks like (`-var dx -0.2`, as
+                // LAMMPS does); further values end at the next word starting with '-'.
+                let mut vals: Vec<String> = args.get(i + 2).cloned().into_iter().collect();
+                i += 2 + vals.len();
+                while !vals.is_empty() && i < args.len() && !args[i].starts_with('-') {
                     vals.push(args[i].clone());
                     i += 1;
                 }
@@ -421,6 +423,17 @@ mod tests {
             .contains("unknown option"));
         assert!(parse(&s(&["--threads", "0"])).is_err());
         assert!(parse(&s(&["-var", "n"])).is_err());
+        // A negative first value is a value (LAMMPS), later ones end the list.
+        let c = parse(&s(&["-var", "dx", "-0.2", "-var", "y", "1", "-3"]));
+        assert!(c.is_err(), "'-3' is not an option");
+        let c = parse(&s(&["-var", "dx", "-0.2", "-var", "y", "1", "2"])).unwrap();
+        assert_eq!(
+            c.vars,
+            vec![
+                ("dx".to_string(), s(&["-0.2"])),
+                ("y".to_string(), s(&["1", "2"]))
+            ]
+        );
         for args in [
             &["-check", "in.x"][..],
             &["--check", "in.x"],

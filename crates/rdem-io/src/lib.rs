@@ -18,6 +18,7 @@
 //! * [`restart_file`]: the framing of rdem's binary restart files (magic, format
 //!   version, length, CRC-32).
 //! * [`stl`]: STL triangle files (ASCII in double precision, binary) for `fix mesh/surface`.
+//! * [`vtk_tets`]: tetrahedra from legacy ASCII VTK unstructured grids (`region mesh/tet`).
 //!
 //! Nothing here decides *when* to write; the front end calls the writers on the right
 //! timesteps with the selection of particles (group, region) it has worked out.
@@ -39,6 +40,7 @@ pub mod pvd;
 pub mod restart_file;
 pub mod stl;
 pub mod vtk_legacy;
+pub mod vtk_tets;
 pub mod vtk_xml;
 
 pub use atom_vtk::{AtomVtkDump, Compressor};

@@ -29,6 +29,7 @@ pub mod pair;
 pub mod par;
 pub mod particles;
 pub mod region;
+pub mod region_tet;
 pub mod restart;
 pub mod sort;
 mod stages;

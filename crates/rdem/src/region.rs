@@ -2,11 +2,15 @@
 //! with `side in|out`. A region answers whether a point is inside (boundary included, as
 //! LAMMPS), gives a bounding box when it is finite, and samples uniform random points
 //! (rejection in the bounding box) for insertion. A region may be posed (LIGGGHTS
-//! `move`/`rotate`): displaced and turned about an axis, its shape unchanged.
+//! `move`/`rotate`): displaced and turned about an axis, its shape unchanged. A
+//! tetrahedral mesh ([`TetMesh`], LIGGGHTS `mesh/tet`) samples by volume instead.
+
+use std::sync::Arc;
 
 use glam::DVec3;
 
 use crate::error::{Error, Result};
+pub use crate::region_tet::TetMesh;
 
 /// Shape of a region.
 #[derive(Debug, Clone, PartialEq)]
@@ -66,6 +70,8 @@ pub enum Shape {
         /// Normal (need not be unit).
         normal: DVec3,
     },
+    /// The volume of a tetrahedral mesh (shared: a region is cloned at every use).
+    TetMesh(Arc<TetMesh>),
     /// Inside any of the parts.
     Union(Vec<Region>),
     /// Inside all of the parts.
@@ -223,6 +229,7 @@ impl Region {
                     return Err(bad("region plane", format!("point {point}, normal {normal}: need a finite point and a non-zero normal")));
                 }
             }
+            Shape::TetMesh(_) => {}
             Shape::Union(parts) | Shape::Intersect(parts) => {
                 if parts.is_empty() {
                     return Err(bad(
@@ -293,15 +300,18 @@ impl Region {
                 radial2(x, *axis, *c1, *c2) <= r * r
             }
             Shape::Plane { point, normal } => (x - *point).dot(*normal) >= 0.0,
+            Shape::TetMesh(m) => m.contains(x),
             Shape::Union(parts) => parts.iter().any(|p| p.contains(x)),
             Shape::Intersect(parts) => parts.iter().all(|p| p.contains(x)),
         }
     }
 
     /// True if the whole sphere of radius `r` at `x` lies in the region (insertion with
-    /// `all_in yes`). Exact for blocks, spheres, cylinders, planes and their `side out`;
-    /// for cones, unions and side-out combinations it is conservative (it may refuse a
-    /// sphere that would fit, never accept one that does not).
+    /// `all_in yes`). Exact for blocks, spheres, cylinders, planes and their `side out`,
+    /// and for a conforming tetrahedral mesh (the distance to its surface faces); for
+    /// cones, unions, side-out combinations and a tetrahedral mesh's `side out` (whole
+    /// ball outside the mesh's bounding box) it is conservative (it may refuse a sphere
+    /// that would fit, never accept one that does not).
     pub fn contains_sphere(&self, x: DVec3, r: f64) -> bool {
         self.sphere_test(x, r, self.outside)
     }
@@ -370,6 +380,15 @@ impl Region {
                     d >= r
                 }
             }
+            Shape::TetMesh(m) => {
+                if out {
+                    let (lo, hi) = m.bounding_box();
+                    let d = (lo - x).max(x - hi).max(DVec3::ZERO);
+                    d.length_squared() >= r * r
+                } else {
+                    m.contains_sphere(x, r)
+                }
+            }
             Shape::Union(parts) => {
                 if out {
                     parts.iter().all(|p| p.sphere_test(x, r, !p.outside))
@@ -387,8 +406,9 @@ impl Region {
         }
     }
 
-    /// Volume of the region within `clip`: exact for a block, otherwise Monte Carlo with
-    /// `samples` points of `uniform` in the bounding box.
+    /// Volume of the region within `clip`: exact for a block, and for a tetrahedral mesh
+    /// that lies within `clip`; otherwise Monte Carlo with `samples` points of `uniform`
+    /// in the bounding box.
     pub fn volume(
         &self,
         clip: (DVec3, DVec3),
@@ -403,6 +423,12 @@ impl Region {
         let boxvol = ext.x * ext.y * ext.z;
         if let (Shape::Block { .. }, false) = (&self.shape, self.outside) {
             return boxvol;
+        }
+        if let (Shape::TetMesh(m), false) = (&self.shape, self.outside) {
+            let (l, h) = self.bounding_box().expect("a mesh is bounded");
+            if l.cmpge(clip.0).all() && h.cmple(clip.1).all() {
+                return m.volume();
+            }
         }
         if boxvol == 0.0 || samples == 0 {
             return 0.0;
@@ -463,6 +489,7 @@ impl Region {
                 axial_box(*axis, *c1, *c2, rlo.max(*rhi), *lo, *hi).and_then(|(l, h)| finite(l, h))
             }
             Shape::Plane { .. } => None,
+            Shape::TetMesh(m) => Some(m.bounding_box()),
             Shape::Union(parts) => {
                 let mut acc: Option<(DVec3, DVec3)> = None;
                 for p in parts {
@@ -489,13 +516,25 @@ impl Region {
 
     /// A uniformly distributed point of the region within `clip` (lower, upper corner; e.g.
     /// the simulation box), drawn by rejection from the bounding box with `uniform`
-    /// giving numbers in [0, 1). `None` after `max_tries` rejections.
+    /// giving numbers in [0, 1) (a tetrahedral mesh draws from its own volume and
+    /// rejects what `clip` cuts off). `None` after `max_tries` rejections.
     pub fn sample(
         &self,
         clip: (DVec3, DVec3),
         mut uniform: impl FnMut() -> f64,
         max_tries: usize,
     ) -> Option<DVec3> {
+        if let (Shape::TetMesh(m), false) = (&self.shape, self.outside) {
+            for _ in 0..max_tries {
+                let x0 = m.sample(&mut uniform);
+                let x = self.pose.map_or(x0, |p| p.forward(x0));
+                // A sampled point on a face (round-off) would fail the strict test.
+                if x.cmpge(clip.0).all() && x.cmple(clip.1).all() && self.contains(x) {
+                    return Some(x);
+                }
+            }
+            return None;
+        }
         let (lo, hi) = match self.bounding_box() {
             Some((l, h)) => (l.max(clip.0), h.min(clip.1)),
             None => clip,

@@ -47,11 +47,16 @@ pub static STYLES: Registry<&'static [&'static str]> = Registry {
             &["px", "py", "pz", "nx", "ny", "nz"],
             "`px py pz nx ny nz`: the half-space behind the normal",
         ),
+        Row::<&'static [&'static str]>::runs(
+            "mesh/tet",
+            &[],
+            "`file F scale s move dx dy dz rotate ax ay az`: the tetrahedra of an ASCII legacy VTK file, moved, then scaled, then turned about x, y, z (degrees)",
+        )
+        .notes("inside = strictly inside one tetrahedron: points exactly on a face, outer or shared, are out, as LIGGGHTS 3.8 decides (measured); insertion samples by volume; `all_in yes` keeps whole spheres inside (distance to the surface faces; LIGGGHTS lets them poke out); either orientation of a tetrahedron (LIGGGHTS fails an assertion on inverted ones); binary VTK, VTK 5 cell arrays and `units lattice` are errors, other cell types are skipped with a warning"),
         Row::runs("union", &[], "`N ID1 ID2 ...`"),
         Row::runs("intersect", &[], "`N ID1 ID2 ...`"),
         Row::not_yet("prism", ""),
         Row::not_yet("wedge", ""),
-        Row::not_yet("mesh/tet", "tetrahedral mesh regions"),
     ],
 };
 
@@ -76,7 +81,9 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let mut geo: Vec<String> = Vec::new();
     let mut parts: Vec<Region> = Vec::new();
     let mut part_ids: Vec<String> = Vec::new();
+    let mut tet_mesh = None;
     match style {
+        "mesh/tet" => tet_mesh = Some(read_tet_mesh(sim, a)?),
         "union" | "intersect" => {
             let n = a.count("number of regions")?;
             for _ in 0..n {
@@ -125,7 +132,14 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     }
-    let needs_scale = !matches!(style, "union" | "intersect");
+    if style == "mesh/tet" && lattice_units {
+        // As LIGGGHTS 3.8, which has no lattice scaling for this style.
+        return Err(a.error_cmd(
+            "region mesh/tet: units lattice is not supported; use units box (the mesh's own scale keyword scales it)",
+            None,
+        ));
+    }
+    let needs_scale = !matches!(style, "union" | "intersect" | "mesh/tet");
     let s = if needs_scale {
         scale_of(sim, a, lattice_units)?
     } else {
@@ -231,6 +245,7 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             normal: DVec3::new(num(3, 1.0)?, num(4, 1.0)?, num(5, 1.0)?),
         },
         "union" => Shape::Union(parts),
+        "mesh/tet" => Shape::TetMesh(std::sync::Arc::new(tet_mesh.expect("read above"))),
         _ => Shape::Intersect(parts),
     };
     let mut r = Region::new(shape).map_err(|e| a.error_at(args_start, e.to_string(), None))?;
@@ -250,6 +265,90 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
         },
     );
     Ok(())
+}
+
+/// `file F scale s move dx dy dz rotate ax ay az` of `region mesh/tet` (the three keywords
+/// are required, in this order, as LIGGGHTS reads them): the tetrahedra of the VTK file,
+/// each node moved by (dx, dy, dz), then scaled by s about the origin, then turned by ax
+/// about x, then ay about y, then az about z (degrees, right-handed, about the origin).
+/// As LIGGGHTS, a node outside the simulation box is an error.
+fn read_tet_mesh(sim: &Sim, a: &mut Args) -> CmdResult<rdem::region::TetMesh> {
+    const USAGE: &str =
+        "region ID mesh/tet file F scale s move dx dy dz rotate ax ay az [side in|out] [units box]";
+    let usage = || Some(USAGE.to_string());
+    let required = |a: &mut Args, name: &'static str| -> CmdResult<()> {
+        a.keyword("region mesh/tet keyword", &[name])
+            .map(|_| ())
+            .map_err(|mut e| {
+                e.help = usage();
+                e
+            })
+    };
+    required(a, "file")?;
+    let file_at = a.pos();
+    let file = a.word("VTK file name")?.to_string();
+    required(a, "scale")?;
+    let scale = a.positive("scale factor")?;
+    required(a, "move")?;
+    let offset = a.vec3("offset dx dy dz")?;
+    required(a, "rotate")?;
+    let angles = a.vec3("rotation angles about x, y, z (degrees)")?;
+    let tf = rdem_io::vtk_tets::read_tet_vtk(std::path::Path::new(&file))
+        .map_err(|e| a.error_at(file_at, e.to_string(), None))?;
+    if tf.skipped > 0 {
+        a.warn_at(
+            file_at,
+            &format!(
+                "{file}: {} cells that are not tetrahedra (vertices, lines, triangles, ...) are left out of the region",
+                tf.skipped
+            ),
+        );
+    }
+    let nodes: Vec<DVec3> = tf
+        .points
+        .iter()
+        .map(|p| turn_xyz((*p + offset) * scale, angles))
+        .collect();
+    if let Some(w) = sim.world.as_ref() {
+        let (lo, hi) = (w.domain.boxlo, w.domain.boxhi);
+        let used = tf.tets.iter().flatten().copied();
+        if let Some(i) = used
+            .into_iter()
+            .find(|&i| (0..3).any(|d| !(lo[d] <= nodes[i][d] && nodes[i][d] <= hi[d])))
+        {
+            let x = nodes[i];
+            return Err(a.error_at(
+                file_at,
+                format!(
+                    "region mesh/tet: node {i} of {file} is at ({}, {}, {}) after scale/move/rotate, outside the simulation box {lo} .. {hi}",
+                    x.x, x.y, x.z
+                ),
+                Some("LIGGGHTS refuses a mesh that sticks out of the box too; check scale, move and rotate".into()),
+            ));
+        }
+    }
+    rdem::region::TetMesh::new(nodes, tf.tets)
+        .map_err(|e| a.error_at(file_at, format!("{file}: {e}"), None))
+}
+
+/// `x` turned right-handedly about the x axis by `deg.x` degrees, then about y by `deg.y`,
+/// then about z by `deg.z` (LIGGGHTS `mesh/tet rotate`); a zero angle leaves `x` as it is.
+fn turn_xyz(mut x: DVec3, deg: DVec3) -> DVec3 {
+    for axis in 0..3 {
+        if deg[axis] == 0.0 {
+            continue;
+        }
+        let (s, c) = deg[axis].to_radians().sin_cos();
+        let (i, j) = match axis {
+            0 => (1, 2),
+            1 => (2, 0),
+            _ => (0, 1),
+        };
+        let (u, v) = (x[i], x[j]);
+        x[i] = c * u - s * v;
+        x[j] = s * u + c * v;
+    }
+    x
 }
 
 /// Reads `v_name` (or `NULL` if `null_ok`) for a region's motion; the variable is looked

@@ -14,20 +14,21 @@ use crate::sim::Sim;
 pub(super) const ROW: DumpRow = DumpRow::runs(
     "mesh/vtk",
     parse,
-    "`stress` (normal_stress_average, shear_stress_average), `wear`, `vel`, `id`, `area`, then mesh IDs; `output` accepted",
+    "`stress` (normal_stress_average, shear_stress_average), `stresscomponents` (stress: force on the triangle / its area, 3 components), `id` (meshid), `wear`, `area`, `vel` (v), then mesh IDs; `output` accepted",
 )
-.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays), with a `.pvd` series; `stresscomponents`, `owner`, `aedges`, `acorners`, `nneighs` stop with an error");
+.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays in LIGGGHTS' fixed order, whatever the order of the values), with a `.pvd` series; `owner`, `aedges`, `acorners`, `nneighs` stop with an error");
 
 /// The registry row of the old name.
 pub(super) const ROW_OLD_NAME: DumpRow =
     DumpRow::runs("mesh/gran/VTK", parse, "the old name of `mesh/vtk`");
 
-/// The values rdem writes.
-const FIELDS: [&str; 5] = ["stress", "wear", "vel", "id", "area"];
+/// The values rdem writes, in the order LIGGGHTS 3.8 writes their arrays (measured: the
+/// order of the values in the command does not matter).
+const FIELDS: [&str; 6] = ["stress", "stresscomponents", "id", "wear", "area", "vel"];
 
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
     // [output face|interpolate|original] fields... mesh IDs...
-    const LATER_FIELDS: [&str; 5] = ["stresscomponents", "owner", "aedges", "acorners", "nneighs"];
+    const LATER_FIELDS: [&str; 4] = ["owner", "aedges", "acorners", "nneighs"];
     // The style word as written (`dump` has it at word 3, `write_dump` at word 2).
     let style = a
         .words()
@@ -47,7 +48,9 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
             continue;
         }
         if FIELDS.contains(&w) {
-            cols.push(w.to_string());
+            if !cols.iter().any(|c| c == w) {
+                cols.push(w.to_string());
+            }
         } else if LATER_FIELDS.contains(&w) {
             return Err(a.error_at(
                 a.pos(),
@@ -70,6 +73,7 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
         }
         a.seek(a.pos() + 1);
     }
+    cols.sort_by_key(|c| FIELDS.iter().position(|f| f == c));
     let name = DumpFileName::new(file);
     Ok((Box::new(MeshVtk { name, meshes }), cols))
 }
@@ -114,8 +118,10 @@ impl DumpStyle for MeshVtk {
 }
 
 /// The triangles of the meshes `ids` (all without any) of `w` and the cell arrays
-/// `fields` asks for (`stress`: normal_stress_average and shear_stress_average, `wear`,
-/// `vel`: the velocity of each triangle's centroid, `id`, `area`).
+/// `fields` asks for (`stress`: normal_stress_average and shear_stress_average,
+/// `stresscomponents`: stress, the force of the particles on the triangle over its area,
+/// `id`: meshid, the triangle's index (integers), `wear`, `area`, `vel`: v, the velocity
+/// of each triangle's centroid).
 fn mesh_arrays(
     w: &rdem::World,
     ids: &[String],
@@ -133,6 +139,8 @@ fn mesh_arrays(
             name: name.to_string(),
             components,
             values: values.to_vec(),
+            // LIGGGHTS writes the triangle indices as integers.
+            int: name == "meshid",
         }),
     };
     for m in w
@@ -153,6 +161,24 @@ fn mesh_arrays(
                     push("normal_stress_average", 1, &sn);
                     push("shear_stress_average", 1, &ss);
                 }
+                "stresscomponents" => {
+                    let mut s: Vec<f64> = match &m.stress {
+                        Some(st) => st
+                            .force
+                            .iter()
+                            .enumerate()
+                            .flat_map(|(t, f)| {
+                                let [a, b, c] = m.mesh.corners(t as u32);
+                                let area = 0.5 * (b - a).cross(c - a).length();
+                                let s = if area > 0.0 { *f / area } else { DVec3::ZERO };
+                                s.to_array()
+                            })
+                            .collect(),
+                        None => Vec::new(),
+                    };
+                    s.resize(3 * n, 0.0);
+                    push("stress", 3, &s);
+                }
                 "wear" => {
                     let wear = m
                         .stress
@@ -172,7 +198,7 @@ fn mesh_arrays(
                 }
                 "id" => {
                     let ids: Vec<f64> = (0..n).map(|t| t as f64).collect();
-                    push("id", 1, &ids);
+                    push("meshid", 1, &ids);
                 }
                 _ => {
                     let area: Vec<f64> = (0..n as u32)
