@@ -197,12 +197,13 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     // `pre no` is overridden before anything ran (LAMMPS' `first_update`).
     let setup = chunk.setup || !sim.script.set_up;
     let m = crate::materials::materials(sim)?;
+    crate::sph::tables(sim)?;
     {
         let w = sim
             .world
             .as_mut()
             .ok_or("run before the simulation box is defined")?;
-        if w.pair.is_some() && !sim.defs.pair_coeff_set {
+        if (w.pair.is_some() || w.sph.is_some()) && !sim.defs.pair_coeff_set {
             return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
         }
         // LIGGGHTS 3.8 runs on with the pair style of its restart file when the script

@@ -31,6 +31,7 @@ pub mod particles;
 pub mod region;
 pub mod restart;
 pub mod sort;
+pub mod sph;
 mod stages;
 pub mod step;
 pub mod timers;
