@@ -238,12 +238,6 @@ impl World {
     /// `pair_style sph/artVisc/tensCorr` and a kernel; radii become the types' smoothing
     /// lengths; dρ/dt is zeroed.
     pub(crate) fn setup_sph(&mut self) -> Result<()> {
-        let uses = self.fixes.iter().any(|f| {
-            matches!(
-                f.kind,
-                FixKind::Sph(_) | FixKind::WallSph(_) | FixKind::WallRegionSph(_)
-            )
-        });
         let Some(pair) = &self.sph else {
             if let Some(f) = self.fixes.iter().find(|f| {
                 matches!(
@@ -261,7 +255,6 @@ impl World {
             }
             return Ok(());
         };
-        let _ = uses;
         for f in &self.fixes {
             match &f.kind {
                 FixKind::Sph(s) => {
@@ -331,18 +324,16 @@ impl World {
                 SphFix::Shepard {
                     every,
                     kernel: Some(k),
-                } => {
-                    if *every > 0 && self.step % every == 0 {
-                        pair.shepard(
-                            *k,
-                            &mut self.particles,
-                            props,
-                            &self.neighbor.list,
-                            f.groupbit,
-                            &*self.comm,
-                        );
-                        self.comm.forward(&mut self.particles);
-                    }
+                } if *every > 0 && self.step % every == 0 => {
+                    pair.shepard(
+                        *k,
+                        &mut self.particles,
+                        props,
+                        &self.neighbor.list,
+                        f.groupbit,
+                        &*self.comm,
+                    );
+                    self.comm.forward(&mut self.particles);
                 }
                 SphFix::Pressure(eos) => {
                     let p = &mut self.particles;
@@ -360,13 +351,16 @@ impl World {
     }
 }
 
-/// The values of several distinct properties at once.
+/// The values of several distinct properties at once (in the order of `ids`).
 pub(crate) fn props_mut<const N: usize>(
     props: &mut [crate::particles::Property],
     ids: [PropId; N],
 ) -> [&mut Vec<f64>; N] {
-    props
-        .get_disjoint_mut(ids.map(|i| i.0))
-        .expect("distinct SPH properties")
-        .map(|p| &mut p.data)
+    let mut out: [Option<&mut Vec<f64>>; N] = [const { None }; N];
+    for (k, p) in props.iter_mut().enumerate() {
+        if let Some(slot) = ids.iter().position(|id| id.0 == k) {
+            out[slot] = Some(&mut p.data);
+        }
+    }
+    out.map(|o| o.expect("distinct SPH properties"))
 }
