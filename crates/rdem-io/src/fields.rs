@@ -75,11 +75,15 @@ pub enum Field {
     Mol,
     /// `id_multisphere`: the same as `mol` in LIGGGHTS 3.8.
     IdMultisphere,
+    /// `p`: the SPH pressure (`atom_style sph`; 0 for other particles).
+    P,
+    /// `rho`: the SPH density (`atom_style sph`; 0 for other particles).
+    Rho,
 }
 
 impl Field {
     /// Every field, in the order of [`Field::NAMES`].
-    pub const ALL: [Field; 32] = [
+    pub const ALL: [Field; 34] = [
         Field::Id,
         Field::Type,
         Field::Mass,
@@ -112,10 +116,12 @@ impl Field {
         Field::Density,
         Field::Mol,
         Field::IdMultisphere,
+        Field::P,
+        Field::Rho,
     ];
 
     /// Every valid name, for error messages ("expected one of ...").
-    pub const NAMES: [&'static str; 32] = [
+    pub const NAMES: [&'static str; 34] = [
         "id",
         "type",
         "mass",
@@ -148,6 +154,8 @@ impl Field {
         "density",
         "mol",
         "id_multisphere",
+        "p",
+        "rho",
     ];
 
     /// The field called `name` in a `dump custom` command.
@@ -181,7 +189,10 @@ impl Field {
     /// True for the fields read from a named per-particle property (`mol`,
     /// `id_multisphere`: the clump of a sphere), which a bare copy of the particles lacks.
     pub fn reads_properties(self) -> bool {
-        matches!(self, Field::Mol | Field::IdMultisphere)
+        matches!(
+            self,
+            Field::Mol | Field::IdMultisphere | Field::P | Field::Rho
+        )
     }
 
     /// The value for particle `i` (integers exactly, as long as tags stay below 2^53).
@@ -230,6 +241,12 @@ impl Field {
                     body
                 }
             }
+            Field::P => p
+                .property(rdem::sph::PRESSURE)
+                .map_or(0.0, |id| p.props[id.0].data[i]),
+            Field::Rho => p
+                .property(rdem::sph::RHO)
+                .map_or(0.0, |id| p.props[id.0].data[i]),
         }
     }
 

@@ -6,7 +6,7 @@ use rdem::World;
 use rdem_io::Field;
 
 /// Every valid name.
-pub const NAMES: [&str; 32] = Field::NAMES;
+pub const NAMES: [&str; 34] = Field::NAMES;
 
 /// True if `name` is a per-particle quantity.
 pub fn is_field(name: &str) -> bool {

@@ -1,4 +1,5 @@
 //! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`
+//! (and the 2d `sq`, `sq2`, `hex`)
 //! whose `scale` is the lattice constant in metres, and `custom` lattices with
 //! axis-aligned cell vectors `a1 a2 a3` (in units of the scale) and `basis` atoms, with an
 //! `origin` shift. `units
@@ -26,7 +27,13 @@ pub struct Lattice {
 }
 
 /// Valid lattice styles.
-pub const STYLES: [&str; 6] = ["none", "sc", "bcc", "fcc", "diamond", "custom"];
+/// (`sq`, `sq2` and `hex` are the 2d lattices: `dimension 2` only.)
+pub const STYLES: [&str; 9] = [
+    "none", "sc", "bcc", "fcc", "diamond", "custom", "sq", "sq2", "hex",
+];
+
+/// The 2d lattice styles.
+pub const STYLES_2D: [&str; 3] = ["sq", "sq2", "hex"];
 
 impl Lattice {
     /// A lattice of `style` with constant `a` (`None` for an unknown style). Style `none`
@@ -35,7 +42,8 @@ impl Lattice {
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         let basis = match style {
             "none" | "custom" => vec![],
-            "sc" => vec![v(0.0, 0.0, 0.0)],
+            "sc" | "sq" => vec![v(0.0, 0.0, 0.0)],
+            "sq2" | "hex" => vec![v(0.0, 0.0, 0.0), v(0.5, 0.5, 0.0)],
             "bcc" => vec![v(0.0, 0.0, 0.0), v(0.5, 0.5, 0.5)],
             "fcc" => vec![
                 v(0.0, 0.0, 0.0),
@@ -55,12 +63,19 @@ impl Lattice {
             ],
             _ => return None,
         };
+        // LAMMPS' 2d lattices: a square cell (sq, sq2), or a1 = 1 0 0, a2 = 0 √3 0 (hex);
+        // a3 = 0 0 1.
+        let cell = if style == "hex" {
+            v(1.0, 3f64.sqrt(), 1.0)
+        } else {
+            DVec3::ONE
+        };
         Some(Self {
             style: style.to_string(),
             a,
             basis,
             origin: DVec3::ZERO,
-            cell: DVec3::ONE,
+            cell,
         })
     }
 

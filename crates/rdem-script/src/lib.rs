@@ -32,6 +32,7 @@ pub mod restart_state;
 pub mod run;
 pub mod sim;
 pub mod source;
+pub mod sph;
 pub mod thermo;
 pub mod units;
 pub mod variables;

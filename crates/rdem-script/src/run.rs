@@ -197,12 +197,13 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     // `pre no` is overridden before anything ran (LAMMPS' `first_update`).
     let setup = chunk.setup || !sim.script.set_up;
     let m = crate::materials::materials(sim)?;
+    crate::sph::tables(sim)?;
     {
         let w = sim
             .world
             .as_mut()
             .ok_or("run before the simulation box is defined")?;
-        if w.pair.is_some() && !sim.defs.pair_coeff_set {
+        if (w.pair.is_some() || w.sph.is_some()) && !sim.defs.pair_coeff_set {
             return Err("all pair coefficients are not set: add 'pair_coeff * *'".into());
         }
         // LIGGGHTS 3.8 runs on with the pair style of its restart file when the script
@@ -304,7 +305,7 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
         // What a run's end undoes (fix adapt's `reset yes`) is undone here too.
         return stages.end_of_run(sim);
     }
-    crate::dumps::write_due(sim, start_step, true)?;
+    crate::dumps::write_due(sim, start_step)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
         w.timers.reset();
@@ -356,7 +357,7 @@ fn step_loop(
         if (every > 0 && step % every == 0) || step == sim.script.run_last {
             thermo_row(sim)?;
         }
-        crate::dumps::write_due(sim, step, false)?;
+        crate::dumps::write_due(sim, step)?;
         crate::commands::restart::write_due(sim, step)?;
         if let Some(w) = &mut sim.world {
             w.timers.lap(Stage::Output, t_out);

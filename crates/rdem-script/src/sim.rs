@@ -114,6 +114,8 @@ pub struct Setup {
     /// `dimension` (3, or 2 for a plane in x and y: the temperature counts 2 degrees of
     /// freedom per particle and `fix enforce2d` keeps the particles in their plane).
     pub dimension: u8,
+    /// `atom_style sph`: per-type masses (`mass`), density and pressure per particle.
+    pub sph: bool,
 }
 
 impl Default for Setup {
@@ -129,6 +131,7 @@ impl Default for Setup {
             procs: [0; 3],
             units: crate::units::Units::Si,
             dimension: 3,
+            sph: false,
         }
     }
 }
@@ -157,6 +160,8 @@ pub struct Definitions {
     pub computes: Vec<Compute>,
     /// Whether a pair style was defined with `pair_coeff` given.
     pub pair_coeff_set: bool,
+    /// Per-type masses of the `mass` command (index = type; `atom_style sph`).
+    pub type_mass: Vec<Option<f64>>,
     /// What `read_restart` brought that later definitions take back.
     pub restored: crate::restart_state::Restored,
 }

@@ -161,9 +161,15 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
         }
         "pe" => 0.0,
         "etotal" => computes::kinetic(w.ok_or_else(need_box)?, 1),
+        // In 2d the area, as LAMMPS and LIGGGHTS 3.8 (sph_2 prints 0.282382 for a
+        // 0.542 × 0.521 × 0.002 box).
         "vol" => {
             let s = size.ok_or_else(need_box)?;
-            s.x * s.y * s.z
+            if sim.setup.dimension == 2 {
+                s.x * s.y
+            } else {
+                s.x * s.y * s.z
+            }
         }
         "lx" | "ly" | "lz" => size.ok_or_else(need_box)?[(kw.as_bytes()[1] - b'x') as usize],
         "xlo" | "ylo" | "zlo" => {

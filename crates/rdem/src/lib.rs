@@ -32,6 +32,7 @@ pub mod region;
 pub mod region_tet;
 pub mod restart;
 pub mod sort;
+pub mod sph;
 mod stages;
 pub mod step;
 pub mod timers;

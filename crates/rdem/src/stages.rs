@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::fix::{integrate, FixKind};
 use crate::particles::Tag;
 use crate::sort::sort_particles;
+use crate::sph::SphFix;
 use crate::world::{LostPolicy, World};
 
 /// Set-up stages.
@@ -395,6 +396,17 @@ impl World {
                 FixKind::NveSphere => {
                     integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt)
                 }
+                FixKind::Sph(s @ (SphFix::Nve | SphFix::NveStationary)) => {
+                    if let Some(props) = crate::sph::SphProps::find(&self.particles) {
+                        crate::sph::initial_integrate(
+                            &mut self.particles,
+                            props,
+                            fix.groupbit,
+                            self.dt,
+                            *s == SphFix::Nve,
+                        );
+                    }
+                }
                 FixKind::Move(m) => m.initial_integrate(
                     &mut self.particles,
                     &self.domain,
@@ -539,6 +551,12 @@ impl World {
     /// Step 7: the pair style's forces (the near list refreshed when stale, the virial
     /// filled when wanted; without a pair style, a zero virial when wanted).
     pub(crate) fn pair_forces(&mut self, update: bool) {
+        if let Some(sph) = &self.sph {
+            // Also at a run's set-up, from the current P, ρ and v̂ (as LIGGGHTS).
+            if let Some(props) = crate::sph::SphProps::find(&self.particles) {
+                sph.compute(&mut self.particles, props, &self.neighbor.list);
+            }
+        }
         if let Some(pair) = &mut self.pair {
             pair.step = self.step;
             // A local decision: the check covers this rank's ghosts too.
@@ -622,6 +640,9 @@ impl World {
             match &fix.kind {
                 FixKind::NveSphere => {
                     integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt)
+                }
+                FixKind::Sph(SphFix::Nve) => {
+                    crate::sph::final_integrate(&mut self.particles, fix.groupbit, self.dt)
                 }
                 FixKind::Move(m) => m.final_integrate(&mut self.particles, fix.groupbit, self.dt),
                 _ => {}

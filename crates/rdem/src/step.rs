@@ -28,8 +28,10 @@
 //!    drifted half a skin since its wall candidates were built. Rebuild: tags for the
 //!    added particles, then the full re-neighboring below [Neigh, Comm]; otherwise
 //!    forward communication of ghost positions and velocities [Comm]
-//! 6. force clear; walls told the step (bonds are created at a given step) [Other]
-//! 7. pair forces (particle–particle contacts, bonds; the near list refreshed when
+//! 6. force clear; walls told the step (bonds are created at a given step); the SPH
+//!    pre-force fixes in definition order (density rate, Shepard filter, pressure; see
+//!    [`crate::sph`]; not at a run's set-up) [Other]
+//! 7. pair forces (SPH: [`crate::sph::SphPair`]; particle–particle contacts, bonds; the near list refreshed when
 //!    stale; the per-particle virial when wanted) [Pair]
 //! 8. reverse communication: ghost forces (and virial, liquid flux) onto their owners
 //!    [Comm]
@@ -73,7 +75,8 @@
 //! 1. checks: timestep, neighbor settings; tags for untagged particles; particle types
 //!    within the material table when a pair style or a wall uses it
 //! 2. pair style: coefficient mixing and bond table, contact history layout, bond reach
-//!    (at most 10 diameters of the smallest particle), the `tsCreateBond` warning
+//!    (at most 10 diameters of the smallest particle), the `tsCreateBond` warning; SPH:
+//!    kernels of the SPH fixes, radii = smoothing lengths, dρ/dt zeroed
 //! 3. walls in definition order: coefficient tables, history properties; rigid clumps:
 //!    one rank and no periodic boundary so far, a body's spheres excluded from each other
 //! 4. mesh motion to the current time
@@ -227,6 +230,9 @@ impl World {
     pub(crate) fn compute_forces(&mut self, update: bool) -> Result<()> {
         let t0 = Instant::now();
         self.clear_forces();
+        if update {
+            self.sph_pre_force();
+        }
         let t1 = self.timers.lap(Stage::Other, t0);
         self.pair_forces(update);
         let t2 = self.timers.lap(Stage::Pair, t1);
@@ -259,6 +265,7 @@ impl World {
         self.extend_tags();
         self.check_types()?;
         self.setup_pair()?;
+        self.setup_sph()?;
         self.apply_restored_history();
         self.setup_walls()?;
         self.setup_multisphere()?;

@@ -59,6 +59,8 @@ pub struct World {
     pub materials: Materials,
     /// Particle–particle contact (`pair_style gran`), if any.
     pub pair: Option<PairGran>,
+    /// The SPH pair style (`pair_style sph/artVisc/tensCorr`), if any ([`crate::sph`]).
+    pub sph: Option<crate::sph::SphPair>,
     /// Neighbor list and its settings.
     pub neighbor: Neighbor,
     /// Fixes, in definition order.
@@ -115,6 +117,7 @@ impl World {
             domain,
             materials: Materials::default(),
             pair: None,
+            sph: None,
             neighbor: Neighbor::new(NeighborSettings::default()),
             fixes: Vec::new(),
             meshes: Vec::new(),

@@ -118,7 +118,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             a.pos(),
             "set: missing keyword",
             Some(
-                "type, diameter, density, mass, x, y, z, vx, vy, vz, omegax, omegay, omegaz, omega, property/atom"
+                "type, diameter, density, mass, x, y, z, vx, vy, vz, omegax, omegay, omegaz, omega, property/atom, meso_rho, sphkernel"
                     .into(),
             ),
         ));
@@ -143,8 +143,21 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 "omegaz",
                 "omega",
                 "property/atom",
+                "meso_rho",
+                "sphkernel",
             ],
         )?;
+        if kw == "sphkernel" {
+            // Sets the kernel of the SPH fixes that have none (LIGGGHTS 3.8: "Setting
+            // undefined fix_sph kernel IDs"), whatever the selection.
+            let k = crate::sph::kernel(a)?;
+            let w = sim.world_mut(a)?;
+            let n = rdem::sph::set_undefined_kernels(&mut w.fixes, k);
+            sim.outputs
+                .out
+                .line(&format!("  {n} settings made for sphkernel"));
+            continue;
+        }
         // A per-particle component: a number, or an equal- or atom-style variable (as the
         // LIGGGHTS manual allows), read before the particles are borrowed.
         let component = match kw {
@@ -227,6 +240,16 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                         2 => p.v[i][d] = x,
                         _ => p.omega[i][d] = x,
                     }
+                    count += 1;
+                }
+            }
+            "meso_rho" => {
+                let rho = a.f64("density")?;
+                let Some(id) = p.property(rdem::sph::RHO) else {
+                    return Err(a.error_at(a.pos() - 2, "set meso_rho needs atom_style sph", None));
+                };
+                for i in (0..p.nlocal()).filter(|&i| sel[i]) {
+                    p.props[id.0].data[i] = rho;
                     count += 1;
                 }
             }

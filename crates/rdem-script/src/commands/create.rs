@@ -57,6 +57,9 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     w.set_timestep(sim.setup.dt)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     w.materials.ntypes = n as usize;
+    if sim.setup.sph {
+        rdem::sph::SphProps::add(&mut w.particles).map_err(|e| a.error_cmd(e.to_string(), None))?;
+    }
     sim.world = Some(w);
     Ok(())
 }

@@ -13,14 +13,17 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         "gran" => {}
         "none" => {
             a.done()?;
-            sim.world_mut(a)?.pair = None;
+            let w = sim.world_mut(a)?;
+            w.pair = None;
+            w.sph = None;
             return Ok(());
         }
+        "sph/artVisc/tensCorr" => return crate::sph::pair_style(sim, a),
         s if s.starts_with("gran/") => return old_pair_style(sim, a, s),
         s => {
             return Err(a.error_prev(
                 format!("unknown pair style '{s}'"),
-                Some(suggest(s, &["gran", "none"])),
+                Some(suggest(s, &["gran", "sph/artVisc/tensCorr", "none"])),
             ))
         }
     }
@@ -29,7 +32,9 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(models::unknown(a, a.pos(), &[]));
     }
     models::parse_switches(a, &mut m)?;
-    sim.world_mut(a)?.pair = Some(PairGran::new(m));
+    let w = sim.world_mut(a)?;
+    w.pair = Some(PairGran::new(m));
+    w.sph = None;
     if m.cohesion == CohesionKind::Easo {
         crate::fixes::liquid::define(sim);
     }
@@ -83,11 +88,15 @@ pub(super) fn pair_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if !a.is_done() {
         return Err(a.error_at(
             a.pos(),
-            "granular pair styles take no coefficients: write 'pair_coeff * *'",
+            "granular and SPH pair styles take no coefficients: write 'pair_coeff * *'",
             None,
         ));
     }
-    if sim.world.as_ref().and_then(|w| w.pair.as_ref()).is_none() {
+    if sim
+        .world
+        .as_ref()
+        .is_none_or(|w| w.pair.is_none() && w.sph.is_none())
+    {
         return Err(a.error_cmd(
             "pair_coeff before pair_style",
             Some("define 'pair_style gran ...' first".into()),

@@ -378,6 +378,20 @@ pub(super) fn lattice_cmd(sim: &mut Sim, a: &mut Args) -> CmdResult {
         sim.defs.lattice = Lattice::new(style, scale);
         return Ok(());
     }
+    let is_2d = lattice::STYLES_2D.contains(&style);
+    if style != "custom" && is_2d != (sim.setup.dimension == 2) {
+        return Err(a.error_prev(
+            format!(
+                "lattice style {style} does not fit a {}d simulation",
+                sim.setup.dimension
+            ),
+            Some(if is_2d {
+                "sq, sq2 and hex are 2d lattices: give 'dimension 2' first".into()
+            } else {
+                "in 2d use sq, sq2, hex or custom".into()
+            }),
+        ));
+    }
     let scale = a.positive("lattice constant (m)")?;
     let mut l = Lattice::new(style, scale).expect("valid style");
     let custom = style == "custom";

@@ -8,9 +8,13 @@ use crate::args::{suggest, Args, CmdResult};
 use crate::sim::Sim;
 use crate::units::Units;
 
-pub(super) fn atom_style(_sim: &mut Sim, a: &mut Args) -> CmdResult {
+pub(super) fn atom_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let s = a.word("atom style")?;
-    if s != "granular" && s != "sphere" {
+    if sim.world.is_some() {
+        return Err(a.error_cmd("atom_style after the simulation box is defined", None));
+    }
+    sim.setup.sph = s == "sph";
+    if s != "granular" && s != "sphere" && s != "sph" {
         let later = [
             "hybrid",
             "superquadric",
@@ -20,7 +24,7 @@ pub(super) fn atom_style(_sim: &mut Sim, a: &mut Args) -> CmdResult {
         let help = if later.contains(&s) {
             format!("atom_style {s} is not supported by this rdem release yet; use granular")
         } else {
-            suggest(s, &["granular", "sphere"])
+            suggest(s, &["granular", "sphere", "sph"])
         };
         return Err(a.error_prev(format!("unsupported atom style '{s}'"), Some(help)));
     }
@@ -164,6 +168,10 @@ pub(super) fn dimension(sim: &mut Sim, a: &mut Args) -> CmdResult {
 /// the owned particles after the commands that make particles or change their size or
 /// density (`create_atoms`, `read_data`, `set`). Nothing in 3d.
 pub(crate) fn disc_masses(sim: &mut Sim) {
+    if sim.setup.sph {
+        crate::sph::apply_type_masses(sim);
+        return;
+    }
     if sim.setup.dimension != 2 {
         return;
     }

@@ -41,6 +41,7 @@ mod print;
 mod property_atom;
 mod property_global;
 mod sampling;
+mod sph;
 mod wall_gran;
 mod wall_gran_old;
 
@@ -360,6 +361,14 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_SETFORCE,
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
+        sph::ROW_CONTINUITY,
+        sph::ROW_SUMMATION,
+        sph::ROW_CORR,
+        sph::ROW_PRESSURE,
+        sph::ROW_NVE,
+        sph::ROW_NVE_STATIONARY,
+        sph::ROW_WALL,
+        sph::ROW_WALL_REGION,
         adapt::ROW,
         check_timestep_gran::ROW,
         ave_time::ROW,

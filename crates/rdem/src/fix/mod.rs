@@ -64,6 +64,13 @@ pub enum FixKind {
     WallGran(Box<PrimitiveWall>),
     /// `fix wall/gran ... mesh n_meshes k meshes ...`.
     MeshWall(Box<crate::wall::MeshWall>),
+    /// The SPH fixes: density, Shepard filter, pressure, integration ([`crate::sph`]).
+    Sph(crate::sph::SphFix),
+    /// `fix wall/sph` (post-force).
+    WallSph(crate::sph::SphWall),
+    /// `fix wall/region/sph` (post-force, acting alone between the post-force passes:
+    /// it reads the SPH pressure).
+    WallRegionSph(crate::sph::SphRegionWall),
 }
 
 /// A fix: an ID, a group (bit mask) and what it does.
@@ -122,9 +129,29 @@ impl Fix {
                 }
             }
             FixKind::Move(m) => check_motion(&m.style)?,
+            FixKind::Sph(crate::sph::SphFix::Shepard { every, .. }) => {
+                if *every == 0 {
+                    return Err(Error::Invalid {
+                        what: "sph/density/corr every",
+                        reason: "must be > 0".into(),
+                    });
+                }
+            }
+            FixKind::WallSph(w) => {
+                check("wall/sph r0", w.r0, w.r0 > 0.0, "must be > 0")?;
+                check("wall/sph D", w.d, true, "must be finite")?;
+                for v in w.planes.iter().flatten() {
+                    check("wall/sph plane", *v, true, "must be finite")?;
+                }
+            }
+            FixKind::WallRegionSph(w) => {
+                check("wall/region/sph r0", w.r0, w.r0 > 0.0, "must be > 0")?;
+                check("wall/region/sph D", w.d, true, "must be finite")?;
+            }
             FixKind::NveSphere
             | FixKind::Freeze
             | FixKind::Enforce2d
+            | FixKind::Sph(_)
             | FixKind::WallGran(_)
             | FixKind::MeshWall(_) => {}
         }
@@ -156,7 +183,12 @@ impl Fix {
 
     /// True if this fix integrates (acts in initial and final integrate).
     pub fn integrates(&self) -> bool {
-        matches!(self.kind, FixKind::NveSphere | FixKind::Move(_))
+        matches!(
+            self.kind,
+            FixKind::NveSphere
+                | FixKind::Move(_)
+                | FixKind::Sph(crate::sph::SphFix::Nve | crate::sph::SphFix::NveStationary)
+        )
     }
 
     /// True if this fix acts after the forces (post_force).
@@ -169,6 +201,7 @@ impl Fix {
                 | FixKind::ViscousScaled { .. }
                 | FixKind::AddForce { .. }
                 | FixKind::SetForce { .. }
+                | FixKind::WallSph(_)
         )
     }
 
@@ -237,10 +270,20 @@ impl Fix {
                     }
                 }
             }
+            FixKind::WallSph(wall) => {
+                let x = &p.x[lo..lo + n];
+                for k in 0..n {
+                    if mask[k] & bit != 0 {
+                        f[k] += wall.force(x[k]);
+                    }
+                }
+            }
             FixKind::NveSphere
             | FixKind::AveForce { .. }
             | FixKind::Enforce2d
             | FixKind::Move(_)
+            | FixKind::Sph(_)
+            | FixKind::WallRegionSph(_)
             | FixKind::WallGran(_)
             | FixKind::MeshWall(_) => {}
         }
@@ -299,11 +342,16 @@ pub(crate) fn post_force(
     let mut start = 0;
     let mut ok = true;
     for k in 0..fixes.len() {
-        if matches!(fixes[k].kind, FixKind::AveForce { .. } | FixKind::Enforce2d) {
+        if matches!(
+            fixes[k].kind,
+            FixKind::AveForce { .. } | FixKind::Enforce2d | FixKind::WallRegionSph(_)
+        ) {
             if start < k {
                 ok &= post_force_pass(&fixes[start..k], meshes, p, dt, update);
             }
-            if matches!(fixes[k].kind, FixKind::Enforce2d) {
+            if let FixKind::WallRegionSph(w) = &fixes[k].kind {
+                w.apply(p, fixes[k].groupbit);
+            } else if matches!(fixes[k].kind, FixKind::Enforce2d) {
                 fixes[k].apply_enforce2d(p);
             } else {
                 fixes[k].apply_aveforce(p, comm);

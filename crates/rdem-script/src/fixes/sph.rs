@@ -1,0 +1,212 @@
+//! The SPH fix styles (`atom_style sph`, see [`rdem::sph`]): `sph/density/continuity`,
+//! `sph/density/summation`,
+//! `sph/density/corr`, `sph/pressure`, `nve/sph`, `nve/sph/stationary`, `wall/sph`. Each
+//! becomes an engine fix; the kernel of the density fixes and the wall is set by
+//! `set group all sphkernel NAME` after them, as in the LIGGGHTS tutorials.
+
+use rdem::region::Shape;
+use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall};
+use rdem::FixKind;
+
+use super::engine::engine_fix;
+use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row of `sph/density/continuity`.
+pub(super) const ROW_CONTINUITY: FixRow = style(
+    "sph/density/continuity",
+    continuity,
+    Stages::ENGINE,
+    "the SPH density rate dρ/dt = Σ m_b (v_a − v_b)·∇W_ab (atom_style sph)",
+);
+/// The registry row of `sph/density/summation`.
+pub(super) const ROW_SUMMATION: FixRow = style(
+    "sph/density/summation",
+    summation,
+    Stages::ENGINE,
+    "the SPH density by summation ρ_a = Σ m_b W_ab (a itself included)",
+);
+/// The registry row of `sph/density/corr`.
+pub(super) const ROW_CORR: FixRow = style(
+    "sph/density/corr",
+    corr,
+    Stages::ENGINE,
+    "`shepard every N`: the Shepard density filter every N steps",
+);
+/// The registry row of `sph/pressure`.
+pub(super) const ROW_PRESSURE: FixRow = style(
+    "sph/pressure",
+    pressure,
+    Stages::ENGINE,
+    "`Tait B ρ0 γ`, `relativ B ρ0`, `absolut B`: the SPH equation of state",
+);
+/// The registry row of `nve/sph`.
+pub(super) const ROW_NVE: FixRow = style(
+    "nve/sph",
+    nve,
+    Stages::ENGINE,
+    "velocity Verlet for SPH particles, with their density",
+);
+/// The registry row of `nve/sph/stationary`.
+pub(super) const ROW_NVE_STATIONARY: FixRow = style(
+    "nve/sph/stationary",
+    nve_stationary,
+    Stages::ENGINE,
+    "SPH boundary particles: their density evolves, they do not move",
+);
+/// The registry row of `wall/sph`.
+pub(super) const ROW_WALL: FixRow = style(
+    "wall/sph",
+    wall,
+    Stages::ENGINE,
+    "`xplane|yplane|zplane lo hi r0 D` (lo, hi a position or NULL): a repulsive SPH wall",
+)
+.notes("the force D((r0/r)⁴ − (r0/r)²) pushes a particle within r0 of a plane away from it, as LIGGGHTS 3.8 (measured)");
+
+/// The registry row of `wall/region/sph`.
+pub(super) const ROW_WALL_REGION: FixRow = style(
+    "wall/region/sph",
+    wall_region,
+    Stages::ENGINE,
+    "`region-ID r0 D` (a block region, side in): the wall/sph force from each face, plus the pressure force of the particle's copy at the wall",
+)
+.notes("block regions only so far (other shapes: a located error)");
+
+/// The SPH fixes need atom_style sph.
+fn need_sph(sim: &Sim, a: &Args, head: &FixHead) -> CmdResult {
+    if !sim.setup.sph {
+        return Err(a.error_at(
+            STYLE_WORD,
+            format!("fix {} needs atom_style sph", head.style),
+            None,
+        ));
+    }
+    Ok(())
+}
+
+fn continuity(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    a.done()?;
+    engine_fix(
+        sim,
+        a,
+        head,
+        FixKind::Sph(SphFix::Continuity { kernel: None }),
+    )
+}
+
+fn summation(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    a.done()?;
+    engine_fix(
+        sim,
+        a,
+        head,
+        FixKind::Sph(SphFix::Summation { kernel: None }),
+    )
+}
+
+fn corr(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    a.keyword("sph/density/corr style", &["shepard"])?;
+    a.keyword("shepard keyword", &["every"])?;
+    let every = a.count("every N")?;
+    if every == 0 {
+        return Err(a.error_prev("every must be > 0", None));
+    }
+    a.done()?;
+    engine_fix(
+        sim,
+        a,
+        head,
+        FixKind::Sph(SphFix::Shepard {
+            every,
+            kernel: None,
+        }),
+    )
+}
+
+fn pressure(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    let eos = match a.keyword("equation of state", &["Tait", "relativ", "absolut"])? {
+        "Tait" => Eos::Tait {
+            b: a.f64("B")?,
+            rho0: a.positive("density0")?,
+            gamma: a.f64("gamma")?,
+        },
+        "relativ" => Eos::Relativ {
+            b: a.f64("B")?,
+            rho0: a.f64("density0")?,
+        },
+        _ => Eos::Absolut { b: a.f64("B")? },
+    };
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::Sph(SphFix::Pressure(eos)))
+}
+
+fn nve(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::Sph(SphFix::Nve))
+}
+
+fn nve_stationary(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::Sph(SphFix::NveStationary))
+}
+
+fn wall(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    let axis = match a.keyword("wall/sph style", &["xplane", "yplane", "zplane"])? {
+        "xplane" => 0,
+        "yplane" => 1,
+        _ => 2,
+    };
+    let mut planes = [None; 2];
+    for (k, plane) in planes.iter_mut().enumerate() {
+        if a.peek() == Some("NULL") {
+            a.seek(a.pos() + 1);
+        } else {
+            *plane = Some(a.f64(["lo (a position or NULL)", "hi (a position or NULL)"][k])?);
+        }
+    }
+    let r0 = a.positive("r0")?;
+    let d = a.f64("D")?;
+    a.done()?;
+    let w = SphWall {
+        axis,
+        planes,
+        r0,
+        d,
+        kernel: None,
+    };
+    engine_fix(sim, a, head, FixKind::WallSph(w))
+}
+
+fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    need_sph(sim, a, head)?;
+    let region = sim.fixed_region(a, "fix wall/region/sph")?;
+    let (lo, hi) = match (&region.shape, region.outside, &region.pose) {
+        (Shape::Block { lo, hi }, false, None) => (*lo, *hi),
+        _ => {
+            return Err(a.error_prev(
+                "fix wall/region/sph supports block regions (side in) only so far",
+                None,
+            ))
+        }
+    };
+    let r0 = a.positive("r0")?;
+    let d = a.f64("D")?;
+    a.done()?;
+    let w = SphRegionWall {
+        lo,
+        hi,
+        r0,
+        d,
+        kernel: None,
+        sl: Vec::new(),
+    };
+    engine_fix(sim, a, head, FixKind::WallRegionSph(w))
+}
