@@ -297,7 +297,7 @@ mod tests {
 
     const GOOD: &str = "# vtk DataFile Version 2.0\nmesh\nASCII\nDATASET UNSTRUCTURED_GRID\n\
         POINTS 5 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n\n\
-        CELLS 3 12\n1 0\n2 0 1\n4 0 1 2 3\nCELL_TYPES 3\n1\n3\n10\nCELL_DATA 3\n";
+        CELLS 3 10\n1 0\n2 0 1\n4 0 1 2 3\nCELL_TYPES 3\n1\n3\n10\nCELL_DATA 3\n";
 
     #[test]
     fn reads_tetrahedra_and_skips_other_cells() {
@@ -325,8 +325,8 @@ mod tests {
         assert!(m.contains("line 15") && m.contains("point 7"), "{m}");
         let m = message(&GOOD.replace("\n10\n", "\n5\n"));
         assert!(m.contains("no tetrahedra"), "{m}");
-        let m = message(&GOOD.replace("CELLS 3 12", "CELLS 3 13"));
-        assert!(m.contains("line 12") && m.contains("hold 12"), "{m}");
+        let m = message(&GOOD.replace("CELLS 3 10", "CELLS 3 13"));
+        assert!(m.contains("line 12") && m.contains("hold 10"), "{m}");
         let m = message("solid x\n");
         assert!(m.contains("line 1"), "{m}");
     }

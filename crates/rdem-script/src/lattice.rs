@@ -124,6 +124,6 @@ mod tests {
         assert_eq!(Lattice::new("sc", 0.01).unwrap().points(lo, hi).len(), 27);
         assert_eq!(Lattice::new("fcc", 0.01).unwrap().points(lo, hi).len(), 108);
         assert_eq!(Lattice::new("bcc", 0.01).unwrap().points(lo, hi).len(), 54);
-        assert!(Lattice::new("hex", 1.0).is_none());
+        assert!(Lattice::new("hcp", 1.0).is_none(), "hcp is not offered");
     }
 }
