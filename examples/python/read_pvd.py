@@ -6,7 +6,8 @@ short pour with `dump custom/vtk` as XML UnstructuredGrid (`.vtu`, which meshio 
 does not read legacy VTK polydata), then reads the collection: the times from the `.pvd`
 (plain XML), each snapshot's points and point data with meshio, and prints how the bed's
 mean height and kinetic energy evolve. (The dump starts after the insertion step: meshio
-cannot read a compressed snapshot with no particles.)
+cannot read a compressed snapshot with no particles; `first yes` writes step 1, which is
+no multiple of 2000.)
 
     python examples/python/read_pvd.py
 
@@ -52,6 +53,7 @@ fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once
 fix integr all nve/sphere
 run 1
 dump d all custom/vtk 2000 post/bed_*.vtu id type radius mass vx vy vz
+dump_modify d first yes
 run 15999
 """
 

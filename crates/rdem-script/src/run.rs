@@ -305,7 +305,7 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
         // What a run's end undoes (fix adapt's `reset yes`) is undone here too.
         return stages.end_of_run(sim);
     }
-    crate::dumps::write_due(sim, start_step)?;
+    crate::dumps::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
         w.timers.reset();
@@ -357,7 +357,7 @@ fn step_loop(
         if (every > 0 && step % every == 0) || step == sim.script.run_last {
             thermo_row(sim)?;
         }
-        crate::dumps::write_due(sim, step)?;
+        crate::dumps::write_due(sim, step, false)?;
         crate::commands::restart::write_due(sim, step)?;
         if let Some(w) = &mut sim.world {
             w.timers.lap(Stage::Output, t_out);

@@ -161,6 +161,9 @@ pub struct Dump {
     pub style: Box<dyn DumpStyle>,
     /// Step of the last snapshot.
     pub last: Option<u64>,
+    /// `dump_modify first yes`: a snapshot at the next run's set-up even off a multiple
+    /// of N, if the dump has written none yet (as LAMMPS and LIGGGHTS do).
+    pub first: bool,
     /// The ParaView collection of a VTK dump whose name has `*` (see [`rdem_io::pvd`]);
     /// `None` for text dumps, `write_dump` and a VTK file overwritten at each snapshot.
     pub pvd: Option<PvdSeries>,
@@ -177,13 +180,14 @@ impl Dump {
 
 /// Writes every dump due at `step` (a multiple of its N, at set-up too). At the last
 /// step of a run, waits for the snapshots still being written in the background.
-pub fn write_due(sim: &mut Sim, step: u64) -> Result<(), RunError> {
+pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
     for k in 0..sim.outputs.dumps.len() {
         let d = &sim.outputs.dumps[k];
         // Only on multiples of N, also at a run's set-up: LIGGGHTS 3.8 writes no first
         // snapshot for a dump defined at another step (measured: sph_2's dump, defined
-        // at step 1, first writes at step 1000).
-        let due = step % d.every == 0 && d.last != Some(step);
+        // at step 1, first writes at step 1000), unless `dump_modify first yes`.
+        let first = setup && d.first && d.last.is_none();
+        let due = (step % d.every == 0 || first) && d.last != Some(step);
         if due {
             write_one(sim, k, step, true).map_err(|m| {
                 RunError::at(sim.outputs.dumps[k].origin.as_ref(), "rdem::run::dump", m)
@@ -250,6 +254,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         columns: Vec::new(),
         style: Box::new(Vacant),
         last: None,
+        first: false,
         pvd: None,
         origin: None,
     };
@@ -351,6 +356,7 @@ pub fn dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         columns,
         style,
         last: None,
+        first: false,
         pvd,
         origin,
     });
@@ -446,9 +452,7 @@ fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str], regions: &[String]
                 };
             }
             "first" => {
-                if a.yes_no("first")? {
-                    d.last = None;
-                }
+                d.first = a.yes_no("first")?;
             }
             other => unreachable!("dump_modify keyword {other} is not in the valid list"),
         }
@@ -487,6 +491,7 @@ pub fn write_dump(sim: &mut Sim, a: &mut Args) -> CmdResult {
         columns,
         style,
         last: None,
+        first: false,
         pvd: None,
         origin: None,
     });
