@@ -239,28 +239,7 @@ impl SphPair {
         groupbit: u32,
         comm: &dyn Comm,
     ) {
-        let mut num = std::mem::take(&mut self.buf);
-        let mut den = std::mem::take(&mut self.buf2);
-        for b in [&mut num, &mut den] {
-            b.clear();
-            b.resize(p.len(), 0.0);
-        }
-        with_kernel!(
-            k,
-            K,
-            self.shepard_sums::<K>(p, props, list, &mut num, &mut den)
-        );
-        comm.reverse_scalar(p, &mut num);
-        comm.reverse_scalar(p, &mut den);
-        let n = p.nlocal();
-        let [rho] = props_mut(&mut p.props, [props.rho]);
-        for i in 0..n {
-            if p.mask[i] & groupbit != 0 {
-                rho[i] = num[i] / den[i];
-            }
-        }
-        self.buf = num;
-        self.buf2 = den;
+        self.density_sums(k, p, props, list, groupbit, comm, true);
     }
 
     /// `fix sph/density/summation`: ρ_a = Σ_b m_b W_ab over b including a, for the owned
@@ -274,6 +253,22 @@ impl SphPair {
         groupbit: u32,
         comm: &dyn Comm,
     ) {
+        self.density_sums(k, p, props, list, groupbit, comm, false);
+    }
+
+    /// The density of [`Self::shepard`] (`normalised`: Σ m W / Σ (m/ρ) W) or of
+    /// [`Self::summation`] (Σ m W).
+    #[allow(clippy::too_many_arguments)]
+    fn density_sums(
+        &mut self,
+        k: KernelKind,
+        p: &mut Particles,
+        props: SphProps,
+        list: &NeighborList,
+        groupbit: u32,
+        comm: &dyn Comm,
+        normalised: bool,
+    ) {
         let mut num = std::mem::take(&mut self.buf);
         let mut den = std::mem::take(&mut self.buf2);
         for b in [&mut num, &mut den] {
@@ -286,11 +281,14 @@ impl SphPair {
             self.shepard_sums::<K>(p, props, list, &mut num, &mut den)
         );
         comm.reverse_scalar(p, &mut num);
+        if normalised {
+            comm.reverse_scalar(p, &mut den);
+        }
         let n = p.nlocal();
         let [rho] = props_mut(&mut p.props, [props.rho]);
         for i in 0..n {
             if p.mask[i] & groupbit != 0 {
-                rho[i] = num[i];
+                rho[i] = if normalised { num[i] / den[i] } else { num[i] };
             }
         }
         self.buf = num;
