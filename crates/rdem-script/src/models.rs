@@ -2,7 +2,7 @@
 //! model-type/name pairs in LIGGGHTS' required order (`model`, `tangential`, `cohesion`,
 //! `rolling_friction`, `surface`) and the switch keywords that may follow in any order.
 
-use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind, TangentialKind};
+use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind, SurfaceKind, TangentialKind};
 
 use crate::args::{suggest, Args, CmdResult};
 
@@ -35,6 +35,9 @@ pub const NORMAL_MODELS: [&str; 5] = [
 
 /// Cohesion model names (`cohesion ...`).
 pub const COHESION_MODELS: [&str; 5] = ["off", "sjkr", "sjkr2", "bond", "easo/capillary/viscous"];
+
+/// Surface model names (`surface ...`).
+pub const SURFACE_MODELS: [&str; 2] = ["default", "multicontact"];
 
 /// Rolling friction model names (`rolling_friction ...`).
 pub const ROLLING_MODELS: [&str; 5] = ["off", "cdt", "epsd", "epsd2", "epsd3"];
@@ -135,7 +138,10 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                 }
             }
             _ => {
-                a.keyword("surface model", &["default"])?;
+                m.surface = match a.keyword("surface model", &SURFACE_MODELS)? {
+                    "multicontact" => SurfaceKind::Multicontact,
+                    _ => SurfaceKind::Default,
+                }
             }
         }
     }

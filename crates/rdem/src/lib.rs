@@ -23,6 +23,7 @@ pub mod mesh_motion;
 pub mod mesh_servo;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;
+pub mod multicontact;
 pub mod multisphere;
 pub mod neighbor;
 pub mod pair;
@@ -42,7 +43,8 @@ pub mod world;
 pub use glam::DVec3;
 
 pub use contact::{
-    CohesionKind, ContactModel, Flags, Materials, NormalKind, RollingKind, TangentialKind,
+    CohesionKind, ContactModel, Flags, Materials, NormalKind, RollingKind, SurfaceKind,
+    TangentialKind,
 };
 pub use domain::{Boundary, Domain};
 pub use error::{Error, Result};

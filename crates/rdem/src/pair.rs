@@ -19,6 +19,7 @@ use crate::contact::{
     PairCoeff, Visitor,
 };
 use crate::error::Result;
+use crate::multicontact::{MultiContact, State as MultiState};
 use crate::neighbor::{Neighbor, NeighborList};
 use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
@@ -192,6 +193,8 @@ pub struct PairGran {
     /// The near fraction from which the passes walk the whole neighbor list
     /// ([`WHOLE_FRACTION`]; tests raise it past 1 to keep a near list).
     whole_fraction: f64,
+    /// With `surface multicontact`: the contacts' store ([`crate::multicontact`]).
+    pub multicontact: Option<std::sync::Arc<MultiContact>>,
 }
 
 impl PairGran {
@@ -212,6 +215,7 @@ impl PairGran {
             simd: Isa::from_env(),
             batch: Batch::default(),
             whole_fraction: WHOLE_FRACTION,
+            multicontact: None,
         }
     }
 
@@ -537,6 +541,10 @@ struct Phase1<'a> {
     breaks: Option<&'a liquid::Breaks>,
     /// The lane kernel's model and instruction set, when the pass uses it.
     lanes: Option<(LaneModel, Isa)>,
+    /// With `surface multicontact`: the store (to record into) and its last records.
+    mc: Option<(&'a MultiContact, &'a MultiState)>,
+    /// Tags of all particles.
+    tag: &'a [crate::particles::Tag],
 }
 
 /// Listed pairs gathered into one [`Batch`] by the lane kernel (whole rows, at least
@@ -731,7 +739,7 @@ impl Phase1<'_> {
             return None;
         }
         let dist = rsq.sqrt();
-        let delta = radsum - dist;
+        let mut delta = radsum - dist;
         let n = if dist > 0.0 {
             d * (1.0 / dist)
         } else {
@@ -740,8 +748,31 @@ impl Phase1<'_> {
         let mj = rmass[j];
         // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
         let inv = 1.0 / (radsum * (mi + mj));
-        let r_star = ri * rj * (mi + mj) * inv;
+        let mut r_star = ri * rj * (mi + mj) * inv;
         let m_star = mi * mj * radsum * inv;
+        let mut shape = None;
+        let (mut ci, mut cj) = (ri - 0.5 * delta, rj - 0.5 * delta);
+        if let Some((_, mc)) = self.mc {
+            // The model's pair is ordered by tag; d runs from the first to the second.
+            let (a, b) = if self.tag[i] < self.tag[j] {
+                (i, j)
+            } else {
+                (j, i)
+            };
+            let s = mc.pair(
+                (self.tag[a], ty[a], self.x[a], radius[a]),
+                (self.tag[b], ty[b], self.x[b], radius[b]),
+                dist,
+            )?;
+            delta = s.delta;
+            r_star = s.r_star;
+            (ci, cj) = if a == i {
+                s.levers
+            } else {
+                (s.levers.1, s.levers.0)
+            };
+            shape = Some((a, b, s));
+        }
         let g = Geom {
             n,
             delta,
@@ -750,8 +781,8 @@ impl Phase1<'_> {
             rj,
             r_star,
             m_star,
-            ci: ri - 0.5 * delta,
-            cj: rj - 0.5 * delta,
+            ci,
+            cj,
             vr: v[i] - v[j],
             wi: omega[i],
             wj: omega[j],
@@ -763,7 +794,12 @@ impl Phase1<'_> {
             lq_j: if K::BRIDGE { self.lq[j] } else { 0.0 },
             update,
         };
-        Some(K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist))
+        let out = K::contact(&g, &coeff_row[ty[j] as usize - 1], flags, hist);
+        if let (Some((store, _)), Some((a, b, s)), true) = (self.mc, shape, update) {
+            let (xa, xb) = (self.x[a], self.x[b]);
+            store.record_pair((self.tag[a], xa), (self.tag[b], xb), dist, &s, out.fn_total);
+        }
+        Some(out)
     }
 
     /// A pair that does not touch, with a liquid-bridge kernel: the contact's history is
@@ -1216,7 +1252,9 @@ impl PairPass<'_> {
             simd,
             batch,
             whole_fraction: _,
+            multicontact,
         } = pair;
+        let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
         let threaded = rayon::current_num_threads() > 1;
         if threaded && near.rfirst.len() != n + 1 {
@@ -1251,10 +1289,12 @@ impl PairPass<'_> {
                 .as_ref()
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: liquid.as_ref().map(|l| &l.breaks),
-            lanes: match (BOND, *simd) {
-                (false, Some(isa)) => LaneModel::of(model, table).map(|m| (m, isa)),
+            lanes: match (BOND, *simd, multicontact.is_some()) {
+                (false, Some(isa), false) => LaneModel::of(model, table).map(|m| (m, isa)),
                 _ => None,
             },
+            mc: multicontact.as_deref().zip(mc_state.as_deref()),
+            tag: &p.tag,
         };
         if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);

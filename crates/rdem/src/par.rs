@@ -47,6 +47,7 @@ pub(crate) struct View<'a> {
     pub mcontact: &'a [f64],
     pub ty: &'a [u32],
     pub mask: &'a [u32],
+    pub tag: &'a [crate::particles::Tag],
 }
 
 impl<'a> View<'a> {
@@ -74,6 +75,7 @@ impl<'a> View<'a> {
             props,
             sparse,
             mass_of_contact,
+            tag,
             ..
         } = p;
         let view = View {
@@ -89,6 +91,7 @@ impl<'a> View<'a> {
             rmass,
             ty,
             mask,
+            tag,
         };
         (view, f, torque, props, sparse)
     }

@@ -127,6 +127,75 @@ impl World {
     }
 }
 
+/// `surface multicontact` (a set-up stage).
+impl World {
+    /// Set-up 3b: hands the `fix multicontact/halfspace` store, with the types' elastic
+    /// constants, to the pair style and the walls whose model has `surface multicontact`;
+    /// a model with it but no such fix, or the fix with no such model, is an error, as in
+    /// LIGGGHTS.
+    pub(crate) fn setup_multicontact(&mut self) -> Result<()> {
+        let wants = |m: &crate::ContactModel| m.surface == crate::SurfaceKind::Multicontact;
+        let Some(mc) = &self.multicontact else {
+            let user = self
+                .pair
+                .as_ref()
+                .filter(|p| wants(&p.model))
+                .map(|_| "pair_style gran".to_string())
+                .or_else(|| {
+                    self.fixes.iter().find_map(|f| match &f.kind {
+                        FixKind::WallGran(w) if wants(&w.model) => Some(format!("fix {}", f.id)),
+                        FixKind::MeshWall(w) if wants(&w.model) => Some(format!("fix {}", f.id)),
+                        _ => None,
+                    })
+                });
+            return match user {
+                Some(u) => Err(Error::Invalid {
+                    what: "surface multicontact",
+                    reason: format!("{u} uses it, which needs a fix multicontact/halfspace"),
+                }),
+                None => Ok(()),
+            };
+        };
+        if self.comm.size() > 1 {
+            return Err(Error::Invalid {
+                what: "surface multicontact",
+                reason: "runs on one MPI rank only (a ghost particle's other contacts are on another rank); run with threads instead".into(),
+            });
+        }
+        mc.set_materials(
+            &self.materials.youngs_modulus,
+            &self.materials.poissons_ratio,
+        );
+        let mut any = false;
+        if let Some(pair) = &mut self.pair {
+            if wants(&pair.model) {
+                pair.multicontact = Some(mc.clone());
+                any = true;
+            }
+        }
+        for fix in &mut self.fixes {
+            let slot = match &mut fix.kind {
+                FixKind::WallGran(w) if wants(&w.model) => &mut w.multicontact,
+                FixKind::MeshWall(w) if wants(&w.model) => &mut w.multicontact,
+                _ => continue,
+            };
+            any = true;
+            // A wall keeps its number from run to run, so that its records stay its own.
+            let number = slot
+                .as_ref()
+                .map_or_else(|| mc.register_wall(), |(_, n)| *n);
+            *slot = Some((mc.clone(), number));
+        }
+        if !any {
+            return Err(Error::Invalid {
+                what: "fix multicontact/halfspace",
+                reason: "needs 'surface multicontact' in pair_style gran or a fix wall/gran".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Re-neighboring stages.
 impl World {
     /// Re-neighboring 1: the contact history saved by tag; with several ranks the mirror

@@ -232,6 +232,9 @@ impl World {
         self.clear_forces();
         if update {
             self.sph_pre_force();
+            if let Some(mc) = &self.multicontact {
+                mc.advance();
+            }
         }
         let t1 = self.timers.lap(Stage::Other, t0);
         self.pair_forces(update);
@@ -268,6 +271,7 @@ impl World {
         self.setup_sph()?;
         self.apply_restored_history();
         self.setup_walls()?;
+        self.setup_multicontact()?;
         self.setup_multisphere()?;
         self.move_meshes();
         self.reneighbor_then(Particles::shrink_to_fit)?;

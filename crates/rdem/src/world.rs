@@ -101,6 +101,9 @@ pub struct World {
     pub heat: Option<crate::heat::HeatConduction>,
     /// Rigid clumps (`fix multisphere`), if any.
     pub multisphere: Option<crate::multisphere::Multisphere>,
+    /// `fix multicontact/halfspace`, if any: the store that the pair style and the walls
+    /// with `surface multicontact` share ([`crate::multicontact`]).
+    pub multicontact: Option<std::sync::Arc<crate::multicontact::MultiContact>>,
     pub(crate) next_sort: u64,
     /// Contact histories read from a restart file, for the next set-up.
     pub(crate) restored_history: Option<crate::restart::HistoryState>,
@@ -134,6 +137,7 @@ impl World {
             virial_step: None,
             heat: None,
             multisphere: None,
+            multicontact: None,
             next_sort: 0,
             restored_history: None,
             needs_reneighbor: true,

@@ -32,6 +32,7 @@ mod mesh_surface;
 mod modify;
 mod move_mesh;
 mod move_particles;
+mod multicontact;
 pub(crate) mod multisphere;
 mod particledistribution_discrete;
 mod particletemplate_multisphere;
@@ -378,6 +379,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
+        multicontact::ROW,
         couple_cfd::ROW,
         couple_cfd::ROW_FORCE,
         couple_cfd::ROW_IMPLICIT,

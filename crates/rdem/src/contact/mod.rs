@@ -83,6 +83,16 @@ pub enum CohesionKind {
     Easo,
 }
 
+/// Surface model (`surface ...`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceKind {
+    /// `default`: smooth spheres.
+    Default,
+    /// `multicontact`: each contact's overlap corrected for the particle's other contacts
+    /// ([`crate::multicontact`], with `fix multicontact/halfspace`).
+    Multicontact,
+}
+
 /// Model keywords that are plain switches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Flags {
@@ -122,6 +132,8 @@ pub struct ContactModel {
     pub rolling: RollingKind,
     /// Cohesion model.
     pub cohesion: CohesionKind,
+    /// Surface model.
+    pub surface: SurfaceKind,
     /// Switches.
     pub flags: Flags,
     /// Switches of `cohesion bond` (used only with [`CohesionKind::Bond`]).
@@ -142,6 +154,7 @@ impl ContactModel {
             tangential: TangentialKind::History,
             rolling: RollingKind::Off,
             cohesion: CohesionKind::Off,
+            surface: SurfaceKind::Default,
             flags: Flags::default(),
             bond: crate::bond::BondFlags::default(),
         }

@@ -113,6 +113,7 @@ impl Visitor for Records<'_> {
         if !pair.near.has_rows(nlocal) {
             return out;
         }
+        let mc_state = pair.multicontact.as_ref().map(|m| m.read());
         let ph1 = Phase1 {
             near: pair.near.rows(&list.first, &list.partner),
             table: &pair.table,
@@ -138,6 +139,8 @@ impl Visitor for Records<'_> {
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: None,
             lanes: None,
+            mc: pair.multicontact.as_deref().zip(mc_state.as_deref()),
+            tag: &p.tag,
         };
         // The contact law's values sit after the bond's vectors when there are bonds.
         let off = if pair.bond.is_some() { bond::VEC } else { 0 };

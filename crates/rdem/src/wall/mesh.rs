@@ -37,6 +37,7 @@ use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
 use crate::contact::{CoeffTable, ContactKernel, ContactModel, Geom, Materials, Visitor};
 use crate::error::{Error, Result};
 use crate::mesh::{Feature, TriMesh};
+use crate::multicontact::MultiContact;
 use crate::par::View;
 use crate::particles::{Particles, PropId, SparseId};
 
@@ -185,6 +186,9 @@ pub struct MeshWall {
     /// The owned particles with candidate triangles, ascending: they alone hold history
     /// rows, row `c` for particle `rows[c]`.
     rows: Vec<u32>,
+    /// With `surface multicontact`: the contacts' store and this wall's number in it
+    /// ([`crate::multicontact::MultiContact::wall_key`]).
+    pub multicontact: Option<(std::sync::Arc<crate::multicontact::MultiContact>, u64)>,
 }
 
 /// The key of a feature in a history slot: 0 is "empty".
@@ -277,6 +281,7 @@ impl MeshWall {
             stride: 0,
             bond: None,
             bond_events: BondEvents::default(),
+            multicontact: None,
             step: 0,
             cand_first: Vec::new(),
             cand: Vec::new(),
@@ -828,6 +833,10 @@ impl MeshPass<'_> {
             n: DVec3::ZERO,
             dist: 0.0,
         };
+        let mc = wall
+            .multicontact
+            .as_ref()
+            .map(|(m, w)| (&**m, m.read(), *w));
         let mut found = [none; MAX_TOUCH];
         let mut old = [0.0f64; MAX_WIDTH];
         let hi = lo + f.len();
@@ -889,9 +898,23 @@ impl MeshPass<'_> {
                 let surface = &surfaces[wall.meshes[t.mesh as usize]];
                 let v_wall = surface.wall_velocity(t.tri, t.q);
                 let vr = p.v[i] - v_wall;
-                let g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);
+                let mut g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);
+                let mc_key = mc
+                    .as_ref()
+                    .map(|(_, _, w)| MultiContact::wall_key(*w, t.mesh, t.tri));
+                if let (Some((_, state, _)), Some(key)) = (&mc, mc_key) {
+                    let r = state.wall_radius((p.tag[i], p.ty[i], p.x[i], r), key, t.n, t.dist);
+                    if r <= t.dist {
+                        continue;
+                    }
+                    (g.delta, g.r_star) = (r - t.dist, r);
+                    g.ci = r - 0.5 * g.delta;
+                }
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
+                if let (Some((store, _, _)), Some(key), true) = (&mc, mc_key, update) {
+                    store.record_wall((p.tag[i], p.x[i]), key, t.n, t.dist, out.fn_total);
+                }
                 f[k] += out.f_i;
                 torque[k] += out.t_i;
                 if let Some(rec) = rec.as_deref_mut() {

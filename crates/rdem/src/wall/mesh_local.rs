@@ -117,6 +117,7 @@ impl MeshWall {
             mcontact: p.contact_mass(),
             ty: &p.ty,
             mask: &p.mask,
+            tag: &p.tag,
         };
         if !self.has_candidates_for(n) {
             return out;

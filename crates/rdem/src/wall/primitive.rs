@@ -13,6 +13,7 @@ use crate::contact::{
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
+use crate::multicontact::MultiContact;
 use crate::par::{parallel, View, CHUNK};
 use crate::particles::{Particles, PropId, SparseId};
 
@@ -147,6 +148,8 @@ pub struct PrimitiveWall {
     /// The current step (set before each force pass; bonds are created at
     /// `tsCreateBond`).
     pub step: u64,
+    /// With `surface multicontact`: the contacts' store and this wall's number in it.
+    pub multicontact: Option<(std::sync::Arc<crate::multicontact::MultiContact>, u64)>,
 }
 
 impl PrimitiveWall {
@@ -174,6 +177,7 @@ impl PrimitiveWall {
             bond: None,
             bond_events: BondEvents::default(),
             step: 0,
+            multicontact: None,
         })
     }
 
@@ -385,6 +389,10 @@ impl WallPass<'_> {
             K::HIST
         };
         let create_now = update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
+        let mc = wall
+            .multicontact
+            .as_ref()
+            .map(|(m, w)| (&**m, m.read(), MultiContact::wall_key(*w, 0, 0)));
         for (c, &i) in cand.iter().enumerate() {
             let i = i as usize;
             let k = i - lo;
@@ -438,7 +446,7 @@ impl WallPass<'_> {
                 clear_history(hist);
                 continue;
             }
-            let g = Geom::wall(
+            let mut g = Geom::wall(
                 n,
                 d,
                 r,
@@ -448,8 +456,20 @@ impl WallPass<'_> {
                 dt,
                 update,
             );
+            if let Some((_, state, key)) = &mc {
+                let r = state.wall_radius((p.tag[i], p.ty[i], p.x[i], r), *key, n, d);
+                if r <= d {
+                    continue;
+                }
+                (g.delta, g.r_star) = (r - d, r);
+                // The lever arm is the corrected radius less half the overlap.
+                g.ci = r - 0.5 * g.delta;
+            }
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
+            if let (Some((store, _, key)), true) = (&mc, update) {
+                store.record_wall((p.tag[i], p.x[i]), *key, n, d, out.fn_total);
+            }
             f[k] += out.f_i;
             torque[k] += out.t_i;
         }

@@ -1,0 +1,202 @@
+//! `surface multicontact` with `fix multicontact/halfspace` (Brodu et al. 2015) against
+//! LIGGGHTS 3.8. The scripts and LIGGGHTS' dumps are in `tests/data/multicontact/`
+//! (`regenerate.sh` remakes the dumps):
+//!
+//! - `in.static`: four spheres that do not move (no integrator), pressed on a floor and on
+//!   each other, one larger; the forces of every step, as the corrections build up from
+//!   the last step's contacts. Relative tolerance 1e-12 (the two programs agree to 3e-13).
+//! - `in.spinning_pair`, `in.spinning_wall`: two spheres with fixed positions but
+//!   velocities and spins, against a side wall or the floor: forces and torques (the lever
+//!   arms of the tangential force under the model). Tolerance 1e-12 relative, 1e-18 N m
+//!   absolute.
+//! - `in.falling`: the spheres fall under gravity for 400 steps with restitution 0.5,
+//!   friction 0.3, a floor and a side wall. rdem follows LIGGGHTS to 1e-9 m; the same run
+//!   without the model is 1e-6 m off, so the bound tests the model.
+
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{run_kept, run_script_raw};
+
+fn data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/multicontact")
+}
+
+/// A `dump custom` file: per step, the rows (sorted by id) of its columns.
+fn read_dump(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
+    let mut out = Vec::new();
+    let mut lines = text.lines();
+    while let Some(l) = lines.next() {
+        if l.starts_with("ITEM: TIMESTEP") {
+            let step = lines.next().unwrap().trim().parse().unwrap();
+            out.push((step, Vec::new()));
+        } else if l.starts_with("ITEM: NUMBER OF ATOMS") {
+            let n: usize = lines.next().unwrap().trim().parse().unwrap();
+            for l in lines.by_ref() {
+                if l.starts_with("ITEM: ATOMS") {
+                    break;
+                }
+            }
+            let rows = &mut out.last_mut().unwrap().1;
+            for _ in 0..n {
+                let row: Vec<f64> = lines
+                    .next()
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|w| w.parse().unwrap())
+                    .collect();
+                rows.push(row);
+            }
+            rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        }
+    }
+    out
+}
+
+/// Runs `data/in.NAME` (its text changed by `edit`) and gives rdem's dump and LIGGGHTS'.
+#[allow(clippy::type_complexity)]
+fn run(
+    name: &str,
+    edit: impl Fn(String) -> String,
+) -> (Vec<(u64, Vec<Vec<f64>>)>, Vec<(u64, Vec<Vec<f64>>)>) {
+    let script = edit(std::fs::read_to_string(data().join(format!("in.{name}"))).unwrap());
+    let (dir, out) = run_kept(&format!("multicontact-{name}"), &script, &[], None);
+    assert!(
+        out.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let ours = read_dump(&std::fs::read_to_string(dir.join("dump.atoms")).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+    let theirs =
+        read_dump(&std::fs::read_to_string(data().join(format!("{name}.liggghts.dump"))).unwrap());
+    assert_eq!(ours.len(), theirs.len(), "{name}: dumped steps");
+    (ours, theirs)
+}
+
+/// The largest difference between the two dumps in columns `cols` (0 is the id), each
+/// divided by max(|LIGGGHTS' value|, `floor`).
+fn worst(
+    ours: &[(u64, Vec<Vec<f64>>)],
+    theirs: &[(u64, Vec<Vec<f64>>)],
+    cols: std::ops::Range<usize>,
+    floor: f64,
+) -> (f64, u64, usize) {
+    let mut w = (0.0, 0, 0);
+    for ((s, a), (t, b)) in ours.iter().zip(theirs) {
+        assert_eq!(s, t);
+        assert_eq!(a.len(), b.len(), "atoms at step {s}");
+        for (ra, rb) in a.iter().zip(b) {
+            assert_eq!(ra[0], rb[0], "ids at step {s}");
+            for c in cols.clone() {
+                let e = (ra[c] - rb[c]).abs() / rb[c].abs().max(floor);
+                if e > w.0 {
+                    w = (e, *s, c);
+                }
+            }
+        }
+    }
+    w
+}
+
+#[test]
+fn static_contacts_give_liggghts_forces_step_by_step() {
+    let (ours, theirs) = run("static", |s| s);
+    // Forces ~1e-3..1 N; particle 1's z force is a difference of two (~1e-6 N at step 0).
+    let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-3);
+    assert!(
+        e < 1e-12,
+        "force off by {e:.3e} (relative) at step {step}, column {col}"
+    );
+    // The model changes the forces: particle 1's and 2's contact force grows 14-fold.
+    let f = |s: usize, id: usize, c: usize| theirs[s].1[id - 1][c];
+    assert!((f(6, 1, 6) / f(0, 1, 6)).abs() > 1e3);
+}
+
+#[test]
+fn moving_contacts_give_liggghts_forces_and_torques() {
+    for name in ["spinning_pair", "spinning_wall"] {
+        let (ours, theirs) = run(name, |s| s);
+        let (e, step, col) = worst(&ours, &theirs, 1..4, 1e-3);
+        assert!(
+            e < 1e-12,
+            "{name}: force off by {e:.3e} at step {step}, column {col}"
+        );
+        // Torques ~1e-6..1e-5 N m.
+        let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-6);
+        assert!(
+            e < 1e-12,
+            "{name}: torque off by {e:.3e} at step {step}, column {col}"
+        );
+    }
+}
+
+#[test]
+fn falling_spheres_follow_liggghts() {
+    let (ours, theirs) = run("falling", |s| s);
+    // Positions (m) absolute.
+    let (e, step, col) = worst(&ours, &theirs, 1..4, 1.0);
+    assert!(
+        e < 1e-9,
+        "position off by {e:.3e} m at step {step}, column {col}"
+    );
+    // Without the model the run is far off: the bound above tests the model.
+    let (plain, _) = run("falling", |s| {
+        s.replace(" surface multicontact", "")
+            .replace("fix mc all multicontact/halfspace", "")
+    });
+    let (e, _, _) = worst(&plain, &theirs, 1..4, 1.0);
+    assert!(e > 1e-6, "the run without the model is only {e:.3e} m off");
+}
+
+const BASE: &str = "atom_style sphere
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region box block -0.05 0.05 -0.05 0.05 0 0.1 units box
+create_box 1 box
+fix m1 all property/global youngsModulus peratomtype 1e5
+fix m2 all property/global poissonsRatio peratomtype 0.4
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
+create_atoms 1 single 0 0 0.005 units box
+set atom * diameter 0.01 density 1000
+timestep 1e-5
+";
+
+/// Runs `BASE` + `tail`, which must fail; gives the screen and error output.
+fn fails(tail: &str) -> String {
+    let out = run_script_raw(&format!("{BASE}{tail}"), None);
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!out.status.success(), "should fail: {text}");
+    assert!(!text.contains("panicked"), "{text}");
+    // The message as one line (the report wraps it in a frame).
+    text.replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[test]
+fn a_model_without_the_fix_and_the_fix_without_a_model_are_errors() {
+    let t = fails("pair_style gran model hertz tangential history surface multicontact\npair_coeff * *\nrun 1\n");
+    assert!(t.contains("needs a fix multicontact/halfspace"), "{t}");
+    let t = fails("pair_style gran model hertz tangential history\npair_coeff * *\nfix mc all multicontact/halfspace\nrun 1\n");
+    assert!(t.contains("needs 'surface multicontact'"), "{t}");
+    let t = fails("pair_style gran model hertz tangential history surface multi\n");
+    assert!(
+        t.contains("'default' or 'multicontact'") && t.contains("in.test:15"),
+        "{t}"
+    );
+    let t = fails("fix mc all multicontact/halfspace prefactor 2\n");
+    assert!(
+        t.contains("geometric_prefactor") && t.contains("in.test:15"),
+        "{t}"
+    );
+}
