@@ -200,3 +200,53 @@ fn a_model_without_the_fix_and_the_fix_without_a_model_are_errors() {
         "{t}"
     );
 }
+
+/// LIGGGHTS' `hydrogel_multicontact` tutorial (514 soft spheres under a piston), its
+/// first 3000 steps: the positions, velocities and forces are the same bits on one and
+/// on two threads.
+#[test]
+fn the_tutorial_gives_the_same_bits_on_one_and_two_threads() {
+    let src = Path::new(
+        "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/hydrogel_multicontact",
+    );
+    assert!(
+        src.join("in.hydrogel_multicontact").exists(),
+        "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
+        src.display()
+    );
+    let text = std::fs::read_to_string(src.join("in.hydrogel_multicontact")).unwrap();
+    // Up to the first compression's step 3000, one text dump, no VTK.
+    let mut script = String::new();
+    for l in text.lines() {
+        if l.starts_with("dump") {
+            continue;
+        }
+        if l.starts_with("run") && l.contains("upto") {
+            script.push_str("dump d all custom 3000 d*.txt id x y z vx vy vz fx fy fz\n");
+            script.push_str("run 3000 upto\n");
+            break;
+        }
+        script.push_str(l);
+        script.push('\n');
+    }
+    let mut dumps = Vec::new();
+    for threads in ["1", "2"] {
+        let dir = common::scratch_dir("multicontact-threads");
+        common::copy_dir(src, &dir);
+        std::fs::write(dir.join("in.cut"), &script).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rdem"))
+            .args(["-in", "in.cut", "-log", "none", "--threads", threads])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        dumps.push(std::fs::read_to_string(dir.join("d3000.txt")).unwrap());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    assert!(dumps[0].lines().count() > 514);
+    assert!(dumps[0] == dumps[1], "1 and 2 threads differ");
+}

@@ -53,7 +53,7 @@ use crate::particles::Tag;
 const WALL_BIT: u64 = 1 << 63;
 
 /// One contact of one particle, as the last force evaluation left it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Record {
     /// The particle's tag.
     owner: Tag,
@@ -95,6 +95,11 @@ pub struct State {
     poisson: Vec<f64>,
     /// Last evaluation's records, sorted by (owner, key).
     last: Vec<Record>,
+    /// Where each tag's records start in `last` (indexed by tag; one past the largest
+    /// tag holds the end).
+    first: Vec<u32>,
+    /// Scratch of [`MultiContact::advance`] (kept: no allocation per step).
+    at: Vec<u32>,
 }
 
 /// The geometry and force of a pair contact under the model, seen from the pair's first
@@ -156,16 +161,41 @@ impl MultiContact {
     /// reads (call once per step, before its forces; not at a run's set-up).
     pub fn advance(&self) {
         let mut next = self.next.lock().unwrap_or_else(|e| e.into_inner());
-        let mut s = self.write();
-        std::mem::swap(&mut s.last, &mut next);
-        next.clear();
-        s.last
-            .sort_unstable_by(|a, b| (a.owner, a.key).cmp(&(b.owner, b.key)));
+        let mut guard = self.write();
+        let s = &mut *guard;
+        // A counting sort by owner tag (records of one owner stay together), then each
+        // owner's few records by partner key: the order does not depend on which thread
+        // pushed first.
+        let ntag = next.iter().map(|r| r.owner as usize + 1).max().unwrap_or(0);
+        s.first.clear();
+        s.first.resize(ntag + 1, 0);
+        for r in next.iter() {
+            s.first[r.owner as usize + 1] += 1;
+        }
+        for t in 1..s.first.len() {
+            s.first[t] += s.first[t - 1];
+        }
+        s.last.clear();
+        s.last.resize(next.len(), Record::default());
+        s.at.clone_from(&s.first);
+        for r in next.drain(..) {
+            let k = &mut s.at[r.owner as usize];
+            s.last[*k as usize] = r;
+            *k += 1;
+        }
+        for t in 0..ntag {
+            let (a, b) = (s.first[t] as usize, s.first[t + 1] as usize);
+            if b - a > 1 {
+                s.last[a..b].sort_unstable_by_key(|r| r.key);
+            }
+        }
     }
 
     /// Forgets every record.
     pub fn clear(&self) {
-        self.write().last.clear();
+        let mut s = self.write();
+        s.last.clear();
+        s.first.clear();
         self.next.lock().unwrap_or_else(|e| e.into_inner()).clear();
     }
 
@@ -219,9 +249,11 @@ impl MultiContact {
 impl State {
     /// The records of particle `owner`.
     fn of(&self, owner: Tag) -> &[Record] {
-        let a = self.last.partition_point(|r| r.owner < owner);
-        let b = a + self.last[a..].partition_point(|r| r.owner == owner);
-        &self.last[a..b]
+        let t = owner as usize;
+        if t + 1 >= self.first.len() {
+            return &[];
+        }
+        &self.last[self.first[t] as usize..self.first[t + 1] as usize]
     }
 
     /// The change of radius of particle `owner` (type `ty`, centre `x`, radius `r`) at its
