@@ -157,3 +157,83 @@ run 30000
         );
     }
 }
+
+/// A sphere pressed 0.5 mm into a plate that a new `fix move/mesh` drives down at
+/// 0.1 m/s (E = 23.3 kPa, e = 0.5): LIGGGHTS 3.8 gives the first run's set-up the force
+/// without the plate's velocity (no step has moved the plate yet), and every later step
+/// and set-up the damped one, also after `unfix` and a new motion. Figures: LIGGGHTS 3.8
+/// runs of this script (fz of the sphere, dumped at steps 0–4). Before, rdem's set-up
+/// force was −0.0762913 N.
+#[test]
+fn a_new_mesh_motion_has_no_velocity_at_its_first_set_up() {
+    let piston = std::fs::read_to_string(
+        "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/hydrogel_multicontact/meshes/piston_hydrogel.stl",
+    )
+    .expect("liggghts-doc's hydrogel tutorial (scripts/test.sh installs it)");
+    let script = "atom_style sphere
+atom_modify map array
+boundary f f f
+newton off
+soft_particles yes
+communicate single vel yes
+units si
+region box block -0.05 0.25 -0.05 0.25 -0.05 0.3 units box
+create_box 2 box
+neighbor 0.004 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 23.3e3 5e7
+fix m2 all property/global poissonsRatio peratomtype 0.5 0.5
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.3 0.3 0.3 0.3
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix piston_m all mesh/surface/stress file piston.stl type 2 move 0. 0. 0.1
+fix piston all wall/gran model hertz tangential history mesh n_meshes 1 meshes piston_m
+create_atoms 1 single 0.08 0.08 0.0905 units box
+set atom * diameter 0.02 density 1000
+dump d all custom 1 d.txt id fx fy fz
+dump_modify d format \"%d %.16g %.16g %.16g\"
+fix mv all move/mesh mesh piston_m linear 0. 0. -0.1
+run 1
+run 1
+unfix mv
+fix mv2 all move/mesh mesh piston_m linear 0.05 0. 0.1
+run 1
+unfix mv2
+run 1
+";
+    let (dir, out) = common::run_kept(
+        "mesh-setup-velocity",
+        script,
+        &[("piston.stl", &piston)],
+        None,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let dump = std::fs::read_to_string(dir.join("d.txt")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    // The sphere's row after each TIMESTEP block.
+    let fz: Vec<f64> = dump
+        .lines()
+        .filter(|l| l.starts_with("1 "))
+        .map(|l| l.split_whitespace().nth(3).unwrap().parse().unwrap())
+        .collect();
+    let liggghts = [
+        -0.0462898812493323,
+        -0.07644520273276043,
+        -0.07659924755574622,
+        -0.016412437876789,
+        -0.04642882030477471,
+    ];
+    assert_eq!(fz.len(), liggghts.len(), "{dump}");
+    for (k, (a, b)) in fz.iter().zip(liggghts).enumerate() {
+        assert!(
+            (a / b - 1.0).abs() < 1e-12,
+            "step {k}: fz {a} vs LIGGGHTS {b}"
+        );
+    }
+}

@@ -497,6 +497,23 @@ impl World {
         }
     }
 
+    /// Set-up: the meshes moved to the current time, as in step 3, but a mesh that no
+    /// step has moved yet keeps zero velocity for the set-up's contacts: LIGGGHTS 3.8
+    /// sets a mesh's vertex velocities in the steps of its `fix move/mesh`, so a run's
+    /// set-up sees the motion's velocity only once a step has moved the mesh (measured: a
+    /// sphere pressed on a mesh that a new `move/mesh` drives at 0.1 m/s gets the set-up
+    /// force without damping, and with it at the set-up of every later run).
+    pub(crate) fn move_meshes_at_setup(&mut self) {
+        let t = self.step as f64 * self.dt;
+        for m in &mut self.meshes {
+            let fresh = m.motion.vel.is_empty();
+            m.move_to(t);
+            if fresh {
+                m.motion.vel.clear();
+            }
+        }
+    }
+
     /// Step 3b: the servo meshes (`mesh/surface/stress/servo`) translated by the velocity
     /// (or, `ctrlPV torque`, turned about the axis through their centre of mass by the
     /// angular velocity) their controller set at the end of the previous step (LIGGGHTS'

@@ -273,7 +273,7 @@ impl World {
         self.setup_walls()?;
         self.setup_multicontact()?;
         self.setup_multisphere()?;
-        self.move_meshes();
+        self.move_meshes_at_setup();
         self.reneighbor_then(Particles::shrink_to_fit)?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
         self.compute_forces(false)?;
