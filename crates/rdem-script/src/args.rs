@@ -429,6 +429,18 @@ impl<'a> Args<'a> {
         })
     }
 
+    /// One of the names of `table` (name, value); gives its value. The error lists the
+    /// names, as [`Args::keyword`].
+    pub fn choice<K: Copy>(&mut self, what: &str, table: &[(&'static str, K)]) -> CmdResult<K> {
+        let names = names(table);
+        let w = self.keyword(what, &names)?;
+        Ok(table
+            .iter()
+            .find(|(n, _)| *n == w)
+            .expect("a name of the table")
+            .1)
+    }
+
     /// `yes`/`no` (also `on`/`off`).
     pub fn yes_no(&mut self, what: &str) -> CmdResult<bool> {
         Ok(matches!(
@@ -461,6 +473,11 @@ impl<'a> Args<'a> {
         }
         Ok(())
     }
+}
+
+/// The names of a (name, value) table, in its order.
+pub fn names<K>(table: &[(&'static str, K)]) -> Vec<&'static str> {
+    table.iter().map(|(n, _)| *n).collect()
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 
 use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind, SurfaceKind, TangentialKind};
 
-use crate::args::{suggest, Args, CmdResult};
+use crate::args::{names, suggest, Args, CmdResult};
 
 /// Model types, in the order LIGGGHTS requires.
 pub const ORDER: [&str; 5] = [
@@ -24,23 +24,44 @@ pub const SWITCHES: [&str; 5] = [
     "absolute_damping",
 ];
 
-/// Normal model names (`model ...`).
-pub const NORMAL_MODELS: [&str; 5] = [
-    "hertz",
-    "hooke",
-    "hooke/hysteresis",
-    "hertz/stiffness",
-    "hooke/stiffness",
+/// Normal models (`model ...`): the one table of their names.
+pub const NORMAL_MODELS: &[(&str, NormalKind)] = &[
+    ("hertz", NormalKind::Hertz),
+    ("hooke", NormalKind::Hooke),
+    ("hooke/hysteresis", NormalKind::HookeHysteresis),
+    ("hertz/stiffness", NormalKind::HertzStiffness),
+    ("hooke/stiffness", NormalKind::HookeStiffness),
 ];
 
-/// Cohesion model names (`cohesion ...`).
-pub const COHESION_MODELS: [&str; 5] = ["off", "sjkr", "sjkr2", "bond", "easo/capillary/viscous"];
+/// Tangential models (`tangential ...`).
+pub const TANGENTIAL_MODELS: &[(&str, TangentialKind)] = &[
+    ("history", TangentialKind::History),
+    ("no_history", TangentialKind::NoHistory),
+];
 
-/// Surface model names (`surface ...`).
-pub const SURFACE_MODELS: [&str; 2] = ["default", "multicontact"];
+/// Cohesion models (`cohesion ...`).
+pub const COHESION_MODELS: &[(&str, CohesionKind)] = &[
+    ("off", CohesionKind::Off),
+    ("sjkr", CohesionKind::Sjkr),
+    ("sjkr2", CohesionKind::Sjkr2),
+    ("bond", CohesionKind::Bond),
+    ("easo/capillary/viscous", CohesionKind::Easo),
+];
 
-/// Rolling friction model names (`rolling_friction ...`).
-pub const ROLLING_MODELS: [&str; 5] = ["off", "cdt", "epsd", "epsd2", "epsd3"];
+/// Surface models (`surface ...`).
+pub const SURFACE_MODELS: &[(&str, SurfaceKind)] = &[
+    ("default", SurfaceKind::Default),
+    ("multicontact", SurfaceKind::Multicontact),
+];
+
+/// Rolling friction models (`rolling_friction ...`).
+pub const ROLLING_MODELS: &[(&str, RollingKind)] = &[
+    ("off", RollingKind::Off),
+    ("cdt", RollingKind::Cdt),
+    ("epsd", RollingKind::Epsd),
+    ("epsd2", RollingKind::Epsd2),
+    ("epsd3", RollingKind::Epsd3),
+];
 
 /// Keywords of `cohesion bond` (LIGGGHTS-INL), switches like [`SWITCHES`].
 pub const BOND_SWITCHES: [&str; 15] = [
@@ -93,21 +114,8 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
         last = Some(k);
         a.seek(a.pos() + 1);
         match k {
-            0 => {
-                m.normal = match a.keyword("normal model", &NORMAL_MODELS)? {
-                    "hertz" => NormalKind::Hertz,
-                    "hooke" => NormalKind::Hooke,
-                    "hertz/stiffness" => NormalKind::HertzStiffness,
-                    "hooke/stiffness" => NormalKind::HookeStiffness,
-                    _ => NormalKind::HookeHysteresis,
-                }
-            }
-            1 => {
-                m.tangential = match a.keyword("tangential model", &["history", "no_history"])? {
-                    "history" => TangentialKind::History,
-                    _ => TangentialKind::NoHistory,
-                }
-            }
+            0 => m.normal = a.choice("normal model", NORMAL_MODELS)?,
+            1 => m.tangential = a.choice("tangential model", TANGENTIAL_MODELS)?,
             2 => {
                 if let Some(w @ "washino/capillary/viscous") = a.peek() {
                     // LIGGGHTS 3.8 has this liquid-bridge model; rdem does not yet.
@@ -116,33 +124,14 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
                         format!("cohesion {w} (liquid bridges) is not supported yet"),
                         Some(format!(
                             "supported cohesion models: {}",
-                            COHESION_MODELS.join(", ")
+                            names(COHESION_MODELS).join(", ")
                         )),
                     ));
                 }
-                m.cohesion = match a.keyword("cohesion model", &COHESION_MODELS)? {
-                    "sjkr" => CohesionKind::Sjkr,
-                    "sjkr2" => CohesionKind::Sjkr2,
-                    "bond" => CohesionKind::Bond,
-                    "easo/capillary/viscous" => CohesionKind::Easo,
-                    _ => CohesionKind::Off,
-                }
+                m.cohesion = a.choice("cohesion model", COHESION_MODELS)?;
             }
-            3 => {
-                m.rolling = match a.keyword("rolling friction model", &ROLLING_MODELS)? {
-                    "cdt" => RollingKind::Cdt,
-                    "epsd" => RollingKind::Epsd,
-                    "epsd2" => RollingKind::Epsd2,
-                    "epsd3" => RollingKind::Epsd3,
-                    _ => RollingKind::Off,
-                }
-            }
-            _ => {
-                m.surface = match a.keyword("surface model", &SURFACE_MODELS)? {
-                    "multicontact" => SurfaceKind::Multicontact,
-                    _ => SurfaceKind::Default,
-                }
-            }
+            3 => m.rolling = a.choice("rolling friction model", ROLLING_MODELS)?,
+            _ => m.surface = a.choice("surface model", SURFACE_MODELS)?,
         }
     }
     Ok(m)
@@ -278,14 +267,20 @@ fn parse_switches_while(
 pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptError {
     let w = &a.words()[k].text;
     // A model name without its type in front (`pair_style gran hertz ...`).
-    let ty = match w.as_str() {
-        "hertz" | "hooke" | "hooke/hysteresis" | "hertz/stiffness" | "hooke/stiffness" => {
-            Some("model")
-        }
-        "history" | "no_history" => Some("tangential"),
-        "sjkr" | "sjkr2" | "bond" | "easo/capillary/viscous" => Some("cohesion"),
-        "cdt" | "epsd" | "epsd2" | "epsd3" => Some("rolling_friction"),
-        _ => None,
+    let w_ = w.as_str();
+    let has = |names: Vec<&str>| names.contains(&w_) && w_ != "off" && w_ != "default";
+    let ty = if has(names(NORMAL_MODELS)) {
+        Some("model")
+    } else if has(names(TANGENTIAL_MODELS)) {
+        Some("tangential")
+    } else if has(names(COHESION_MODELS)) {
+        Some("cohesion")
+    } else if has(names(ROLLING_MODELS)) {
+        Some("rolling_friction")
+    } else if has(names(SURFACE_MODELS)) {
+        Some("surface")
+    } else {
+        None
     };
     if let Some(ty) = ty {
         return a.error_at(
@@ -306,4 +301,55 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
         format!("unknown keyword '{w}'"),
         Some(suggest(w, &valid)),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each table names every kind once (a new kind must get its name here: the parser,
+    /// its errors and the 2.x note line all read these tables).
+    #[test]
+    fn every_model_kind_has_one_name() {
+        fn once<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)], all: &[K]) {
+            for k in all {
+                let n = table.iter().filter(|(_, v)| v == k).count();
+                assert_eq!(n, 1, "{k:?}");
+            }
+            assert_eq!(table.len(), all.len());
+            let mut sorted = names(table);
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), table.len());
+        }
+        use CohesionKind as C;
+        use NormalKind as N;
+        use RollingKind as R;
+        once(
+            NORMAL_MODELS,
+            &[
+                N::Hertz,
+                N::Hooke,
+                N::HookeHysteresis,
+                N::HertzStiffness,
+                N::HookeStiffness,
+            ],
+        );
+        once(
+            TANGENTIAL_MODELS,
+            &[TangentialKind::History, TangentialKind::NoHistory],
+        );
+        once(
+            COHESION_MODELS,
+            &[C::Off, C::Sjkr, C::Sjkr2, C::Bond, C::Easo],
+        );
+        once(
+            ROLLING_MODELS,
+            &[R::Off, R::Cdt, R::Epsd, R::Epsd2, R::Epsd3],
+        );
+        once(
+            SURFACE_MODELS,
+            &[SurfaceKind::Default, SurfaceKind::Multicontact],
+        );
+    }
 }

@@ -26,6 +26,13 @@ const OLD_MODELS: [(&str, NormalKind, TangentialKind); 3] = [
     ("hooke", NormalKind::Hooke, TangentialKind::NoHistory),
 ];
 
+/// The cohesion models of the 2.x form.
+const COHESION: &[(&str, CohesionKind)] =
+    &[("off", CohesionKind::Off), ("sjkr", CohesionKind::Sjkr)];
+
+/// The rolling friction models of the 2.x form.
+const ROLLING: &[(&str, RollingKind)] = &[("off", RollingKind::Off), ("cdt", RollingKind::Cdt)];
+
 /// The keywords of the 2.x form.
 pub const KEYWORDS: [&str; 4] = [
     "tangential_damping",
@@ -122,16 +129,10 @@ pub fn read_keyword(a: &mut Args, m: &mut ContactModel) -> CmdResult {
                 a.keyword("tangential_damping setting", &["on", "off"])? == "on";
         }
         "cohesion" => {
-            m.cohesion = match a.keyword("cohesion model", &["off", "sjkr"])? {
-                "sjkr" => CohesionKind::Sjkr,
-                _ => CohesionKind::Off,
-            };
+            m.cohesion = a.choice("cohesion model", COHESION)?;
         }
         "rolling_friction" => {
-            m.rolling = match a.keyword("rolling friction model", &["off", "cdt"])? {
-                "cdt" => RollingKind::Cdt,
-                _ => RollingKind::Off,
-            };
+            m.rolling = a.choice("rolling friction model", ROLLING)?;
         }
         _ => {
             if a.keyword("viscous setting", &["off", "on", "stokes"])? != "off" {
@@ -185,14 +186,12 @@ pub fn read_pair_words(a: &mut Args, m: &mut ContactModel) -> CmdResult<Form> {
 /// `m` as the model words of `pair_style gran` (3.x): the model types, then the switches
 /// that differ from their defaults.
 pub fn model_words(m: &ContactModel) -> String {
-    let mut s = String::from(match m.normal {
-        NormalKind::Hooke => "model hooke",
-        _ => "model hertz",
-    });
-    s.push_str(match m.tangential {
-        TangentialKind::NoHistory => " tangential no_history",
-        _ => " tangential history",
-    });
+    // The 3.x names, from the 3.x tables.
+    let mut s = format!(
+        "model {} tangential {}",
+        name_of(crate::models::NORMAL_MODELS, m.normal),
+        name_of(crate::models::TANGENTIAL_MODELS, m.tangential)
+    );
     if m.cohesion == CohesionKind::Sjkr {
         s.push_str(" cohesion sjkr");
     }
@@ -212,4 +211,13 @@ pub fn text_from(a: &Args, from: usize) -> String {
         .map(|w| w.text.as_str())
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// The name of `kind` in `table` (every kind of a model table has one).
+fn name_of<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)], kind: K) -> &'static str {
+    table
+        .iter()
+        .find(|(_, v)| *v == kind)
+        .map(|(n, _)| *n)
+        .unwrap_or_else(|| panic!("{kind:?} has no name in its table"))
 }
