@@ -47,6 +47,7 @@ use std::sync::{Mutex, RwLock, RwLockReadGuard, RwLockWriteGuard};
 
 use glam::DVec3;
 
+use crate::contact::Geom;
 use crate::particles::Tag;
 
 /// Partner keys of walls have this bit set (pair partners are particle tags).
@@ -125,11 +126,6 @@ impl MultiContact {
         m
     }
 
-    /// The prefactor.
-    pub fn gamma(&self) -> f64 {
-        self.read().gamma
-    }
-
     /// What a force pass reads (held for the pass).
     pub fn read(&self) -> RwLockReadGuard<'_, State> {
         self.state.read().unwrap_or_else(|e| e.into_inner())
@@ -191,16 +187,7 @@ impl MultiContact {
         }
     }
 
-    /// Forgets every record.
-    pub fn clear(&self) {
-        let mut s = self.write();
-        s.last.clear();
-        s.first.clear();
-        self.next.lock().unwrap_or_else(|e| e.into_inner()).clear();
-    }
-
     /// Records a pair contact that [`State::pair`] shaped, with normal force `f`.
-    #[allow(clippy::too_many_arguments)]
     pub fn record_pair(
         &self,
         (tag_a, xa): (Tag, DVec3),
@@ -261,7 +248,6 @@ impl State {
     /// contact's own point and inward normal are taken from that evaluation too, moved
     /// with the particle since; a contact that is new uses `p` (relative to the centre)
     /// and `n` as they are now.
-    #[allow(clippy::too_many_arguments)]
     pub fn correction(
         &self,
         (owner, ty, x, r): (Tag, u32, DVec3, f64),
@@ -336,10 +322,19 @@ impl State {
         })
     }
 
-    /// The corrected radius of a particle (tag, type, centre, radius) touching wall `key`
-    /// at distance `dist` along the unit normal `n` from the wall to its centre.
-    pub fn wall_radius(&self, q: (Tag, u32, DVec3, f64), key: u64, n: DVec3, dist: f64) -> f64 {
-        q.3 + self.correction(q, key, -dist * n, n)
+    /// Shapes the wall contact `g` (made by [`Geom::wall`] for the particle's tag, type
+    /// and centre) against wall `key` under the model: the corrected radius r' gives the
+    /// overlap r' − dist, R* = r' and the lever arm r' − δ'/2, as LIGGGHTS 3.8. False
+    /// when r' no longer reaches the wall.
+    pub fn shape_wall(&self, g: &mut Geom, (tag, ty, x): (Tag, u32, DVec3), key: u64) -> bool {
+        let r = g.ri + self.correction((tag, ty, x, g.ri), key, -g.dist * g.n, g.n);
+        if r <= g.dist {
+            return false;
+        }
+        g.delta = r - g.dist;
+        g.r_star = r;
+        g.ci = r - 0.5 * g.delta;
+        true
     }
 }
 

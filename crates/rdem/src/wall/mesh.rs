@@ -903,12 +903,9 @@ impl MeshPass<'_> {
                     .as_ref()
                     .map(|(_, _, w)| MultiContact::wall_key(*w, t.mesh, t.tri));
                 if let (Some((_, state, _)), Some(key)) = (&mc, mc_key) {
-                    let r = state.wall_radius((p.tag[i], p.ty[i], p.x[i], r), key, t.n, t.dist);
-                    if r <= t.dist {
+                    if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), key) {
                         continue;
                     }
-                    (g.delta, g.r_star) = (r - t.dist, r);
-                    g.ci = r - 0.5 * g.delta;
                 }
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);

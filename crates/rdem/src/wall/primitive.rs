@@ -457,13 +457,9 @@ impl WallPass<'_> {
                 update,
             );
             if let Some((_, state, key)) = &mc {
-                let r = state.wall_radius((p.tag[i], p.ty[i], p.x[i], r), *key, n, d);
-                if r <= d {
+                if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), *key) {
                     continue;
                 }
-                (g.delta, g.r_star) = (r - d, r);
-                // The lever arm is the corrected radius less half the overlap.
-                g.ci = r - 0.5 * g.delta;
             }
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
