@@ -458,6 +458,36 @@ impl<'a> Args<'a> {
         ))
     }
 
+    /// A value word that may also be `NULL` or a `v_name` variable reference, as `accept`
+    /// says; anything else must be a number ("`what` must be a number, not 'zero'", with
+    /// the forms accepted in the help line).
+    pub fn num_or_var(&mut self, what: &str, accept: Accept) -> CmdResult<NumOrVar> {
+        let (null, var, forms) = match accept {
+            Accept::Null => (true, false, "a number or NULL"),
+            Accept::Var => (false, true, "a number or v_name"),
+            Accept::NullOrVar => (true, true, "a number, NULL or v_name"),
+        };
+        match self.peek() {
+            Some("NULL") if null => {
+                self.pos += 1;
+                Ok(NumOrVar::Null)
+            }
+            Some(w) if var && w.len() > 2 && w.starts_with("v_") => {
+                self.pos += 1;
+                Ok(NumOrVar::Var(w[2..].to_string()))
+            }
+            _ => {
+                let w = self.word(what)?;
+                self.f64_at(self.pos - 1).map(NumOrVar::Num).ok_or_else(|| {
+                    self.error_prev(
+                        format!("{what} must be a number, not '{w}'"),
+                        Some(format!("give {forms}")),
+                    )
+                })
+            }
+        }
+    }
+
     /// Errors if words are left.
     pub fn done(&self) -> CmdResult {
         if self.pos < self.words.len() {
@@ -472,6 +502,46 @@ impl<'a> Args<'a> {
             ));
         }
         Ok(())
+    }
+}
+
+/// The forms a value word may take besides a number ([`Args::num_or_var`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Accept {
+    /// A number or `NULL`.
+    Null,
+    /// A number or `v_name`.
+    Var,
+    /// A number, `NULL` or `v_name`.
+    NullOrVar,
+}
+
+/// A value word read by [`Args::num_or_var`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum NumOrVar {
+    /// A number.
+    Num(f64),
+    /// `NULL`: the component is left alone.
+    Null,
+    /// `v_name`: the variable `name`, evaluated when the value is used.
+    Var(String),
+}
+
+impl NumOrVar {
+    /// The number, `None` for `NULL` or a variable.
+    pub fn num(&self) -> Option<f64> {
+        match self {
+            Self::Num(v) => Some(*v),
+            _ => None,
+        }
+    }
+
+    /// The variable's name, if this is one.
+    pub fn var(&self) -> Option<&str> {
+        match self {
+            Self::Var(name) => Some(name),
+            _ => None,
+        }
     }
 }
 

@@ -35,25 +35,34 @@ pub fn parallel_light(n: usize) -> bool {
     n >= PAR_MIN_LIGHT && rayon::current_num_threads() > 1
 }
 
-/// The read-only per-particle arrays of the post-force passes, whole (indexed by particle).
+/// The read-only per-particle arrays of the post-force passes, whole (indexed by particle,
+/// owned particles first): what a post-force fix reads ([`crate::fix::ForceFix`]).
 #[derive(Clone, Copy)]
-pub(crate) struct View<'a> {
+pub struct View<'a> {
+    /// Positions.
     pub x: &'a [DVec3],
+    /// Velocities.
     pub v: &'a [DVec3],
+    /// Angular velocities.
     pub omega: &'a [DVec3],
+    /// Radii.
     pub radius: &'a [f64],
+    /// Masses.
     pub rmass: &'a [f64],
     /// The contact masses ([`crate::particles::Particles::contact_mass`]).
     pub mcontact: &'a [f64],
+    /// Atom types.
     pub ty: &'a [u32],
+    /// Group masks.
     pub mask: &'a [u32],
+    /// Tags.
     pub tag: &'a [crate::particles::Tag],
 }
 
 impl<'a> View<'a> {
     /// The view of `p`'s arrays, with its forces, torques and properties (dense and sparse) split off
     /// mutably.
-    pub fn split(
+    pub(crate) fn split(
         p: &'a mut Particles,
     ) -> (
         Self,

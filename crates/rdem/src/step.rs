@@ -37,7 +37,7 @@
 //!    [Comm]
 //! 9. post-force fixes in definition order, each particle seeing them in that order:
 //!    walls (`wall/gran` primitive and mesh), gravity, addforce, setforce, viscous,
-//!    freeze, aveforce (which needs the group's total force over all ranks, so the fixes
+//!    freeze, the front end's force fixes ([`crate::fix::ForceFix`]: `speedcontrol`), aveforce (which needs the group's total force over all ranks, so the fixes
 //!    around it run in separate passes) [Modify]
 //!    9b. heat conduction (`heat/gran`): the heat flows of the step's pair and wall
 //!    contacts (see [`crate::heat`]; not at a run's set-up) [Modify]

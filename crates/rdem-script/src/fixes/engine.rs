@@ -8,7 +8,7 @@ use glam::DVec3;
 use rdem::{Fix, FixKind};
 
 use super::{style, FixHead, FixRow, ScriptFix, Stages};
-use crate::args::{Args, CmdResult};
+use crate::args::{Accept, Args, CmdResult, NumOrVar};
 use crate::sim::Sim;
 
 /// The registry row of `nve/sphere`.
@@ -177,16 +177,14 @@ fn aveforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Script
     let mut v = [None; 3];
     for (k, c) in v.iter_mut().enumerate() {
         let what = ["fx", "fy", "fz"][k];
-        match a.peek() {
-            Some("NULL") => a.seek(a.pos() + 1),
-            Some(w) if w.starts_with("v_") => {
-                return Err(a.error_at(
-                    a.pos(),
+        match a.num_or_var(&format!("{what} (a number or NULL)"), Accept::NullOrVar)? {
+            NumOrVar::Var(_) => {
+                return Err(a.error_prev(
                     "aveforce with variables is not supported yet; give numbers or NULL",
                     None,
                 ))
             }
-            _ => *c = Some(a.f64(&format!("{what} (a number or NULL)"))?),
+            value => *c = value.num(),
         }
     }
     if !a.is_done() {
@@ -203,15 +201,15 @@ fn aveforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Script
 fn addforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let mut v = [0.0; 3];
     for (k, c) in v.iter_mut().enumerate() {
-        let w = a.word(["fx", "fy", "fz"][k])?;
-        if w.starts_with("v_") {
-            return Err(a.error_prev(
-                "addforce with variables is not supported yet; give numbers",
-                None,
-            ));
+        match a.num_or_var(["fx", "fy", "fz"][k], Accept::Var)? {
+            NumOrVar::Num(v) => *c = v,
+            _ => {
+                return Err(a.error_prev(
+                    "addforce with variables is not supported yet; give numbers",
+                    None,
+                ))
+            }
         }
-        a.seek(a.pos() - 1);
-        *c = a.f64(["fx", "fy", "fz"][k])?;
     }
     a.done()?;
     let force = DVec3::from_array(v);
@@ -222,11 +220,9 @@ fn setforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Script
     let mut v = [None; 3];
     for (k, c) in v.iter_mut().enumerate() {
         let what = ["fx", "fy", "fz"][k];
-        if a.peek() == Some("NULL") {
-            a.seek(a.pos() + 1);
-        } else {
-            *c = Some(a.f64(&format!("{what} (a number or NULL)"))?);
-        }
+        *c = a
+            .num_or_var(&format!("{what} (a number or NULL)"), Accept::Null)?
+            .num();
     }
     a.done()?;
     engine_fix(sim, a, head, FixKind::SetForce { force: v })

@@ -18,7 +18,7 @@ use rdem::{Fix, FixKind};
 
 use super::engine::InEngine;
 use super::{style, FixHead, FixRow, ScriptFix, Stages};
-use crate::args::{Args, CmdResult};
+use crate::args::{Accept, Args, CmdResult, NumOrVar};
 use crate::context;
 use crate::sim::Sim;
 
@@ -30,13 +30,6 @@ pub(super) const ROW: FixRow = style(
     "`G vector x y z`, `G chute angle`, `G spherical phi theta` (degrees); any value an equal-style `v_name`, evaluated every step",
 )
 .notes("`gradient` stops with an error, as in LIGGGHTS 3.8 (its manual names it, its code refuses it)");
-
-/// A number, or an equal-style variable evaluated every step.
-#[derive(Clone, Debug)]
-enum Value {
-    Num(f64),
-    Var(String),
-}
 
 /// How the direction is given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,7 +46,7 @@ pub struct Gravity {
     /// `dimension 2`: the direction lies in the xy plane.
     flat: bool,
     /// Magnitude, then the style's arguments.
-    values: Vec<Value>,
+    values: Vec<NumOrVar>,
 }
 
 /// The acceleration of `style` with magnitude `g` and arguments `args`, computed as
@@ -98,7 +91,7 @@ fn accel(style: Style, g: f64, args: &[f64], flat: bool) -> Option<DVec3> {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let mut values = vec![value(a, "gravity magnitude")?];
+    let mut values = vec![a.num_or_var("gravity magnitude", Accept::Var)?];
     let style_at = a.pos();
     if a.peek() == Some("gradient") {
         return Err(a.error_at(
@@ -109,17 +102,17 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     }
     let style = match a.keyword("gravity style", &["vector", "chute", "spherical"])? {
         "chute" => {
-            values.push(value(a, "chute angle (degrees)")?);
+            values.push(a.num_or_var("chute angle (degrees)", Accept::Var)?);
             Style::Chute
         }
         "spherical" => {
-            values.push(value(a, "phi (degrees from +x)")?);
-            values.push(value(a, "theta (degrees from +z)")?);
+            values.push(a.num_or_var("phi (degrees from +x)", Accept::Var)?);
+            values.push(a.num_or_var("theta (degrees from +z)", Accept::Var)?);
             Style::Spherical
         }
         _ => {
             for c in ["x", "y", "z"] {
-                values.push(value(a, &format!("gravity vector {c}"))?);
+                values.push(a.num_or_var(&format!("gravity vector {c}"), Accept::Var)?);
             }
             Style::Vector
         }
@@ -128,13 +121,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     sim.world_ref(a)?;
     let flat = sim.setup.dimension == 2;
     // With variables the acceleration is set before each step; until then it is zero.
-    let nums: Option<Vec<f64>> = values
-        .iter()
-        .map(|v| match v {
-            Value::Num(x) => Some(*x),
-            Value::Var(_) => None,
-        })
-        .collect();
+    let nums: Option<Vec<f64>> = values.iter().map(NumOrVar::num).collect();
     let acc = match nums {
         Some(n) => accel(style, n[0], &n[1..], flat).ok_or_else(|| {
             a.error_at(
@@ -155,17 +142,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     }))
 }
 
-/// A number or `v_name`.
-fn value(a: &mut Args, what: &str) -> CmdResult<Value> {
-    match a.peek() {
-        Some(w) if w.starts_with("v_") && w.len() > 2 => {
-            a.seek(a.pos() + 1);
-            Ok(Value::Var(w[2..].to_string()))
-        }
-        _ => Ok(Value::Num(a.f64(what)?)),
-    }
-}
-
 impl ScriptFix for Gravity {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
         self.inner.install(sim, a, head)
@@ -180,26 +156,16 @@ impl ScriptFix for Gravity {
         step: u64,
         _setup: bool,
     ) -> Result<(), String> {
-        if self.values.iter().all(|v| matches!(v, Value::Num(_))) {
+        if self.values.iter().all(|v| v.var().is_none()) {
             return Ok(());
         }
-        let names: Vec<Option<&str>> = self
-            .values
-            .iter()
-            .map(|v| match v {
-                Value::Num(_) => None,
-                Value::Var(name) => Some(name.as_str()),
-            })
-            .collect();
+        let names: Vec<Option<&str>> = self.values.iter().map(NumOrVar::var).collect();
         let vars = context::eval_equal_at(sim, step, &names, "fix gravity", "")?;
         let nums: Vec<f64> = self
             .values
             .iter()
             .zip(vars)
-            .map(|(v, x)| match v {
-                Value::Num(n) => *n,
-                Value::Var(_) => x.expect("evaluated"),
-            })
+            .map(|(v, x)| v.num().or(x).expect("a number or an evaluated variable"))
             .collect();
         let w = sim.world.as_mut().expect("eval_equal_at checked");
         let acc = accel(self.style, nums[0], &nums[1..], self.flat)

@@ -42,6 +42,7 @@ mod print;
 mod property_atom;
 mod property_global;
 mod sampling;
+mod speedcontrol;
 mod sph;
 mod wall_gran;
 mod wall_gran_old;
@@ -362,6 +363,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_SETFORCE,
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
+        speedcontrol::ROW,
         sph::ROW_CONTINUITY,
         sph::ROW_SUMMATION,
         sph::ROW_CORR,

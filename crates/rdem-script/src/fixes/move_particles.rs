@@ -14,7 +14,7 @@ use rdem::FixKind;
 
 use super::engine::InEngine;
 use super::{style, FixHead, FixRow, ScriptFix, Stages};
-use crate::args::{Args, CmdResult};
+use crate::args::{Accept, Args, CmdResult};
 use crate::context;
 use crate::sim::Sim;
 use crate::variables::Variable;
@@ -129,12 +129,10 @@ fn engine_move<'a>(w: &'a rdem::World, id: &str) -> Option<&'a Move> {
 
 /// A number or NULL.
 fn opt(a: &mut Args, what: &str) -> CmdResult<Option<f64>> {
-    if a.peek() == Some("NULL") {
-        a.seek(a.pos() + 1);
-        Ok(None)
-    } else {
-        Ok(Some(a.f64(&format!("{what} (a number or NULL)"))?))
-    }
+    Ok(
+        a.num_or_var(&format!("{what} (a number or NULL)"), Accept::Null)?
+            .num(),
+    )
 }
 
 /// A `v_name` of an equal-style variable or NULL.

@@ -10,7 +10,7 @@ use rdem::FixKind;
 
 use super::engine::engine_fix;
 use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
-use crate::args::{Args, CmdResult};
+use crate::args::{Accept, Args, CmdResult};
 use crate::sim::Sim;
 
 /// The registry row of `sph/density/continuity`.
@@ -166,11 +166,8 @@ fn wall(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>
     };
     let mut planes = [None; 2];
     for (k, plane) in planes.iter_mut().enumerate() {
-        if a.peek() == Some("NULL") {
-            a.seek(a.pos() + 1);
-        } else {
-            *plane = Some(a.f64(["lo (a position or NULL)", "hi (a position or NULL)"][k])?);
-        }
+        let what = ["lo (a position or NULL)", "hi (a position or NULL)"][k];
+        *plane = a.num_or_var(what, Accept::Null)?.num();
     }
     let r0 = a.positive("r0")?;
     let d = a.f64("D")?;

@@ -17,7 +17,7 @@ use rdem::wall::MeshWall;
 use rdem::{ContactModel, Fix, FixKind, PrimitiveWall, WallShape};
 
 use super::{mesh_ref, FixHead, FixRow, ScriptFix, Stages};
-use crate::args::{Args, CmdResult};
+use crate::args::{Accept, Args, CmdResult};
 use crate::old_gran::{self, Form};
 use crate::sim::Sim;
 
@@ -219,11 +219,8 @@ fn v1_walls(sim: &Sim, a: &mut Args) -> CmdResult<(Vec<Wall>, Shear)> {
             let axis = (plane.as_bytes()[0] - b'x') as usize;
             let mut pos = [None, None];
             for (k, what) in ["lo", "hi"].into_iter().enumerate() {
-                if a.peek() == Some("NULL") {
-                    a.seek(a.pos() + 1);
-                } else {
-                    pos[k] = Some(a.f64(&format!("{what} plane position (or NULL)"))?);
-                }
+                let what = format!("{what} plane position (or NULL)");
+                pos[k] = a.num_or_var(&what, Accept::Null)?.num();
             }
             let ty = wall_type(a)?;
             if pos == [None, None] {

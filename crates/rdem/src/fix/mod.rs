@@ -71,6 +71,41 @@ pub enum FixKind {
     /// `fix wall/region/sph` (post-force, acting alone between the post-force passes:
     /// it reads the SPH pressure).
     WallRegionSph(crate::sph::SphRegionWall),
+    /// A post-force fix that a front end defines ([`ForceFix`]; e.g. `fix speedcontrol`).
+    Force(Box<dyn ForceFix>),
+}
+
+/// A post-force fix defined outside the engine: step 9 of [`crate::step`] calls it in
+/// definition order with the built-in post-force fixes, on chunks of the owned particles
+/// in parallel. A front end adds a force fix as one type that implements this trait,
+/// without an engine edit; it changes the fix's parameters between steps through
+/// [`ForceFix::as_any_mut`] (e.g. variables evaluated before each step).
+pub trait ForceFix: std::fmt::Debug + Send + Sync {
+    /// Acts on the particles `lo..lo + f.len()` that are in the group `groupbit`: `p` is
+    /// indexed by particle, `f` and `torque` start at particle `lo`; `dt` is the
+    /// timestep. Each particle is treated alone (no sum over particles), so that the
+    /// result does not depend on the thread count.
+    fn apply(
+        &self,
+        p: &View,
+        lo: usize,
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        groupbit: u32,
+        dt: f64,
+    );
+
+    /// A boxed copy (fixes are cloned with the world).
+    fn clone_box(&self) -> Box<dyn ForceFix>;
+
+    /// The fix as `Any`, for the front end to update its parameters.
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any;
+}
+
+impl Clone for Box<dyn ForceFix> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
 }
 
 /// A fix: an ID, a group (bit mask) and what it does.
@@ -153,7 +188,8 @@ impl Fix {
             | FixKind::Enforce2d
             | FixKind::Sph(_)
             | FixKind::WallGran(_)
-            | FixKind::MeshWall(_) => {}
+            | FixKind::MeshWall(_)
+            | FixKind::Force(_) => {}
         }
         Ok(Self {
             id: id.to_string(),
@@ -181,40 +217,26 @@ impl Fix {
         )
     }
 
-    /// True if this fix integrates (acts in initial and final integrate).
-    pub fn integrates(&self) -> bool {
-        matches!(
-            self.kind,
-            FixKind::NveSphere
-                | FixKind::Move(_)
-                | FixKind::Sph(crate::sph::SphFix::Nve | crate::sph::SphFix::NveStationary)
-        )
-    }
-
-    /// True if this fix acts after the forces (post_force).
-    pub fn post_force(&self) -> bool {
-        matches!(
-            self.kind,
-            FixKind::Gravity { .. }
-                | FixKind::Freeze
-                | FixKind::Viscous { .. }
-                | FixKind::ViscousScaled { .. }
-                | FixKind::AddForce { .. }
-                | FixKind::SetForce { .. }
-                | FixKind::WallSph(_)
-        )
-    }
-
-    /// The post-force action on the owned particles.
-    pub fn apply_post_force(&self, p: &mut Particles) {
+    /// The per-particle post-force action on the owned particles (`dt`: the timestep).
+    pub fn apply_post_force(&self, p: &mut Particles, dt: f64) {
         let n = p.nlocal();
         let (view, f, torque, _, _) = View::split(p);
-        self.post_force_range(&view, 0, &mut f[..n], &mut torque[..n]);
+        self.post_force_range(&view, 0, &mut f[..n], &mut torque[..n], dt);
     }
 
     /// [`Fix::apply_post_force`] on the particles `lo..lo + f.len()`; `f` and `torque`
-    /// start at particle `lo`.
-    fn post_force_range(&self, p: &View, lo: usize, f: &mut [DVec3], torque: &mut [DVec3]) {
+    /// start at particle `lo`. This match is the one place that says which fixes act
+    /// per particle after the forces; the walls have their own pass
+    /// ([`post_force_pass`]), and the fixes that act alone between the passes are listed
+    /// in [`acts_alone`].
+    fn post_force_range(
+        &self,
+        p: &View,
+        lo: usize,
+        f: &mut [DVec3],
+        torque: &mut [DVec3],
+        dt: f64,
+    ) {
         let n = f.len();
         let bit = self.groupbit;
         let mask = &p.mask[lo..lo + n];
@@ -278,6 +300,7 @@ impl Fix {
                     }
                 }
             }
+            FixKind::Force(fix) => fix.apply(p, lo, f, torque, bit, dt),
             FixKind::NveSphere
             | FixKind::AveForce { .. }
             | FixKind::Enforce2d
@@ -342,10 +365,7 @@ pub(crate) fn post_force(
     let mut start = 0;
     let mut ok = true;
     for k in 0..fixes.len() {
-        if matches!(
-            fixes[k].kind,
-            FixKind::AveForce { .. } | FixKind::Enforce2d | FixKind::WallRegionSph(_)
-        ) {
+        if acts_alone(&fixes[k].kind) {
             if start < k {
                 ok &= post_force_pass(&fixes[start..k], meshes, p, dt, update);
             }
@@ -361,6 +381,15 @@ pub(crate) fn post_force(
     }
     // The last pass runs also without fixes: it checks that every force is finite.
     ok & post_force_pass(&fixes[start..], meshes, p, dt, update)
+}
+
+/// The post-force fixes that act alone between the parallel passes: `aveforce` (a sum over
+/// the group), `enforce2d` (it changes velocities) and `wall/region/sph`.
+fn acts_alone(kind: &FixKind) -> bool {
+    matches!(
+        kind,
+        FixKind::AveForce { .. } | FixKind::Enforce2d | FixKind::WallRegionSph(_)
+    )
 }
 
 impl Fix {
@@ -476,8 +505,8 @@ fn post_force_pass(
                 wall.apply_range(&view, lo, f, torque, h, dt, update);
             } else if let FixKind::MeshWall(wall) = &fix.kind {
                 wall.apply_range(meshes, &view, lo, f, torque, h, dt, update);
-            } else if fix.post_force() {
-                fix.post_force_range(&view, lo, f, torque);
+            } else {
+                fix.post_force_range(&view, lo, f, torque, dt);
             }
             if stored {
                 crate::wall::store_end(f, store);
