@@ -1,10 +1,10 @@
 //! Registries: every name rdem knows in one family (commands, fix styles, compute styles,
 //! dump styles, region styles, variable styles), each in one table of rows. A row names a
 //! command or style, says whether rdem runs it (with its handler) or what it is when it
-//! does not, and carries one line of help and the notes of the README's command table.
+//! does not, and carries one line of help and the notes of the command table of docs/commands.md.
 //!
-//! The unknown-name error, its "did you mean", the list of valid names and the README
-//! table all read these tables (`tests/readme_registry.rs` fails when the README and the
+//! The unknown-name error, its "did you mean", the list of valid names and the tables of
+//! docs/commands.md all read these tables (`tests/readme_registry.rs` fails when that file and the
 //! registries disagree), so a style is added by adding its row and nothing else.
 
 use crate::args::{nearest, Args};
@@ -27,9 +27,9 @@ pub struct Row<H: 'static> {
     pub name: &'static str,
     /// The handler, or why there is none.
     pub support: Support<H>,
-    /// One line: what rdem supports of it (the README table's second column).
+    /// One line: what rdem supports of it (the docs/commands.md table's second column).
     pub help: &'static str,
-    /// Differences and limits worth knowing (the README table's third column).
+    /// Differences and limits worth knowing (the docs/commands.md table's third column).
     pub notes: &'static str,
 }
 
@@ -54,7 +54,7 @@ impl<H> Row<H> {
         }
     }
 
-    /// The same row with README notes.
+    /// The same row with notes (docs/commands.md).
     pub const fn notes(mut self, notes: &'static str) -> Self {
         self.notes = notes;
         self
@@ -73,10 +73,10 @@ impl<H> Row<H> {
 pub struct Registry<H: 'static> {
     /// What a name of this family is called in messages: "command", "fix style", ...
     pub family: &'static str,
-    /// How the README table writes a name of this family: "" for commands, "fix " for
+    /// How docs/commands.md writes a name of this family: "" for commands, "fix " for
     /// fix styles (`fix wall/gran`), ...
     pub readme_prefix: &'static str,
-    /// The rows, in the README's order.
+    /// The rows, in the order of docs/commands.md.
     pub rows: &'static [Row<H>],
 }
 
@@ -152,7 +152,7 @@ impl<H> Registry<H> {
         }
     }
 
-    /// The README table rows of this family: `| name | help | notes |`, one per name rdem
+    /// The docs/commands.md table rows of this family: `| name | help | notes |`, one per name rdem
     /// runs.
     pub fn readme_rows(&self) -> Vec<String> {
         self.rows

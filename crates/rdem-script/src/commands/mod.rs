@@ -1,5 +1,5 @@
 //! The command registry ([`REGISTRY`]): every command rdem runs, with its handler and the
-//! help the README's command table shows, and the LIGGGHTS commands it does not run. The
+//! help the command table of docs/commands.md shows, and the LIGGGHTS commands it does not run. The
 //! handlers live in the files of this folder, grouped by what they act on. Flow-control
 //! commands (`include`, `label`, `jump`, `next`, `if`, `print`, `variable`, `log`, `echo`,
 //! `quit`, and `run`, whose `every` runs commands) are rows too; [`crate::input`], which owns the file stack, runs them.
@@ -69,7 +69,7 @@ const fn flow(name: &'static str, help: &'static str) -> Row<Command> {
     Row::runs(name, Command::Flow, help)
 }
 
-/// Every command, in the README's order, then the LIGGGHTS commands rdem does not run.
+/// Every command, in the order of docs/commands.md, then the LIGGGHTS commands rdem does not run.
 pub static REGISTRY: Registry<Command> = Registry {
     family: "command",
     readme_prefix: "",
@@ -191,14 +191,14 @@ pub fn unknown_command_help(name: &str, all: &[&str]) -> String {
     }
 }
 
-/// The README's command tables, made from the registries: commands, then the fix,
-/// compute and dump styles (`tests/readme_registry.rs` checks the README holds exactly
-/// this).
+/// The command tables of `docs/commands.md`, made from the registries: commands, then
+/// the fix, compute, dump, region and variable styles (`tests/readme_registry.rs` checks
+/// that the file holds exactly this).
 pub fn readme_tables() -> String {
     let mut out = String::new();
     let mut table = |title: &str, head: &str, rows: Vec<String>| {
         out.push_str(&format!(
-            "#### {title}\n\n| {head} | rdem supports | notes |\n|---|---|---|\n"
+            "## {title}\n\n| {head} | rdem supports | notes |\n|---|---|---|\n"
         ));
         for r in rows {
             out.push_str(&r);

@@ -3,9 +3,9 @@
 //!
 //! A style's file holds its parser (script words → a typed value that implements
 //! [`ScriptFix`]), and its registry row: the name, the parser, the [`Stages`] it takes part
-//! in (as LAMMPS' `setmask`), one line of help and the README notes. Adding a style is
+//! in (as LAMMPS' `setmask`), one line of help and the notes of docs/commands.md. Adding a style is
 //! that file and one row in [`REGISTRY`]; the unknown-style error, the "did you mean", the
-//! list of valid styles, `rdem -check` and the README's command table read the registry.
+//! list of valid styles, `rdem -check` and the command table of docs/commands.md read the registry.
 //!
 //! Fixes the engine runs every step (integration, walls, forces) are parsed here and
 //! handed to `World::fixes` (stage [`Stages::ENGINE`]); the script keeps their ID, style
