@@ -50,7 +50,7 @@ pub use domain::{Boundary, Domain};
 pub use error::{Error, Result};
 pub use fix::{Fix, FixKind};
 pub use neighbor::{Exclusions, NeighborSettings};
-pub use pair::{Isa, PairGran};
+pub use pair::PairGran;
 pub use particles::{NewParticle, Particles, Tag};
 pub use step::{HookMask, NoHooks, StepHooks};
 pub use wall::{PrimitiveWall, WallShape};

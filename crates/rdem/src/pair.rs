@@ -9,7 +9,6 @@
 //! rare makes the full list about three times longer than the contact count).
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::bond::{self, BondEvents, BondGeom, BondTable, Event};
 use crate::contact::cohesion::Bridge;
@@ -21,144 +20,17 @@ use crate::contact::{
 use crate::error::Result;
 use crate::multicontact::{MultiContact, State as MultiState};
 use crate::neighbor::{Neighbor, NeighborList};
-use crate::par::{parallel, parallel_light, CHUNK};
 use crate::particles::{Particles, INERTIA_SPHERE};
 
-mod lanes;
 mod liquid;
 mod local;
-pub use lanes::Isa;
-use lanes::{Batch, LaneModel};
+mod near;
 pub use liquid::{
     BridgeBreak, LiquidState, CONTENT as LIQUID_CONTENT, FLUX as LIQUID_FLUX,
     SOURCE as LIQUID_SOURCE,
 };
 pub use local::PairContacts;
-
-/// Fraction of the skin that the near list adds to r_i + r_j.
-const NEAR_MARGIN: f64 = 0.1;
-
-/// When at least this fraction of the listed pairs is near at a neighbor build, the
-/// passes walk the neighbor list itself (see [`NearList::whole`]).
-const WHOLE_FRACTION: f64 = 0.9;
-
-/// The pairs of the neighbor list that may be in contact before any particle moves more
-/// than half the margin; `slot` points back into the neighbor list (history).
-#[derive(Debug, Clone, Default)]
-struct NearList {
-    /// Whether the near list is the whole neighbor list: at the neighbor build nearly
-    /// every listed pair ([`WHOLE_FRACTION`]) was near, as in a packed bed whose skin is
-    /// small beside the particles. A copy would then hold almost the same pairs again
-    /// (with the positions and slots, about 52 bytes per particle at a million), so the
-    /// passes walk the neighbor list ([`NearList::rows`]) and `first`, `partner`, `slot`
-    /// and `xref` stay empty. The pairs beyond the margin are then tested each step and
-    /// never touch; the list stays valid as long as the neighbor list does.
-    whole: bool,
-    first: Vec<u32>,
-    partner: Vec<u32>,
-    slot: Vec<u32>,
-    /// Reverse CSR over all particles (ghosts too): `rk[rfirst[j]..rfirst[j + 1]]` are the
-    /// near-list positions of the pairs whose partner is j, increasing. Only the parallel
-    /// pass reads it, and it makes it ([`NearList::build_reverse`]) when it finds it empty:
-    /// a one-thread run never holds it.
-    rfirst: Vec<u32>,
-    rk: Vec<u32>,
-    xref: Vec<DVec3>,
-    /// `Neighbor::nbuilds` of the list it was made from (0: none yet).
-    built_for: u64,
-    margin: f64,
-    /// `Neighbor::growth` when the near list was built.
-    growth_ref: f64,
-    /// Centre distance below which a pair is listed whatever its radii (the bond reach).
-    reach: f64,
-    /// Contact distance factor: pairs within (r_i + r_j)·factor are listed.
-    factor: f64,
-}
-
-/// The rows the passes walk: the near list's, or with [`NearList::whole`] the neighbor
-/// list's (whose history slot is then the pair's own position).
-#[derive(Debug, Clone, Copy)]
-struct Rows<'a> {
-    first: &'a [u32],
-    partner: &'a [u32],
-    /// Each pair's position in the neighbor list (`None`: the same as in `partner`).
-    slot: Option<&'a [u32]>,
-}
-
-impl Rows<'_> {
-    /// The history slot (neighbor-list position) of pair `k`.
-    #[inline(always)]
-    fn slot(&self, k: usize) -> usize {
-        match self.slot {
-            Some(s) => s[k] as usize,
-            None => k,
-        }
-    }
-
-    /// The pairs of positions `s..e`: partner and history slot.
-    #[inline(always)]
-    fn pairs(&self, s: usize, e: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
-        self.partner[s..e]
-            .iter()
-            .zip(s..e)
-            .map(|(&j, k)| (j as usize, self.slot(k)))
-    }
-}
-
-impl NearList {
-    /// Whether there are rows for `nlocal` owned particles to walk (a near list made
-    /// for them, or the whole neighbor list).
-    fn has_rows(&self, nlocal: usize) -> bool {
-        self.whole || self.first.len() == nlocal + 1
-    }
-
-    /// The rows to walk, over the neighbor list whose rows are `first` and `partner`.
-    fn rows<'a>(&'a self, first: &'a [u32], partner: &'a [u32]) -> Rows<'a> {
-        if self.whole {
-            Rows {
-                first,
-                partner,
-                slot: None,
-            }
-        } else {
-            Rows {
-                first: &self.first,
-                partner: &self.partner,
-                slot: Some(&self.slot),
-            }
-        }
-    }
-
-    /// Makes the reverse CSR (`rfirst`, `rk`) over `n` particles by counting sort
-    /// (stable: increasing k within each partner), over the neighbor list's `partner`
-    /// when the near list is [`NearList::whole`].
-    fn build_reverse(&mut self, list_partner: &[u32], n: usize) {
-        let NearList {
-            whole,
-            partner,
-            rfirst,
-            rk,
-            ..
-        } = self;
-        let partner = if *whole { list_partner } else { &partner[..] };
-        rfirst.clear();
-        rfirst.resize(n + 2, 0);
-        for &j in partner {
-            rfirst[j as usize + 2] += 1;
-        }
-        for a in 2..n + 2 {
-            rfirst[a] += rfirst[a - 1];
-        }
-        rk.clear();
-        rk.resize(partner.len(), 0);
-        for (k, &j) in partner.iter().enumerate() {
-            let c = &mut rfirst[j as usize + 1];
-            rk[*c as usize] = k as u32;
-            *c += 1;
-        }
-        rfirst.truncate(n + 1);
-    }
-}
+use near::{NearList, Rows, WHOLE_FRACTION};
 
 /// The granular pair style: a contact model, its mixed coefficients and the near list.
 #[derive(Debug, Clone)]
@@ -184,12 +56,6 @@ pub struct PairGran {
     pub(crate) ts_warned: bool,
     /// With liquid bridges: the per-particle liquid properties and this pass's breaks.
     pub(crate) liquid: Option<LiquidState>,
-    /// The instruction set of the lane kernel (for the models that have one), or `None`
-    /// for the per-pair kernel. Both give the same bits; set from `RDEM_SIMD`
-    /// ([`Isa::from_env`]).
-    pub simd: Option<Isa>,
-    /// The lane kernel's gathered contacts (single-threaded pass).
-    batch: Batch,
     /// The near fraction from which the passes walk the whole neighbor list
     /// ([`WHOLE_FRACTION`]; tests raise it past 1 to keep a near list).
     whole_fraction: f64,
@@ -212,8 +78,6 @@ impl PairGran {
             step: 0,
             ts_warned: false,
             liquid: None,
-            simd: Isa::from_env(),
-            batch: Batch::default(),
             whole_fraction: WHOLE_FRACTION,
             multicontact: None,
         }
@@ -261,28 +125,7 @@ impl PairGran {
     /// moved more than half the margin since. Ghosts are checked too, so that each rank
     /// decides for its own list without asking the others.
     pub fn near_list_stale(&self, x: &[DVec3], neighbor: &Neighbor) -> bool {
-        let near = &self.near;
-        if near.built_for != neighbor.nbuilds || near.factor != neighbor.factor() {
-            return true;
-        }
-        if near.whole {
-            return false;
-        }
-        if near.xref.len() != x.len() {
-            return true;
-        }
-        // Radius growth since the build eats into the margin as in `Neighbor::moved_too_far`.
-        let half = 0.5 * near.margin - (neighbor.growth - near.growth_ref);
-        if half <= 0.0 {
-            return true;
-        }
-        let lim = half * half;
-        let far = |(a, b): (&DVec3, &DVec3)| (*a - *b).length_squared() > lim;
-        if parallel_light(x.len()) {
-            x.par_iter().zip(&near.xref).any(far)
-        } else {
-            x.iter().zip(&near.xref).any(far)
-        }
+        self.near.stale(x, neighbor)
     }
 
     /// Gives back the near list's buffers and phase 1's (called when the neighbor list is
@@ -297,107 +140,8 @@ impl PairGran {
 
     /// Rebuilds the near list from the neighbor list.
     pub fn build_near_list(&mut self, p: &Particles, neighbor: &Neighbor) {
-        let near = &mut self.near;
-        let list = &neighbor.list;
-        let whole_fraction = self.whole_fraction;
-        near.margin = NEAR_MARGIN * neighbor.settings.skin;
-        near.growth_ref = neighbor.growth;
-        near.reach = self.bond.as_ref().map_or(0.0, |b| b.pair_reach);
-        near.factor = neighbor.factor();
-        let reach = near.reach;
-        let factor = near.factor;
-        let nlocal = p.nlocal();
-        let margin = near.margin;
-        let is_near = |i: usize, j: usize| {
-            let rc = ((p.radius[i] + p.radius[j]) * factor).max(reach) + margin;
-            (p.x[j] - p.x[i]).length_squared() < rc * rc
-        };
-        // The first build for this neighbor list decides whether the near list is the
-        // whole list (the later ones, after particles moved half the margin, keep a
-        // near list).
-        let fresh = near.built_for != neighbor.nbuilds;
-        near.built_for = neighbor.nbuilds;
-        near.whole = false;
-        // The reverse CSR of the old list is stale: the parallel pass makes it anew.
-        near.rfirst.clear();
-        near.rk.clear();
-        if fresh {
-            let count = |lo: usize, hi: usize| {
-                (lo..hi)
-                    .map(|i| {
-                        let ks = list.first[i] as usize..list.first[i + 1] as usize;
-                        list.partner[ks]
-                            .iter()
-                            .filter(|&&j| is_near(i, j as usize))
-                            .count()
-                    })
-                    .sum::<usize>()
-            };
-            let n_near = if parallel(nlocal) {
-                (0..nlocal.div_ceil(CHUNK))
-                    .into_par_iter()
-                    .map(|c| count(c * CHUNK, ((c + 1) * CHUNK).min(nlocal)))
-                    .sum()
-            } else {
-                count(0, nlocal)
-            };
-            let listed = list.first[nlocal] as usize - list.first[0] as usize;
-            if n_near as f64 >= whole_fraction * listed as f64 {
-                near.whole = true;
-                near.first = Vec::new();
-                near.partner = Vec::new();
-                near.slot = Vec::new();
-                near.xref = Vec::new();
-                return;
-            }
-        }
-        near.xref.clear();
-        near.xref.extend_from_slice(&p.x);
-        near.first.clear();
-        near.partner.clear();
-        near.slot.clear();
-        near.first.push(0);
-        // Rows lo..hi: the pairs within the margin, appended in list order, and the end
-        // of each row (relative to the first pair of row lo).
-        let rows = |lo: usize,
-                    hi: usize,
-                    partner: &mut Vec<u32>,
-                    slot: &mut Vec<u32>,
-                    ends: &mut Vec<u32>| {
-            let base = partner.len();
-            for i in lo..hi {
-                for k in list.first[i] as usize..list.first[i + 1] as usize {
-                    let j = list.partner[k] as usize;
-                    if is_near(i, j) {
-                        partner.push(j as u32);
-                        slot.push(k as u32);
-                    }
-                }
-                ends.push((partner.len() - base) as u32);
-            }
-        };
-        if !parallel(nlocal) {
-            let mut ends = std::mem::take(&mut near.first);
-            rows(0, nlocal, &mut near.partner, &mut near.slot, &mut ends);
-            near.first = ends;
-        } else {
-            // In parallel over chunks of rows, joined in chunk order: the same list.
-            let parts: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = (0..nlocal.div_ceil(CHUNK))
-                .into_par_iter()
-                .map(|c| {
-                    let (lo, hi) = (c * CHUNK, ((c + 1) * CHUNK).min(nlocal));
-                    let mut part = (Vec::new(), Vec::new(), Vec::with_capacity(hi - lo));
-                    rows(lo, hi, &mut part.0, &mut part.1, &mut part.2);
-                    part
-                })
-                .collect();
-            for (partner, slot, ends) in parts {
-                let base = near.partner.len() as u32;
-                near.first.extend(ends.iter().map(|e| base + e));
-                near.partner.extend_from_slice(&partner);
-                near.slot.extend_from_slice(&slot);
-            }
-        }
+        let reach = self.bond.as_ref().map_or(0.0, |b| b.pair_reach);
+        self.near.build(p, neighbor, reach, self.whole_fraction);
     }
 
     /// Adds contact forces and torques for every pair of the near list in contact (to
@@ -539,21 +283,10 @@ struct Phase1<'a> {
     lq: &'a [f64],
     /// Where liquid bridges record their breaks (liquid bridges only).
     breaks: Option<&'a liquid::Breaks>,
-    /// The lane kernel's model and instruction set, when the pass uses it.
-    lanes: Option<(LaneModel, Isa)>,
     /// With `surface multicontact`: the store (to record into) and its last records.
     mc: Option<(&'a MultiContact, &'a MultiState)>,
     /// Tags of all particles.
     tag: &'a [crate::particles::Tag],
-}
-
-/// Listed pairs gathered into one [`Batch`] by the lane kernel (whole rows, at least
-/// one): small enough that the batch stays in the first-level cache.
-const LANE_PAIRS: u32 = 128;
-
-thread_local! {
-    /// Each pool thread's [`Batch`] for the parallel pass (kept between passes).
-    static BATCH: std::cell::RefCell<Batch> = std::cell::RefCell::new(Batch::default());
 }
 
 impl Phase1<'_> {
@@ -607,12 +340,6 @@ impl Phase1<'_> {
         let near = self.near;
         let k0 = near.first[lo] as usize;
         let h0 = self.list_first[lo] as usize;
-        if !BOND && self.lanes.is_some() {
-            BATCH.with_borrow_mut(|batch| {
-                self.block_lanes::<VIRIAL>(lo, hi, k0, h0, batch, res, rv, hist, own)
-            });
-            return;
-        }
         let mut empty: [f64; 0] = [];
         for i in lo..hi {
             let coeff_row = self.table.row(self.ty[i]);
@@ -903,206 +630,6 @@ impl Phase1<'_> {
     }
 }
 
-/// The lane kernel's side of phase 1 and of the serial pass (models with a lane form, no
-/// bonds): the touching pairs of the rows that hold about [`LANE_PAIRS`] listed pairs are gathered into a
-/// [`Batch`], computed lane-wise, and their results taken in near-list order, as the
-/// per-pair pass takes them.
-impl Phase1<'_> {
-    /// The end of the batch of rows that starts at row `a` (before `hi`).
-    fn batch_end(&self, a: usize, hi: usize) -> usize {
-        let first = &self.near.first;
-        let mut b = a + 1;
-        while b < hi && first[b] - first[a] < LANE_PAIRS {
-            b += 1;
-        }
-        b
-    }
-
-    /// Gathers the touching pairs of rows `lo..hi` into `batch` (history slots relative
-    /// to list pair `h0`, whose history `hist` starts at), clears the history of the
-    /// others, calls `apart(k)` for every listed pair (k: near-list position; the touching
-    /// ones are taken after) and computes.
-    ///
-    /// Each row is walked twice: first without branches, to pick the touching pairs, then
-    /// over the touching pairs alone, to gather their inputs.
-    fn gather(
-        &self,
-        lo: usize,
-        hi: usize,
-        h0: usize,
-        hist: &mut [f64],
-        batch: &mut Batch,
-        mut apart: impl FnMut(usize),
-    ) {
-        let (model, isa) = self.lanes.expect("a lane model");
-        let w = self.width;
-        let near = self.near;
-        let (x, v, omega, radius, rmass, ty) =
-            (self.x, self.v, self.omega, self.radius, self.rmass, self.ty);
-        batch.clear();
-        batch.uniform = model.uniform;
-        for i in lo..hi {
-            let coeff_row = self.table.row(ty[i]);
-            let (xi, vi, wi, ri, mi) = (x[i], v[i], omega[i], radius[i], rmass[i]);
-            let (k_lo, k_hi) = (near.first[i] as usize, near.first[i + 1] as usize);
-            let touching = batch.select(k_hi - k_lo, |m| {
-                let k = k_lo + m;
-                let j = near.partner[k] as usize;
-                let rsq = (xi - x[j]).length_squared();
-                let radsum = ri + radius[j];
-                // As in `contact`: a NaN distance is no contact.
-                let touch = rsq < radsum * radsum;
-                if w > 0 {
-                    // `clear_history` unless touching, without a branch.
-                    let h = &mut hist[(near.slot(k) - h0) * w..][..w];
-                    let keep = touch | h.iter().all(|&a| a == 0.0);
-                    let mask = (keep as u64).wrapping_neg();
-                    for a in h {
-                        *a = f64::from_bits(a.to_bits() & mask);
-                    }
-                }
-                apart(k);
-                touch
-            });
-            for t in 0..touching {
-                let k = k_lo + batch.picked(t);
-                let j = near.partner[k] as usize;
-                let slot = near.slot(k) - h0;
-                let d = xi - x[j];
-                let h = if w > 0 {
-                    [hist[slot * w], hist[slot * w + 1], hist[slot * w + 2]]
-                } else {
-                    [0.0; 3]
-                };
-                let (vr, wj) = (vi - v[j], omega[j]);
-                batch.push(
-                    j as u32,
-                    slot as u32,
-                    k as u32,
-                    [
-                        d.x, d.y, d.z, ri, radius[j], mi, rmass[j], vr.x, vr.y, vr.z, wi.x, wi.y,
-                        wi.z, wj.x, wj.y, wj.z, h[0], h[1], h[2],
-                    ],
-                    || lanes::coeff_cols(&coeff_row[ty[j] as usize - 1]),
-                );
-            }
-        }
-        batch.compute(isa, model, self.flags, self.dt, self.update);
-    }
-
-    /// The serial pass with the lane kernel (see [`Phase1::serial`]).
-    fn serial_lanes<const VIRIAL: bool>(
-        &self,
-        batch: &mut Batch,
-        hist: &mut [f64],
-        f: &mut [DVec3],
-        torque: &mut [DVec3],
-        virial: &mut [[f64; 6]],
-    ) {
-        let h0 = self.list_first[0] as usize;
-        let mut lo = 0;
-        while lo < self.nlocal {
-            let hi = self.batch_end(lo, self.nlocal);
-            self.gather(lo, hi, h0, hist, batch, |_| {});
-            let mut c = 0;
-            for i in lo..hi {
-                let e = self.near.first[i + 1];
-                let mut fi = DVec3::ZERO;
-                let mut tqi = DVec3::ZERO;
-                while c < batch.n && batch.k[c] < e {
-                    let (fc, ti, tj, d) = self.take(batch, c, hist);
-                    let j = batch.j[c] as usize;
-                    if VIRIAL {
-                        let w = virial_of(d, fc);
-                        for (a, b) in virial[i].iter_mut().zip(&w) {
-                            *a += b;
-                        }
-                        for (a, b) in virial[j].iter_mut().zip(&w) {
-                            *a += b;
-                        }
-                    }
-                    fi += fc;
-                    tqi += ti;
-                    f[j] -= fc;
-                    torque[j] += tj;
-                    c += 1;
-                }
-                f[i] += fi;
-                torque[i] += tqi;
-            }
-            lo = hi;
-        }
-    }
-
-    /// One block of phase 1 with the lane kernel (see [`Phase1::block`]): rows `lo..hi`,
-    /// whose first near pair is `k0` and first list pair `h0`.
-    #[allow(clippy::too_many_arguments)]
-    fn block_lanes<const VIRIAL: bool>(
-        &self,
-        lo: usize,
-        hi: usize,
-        k0: usize,
-        h0: usize,
-        batch: &mut Batch,
-        res: &mut [PairOut],
-        rv: &mut [[f64; 6]],
-        hist: &mut [f64],
-        own: &mut [OwnSum],
-    ) {
-        let mut a = lo;
-        while a < hi {
-            let b = self.batch_end(a, hi);
-            self.gather(a, b, h0, hist, batch, |k| {
-                res[k - k0] = PairOut::default();
-                if VIRIAL {
-                    rv[k - k0] = [0.0; 6];
-                }
-            });
-            let mut c = 0;
-            for i in a..b {
-                let e = self.near.first[i + 1];
-                let mut sum = OwnSum::default();
-                while c < batch.n && batch.k[c] < e {
-                    let (fc, ti, tj, d) = self.take(batch, c, hist);
-                    let r = batch.k[c] as usize - k0;
-                    if VIRIAL {
-                        rv[r] = virial_of(d, fc);
-                    }
-                    res[r] = PairOut { f_i: fc, t_j: tj };
-                    sum.f += fc;
-                    sum.t += ti;
-                    c += 1;
-                }
-                own[i - lo] = sum;
-            }
-            a = b;
-        }
-    }
-
-    /// Contact `c` of the batch: writes its new spring back to its history slot and gives
-    /// the force on i, the torques on i and j, and r = x_i − x_j.
-    #[inline(always)]
-    fn take(&self, batch: &Batch, c: usize, hist: &mut [f64]) -> (DVec3, DVec3, DVec3, DVec3) {
-        let o = batch.out(c);
-        let w = self.width;
-        if w > 0 && self.update {
-            let slot = batch.slot[c] as usize;
-            hist[slot * w..slot * w + 3].copy_from_slice(&o[9..12]);
-        }
-        let d = DVec3::new(
-            batch.at(lanes::Col::Dx, c),
-            batch.at(lanes::Col::Dy, c),
-            batch.at(lanes::Col::Dz, c),
-        );
-        (
-            DVec3::new(o[0], o[1], o[2]),
-            DVec3::new(o[3], o[4], o[5]),
-            DVec3::new(o[6], o[7], o[8]),
-            d,
-        )
-    }
-}
-
 /// A contact's virial, ½ r ⊗ F (xx yy zz xy xz yz), as each of its two particles gets it.
 #[inline(always)]
 fn virial_of(d: DVec3, f: DVec3) -> [f64; 6] {
@@ -1249,8 +776,6 @@ impl PairPass<'_> {
             step,
             ts_warned: _,
             liquid,
-            simd,
-            batch,
             whole_fraction: _,
             multicontact,
         } = pair;
@@ -1289,21 +814,13 @@ impl PairPass<'_> {
                 .as_ref()
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: liquid.as_ref().map(|l| &l.breaks),
-            lanes: match (BOND, *simd, multicontact.is_some()) {
-                (false, Some(isa), false) => LaneModel::of(model, table).map(|m| (m, isa)),
-                _ => None,
-            },
             mc: multicontact.as_deref().zip(mc_state.as_deref()),
             tag: &p.tag,
         };
         if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
-            if ph1.lanes.is_some() {
-                ph1.serial_lanes::<VIRIAL>(batch, hist, f, torque, virial);
-            } else {
-                ph1.serial::<K, VIRIAL, BOND>(hist, f, torque, virial);
-            }
+            ph1.serial::<K, VIRIAL, BOND>(hist, f, torque, virial);
             return;
         }
         let npairs = ph1.near.partner.len();

@@ -138,7 +138,6 @@ impl Visitor for Records<'_> {
                 .as_ref()
                 .map_or(&[][..], |l| &p.props[l.content.0].data[..]),
             breaks: None,
-            lanes: None,
             mc: pair.multicontact.as_deref().zip(mc_state.as_deref()),
             tag: &p.tag,
         };
