@@ -545,7 +545,8 @@ fn force_fields(r: &mut Reader, f: &mut LiggghtsRestart) -> Result<(), LiggghtsR
                 }
                 let model_hash = r.bigint("the contact model code")?;
                 let n = f.ntypes as usize;
-                let mut setflag = Vec::with_capacity(n * (n + 1) / 2);
+                // No more room than the bytes present can hold (a flag is a 4-byte int).
+                let mut setflag = Vec::with_capacity((n * (n + 1) / 2).min(r.left() / 4));
                 for _ in 0..n * (n + 1) / 2 {
                     setflag.push(r.int_in("a pair_coeff flag", 0, 1)?);
                 }

@@ -66,6 +66,12 @@ struct Words<'a> {
 }
 
 impl<'a> Words<'a> {
+    /// Room for `n` values, no more than the words left can fill (a count in the file
+    /// never makes a large allocation by itself).
+    fn room<T>(&self, n: usize) -> Vec<T> {
+        Vec::with_capacity(n.min(self.words.len() - self.next))
+    }
+
     fn error(&self, line: usize, reason: impl Into<String>) -> TetVtkError {
         TetVtkError::Syntax {
             path: self.name.to_string(),
@@ -171,7 +177,7 @@ pub fn parse_tet_vtk(bytes: &[u8], name: &str) -> Result<TetFile, TetVtkError> {
                         format!("points must be float or double, not '{ty}'"),
                     ));
                 }
-                let mut p = Vec::with_capacity(n);
+                let mut p = w.room(n);
                 for _ in 0..n {
                     p.push(DVec3::new(
                         w.number("a point's x")?,
@@ -191,12 +197,12 @@ pub fn parse_tet_vtk(bytes: &[u8], name: &str) -> Result<TetFile, TetVtkError> {
                         "VTK 5 cell arrays (OFFSETS, CONNECTIVITY) are not supported; write the file in the VTK 4.2 legacy format",
                     ));
                 }
-                let mut list = Vec::with_capacity(n);
+                let mut list = w.room(n);
                 let mut read = 0;
                 for _ in 0..n {
                     let k = w.count("a cell's number of points")?;
                     let line = w.line;
-                    let mut c = Vec::with_capacity(k);
+                    let mut c = w.room(k);
                     for _ in 0..k {
                         c.push(w.count("a cell's point index")?);
                     }
@@ -219,7 +225,7 @@ pub fn parse_tet_vtk(bytes: &[u8], name: &str) -> Result<TetFile, TetVtkError> {
             }
             "CELL_TYPES" => {
                 let n = w.count("the number of cell types")?;
-                let mut t = Vec::with_capacity(n);
+                let mut t = w.room(n);
                 for _ in 0..n {
                     let v = w.count("a cell type")?;
                     t.push(v as u32);

@@ -238,7 +238,9 @@ impl<'a> Cursor<'a> {
     }
 }
 
-fn decode(payload: &[u8]) -> Result<RestartContents, String> {
+/// Decodes the payload of an rdem restart file (after its framing is checked,
+/// [`rdem_io::restart_file::unframe`]); any bytes give the contents or an error.
+pub fn decode(payload: &[u8]) -> Result<RestartContents, String> {
     let mut c = Cursor {
         buf: payload,
         at: 0,

@@ -58,6 +58,7 @@ use crate::sim::Sim;
 pub use check_timestep_gran::timestep_limits;
 pub use insert::insertion_report;
 pub use modify::fix_modify;
+pub use particletemplate_multisphere::parse_spheres;
 
 /// The stages a fix takes part in (LAMMPS' `setmask`): the run loop calls each stage only
 /// on the fixes that declare it, so a stage nobody uses costs nothing.

@@ -262,8 +262,14 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 /// blank lines skipped; exactly `n` spheres.
 fn read_spheres(path: &str, n: usize) -> Result<Vec<Sphere>, String> {
     let text = std::fs::read(path).map_err(|e| e.to_string())?;
-    let text = String::from_utf8_lossy(&text);
-    let mut out = Vec::with_capacity(n);
+    parse_spheres(&text, n)
+}
+
+/// The spheres of the bytes of a template file (see [`read_spheres`]); any bytes give the
+/// spheres or an error.
+pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, String> {
+    let text = String::from_utf8_lossy(bytes);
+    let mut out = Vec::with_capacity(n.min(bytes.len() / 8 + 1));
     for (k, line) in text.lines().enumerate() {
         let line = line.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
