@@ -2,7 +2,10 @@
 //! model-type/name pairs in LIGGGHTS' required order (`model`, `tangential`, `cohesion`,
 //! `rolling_friction`, `surface`) and the switch keywords that may follow in any order.
 
-use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind, SurfaceKind, TangentialKind};
+use rdem::contact::names::{
+    COHESION_MODELS, NORMAL_MODELS, ROLLING_MODELS, SURFACE_MODELS, TANGENTIAL_MODELS,
+};
+use rdem::{CohesionKind, ContactModel, NormalKind, RollingKind};
 
 use crate::args::{names, suggest, Args, CmdResult};
 
@@ -22,45 +25,6 @@ pub const SWITCHES: [&str; 5] = [
     "torsionTorque",
     "tangential_reduce",
     "absolute_damping",
-];
-
-/// Normal models (`model ...`): the one table of their names.
-pub const NORMAL_MODELS: &[(&str, NormalKind)] = &[
-    ("hertz", NormalKind::Hertz),
-    ("hooke", NormalKind::Hooke),
-    ("hooke/hysteresis", NormalKind::HookeHysteresis),
-    ("hertz/stiffness", NormalKind::HertzStiffness),
-    ("hooke/stiffness", NormalKind::HookeStiffness),
-];
-
-/// Tangential models (`tangential ...`).
-pub const TANGENTIAL_MODELS: &[(&str, TangentialKind)] = &[
-    ("history", TangentialKind::History),
-    ("no_history", TangentialKind::NoHistory),
-];
-
-/// Cohesion models (`cohesion ...`).
-pub const COHESION_MODELS: &[(&str, CohesionKind)] = &[
-    ("off", CohesionKind::Off),
-    ("sjkr", CohesionKind::Sjkr),
-    ("sjkr2", CohesionKind::Sjkr2),
-    ("bond", CohesionKind::Bond),
-    ("easo/capillary/viscous", CohesionKind::Easo),
-];
-
-/// Surface models (`surface ...`).
-pub const SURFACE_MODELS: &[(&str, SurfaceKind)] = &[
-    ("default", SurfaceKind::Default),
-    ("multicontact", SurfaceKind::Multicontact),
-];
-
-/// Rolling friction models (`rolling_friction ...`).
-pub const ROLLING_MODELS: &[(&str, RollingKind)] = &[
-    ("off", RollingKind::Off),
-    ("cdt", RollingKind::Cdt),
-    ("epsd", RollingKind::Epsd),
-    ("epsd2", RollingKind::Epsd2),
-    ("epsd3", RollingKind::Epsd3),
 ];
 
 /// Keywords of `cohesion bond` (LIGGGHTS-INL), switches like [`SWITCHES`].
@@ -307,49 +271,23 @@ pub fn unknown(a: &Args, k: usize, extra: &[&str]) -> crate::diagnostic::ScriptE
 mod tests {
     use super::*;
 
-    /// Each table names every kind once (a new kind must get its name here: the parser,
-    /// its errors and the 2.x note line all read these tables).
+    /// The help line of `pair_style` (docs/commands.md, `rdem -check`) lists each model
+    /// vocabulary exactly as its table does, in order.
     #[test]
-    fn every_model_kind_has_one_name() {
-        fn once<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)], all: &[K]) {
-            for k in all {
-                let n = table.iter().filter(|(_, v)| v == k).count();
-                assert_eq!(n, 1, "{k:?}");
-            }
-            assert_eq!(table.len(), all.len());
-            let mut sorted = names(table);
-            sorted.sort_unstable();
-            sorted.dedup();
-            assert_eq!(sorted.len(), table.len());
+    fn pair_style_help_lists_the_tables() {
+        let help = crate::commands::REGISTRY
+            .row("pair_style")
+            .expect("pair_style is a command")
+            .help;
+        for (word, table) in [
+            ("model", names(NORMAL_MODELS)),
+            ("tangential", names(TANGENTIAL_MODELS)),
+            ("cohesion", names(COHESION_MODELS)),
+            ("rolling_friction", names(ROLLING_MODELS)),
+            ("surface", names(SURFACE_MODELS)),
+        ] {
+            let want = format!("`{word} {}`", table.join("\\|"));
+            assert!(help.contains(&want), "the pair_style help lacks {want}");
         }
-        use CohesionKind as C;
-        use NormalKind as N;
-        use RollingKind as R;
-        once(
-            NORMAL_MODELS,
-            &[
-                N::Hertz,
-                N::Hooke,
-                N::HookeHysteresis,
-                N::HertzStiffness,
-                N::HookeStiffness,
-            ],
-        );
-        once(
-            TANGENTIAL_MODELS,
-            &[TangentialKind::History, TangentialKind::NoHistory],
-        );
-        once(
-            COHESION_MODELS,
-            &[C::Off, C::Sjkr, C::Sjkr2, C::Bond, C::Easo],
-        );
-        once(
-            ROLLING_MODELS,
-            &[R::Off, R::Cdt, R::Epsd, R::Epsd2, R::Epsd3],
-        );
-        once(
-            SURFACE_MODELS,
-            &[SurfaceKind::Default, SurfaceKind::Multicontact],
-        );
     }
 }

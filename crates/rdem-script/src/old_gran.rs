@@ -189,8 +189,8 @@ pub fn model_words(m: &ContactModel) -> String {
     // The 3.x names, from the 3.x tables.
     let mut s = format!(
         "model {} tangential {}",
-        name_of(crate::models::NORMAL_MODELS, m.normal),
-        name_of(crate::models::TANGENTIAL_MODELS, m.tangential)
+        name_of(rdem::contact::names::NORMAL_MODELS, m.normal),
+        name_of(rdem::contact::names::TANGENTIAL_MODELS, m.tangential)
     );
     if m.cohesion == CohesionKind::Sjkr {
         s.push_str(" cohesion sjkr");

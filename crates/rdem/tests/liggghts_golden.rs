@@ -45,6 +45,9 @@
 
 use std::collections::HashMap;
 
+use rdem::contact::names::{
+    COHESION_MODELS, NORMAL_MODELS, ROLLING_MODELS, SURFACE_MODELS, TANGENTIAL_MODELS,
+};
 use rdem::{
     Boundary, CohesionKind, ContactModel, DVec3, Domain, Fix, FixKind, Materials, NeighborSettings,
     NewParticle, NormalKind, PairGran, PrimitiveWall, RollingKind, TangentialKind, WallShape,
@@ -250,6 +253,15 @@ fn parse_script(text: &str) -> Script {
     s
 }
 
+/// The kind that `table` (the script's own name table) gives the name `v` of model type `k`.
+fn named<K: Copy>(table: &[(&str, K)], k: &str, v: &str) -> K {
+    table
+        .iter()
+        .find(|(n, _)| *n == v)
+        .unwrap_or_else(|| panic!("{k} {v}: not a name of rdem's table"))
+        .1
+}
+
 /// The contact model and (for `wall/gran`) the wall type and shape from the words of
 /// `pair_style gran` or `fix wall/gran`.
 fn parse_model(words: &[String]) -> (ContactModel, Option<(u32, WallShape)>) {
@@ -265,39 +277,11 @@ fn parse_model(words: &[String]) -> (ContactModel, Option<(u32, WallShape)>) {
         let (k, v) = (words[i].as_str(), words[i + 1].as_str());
         i += 2;
         match k {
-            "model" => {
-                m.normal = match v {
-                    "hertz" => NormalKind::Hertz,
-                    "hooke" => NormalKind::Hooke,
-                    "hooke/hysteresis" => NormalKind::HookeHysteresis,
-                    "hertz/stiffness" => NormalKind::HertzStiffness,
-                    "hooke/stiffness" => NormalKind::HookeStiffness,
-                    _ => panic!("model {v}"),
-                }
-            }
-            "tangential" => {
-                m.tangential = match v {
-                    "history" => TangentialKind::History,
-                    "no_history" => TangentialKind::NoHistory,
-                    _ => panic!("tangential {v}"),
-                }
-            }
-            "rolling_friction" => {
-                m.rolling = match v {
-                    "cdt" => RollingKind::Cdt,
-                    "epsd" => RollingKind::Epsd,
-                    "epsd2" => RollingKind::Epsd2,
-                    "epsd3" => RollingKind::Epsd3,
-                    _ => panic!("rolling_friction {v}"),
-                }
-            }
-            "cohesion" => {
-                m.cohesion = match v {
-                    "sjkr" => CohesionKind::Sjkr,
-                    "sjkr2" => CohesionKind::Sjkr2,
-                    _ => panic!("cohesion {v}"),
-                }
-            }
+            "model" => m.normal = named(NORMAL_MODELS, k, v),
+            "tangential" => m.tangential = named(TANGENTIAL_MODELS, k, v),
+            "rolling_friction" => m.rolling = named(ROLLING_MODELS, k, v),
+            "cohesion" => m.cohesion = named(COHESION_MODELS, k, v),
+            "surface" => m.surface = named(SURFACE_MODELS, k, v),
             "tangential_damping" => m.flags.tangential_damping = on(v),
             "limitForce" => m.flags.limit_force = on(v),
             "torsionTorque" => m.flags.torsion_torque = on(v),

@@ -9,6 +9,7 @@
 pub mod cohesion;
 pub mod liquid;
 pub mod materials;
+pub mod names;
 pub mod normal;
 pub mod rolling;
 pub mod tangential;
