@@ -205,7 +205,7 @@ pub(crate) fn restore(
                 .push(format!("the state of fix {} ({})", g.id, g.style));
         }
     }
-    sim.world = Some(w);
+    sim.install_world(w);
     Ok(taken)
 }
 

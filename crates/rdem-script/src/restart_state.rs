@@ -323,6 +323,6 @@ pub(crate) fn restore(
         props,
         ..Restored::default()
     };
-    sim.world = Some(w);
+    sim.install_world(w);
     Ok(())
 }

@@ -242,10 +242,6 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
             st.k_finnie = p.values.clone();
             st.ntypes = ntypes;
         }
-        w.neighbor.settings = sim.setup.neighbor;
-        w.neighbor.exclude.clone_from(&sim.setup.exclude);
-        w.sort = sim.setup.sort;
-        w.lost_policy = sim.setup.lost;
         w.timers.reset();
     }
     // LAMMPS' init: computes count what they keep through the run (skipped with the

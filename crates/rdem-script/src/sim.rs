@@ -96,16 +96,18 @@ pub struct Property {
 pub struct Setup {
     /// `boundary`, per axis and face.
     pub boundary: [[Boundary; 2]; 3],
-    /// `neighbor` / `neigh_modify`.
+    /// `neighbor` / `neigh_modify` before the box exists; from then on the world holds
+    /// them (read with [`Sim::neighbor_settings`], set with [`Sim::set_neighbor`]).
     pub neighbor: NeighborSettings,
-    /// `neigh_modify exclude`: pairs that never interact.
+    /// `neigh_modify exclude` before the box exists (pairs that never interact; then
+    /// the world's, as [`Setup::neighbor`]).
     pub exclude: rdem::Exclusions,
     /// `timestep` before the box exists (then the world's [`World::dt`] is the one
     /// value: read it with [`Sim::dt`], set it with [`Sim::set_timestep`]).
     pub dt: f64,
-    /// `atom_modify sort`.
+    /// `atom_modify sort` before the box exists (then the world's: [`Sim::set_sort`]).
     pub sort: rdem::SortSettings,
-    /// `thermo_modify lost`.
+    /// `thermo_modify lost` before the box exists (then the world's: [`Sim::set_lost`]).
     pub lost: rdem::LostPolicy,
     /// `processors Px Py Pz` (0 = `*`, free).
     pub procs: [usize; 3],
@@ -125,7 +127,7 @@ impl Default for Setup {
             neighbor: NeighborSettings::default(),
             exclude: rdem::Exclusions::default(),
             // LIGGGHTS' default for SI units.
-            dt: 1e-8,
+            dt: rdem::world::DEFAULT_TIMESTEP,
             sort: rdem::SortSettings::default(),
             lost: rdem::LostPolicy::Error,
             procs: [0; 3],
@@ -376,6 +378,63 @@ impl Sim {
     /// Index of compute `id`.
     pub fn compute_index(&self, id: &str) -> Option<usize> {
         self.defs.computes.iter().position(|c| c.id() == id)
+    }
+
+    /// Makes `w` the simulation's world (a new box: `create_box`, `read_data`,
+    /// `read_restart`), with the neighbor, exclusion, sort and lost-particle settings the
+    /// script gave before it; from here on the world is their one owner.
+    pub fn install_world(&mut self, mut w: World) {
+        w.neighbor.settings = self.setup.neighbor;
+        w.neighbor.exclude.clone_from(&self.setup.exclude);
+        w.sort = self.setup.sort;
+        w.lost_policy = self.setup.lost;
+        self.world = Some(w);
+    }
+
+    /// The `neighbor` / `neigh_modify` settings: the world's once the box exists, else
+    /// those the box will get.
+    pub fn neighbor_settings(&self) -> NeighborSettings {
+        self.world
+            .as_ref()
+            .map_or(self.setup.neighbor, |w| w.neighbor.settings)
+    }
+
+    /// The `neigh_modify exclude` pairs (the world's once the box exists).
+    pub fn exclusions(&self) -> &rdem::Exclusions {
+        self.world
+            .as_ref()
+            .map_or(&self.setup.exclude, |w| &w.neighbor.exclude)
+    }
+
+    /// Sets the neighbor settings and exclusions where they live now (see
+    /// [`Sim::install_world`]).
+    pub fn set_neighbor(&mut self, s: NeighborSettings, exclude: rdem::Exclusions) {
+        match &mut self.world {
+            Some(w) => {
+                w.neighbor.settings = s;
+                w.neighbor.exclude = exclude;
+            }
+            None => {
+                self.setup.neighbor = s;
+                self.setup.exclude = exclude;
+            }
+        }
+    }
+
+    /// Sets the `atom_modify sort` schedule where it lives now.
+    pub fn set_sort(&mut self, s: rdem::SortSettings) {
+        match &mut self.world {
+            Some(w) => w.sort = s,
+            None => self.setup.sort = s,
+        }
+    }
+
+    /// Sets the `thermo_modify lost` policy where it lives now.
+    pub fn set_lost(&mut self, p: rdem::LostPolicy) {
+        match &mut self.world {
+            Some(w) => w.lost_policy = p,
+            None => self.setup.lost = p,
+        }
     }
 
     /// The time step.

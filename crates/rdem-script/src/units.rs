@@ -51,7 +51,7 @@ impl Units {
     /// The default time step the `units` command sets.
     pub fn default_timestep(self) -> f64 {
         match self {
-            Self::Si | Self::Cgs => 1.0e-8,
+            Self::Si | Self::Cgs => rdem::world::DEFAULT_TIMESTEP,
             Self::Micro => 2.0,
         }
     }

@@ -319,3 +319,33 @@ fn clear_keeps_only_variables() {
     let (_, r, _) = run("clear now\n");
     assert!(r.unwrap_err().contains("in.t:1:7"));
 }
+
+/// The neighbor, exclusion, sort and lost-particle settings have one owner: the script's
+/// set-up before the box exists, the world after. A command given after `create_box`
+/// reaches the world at once (before, the world got them only when a run started, and
+/// read stale values in between), and the settings given before the box carry over.
+#[test]
+fn settings_have_one_owner_before_and_after_the_box() {
+    let (i, r, _) = run("units si\nneighbor 0.002 bin\nneigh_modify delay 3\n\
+         thermo_modify lost warn\natom_modify sort 50 0.01\n\
+         region box block 0 1 0 1 0 1 units box\ncreate_box 2 box\n");
+    r.unwrap();
+    let w = i.sim.world.as_ref().unwrap();
+    assert_eq!(w.neighbor.settings.skin, 0.002);
+    assert_eq!(w.neighbor.settings.delay, 3);
+    assert_eq!(w.lost_policy, rdem::LostPolicy::Warn);
+    assert_eq!((w.sort.every, w.sort.binsize), (50, 0.01));
+    let (i, r, _) = run(
+        "units si\nregion box block 0 1 0 1 0 1 units box\ncreate_box 2 box\n\
+         neighbor 0.003 bin\nneigh_modify delay 8 every 2 check no exclude type 1 2\n\
+         thermo_modify lost ignore\natom_modify sort 0 0\n",
+    );
+    r.unwrap();
+    let w = i.sim.world.as_ref().unwrap();
+    let s = w.neighbor.settings;
+    assert_eq!((s.skin, s.delay, s.every, s.check), (0.003, 8, 2, false));
+    assert!(!w.neighbor.exclude.is_empty());
+    assert_eq!(i.sim.neighbor_settings(), s);
+    assert_eq!(w.lost_policy, rdem::LostPolicy::Ignore);
+    assert_eq!(w.sort.every, 0);
+}

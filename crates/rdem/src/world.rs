@@ -48,6 +48,10 @@ impl Default for SortSettings {
 /// Per-particle flag of [`World::remove_at_reneighbor`].
 const REMOVAL_PROP: &str = "remove_at_reneighbor";
 
+/// The timestep before any `timestep` command: LIGGGHTS' default for `units si` and
+/// `cgs` (the one place it is written; `units micro` sets its own).
+pub const DEFAULT_TIMESTEP: f64 = 1e-8;
+
 /// The whole simulation state.
 #[derive(Debug)]
 pub struct World {
@@ -124,7 +128,7 @@ impl World {
             neighbor: Neighbor::new(NeighborSettings::default()),
             fixes: Vec::new(),
             meshes: Vec::new(),
-            dt: 1e-8,
+            dt: DEFAULT_TIMESTEP,
             step: 0,
             comm: crate::comm::default_comm(),
             lost_policy: LostPolicy::Error,

@@ -69,7 +69,7 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         a.keyword("delete_atoms keyword", &["compress"])?;
         compress = a.yes_no("compress")?;
     }
-    let settings = sim.setup.neighbor;
+    let settings = sim.neighbor_settings();
     let w = sim.world_mut(a)?;
     w.neighbor.save_history(&w.particles);
     w.particles.clear_ghosts();

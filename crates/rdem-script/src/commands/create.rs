@@ -60,7 +60,7 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
     if sim.setup.sph {
         rdem::sph::SphProps::add(&mut w.particles).map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
-    sim.world = Some(w);
+    sim.install_world(w);
     Ok(())
 }
 

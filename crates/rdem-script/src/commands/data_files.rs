@@ -54,7 +54,7 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         .out
         .line(&format!("  {} atoms", data.atoms.len()));
     w.materials.ntypes = data.ntypes as usize;
-    sim.world = Some(w);
+    sim.install_world(w);
     super::settings::disc_masses(sim);
     Ok(())
 }

@@ -50,10 +50,10 @@ pub(super) fn atom_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             _ => {
                 let every = a.u64("sort interval (0 = off)")?;
                 let bin = a.non_negative("sort bin size (0 = half the neighbor cutoff)")?;
-                sim.setup.sort = rdem::SortSettings {
+                sim.set_sort(rdem::SortSettings {
                     every,
                     binsize: bin,
-                };
+                });
             }
         }
     }
@@ -374,7 +374,10 @@ pub(super) fn neighbor(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let skin = a.non_negative("skin distance")?;
     a.keyword("neighbor style", &["bin", "nsq"])?;
     a.done()?;
-    sim.setup.neighbor.skin = skin;
+    let mut s = sim.neighbor_settings();
+    s.skin = skin;
+    let exclude = sim.exclusions().clone();
+    sim.set_neighbor(s, exclude);
     Ok(())
 }
 
@@ -387,8 +390,8 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         ));
     }
     // Read everything first: a wrong word changes nothing.
-    let mut s = sim.setup.neighbor;
-    let mut exclude = sim.setup.exclude.clone();
+    let mut s = sim.neighbor_settings();
+    let mut exclude = sim.exclusions().clone();
     while !a.is_done() {
         match a.keyword(
             "neigh_modify keyword",
@@ -418,8 +421,7 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     s.validate().map_err(|e| a.error_cmd(e.to_string(), None))?;
-    sim.setup.neighbor = s;
-    sim.setup.exclude = exclude;
+    sim.set_neighbor(s, exclude);
     Ok(())
 }
 

@@ -117,10 +117,7 @@ pub(super) fn thermo_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     "warn" => LostPolicy::Warn,
                     _ => LostPolicy::Ignore,
                 };
-                sim.setup.lost = p;
-                if let Some(w) = &mut sim.world {
-                    w.lost_policy = p;
-                }
+                sim.set_lost(p);
             }
             "norm" => sim.outputs.thermo.norm = a.yes_no("norm")?,
             "flush" => {

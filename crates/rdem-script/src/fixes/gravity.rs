@@ -79,12 +79,7 @@ fn accel(style: Style, g: f64, args: &[f64], flat: bool) -> Option<DVec3> {
         }
         Style::Vector => {
             let d = DVec3::new(args[0], args[1], if flat { 0.0 } else { args[2] });
-            let len = d.length();
-            if len.is_nan() || len <= 0.0 {
-                return None;
-            }
-            // As rdem's `Fix::gravity` has always computed it: (g d) / |d|.
-            return Some(g * d / len);
+            return rdem::fix::gravity_accel(g, d);
         }
     };
     Some(g * dir)

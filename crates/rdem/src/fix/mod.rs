@@ -200,21 +200,12 @@ impl Fix {
 
     /// `fix ID group gravity magnitude vector x y z`.
     pub fn gravity(id: &str, groupbit: u32, magnitude: f64, dir: DVec3) -> Result<Self> {
-        let len = dir.length();
-        if len.is_nan() || len <= 0.0 || !dir.is_finite() {
-            return Err(Error::Invalid {
-                what: "gravity direction",
-                reason: format!("{dir} has no direction"),
-            });
-        }
         check("gravity magnitude", magnitude, true, "must be finite")?;
-        Self::new(
-            id,
-            groupbit,
-            FixKind::Gravity {
-                accel: magnitude * dir / len,
-            },
-        )
+        let accel = gravity_accel(magnitude, dir).ok_or_else(|| Error::Invalid {
+            what: "gravity direction",
+            reason: format!("{dir} has no direction"),
+        })?;
+        Self::new(id, groupbit, FixKind::Gravity { accel })
     }
 
     /// The per-particle post-force action on the owned particles (`dt`: the timestep).
@@ -311,6 +302,17 @@ impl Fix {
             | FixKind::MeshWall(_) => {}
         }
     }
+}
+
+/// The acceleration of `fix gravity`: `magnitude` along `dir`, computed as (g d) / |d|
+/// (the one place gravity is normalised); `None` when `dir` has no direction (zero,
+/// NaN or infinite).
+pub fn gravity_accel(magnitude: f64, dir: DVec3) -> Option<DVec3> {
+    let len = dir.length();
+    if len.is_nan() || len <= 0.0 || !dir.is_finite() {
+        return None;
+    }
+    Some(magnitude * dir / len)
 }
 
 /// Checks the numbers of a `fix move` motion: finite, a rotation axis of unit length.
