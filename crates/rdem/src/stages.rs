@@ -22,11 +22,8 @@ impl World {
     /// or a wall uses the table.
     pub(crate) fn check_types(&self) -> Result<()> {
         let ntypes = self.materials.ntypes as u32;
-        let uses_materials = self.pair.is_some()
-            || self
-                .fixes
-                .iter()
-                .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
+        let uses_materials =
+            self.pair.is_some() || self.fixes.iter().any(|f| f.kind.as_wall().is_some());
         if uses_materials {
             if let Some(&ty) = self.particles.ty[..self.particles.nlocal()]
                 .iter()
@@ -91,11 +88,7 @@ impl World {
     /// Set-up 3: each wall's coefficient table and history property, in definition order.
     pub(crate) fn setup_walls(&mut self) -> Result<()> {
         for fix in &mut self.fixes {
-            if let FixKind::WallGran(wall) = &mut fix.kind {
-                self.neighbor.save_history(&self.particles);
-                self.particles.clear_ghosts();
-                wall.setup(&self.materials, &mut self.particles)?;
-            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
+            if let Some(wall) = fix.kind.as_wall_mut() {
                 self.neighbor.save_history(&self.particles);
                 self.particles.clear_ghosts();
                 wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
@@ -104,14 +97,7 @@ impl World {
         if self.heat.is_none() {
             // A wall at a fixed temperature conducts into the particles' temperatures.
             for fix in &self.fixes {
-                let hot = match &fix.kind {
-                    FixKind::WallGran(wall) => wall.temperature.is_some(),
-                    FixKind::MeshWall(wall) => wall
-                        .meshes
-                        .iter()
-                        .any(|&m| self.meshes.get(m).is_some_and(|m| m.temperature.is_some())),
-                    _ => false,
-                };
+                let hot = fix.kind.as_wall().is_some_and(|w| w.heats(&self.meshes));
                 if hot {
                     return Err(Error::Invalid {
                         what: "wall temperature",
@@ -142,10 +128,9 @@ impl World {
                 .filter(|p| wants(&p.model))
                 .map(|_| "pair_style gran".to_string())
                 .or_else(|| {
-                    self.fixes.iter().find_map(|f| match &f.kind {
-                        FixKind::WallGran(w) if wants(&w.model) => Some(format!("fix {}", f.id)),
-                        FixKind::MeshWall(w) if wants(&w.model) => Some(format!("fix {}", f.id)),
-                        _ => None,
+                    self.fixes.iter().find_map(|f| {
+                        let w = f.kind.as_wall()?;
+                        wants(w.model()).then(|| format!("fix {}", f.id))
                     })
                 });
             return match user {
@@ -174,11 +159,10 @@ impl World {
             }
         }
         for fix in &mut self.fixes {
-            let slot = match &mut fix.kind {
-                FixKind::WallGran(w) if wants(&w.model) => &mut w.multicontact,
-                FixKind::MeshWall(w) if wants(&w.model) => &mut w.multicontact,
-                _ => continue,
+            let Some(w) = fix.kind.as_wall_mut().filter(|w| wants(w.model())) else {
+                continue;
             };
+            let slot = w.multicontact_slot();
             any = true;
             // A wall keeps its number from run to run, so that its records stay its own.
             let number = slot
@@ -408,9 +392,7 @@ impl World {
             }
         }
         for fix in &mut self.fixes {
-            if let FixKind::WallGran(wall) = &mut fix.kind {
-                wall.build_candidates(&mut self.particles, fix.groupbit, skin);
-            } else if let FixKind::MeshWall(wall) = &mut fix.kind {
+            if let Some(wall) = fix.kind.as_wall_mut() {
                 wall.build_candidates(&self.meshes, &mut self.particles, fix.groupbit, skin);
             }
         }
@@ -626,10 +608,8 @@ impl World {
         let p = &mut self.particles;
         crate::par::zero(&mut p.f, &mut p.torque);
         for fix in &mut self.fixes {
-            match &mut fix.kind {
-                FixKind::WallGran(wall) => wall.step = self.step,
-                FixKind::MeshWall(wall) => wall.step = self.step,
-                _ => {}
+            if let Some(wall) = fix.kind.as_wall_mut() {
+                wall.set_step(self.step);
             }
         }
     }

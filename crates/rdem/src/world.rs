@@ -9,7 +9,7 @@ use crate::comm::Comm;
 use crate::contact::Materials;
 use crate::domain::Domain;
 use crate::error::{Error, Result};
-use crate::fix::{Fix, FixKind};
+use crate::fix::Fix;
 use crate::neighbor::{Neighbor, NeighborSettings};
 use crate::pair::PairGran;
 use crate::particles::{NewParticle, Particles};
@@ -325,11 +325,10 @@ impl World {
             t[2] = pair.count_bonds(&self.neighbor.list);
         }
         for fix in &self.fixes {
-            let (events, intact) = match &fix.kind {
-                FixKind::WallGran(wall) => (&wall.bond_events, wall.count_bonds(&self.particles)),
-                FixKind::MeshWall(wall) => (&wall.bond_events, wall.count_bonds(&self.particles)),
-                _ => continue,
+            let Some(wall) = fix.kind.as_wall() else {
+                continue;
             };
+            let (events, intact) = (wall.bond_events(), wall.count_bonds(&self.particles));
             let (c, b) = events.totals();
             t[3] += c;
             t[4] += b;
@@ -366,11 +365,10 @@ impl World {
         self.comm.reverse_scalar(p, &mut c);
         c.truncate(nlocal);
         for fix in &self.fixes {
-            let (id, flag) = match &fix.kind {
-                FixKind::WallGran(wall) => (wall.history_prop(), wall.bond_flag_at()),
-                FixKind::MeshWall(wall) => (wall.history_prop(), wall.bond_flag_at()),
-                _ => continue,
+            let Some(wall) = fix.kind.as_wall() else {
+                continue;
             };
+            let (id, flag) = (wall.history_prop(), wall.bond_flag_at());
             for (ci, b) in c.iter_mut().zip(crate::wall::bonded(p, id, flag)) {
                 if b {
                     *ci += 1.0;

@@ -472,12 +472,9 @@ fn post_force_pass(
     let taken: Vec<(Option<(usize, usize, &[u32])>, Option<(usize, usize)>)> = fixes
         .iter()
         .map(|fix| {
-            let (hist, rows, store) = match &fix.kind {
-                FixKind::WallGran(wall) => {
-                    (wall.history_prop(), wall.candidates(), wall.store_prop())
-                }
-                FixKind::MeshWall(wall) => (wall.history_prop(), wall.rows(), wall.store_prop()),
-                _ => (None, &[][..], None),
+            let (hist, rows, store) = match fix.kind.as_wall() {
+                Some(wall) => (wall.history_prop(), wall.history_rows(), wall.store_prop()),
+                None => (None, &[][..], None),
             };
             let hist = hist.map(|id| {
                 let h = &p.sparse[id.0];
@@ -503,9 +500,7 @@ fn post_force_pass(
             if stored {
                 crate::wall::store_begin(f, store);
             }
-            if let FixKind::WallGran(wall) = &fix.kind {
-                wall.apply_range(&view, lo, f, torque, h, dt, update);
-            } else if let FixKind::MeshWall(wall) = &fix.kind {
+            if let Some(wall) = fix.kind.as_wall() {
                 wall.apply_range(meshes, &view, lo, f, torque, h, dt, update);
             } else {
                 fix.post_force_range(&view, lo, f, torque, dt);

@@ -1,11 +1,13 @@
 //! Walls: primitive walls (planes and cylinders) and triangle-mesh walls, both through
 //! the contact kernel's [`crate::contact::Geom`].
 
+mod any;
 pub mod mesh;
 pub mod mesh_local;
 pub mod mesh_stress;
 pub mod primitive;
 
+pub use any::{MultiSlot, Wall};
 pub use mesh::{MeshSurface, MeshWall};
 pub use mesh_local::{WallContact, WallContacts};
 pub use primitive::{PrimitiveWall, WallShape};
