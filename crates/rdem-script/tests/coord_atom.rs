@@ -8,16 +8,12 @@
 
 mod common;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/coord_atom");
 
 fn run(name: &str, src: &str) -> Result<Interpreter, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    match i.run_source(name, src) {
-        Ok(()) => Ok(i),
-        Err(e) => Err(common::render(&e)),
-    }
+    common::try_run(name, src)
 }
 
 /// The lines after `ITEM: ATOMS` of a dump, trimmed.

@@ -4,7 +4,7 @@
 
 mod common;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 /// 27 spheres (3 × 3 × 3 lattice sites) falling onto a floor and onto each other, with rotation (friction).
 const SCRIPT: &str = "\
@@ -38,11 +38,7 @@ run 3000
 ";
 
 fn run(src: &str) -> Result<Interpreter, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    match i.run_source("in.cfd", src) {
-        Ok(()) => Ok(i),
-        Err(e) => Err(common::render(&e)),
-    }
+    common::try_run("in.cfd", src)
 }
 
 /// Positions, velocities and angular velocities by tag, as bits.

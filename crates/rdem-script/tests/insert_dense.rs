@@ -3,10 +3,9 @@
 //! report and `f_ID` values, the count against φ V / v_p, and the located errors of the
 //! keywords rdem does not run.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 mod common;
-use common::render;
 
 const HEAD: &str = "\
 atom_style granular
@@ -33,13 +32,7 @@ fix integr all nve/sphere
 ";
 
 fn run(tail: &str) -> Result<(Interpreter, String), String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let r = i.run_source("in.dense", &format!("{HEAD}{tail}"));
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
-    match r {
-        Ok(()) => Ok((i, out)),
-        Err(e) => Err(render(&e)),
-    }
+    common::try_run_screen("in.dense", &format!("{HEAD}{tail}"))
 }
 
 /// φ = 0.5 of a 30 × 30 × 30 mm block of 1 mm spheres: φ V / v_p = 0.5 × 2.7e-5 /

@@ -81,11 +81,7 @@ fn dir(name: &str) -> PathBuf {
 /// Runs `HEAD` and the fix line `fix` (with `{d}` the test folder).
 fn run(d: &Path, fix: &str) -> Result<Interpreter, String> {
     let src = format!("{HEAD}{}\n", fix.replace("{d}", &d.display().to_string()));
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    match i.run_source("in.x", &src) {
-        Ok(()) => Ok(i),
-        Err(r) => Err(render(&r)),
-    }
+    common::try_run("in.x", &src)
 }
 
 /// The corners of each triangle of mesh `mesh`, in order.

@@ -46,13 +46,7 @@ fn dumbbell_volume() -> f64 {
 }
 
 fn run(tail: &str) -> Result<(Interpreter, String), String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let r = i.run_source("in.ms", &format!("{HEAD}{tail}"));
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
-    match r {
-        Ok(()) => Ok((i, out)),
-        Err(e) => Err(render(&e)),
-    }
+    common::try_run_screen("in.ms", &format!("{HEAD}{tail}"))
 }
 
 fn bodies(i: &Interpreter) -> &[rdem::multisphere::RigidBody] {

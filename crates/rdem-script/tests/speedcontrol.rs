@@ -11,10 +11,7 @@
 //!
 //! which tends to v_set·(1 − e^(−K·t/dt)) for small K.
 
-use rdem_script::{Interpreter, Output, Sim};
-
 mod common;
-use common::render;
 
 /// Two spheres (d = 0.1 m, 1000 kg/m³) far apart in a 2 m box, dt = 1 ms, no gravity.
 const FREE: &str = "\
@@ -54,11 +51,7 @@ run 30
 
 /// Runs `script` and returns its thermo rows (each row's numbers).
 fn rows(script: &str) -> Vec<Vec<f64>> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    if let Err(e) = i.run_source("in.speed", script) {
-        panic!("{}", render(&e));
-    }
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let (_, out) = common::try_run_screen("in.speed", script).unwrap_or_else(|e| panic!("{e}"));
     out.lines()
         .map(|l| {
             l.split_whitespace()
@@ -72,10 +65,9 @@ fn rows(script: &str) -> Vec<Vec<f64>> {
 
 /// The script's error, rendered.
 fn error(script: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    match i.run_source("in.speed", script) {
-        Ok(()) => panic!("the script ran without an error"),
-        Err(e) => render(&e),
+    match common::try_run("in.speed", script) {
+        Ok(_) => panic!("the script ran without an error"),
+        Err(e) => e,
     }
 }
 
