@@ -16,10 +16,13 @@
 //! xcm(all,x) = 0.55555555555555558023; it needs a `run 0` before it evaluates a
 //! compute in a formula, rdem evaluates computes on demand).
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
+use common::screen;
 
 fn try_run(script: &str) -> (Interpreter, Result<(), String>) {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i
         .run_source("in.test", script)
         .map_err(|e| format!("{:?}", miette::Report::new(*e)));
@@ -32,10 +35,6 @@ fn run(script: &str) -> Interpreter {
         panic!("{e}\n--- output ---\n{}", screen(&i));
     }
     i
-}
-
-fn screen(i: &Interpreter) -> String {
-    i.sim.outputs.out.captured.clone().unwrap_or_default()
 }
 
 /// Screen lines that start with `key`, with the key removed and trimmed.
@@ -184,7 +183,7 @@ jump SELF again
     assert_eq!(lines(&i, "I"), ["alpha 08", "beta 09", "gamma 10"]);
     // One `next` of an index and a loop variable stops LIGGGHTS 3.8 ("All variables in
     // next command must be same style"), and rdem.
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source(
             "in.t",

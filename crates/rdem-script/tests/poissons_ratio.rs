@@ -9,7 +9,9 @@
 // LIGGGHTS' figures are kept with the 17 digits it printed.
 #![allow(clippy::excessive_precision)]
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const SCRIPT: &str = "\
 units si
@@ -38,19 +40,8 @@ timestep 1e-6
 ";
 
 fn run(nu: &str, steps: u32) -> Result<Interpreter, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
     let src = format!("{}run {steps}\n", SCRIPT.replace("NU", nu));
-    match i.run_source("in.nu", &src) {
-        Ok(()) => Ok(i),
-        Err(e) => {
-            let mut out = String::new();
-            miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
-                .with_width(10_000)
-                .render_report(&mut out, &*e)
-                .unwrap();
-            Err(out)
-        }
-    }
+    common::try_run("in.nu", &src)
 }
 
 /// Force on particle 1 (tag 1).
@@ -123,7 +114,7 @@ fn half_is_incompressible_hertz() {
 #[test]
 fn range_as_liggghts() {
     let still = SCRIPT.replace("set atom 2 vx -0.01 vy 0.02\n", "");
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.nu", &format!("{}run 0\n", still.replace("NU", "0")))
         .unwrap_or_else(|e| panic!("{:?}", miette::Report::new(*e)));
     let [fx, _] = force1(&i);

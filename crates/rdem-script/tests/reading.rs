@@ -41,13 +41,7 @@ fn head() -> String {
 
 /// Runs `script`; the screen text, or the rendered error report.
 fn try_run(script: &str) -> Result<String, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let r = i.run_source("in.test", script);
-    let screen = i.sim.outputs.out.captured.clone().unwrap_or_default();
-    match r {
-        Ok(()) => Ok(screen),
-        Err(e) => Err(render(&e)),
-    }
+    common::try_run_screen("in.test", script).map(|(_, screen)| screen)
 }
 
 /// Runs `script`, which must succeed; the screen text.
