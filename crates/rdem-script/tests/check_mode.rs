@@ -2,7 +2,7 @@
 //! the end of a run undoes (fix adapt's `reset yes`) is undone, so later lines are checked
 //! against the state a real run would leave.
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 #[test]
 fn adapt_reset_restores_radii_after_a_checked_run() {
@@ -18,7 +18,7 @@ fn adapt_reset_restores_radii_after_a_checked_run() {
         fix grow all adapt 1 atom diameter v_d reset yes\n\
         timestep 1e-5\n\
         run 10\n";
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let checked = i.check_bytes("in.adapt", src.as_bytes());
     assert!(checked.problems.is_empty(), "{:?}", checked.problems.len());
     let w = i.sim.world.as_ref().expect("box");

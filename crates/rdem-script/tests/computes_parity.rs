@@ -4,7 +4,9 @@
 //! below; the full LIGGGHTS outputs are the itemN.liggghts.* files next to the scripts,
 //! made by regenerate.sh: `liggghts -in itemN.in -log none`).
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 
@@ -18,8 +20,8 @@ fn run_item(name: &str, replace: &[(&str, &std::path::Path)]) -> String {
     for (from, to) in replace {
         src = src.replace(from, &to.display().to_string());
     }
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let out = |i: &Interpreter| i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let mut i = common::interpreter();
+    let out = |i: &Interpreter| common::screen(i);
     if let Err(e) = i.run_source(name, &src) {
         panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
     }

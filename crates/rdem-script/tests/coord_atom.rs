@@ -146,7 +146,7 @@ fn reach_of_each_type_pair_as_liggghts() {
             .replace("XJ", &format!("{}", 0.02 + d))
             .replace("CUT", cut);
         let i = run("in.poly", &src).unwrap_or_else(|e| panic!("{e}"));
-        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let out = common::screen(&i);
         assert!(
             out.lines().any(|l| l.trim() == want),
             "type {ty} d {d}: want '{want}' in\n{out}"

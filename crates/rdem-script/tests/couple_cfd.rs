@@ -56,7 +56,7 @@ fn state(i: &Interpreter) -> Vec<(u64, [u64; 9])> {
 }
 
 fn out(i: &Interpreter) -> String {
-    i.sim.outputs.out.captured.clone().unwrap_or_default()
+    common::screen(i)
 }
 
 /// The same trajectory, bit for bit, with and without the coupling lines; the warning

@@ -4,7 +4,9 @@
 //! are wrong changes nothing — not even when it would replace a fix of the same ID — and
 //! a good redefinition replaces the old one everywhere.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const SETUP: &str = "units si\n\
     atom_style granular\n\
@@ -16,7 +18,7 @@ const SETUP: &str = "units si\n\
     fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.01\n";
 
 fn interpreter() -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.setup", SETUP).expect("set-up runs");
     i
 }

@@ -3,14 +3,16 @@
 //! (`regenerate.sh`; output in in.2d.liggghts.txt, hard-coded below), closed forms of a
 //! free fall in the plane and of the 2d temperature, and LIGGGHTS 3.8's 2d errors.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/dim2");
 
 fn run_src(src: &str) -> (Interpreter, String) {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source("in.2d", src);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     if let Err(e) = r {
         panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
     }
@@ -18,7 +20,7 @@ fn run_src(src: &str) -> (Interpreter, String) {
 }
 
 fn error_of(src: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i.run_source("in.t", src).unwrap_err();
     format!("{:?}", miette::Report::new(*e))
 }

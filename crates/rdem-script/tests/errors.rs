@@ -17,8 +17,6 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use rdem_script::{Interpreter, Output, Sim};
-
 mod common;
 use common::render;
 
@@ -87,7 +85,7 @@ fn check(path: &Path) -> Result<String, String> {
     let stem = path.file_stem().unwrap().to_string_lossy();
     let name = format!("in.{stem}");
     let result = catch_unwind(AssertUnwindSafe(|| {
-        let mut interp = Interpreter::new(Sim::new(Output::captured()));
+        let mut interp = common::interpreter();
         interp.run_source(&name, &src)
     }));
     let report = match result {
@@ -207,7 +205,7 @@ fn shortened_bad_commands_never_panic() {
             let text = text.join("\n");
             runs += 1;
             let r = catch_unwind(AssertUnwindSafe(|| {
-                let mut interp = Interpreter::new(Sim::new(Output::captured()));
+                let mut interp = common::interpreter();
                 let _ = interp.run_source("in.variant", &text);
             }));
             if r.is_err() {

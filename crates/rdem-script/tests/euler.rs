@@ -5,7 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use rdem_script::{context, euler, Interpreter, Output, Sim};
+use rdem_script::{context, euler, Interpreter};
+
+mod common;
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../rdem-io/tests/data/liggghts/euler_vtk")
@@ -16,7 +18,7 @@ fn read(name: &str) -> String {
 }
 
 fn interp() -> Interpreter {
-    Interpreter::new(Sim::new(Output::captured()))
+    common::interpreter()
 }
 
 fn run(i: &mut Interpreter, src: &str) {

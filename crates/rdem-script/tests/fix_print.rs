@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 mod common;
 use common::render;
@@ -38,12 +38,12 @@ fn tmpdir(name: &str) -> PathBuf {
 }
 
 fn run(script: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.fp", script) {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.outputs.out.captured.clone().unwrap_or_default()
+            common::screen(&i)
         );
     }
     i
@@ -52,7 +52,7 @@ fn run(script: &str) -> Interpreter {
 /// The screen lines that are not thermo rows, run headers or the loop summary, with
 /// the step of each thermo row as `@N` (to check where the prints fall).
 fn printed(i: &Interpreter) -> Vec<String> {
-    let s = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let s = common::screen(i);
     let mut out = Vec::new();
     let mut in_run = false;
     for l in s.lines() {
@@ -244,7 +244,7 @@ fn csv_of_massflow_values() {
         assert_eq!(r[2], n, "{text}");
     }
     // `screen no`: nothing on the screen.
-    let s = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let s = common::screen(&i);
     assert!(!s.contains("e-05,"), "{s}");
 }
 
@@ -261,7 +261,7 @@ fn check_writes_nothing_and_finds_unknown_variables() {
          run 2\n",
         f.display()
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let c = i.check_source("in.fp", &script);
     assert!(!f.exists());
     assert_eq!(c.problems.len(), 1, "{c:?}");
@@ -277,7 +277,7 @@ fn io_errors_are_located() {
     std::fs::write(d.join("afile"), "x").unwrap();
     let bad = d.join("afile/p.txt");
     let script = format!("{HEAD}fix pr all print 1 \"x\" file {}\n", bad.display());
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = render(&i.run_source("in.fp", &script).unwrap_err());
     let line = HEAD.lines().count() + 1;
     assert!(r.contains(&format!("in.fp:{line}:29")), "{r}");
@@ -289,11 +289,11 @@ fn io_errors_are_located() {
     }
     let script =
         format!("{HEAD}fix pr all print 2 \"x\" append /dev/full title none\nrun 1\nrun 1\n");
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = render(&i.run_source("in.fp", &script).unwrap_err());
     assert!(r.contains(&format!("in.fp:{line}:")), "{r}");
     assert!(r.contains("/dev/full"), "{r}");
     // The first run (step 1) printed nothing, so it ran through.
-    let s = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let s = common::screen(&i);
     assert_eq!(s.matches("Loop time").count(), 1, "{s}");
 }

@@ -6,8 +6,6 @@
 // The LIGGGHTS figures are kept with the 17 digits it printed.
 #![allow(clippy::excessive_precision)]
 
-use rdem_script::{Interpreter, Output, Sim};
-
 mod common;
 use common::render;
 
@@ -35,11 +33,11 @@ set atom 1 diameter 0.1 density 1000
 
 /// Runs `script` and returns its thermo rows (each row's numbers) and the interpreter.
 fn rows(script: &str) -> Vec<Vec<f64>> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.g", script) {
         panic!("{}", render(&e));
     }
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     out.lines()
         .map(|l| {
             l.split_whitespace()
@@ -236,7 +234,7 @@ fn gradient_and_bad_gravity_are_located_errors() {
         ),
         ("fix g all gravity 9.81 chute", "missing chute angle", ""),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i
             .run_source("in.g", &format!("{FREE}{line}\n"))
             .expect_err(line);
@@ -249,7 +247,7 @@ fn gradient_and_bad_gravity_are_located_errors() {
         );
     }
     // A variable that is not equal-style stops the run with its name.
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source(
             "in.g",

@@ -9,7 +9,9 @@
 // LIGGGHTS' figures are kept with the 17 digits it printed.
 #![allow(clippy::excessive_precision)]
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 /// Two atom types (conductivity 100 and 50, capacity 10 and 20), Hertz contacts, dt 1 ms,
 /// no integration: the particles stay where they are created.
@@ -45,9 +47,9 @@ set atom 2 diameter 0.01 density 4000
 ";
 
 fn interp(src: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.heat", src) {
-        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let out = common::screen(&i);
         panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
     }
     i
@@ -55,7 +57,7 @@ fn interp(src: &str) -> Interpreter {
 
 /// The error a script stops with, rendered.
 fn error_of(src: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source("in.heat", src)
         .expect_err("the script must fail");
@@ -216,7 +218,7 @@ fn heat_gran_ignores_the_rest_of_the_line_as_liggghts() {
         let i = interp(&src);
         let t = prop(&i, "Temp");
         assert!(close(t[0], want, 1e-14), "{words}: {} vs {want}", t[0]);
-        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let out = common::screen(&i);
         let warnings: Vec<&str> = out.lines().filter(|l| l.contains("WARNING")).collect();
         let line = HEAD.lines().count() + PAIR.lines().count() + 1;
         let hits: Vec<&&str> = warnings
@@ -322,7 +324,7 @@ fn no_particles_print_zero_not_minus_zero() {
         "{HEAD}fix heattransfer all heat/gran initial_temperature 300\n\
          thermo_style custom step atoms f_heattransfer\nrun 0\n"
     ));
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     let row = out
         .lines()
         .skip_while(|l| !l.trim_start().starts_with("Step"))
@@ -376,7 +378,7 @@ fn temp_property_defined_before() {
     );
     let i = interp(&src);
     assert_eq!(prop(&i, "Temp"), vec![300.0, 300.0]);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     assert!(out.contains("sum=1200"), "{out}");
     let e = error_of(&format!(
         "{HEAD}{PAIR}fix myT all property/atom Temp scalar yes yes no 350.\n\

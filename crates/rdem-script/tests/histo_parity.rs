@@ -4,7 +4,9 @@
 //! its `itemN-K.histo` renamed), and their thermo rows (`f_ID[1..4]`) LIGGGHTS' (in
 //! itemN.liggghts.txt) to 1e-6.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 
@@ -21,8 +23,8 @@ fn run_item(n: u32, files: u32) -> (String, std::path::PathBuf) {
         let name = format!("item{n}-{k}.histo");
         src = src.replace(&name, &dir.join(&name).display().to_string());
     }
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let out = |i: &Interpreter| i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let mut i = common::interpreter();
+    let out = |i: &Interpreter| common::screen(i);
     if let Err(e) = i.run_source("item.in", &src) {
         panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
     }
@@ -153,7 +155,7 @@ fn bad_words_are_located_errors() {
             "window",
         ),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i
             .run_source("item.in", &format!("{setup}{line}\n"))
             .err()

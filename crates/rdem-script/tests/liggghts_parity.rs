@@ -2,7 +2,9 @@
 //! numbers LIGGGHTS printed for it (hard-coded below; the full LIGGGHTS outputs are the
 //! itemN.liggghts.* files next to the scripts, made by regenerate.sh).
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 
@@ -16,8 +18,8 @@ fn run_item(name: &str, dump: Option<(&str, &std::path::Path)>) -> String {
     if let Some((from, to)) = dump {
         src = src.replace(from, &to.display().to_string());
     }
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let out = |i: &Interpreter| i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let mut i = common::interpreter();
+    let out = |i: &Interpreter| common::screen(i);
     if let Err(e) = i.run_source(name, &src) {
         panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
     }
@@ -261,7 +263,7 @@ fn lattice_custom_errors() {
             "basis values must be in [0, 1)",
         ),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i.run_source("in.lat", line).unwrap_err();
         let text = format!("{:?}", miette::Report::new(*e));
         assert!(text.contains(message), "{line}: {text}");
@@ -298,9 +300,9 @@ fix grav all gravity 9.81 vector 0.0 0.0 -1.0
 timestep 0.0001
 run 1100
 ";
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.rate", src).unwrap();
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     let steps: Vec<&str> = out
         .lines()
         .filter(|l| l.starts_with("INFO: Particle insertion ins: inserted 25 "))

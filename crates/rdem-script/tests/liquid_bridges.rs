@@ -2,7 +2,9 @@
 //! tests/data/liquid/ run here and their numbers are compared with what LIGGGHTS wrote for
 //! them (item40.liggghts.txt, item41.liggghts.txt; regenerate.sh there makes them).
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/liquid");
 
@@ -12,8 +14,8 @@ fn run(name: &str, from: &str, to: &str) -> String {
     let src = std::fs::read_to_string(format!("{DIR}/{name}"))
         .unwrap()
         .replace(from, to);
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
-    let out = |i: &Interpreter| i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let mut i = common::interpreter();
+    let out = |i: &Interpreter| common::screen(i);
     if let Err(e) = i.run_source(name, &src) {
         panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
     }

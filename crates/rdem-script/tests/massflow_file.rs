@@ -5,7 +5,7 @@
 //! 3.8.0, Debian) on the script [`script`] makes, with the face `FACE` in `face.stl`:
 //! two spheres falling under gravity through a square face at z = 0.05.
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const FACE: &str = "solid face
 facet normal 0 0 1
@@ -82,7 +82,7 @@ fn lines_per_crossing_particle_as_liggghts_writes_them() {
     std::fs::write(dir.join("face.stl"), FACE).unwrap();
     // `append` keeps what was there (checked on LIGGGHTS 3.8 too).
     std::fs::write(dir.join("out3.txt"), "previous\n").unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.mf", &script(&dir))
         .unwrap_or_else(|e| panic!("{e:?}"));
     let read = |n: &str| std::fs::read_to_string(dir.join(n)).unwrap();

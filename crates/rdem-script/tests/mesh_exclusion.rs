@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use rdem::DVec3;
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 mod common;
 use common::render;
@@ -113,7 +113,7 @@ fn mesh_exclusion_read_leaves_out_the_listed_facets() {
     )
     .unwrap();
     assert_eq!(triangles(&i, "mesh"), want);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     assert!(out.contains("2 triangle(s) of"), "{out}");
     let i = run(
         &d,
@@ -195,7 +195,7 @@ fn mesh_exclusion_bad_lists_are_located_errors() {
             "fix mesh all mesh/surface file {}/c.stl type 1 element_exclusion_list read {path}",
             d.display()
         );
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let r = i
             .run_source("in.x", &format!("{HEAD}{fix}\n"))
             .expect_err(name);

@@ -6,14 +6,14 @@
 //! with a moving region after a run). LIGGGHTS' lines are in moving.liggghts.txt with
 //! the command that made them.
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/regions");
 
 fn run(src: &str) -> Result<String, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source("in.moving", src);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     match r {
         Ok(()) => Ok(out),
         Err(e) => Err(format!("{e:?}")),

@@ -6,7 +6,7 @@
 
 use std::f64::consts::PI;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
 
 mod common;
 use common::render;
@@ -430,7 +430,7 @@ run 15000
 ",
         plate.display()
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.silo", &script)
         .map_err(|e| render(&e))
         .unwrap();
@@ -498,7 +498,7 @@ write_restart {}
     i.run_source("in.more", "run 2000\n")
         .map_err(|e| render(&e))
         .unwrap();
-    let mut j = Interpreter::new(Sim::new(Output::captured()));
+    let mut j = common::interpreter();
     j.run_source(
         "in.back",
         &format!(
@@ -737,7 +737,7 @@ run 1
     )
     .map_err(|e| render(&e))
     .unwrap();
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     let w = i.sim.world.as_ref().unwrap();
     let n = w.particles.nlocal();
     assert_eq!(bodies(&i).len(), keep);

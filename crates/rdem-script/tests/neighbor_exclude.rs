@@ -2,7 +2,9 @@
 //! the neighbor list and never interact (as in LAMMPS and LIGGGHTS: "exclude if one atom
 //! in pair is type M, other is type N"), the others do.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 /// Three overlapping spheres at rest, no gravity: 1 and 2 of type 1, 3 of type 2, all
 /// pairs overlapping by 2 mm. `tail` is read before a 10-step run.
@@ -30,7 +32,7 @@ timestep 1e-6
 run 10
 "
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.exclude", &src)
         .unwrap_or_else(|e| panic!("{e:?}"));
     i

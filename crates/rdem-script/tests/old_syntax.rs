@@ -6,8 +6,6 @@
 //! each translated command is asserted word for word, and the old keywords that have no
 //! 3.x counterpart in rdem stop with a located error.
 
-use rdem_script::{Interpreter, Output, Sim};
-
 mod common;
 use common::render;
 
@@ -54,17 +52,17 @@ run 3000
 fn run_text(name: &str, script: &str) -> (String, String) {
     let path = std::env::temp_dir().join(format!("rdem-old-{name}-{}.dump", std::process::id()));
     let src = script.replace("DUMP", &path.display().to_string());
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.old", &src) {
         panic!(
             "{name}: {}\n--- output ---\n{}",
             render(&e),
-            i.sim.outputs.out.captured.clone().unwrap_or_default()
+            common::screen(&i)
         );
     }
     let dump = std::fs::read_to_string(&path).expect("dump written");
     let _ = std::fs::remove_file(&path);
-    (dump, i.sim.outputs.out.captured.clone().unwrap_or_default())
+    (dump, common::screen(&i))
 }
 
 /// Runs the scene with `models` (the pair style and walls) in the old and the new syntax;
@@ -213,7 +211,7 @@ fix zwalls all wall/gran model hertz tangential history primitive type 1 zplane 
 ";
     // The 2.x form with no model words needs 'primitive': the 1.x wall style without
     // its flags is an error, pointing at the style word.
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source("in.old", &format!("{HEAD}{old}"))
         .expect_err("zplane without flags or primitive");
@@ -231,7 +229,7 @@ fix zwalls all wall/gran model hertz tangential history primitive type 1 zplane 
 
 /// The error of `script` (after the head and a pair style), rendered.
 fn error_of(line: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let src = format!("{HEAD}pair_style gran/hertz/history\npair_coeff * *\n{line}\n");
     let e = i
         .run_source("in.bad", &src)
@@ -285,7 +283,7 @@ fn old_keywords_without_a_3x_model_are_located_errors() {
     let r = error_of("fix w all wall/gran/hertz/history primitive type 1 zplane 0 cohesion easo");
     located(&r, "unknown cohesion model 'easo'", "easo");
 
-    let e = Interpreter::new(Sim::new(Output::captured()))
+    let e = common::interpreter()
         .run_source(
             "in.bad",
             &format!("{HEAD}pair_style gran/hertz/history 1000 500 10 5 0.5 1\n"),
@@ -297,21 +295,21 @@ fn old_keywords_without_a_3x_model_are_located_errors() {
         r.contains("LAMMPS' 'Kn Kt gamma_n gamma_t xmu dampflag' form is not supported"),
         "{r}"
     );
-    let e = Interpreter::new(Sim::new(Output::captured()))
+    let e = common::interpreter()
         .run_source(
             "in.bad1",
             &format!("{HEAD}pair_style gran/hertz/history 1 0 1\n"),
         )
         .expect_err("three flags");
     located(&render(&e), "unexpected extra argument '1'", "1");
-    let e = Interpreter::new(Sim::new(Output::captured()))
+    let e = common::interpreter()
         .run_source(
             "in.bad2",
             &format!("{HEAD}pair_style gran/hertz/history rolling_friction epsd\n"),
         )
         .expect_err("epsd is 3.x");
     located(&render(&e), "unknown rolling friction model 'epsd'", "epsd");
-    let e = Interpreter::new(Sim::new(Output::captured()))
+    let e = common::interpreter()
         .run_source(
             "in.bad3",
             &format!("{HEAD}pair_style gran/hertz/history/stiffness\n"),

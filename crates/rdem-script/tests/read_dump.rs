@@ -4,7 +4,9 @@
 //! print the same counts; a `dump custom` written by rdem and read back gives the
 //! positions and velocities exactly; bad words stop with located errors.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/read_dump");
 
@@ -13,9 +15,9 @@ const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/read_dump");
 fn run(src: &str) -> Result<(Interpreter, String), String> {
     let head = std::fs::read_to_string(format!("{DIR}/head.in")).unwrap();
     let src = src.replace("include head.in\n", &head);
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source("case.in", &src);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     match r {
         Ok(()) => Ok((i, out)),
         Err(e) => Err(format!("{:?}\n{out}", miette::Report::new(*e))),

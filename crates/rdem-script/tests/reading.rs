@@ -4,8 +4,6 @@
 //! `create_atoms`. Each test's doc comment records what LIGGGHTS 3.8 did with the same
 //! script.
 
-use rdem_script::{Interpreter, Output, Sim};
-
 mod common;
 use common::render;
 
@@ -144,9 +142,9 @@ fn create_atoms_single_defaults_to_box_units() {
 
 /// Runs script bytes; the screen text, or the rendered error report.
 fn try_run_bytes(script: &[u8]) -> Result<String, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_bytes("in.test", script);
-    let screen = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let screen = common::screen(&i);
     r.map(|()| screen).map_err(|e| render(&e))
 }
 
@@ -221,7 +219,7 @@ fn latin1_comments_and_quoted_text_are_read() {
     let d = tmpdir("latin1");
     let path = d.join("in.latin1");
     std::fs::write(&path, &latin1).unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_file(path.to_str().unwrap()).unwrap();
     assert_eq!(
         stable(&i.sim.outputs.out.captured.clone().unwrap()),
@@ -261,7 +259,7 @@ fn a_non_utf8_byte_in_a_command_word_is_an_error_at_it() {
         );
     }
     // Nothing ran: the error comes before the first command.
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_bytes("in.test", b"print \"first\"\npri\xb5nt x\n");
     assert!(r.is_err());
     assert_eq!(i.sim.outputs.out.captured.clone().unwrap(), "");

@@ -8,15 +8,17 @@
 
 use std::path::{Path, PathBuf};
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 const SI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units/si.in");
 
 fn run_in(dir: &Path, src: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let src = src.replace("DIR", &dir.display().to_string());
     if let Err(e) = i.run_source("in.r", &src) {
-        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let out = common::screen(&i);
         panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
     }
     i
@@ -32,7 +34,7 @@ fn scratch(name: &str) -> PathBuf {
 /// The step in a restart file's title line, and its atom count, through `read_restart`.
 fn read_back(file: &Path) -> (u64, u64, rdem_script::Sim) {
     let src = format!("read_restart {}\n", file.display());
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.read", &src).unwrap();
     let w = i.sim.world.as_ref().unwrap();
     (w.step, w.natoms(), i.sim)
@@ -118,7 +120,7 @@ fn restart_zero_and_errors() {
         ),
         ("restart 100\n", "restart N needs a file name"),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i.run_source("in.t", src).unwrap_err();
         let text = format!("{:?}", miette::Report::new(*e));
         assert!(text.contains(msg), "{src}: {text}");

@@ -5,7 +5,7 @@
 //! at the `run` command (`rdem::run::engine`). Before, every one of them was reported at
 //! `run`.
 
-use rdem_script::{Interpreter, Output, ScriptReport, Sim};
+use rdem_script::ScriptReport;
 
 mod common;
 use common::render;
@@ -28,7 +28,7 @@ fn script(tail: &str) -> String {
 }
 
 fn report(src: &str) -> Box<ScriptReport> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.rt", src)
         .expect_err("the script must fail")
 }

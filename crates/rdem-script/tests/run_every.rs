@@ -6,7 +6,7 @@
 //! says when the chunk ended. The figures were printed by
 //! `liggghts -in in.e1 -log none -echo none` (LIGGGHTS 3.8.0, scripts as below).
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const HEAD: &str = "\
 atom_style granular
@@ -41,9 +41,9 @@ thermo_modify lost ignore
 ";
 
 fn run(tail: &str) -> Result<String, String> {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source("in.every", &format!("{HEAD}{tail}"));
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     match r {
         Ok(()) => Ok(out),
         Err(e) => Err(format!("{:?}", miette::Report::new(*e))),

@@ -2,7 +2,9 @@
 //! LIGGGHTS prints it, fix adapt (growth count and mass), insert/rate/region, ave/time,
 //! check/timestep/gran, data files, dumps, groups, set, velocity, delete_atoms, run upto.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 /// A box 0.1 × 0.1 × 0.15 with one type and materials, no particles.
 const HEAD: &str = "\
@@ -26,19 +28,19 @@ timestep 0.00001
 ";
 
 fn run(script: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.test", script) {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.outputs.out.captured.clone().unwrap_or_default()
+            common::screen(&i)
         );
     }
     i
 }
 
 fn screen(i: &Interpreter) -> String {
-    i.sim.outputs.out.captured.clone().unwrap_or_default()
+    common::screen(i)
 }
 
 fn tmpdir(name: &str) -> std::path::PathBuf {
@@ -279,7 +281,7 @@ fn norm_and_lost() {
          variable n equal atoms\nprint \"n=${{n}}\"\n"
     );
     assert_eq!(printed(&run(&script), "n="), 0.0);
-    let mut j = Interpreter::new(Sim::new(Output::captured()));
+    let mut j = common::interpreter();
     let err = j
         .run_source("in.test", &script.replace("lost ignore", "lost error"))
         .unwrap_err();

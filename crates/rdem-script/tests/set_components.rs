@@ -1,7 +1,9 @@
 //! `set ... x|y|z|vx|vy|vz|omegax|omegay|omegaz VALUE`, as the LIGGGHTS 3.8 manual lists
 //! them: VALUE a number, or an equal- or atom-style variable evaluated per particle.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 /// Three particles on the x axis at 0.1, 0.2, 0.3; `tail` after them.
 fn run(tail: &str) -> Result<Interpreter, String> {
@@ -18,7 +20,7 @@ set atom * diameter 0.02 density 2500
 {tail}
 "
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.set", &src).map_err(|e| format!("{e:?}"))?;
     Ok(i)
 }

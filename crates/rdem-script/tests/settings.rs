@@ -1,16 +1,16 @@
 //! The small commands every script has: `processors` on fewer ranks than asked for,
 //! `dimension`, `thermo_log`, seeds LIGGGHTS 3.8 refuses, `clear`, `units cgs|micro`.
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::{Interpreter, Sim};
 
 mod common;
 use common::render;
 
 /// Runs `src` (a script named `in.t`) and returns the interpreter and its output.
 fn run(src: &str) -> (Interpreter, Result<(), String>, String) {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source("in.t", src).map_err(|e| render(&e));
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     (i, r, out)
 }
 
@@ -147,7 +147,7 @@ impl rdem_script::fixes::ScriptFix for Servo {
 
 #[test]
 fn fix_modify_reaches_a_style_keyword_first() {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.sim.defs.fixes.push(rdem_script::fixes::FixEntry {
         head: rdem_script::fixes::FixHead {
             id: "servo".into(),

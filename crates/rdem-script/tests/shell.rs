@@ -6,7 +6,9 @@
 
 use std::path::{Path, PathBuf};
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 fn tmpdir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("rdem-shell-{name}-{}", std::process::id()));
@@ -33,7 +35,7 @@ fn tree(d: &Path) -> Vec<String> {
 }
 
 fn screen(i: &Interpreter) -> String {
-    i.sim.outputs.out.captured.clone().unwrap_or_default()
+    common::screen(i)
 }
 
 /// The script LIGGGHTS 3.8 ran, after a `shell cd` into the test folder. LIGGGHTS left
@@ -66,7 +68,7 @@ fn shell_acts_as_liggghts() {
          print done\n",
         d.display()
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.shell", &script).unwrap();
     assert_eq!(tree(&d), ["d1", "d1/here.txt", "d3", "out.txt"]);
     assert_eq!(
@@ -116,7 +118,7 @@ fn shell_acts_as_liggghts() {
          shell putenv RDEM_SHELL_FOO\n\
          variable f getenv RDEM_SHELL_FOO\n\
          print \"[${f}]\"\n";
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.shell2", script).unwrap();
     assert_eq!(tree(&d.join("a")), ["g"]);
     for gone in ["r1", "r2", "r3", "r4"] {
@@ -138,7 +140,7 @@ fn shell_acts_as_liggghts() {
         e.display()
     );
     std::fs::write(e.join("keep.txt"), "k").unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let c = i.check_source("in.check", &script);
     assert!(c.problems.is_empty(), "{c:?}");
     assert_eq!(std::env::var("RDEM_SHELL_CHECK").as_deref(), Ok("1"));

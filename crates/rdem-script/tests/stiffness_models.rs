@@ -11,7 +11,7 @@
 //! Ignored for now: the scenarios set the spins with `set atom N omegax ...`, which rdem's
 //! `set` does not read yet (it stops with "unknown set keyword 'omegax'").
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../rdem/tests/data/liggghts");
 
@@ -42,7 +42,7 @@ fn check(name: &str) {
     let theirs = frames(&std::fs::read_to_string(format!("{DIR}/{name}.dump")).unwrap());
     let path = std::env::temp_dir().join(format!("rdem-{name}-{}.dump", std::process::id()));
     let src = script.replace(&format!("{name}.dump"), &path.display().to_string());
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source(name, &src) {
         panic!("{name}: {:?}", miette::Report::new(*e));
     }
@@ -145,10 +145,10 @@ run 2
 /// The thermo column v_f1 of steps 0, 1, 2 of [`KN_SCRIPT`], or the error.
 fn kn_run(kn12: &str, t2: &str) -> Result<Vec<f64>, String> {
     let src = KN_SCRIPT.replace("${kn12}", kn12).replace("${t2}", t2);
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     i.run_source("in.kn", &src)
         .map_err(|e| format!("{:?}", miette::Report::new(*e)))?;
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     let rows: Vec<f64> = out
         .lines()
         .skip_while(|l| !l.contains("Step"))

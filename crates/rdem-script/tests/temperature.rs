@@ -2,18 +2,18 @@
 //! tests/data/settings/ ran there (`regenerate.sh`, outputs in `*.liggghts.txt`); the rows
 //! LIGGGHTS printed are hard-coded below.
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/settings");
 
 /// Runs `name` from tests/data/settings and returns its captured screen output.
 fn run(name: &str) -> String {
     let src = std::fs::read_to_string(format!("{DIR}/{name}")).unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     // The scripts include ../parity/*.in relative to their folder.
     let src = src.replace("include ../parity/", &format!("include {DIR}/../parity/"));
     let r = i.run_source(name, &src);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     if let Err(e) = r {
         panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
     }
@@ -107,7 +107,7 @@ fn dynamic_as_liggghts() {
 #[test]
 fn compute_modify_errors_and_warnings() {
     let head = std::fs::read_to_string(format!("{DIR}/../parity/head.in")).unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let src = format!(
         "{head}region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\ncompute k all ke\n\
          compute_modify k dynamic yes\ncompute_modify thermo_tmp dynamic yes\n"
@@ -116,12 +116,12 @@ fn compute_modify_errors_and_warnings() {
     let text = format!("{:?}", miette::Report::new(*e));
     assert!(text.contains("no compute 'thermo_tmp'"), "{text}");
     assert!(text.contains("thermo_temp"), "{text}");
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     assert!(
         out.contains("compute_modify dynamic has no effect on compute k (style ke)"),
         "{out}"
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source("in.t", "compute_modify thermo_temp extra 4.5\n")
         .unwrap_err();
@@ -130,7 +130,7 @@ fn compute_modify_errors_and_warnings() {
         text.contains("extra must be an integer, not '4.5'"),
         "{text}"
     );
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source("in.t", "compute_modify thermo_temp extra 1 bogus 2\n")
         .unwrap_err();

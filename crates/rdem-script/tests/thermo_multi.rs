@@ -4,7 +4,7 @@
 //! lines of each run (after `Memory usage`, before `Loop time`) are compared with the CPU
 //! seconds masked (the only values that depend on the machine).
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/thermo_multi");
 
@@ -53,11 +53,11 @@ fn mask_cpu(l: &str) -> String {
 #[test]
 fn multi_layout_as_liggghts() {
     let src = std::fs::read_to_string(format!("{DIR}/in.multi")).unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.multi", &src) {
         panic!("{:?}", miette::Report::new(*e));
     }
-    let ours = thermo_lines(&i.sim.outputs.out.captured.clone().unwrap_or_default());
+    let ours = thermo_lines(&common::screen(&i));
     let theirs = thermo_lines(&std::fs::read_to_string(format!("{DIR}/screen.liggghts")).unwrap());
     // 5 runs (each closed by its "end of run" line): 3 outputs of a banner and 2 lines,
     // 2 of a banner and 1, 2 of a banner and 6, a header and 2 rows, 2 of a banner and 6.
@@ -80,11 +80,11 @@ fn multi_layout_as_liggghts() {
 #[test]
 fn style_multi_as_liggghts() {
     let src = std::fs::read_to_string(format!("{DIR}/in.style_multi")).unwrap();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.style_multi", &src) {
         panic!("{:?}", miette::Report::new(*e));
     }
-    let ours = thermo_lines(&i.sim.outputs.out.captured.clone().unwrap_or_default());
+    let ours = thermo_lines(&common::screen(&i));
     let theirs =
         thermo_lines(&std::fs::read_to_string(format!("{DIR}/screen_style.liggghts")).unwrap());
     // 2 runs: 3 outputs of a banner and 2 lines, then 2.
@@ -101,7 +101,7 @@ fn style_multi_as_liggghts() {
 #[test]
 fn other_line_styles_are_errors() {
     for w in ["yaml", "foo"] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i
             .run_source("in.t", &format!("thermo_modify line {w}\n"))
             .expect_err("must stop");

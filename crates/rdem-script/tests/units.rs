@@ -3,15 +3,15 @@
 //! (`make.py` converts every number) gives one motion, and the `cgs` run matches
 //! LIGGGHTS 3.8 (`regenerate.sh`; outputs in `NAME.liggghts.txt`, hard-coded below).
 
-use rdem_script::{Interpreter, Output, Sim};
+mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units");
 
 /// Runs `src` and returns its captured screen output.
 fn run_src(name: &str, src: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let r = i.run_source(name, src);
-    let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let out = common::screen(&i);
     if let Err(e) = r {
         panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
     }
@@ -154,13 +154,13 @@ fn defaults_follow_the_unit_system() {
         let src = format!(
             "units {u}\nregion r block 0 1 0 1 0 1 units box\ncreate_box 1 r\nvariable d equal dt\nprint \"dt=${{d}}\"\n"
         );
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         i.run_source("in.t", &src).unwrap();
         let w = i.sim.world.as_ref().unwrap();
         assert_eq!(w.dt, dt, "{u}");
         // The skin the box's neighbor lists get at the next run.
         assert_eq!(i.sim.setup.neighbor.skin, skin, "{u}");
-        let out = i.sim.outputs.out.captured.clone().unwrap_or_default();
+        let out = common::screen(&i);
         let printed: f64 = out
             .lines()
             .find_map(|l| l.strip_prefix("dt="))
@@ -181,7 +181,7 @@ fn units_errors() {
             "units after the simulation box is defined",
         ),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i.run_source("in.t", src).unwrap_err();
         let text = format!("{:?}", miette::Report::new(*e));
         assert!(text.contains(msg), "{text}");

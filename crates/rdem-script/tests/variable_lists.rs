@@ -4,7 +4,9 @@
 
 use std::path::PathBuf;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 fn tmpdir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("rdem-varlists-{name}-{}", std::process::id()));
@@ -14,24 +16,24 @@ fn tmpdir(name: &str) -> PathBuf {
 }
 
 fn run(script: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.x", script) {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.outputs.out.captured.clone().unwrap_or_default()
+            common::screen(&i)
         );
     }
     i
 }
 
 fn screen(i: &Interpreter) -> Vec<String> {
-    let s = i.sim.outputs.out.captured.clone().unwrap_or_default();
+    let s = common::screen(i);
     s.lines().map(String::from).collect()
 }
 
 fn error(script: &str) -> String {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i.run_source("in.x", script).expect_err("must fail");
     e.to_string()
 }

@@ -7,15 +7,17 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use rdem_script::{Interpreter, Output, Sim};
+use rdem_script::Interpreter;
+
+mod common;
 
 fn run(script: &str) -> Interpreter {
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     if let Err(e) = i.run_source("in.test", script) {
         panic!(
             "{:?}\n--- output ---\n{}",
             miette::Report::new(*e),
-            i.sim.outputs.out.captured.clone().unwrap_or_default()
+            common::screen(&i)
         );
     }
     i
@@ -654,7 +656,7 @@ write_dump all atom/vtk {d}/wd_*.vtu modify binary yes
             "must end in .vtk, .vtp or .vtu",
         ),
     ] {
-        let mut i = Interpreter::new(Sim::new(Output::captured()));
+        let mut i = common::interpreter();
         let e = i
             .run_source("in.bad", &format!("{LATTICE}{bad}\n"))
             .unwrap_err();
@@ -670,7 +672,7 @@ fn write_errors_name_the_file() {
     let dir = tmpdir("errors");
     fs::write(dir.join("plain"), b"").unwrap();
     let d = dir.display();
-    let mut i = Interpreter::new(Sim::new(Output::captured()));
+    let mut i = common::interpreter();
     let e = i
         .run_source(
             "in.err",
