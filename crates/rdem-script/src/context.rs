@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use rdem::World;
 
+use crate::args::NumOrVar;
 use crate::atom_fields;
 use crate::expr::{self, Context, Name};
 use crate::sim::Sim;
@@ -54,27 +55,58 @@ pub fn eval_equal_at(
     who: &str,
     hint: &str,
 ) -> Result<Vec<Option<f64>>, String> {
+    at_step(sim, step, who, |sim| {
+        names
+            .iter()
+            .map(|name| {
+                let Some(name) = name else { return Ok(None) };
+                match sim.script.vars.get(name) {
+                    Some(Variable::Equal(f)) => eval_equal(sim, f)
+                        .map(Some)
+                        .map_err(|e| format!("variable {name}: {}", e.message)),
+                    Some(_) => Err(format!("{who}: variable '{name}' is not equal-style{hint}")),
+                    None => Err(format!("{who}: no variable '{name}'")),
+                }
+            })
+            .collect()
+    })?
+}
+
+/// The values of a fix's `number | NULL | v_name` arguments at step `step`: numbers as
+/// they are, `NULL` as `None`, variables evaluated as [`eval_equal_at`] does.
+pub fn values_at(
+    sim: &mut Sim,
+    step: u64,
+    values: &[&NumOrVar],
+    who: &str,
+    hint: &str,
+) -> Result<Vec<Option<f64>>, String> {
+    let names: Vec<Option<&str>> = values.iter().map(|v| v.var()).collect();
+    let vars = eval_equal_at(sim, step, &names, who, hint)?;
+    Ok(values
+        .iter()
+        .zip(vars)
+        .map(|(v, x)| v.num().or(x))
+        .collect())
+}
+
+/// `f` run with the world's step set to `step` (restored after it), so that what reads
+/// the step (variables, moving regions) sees the coming step. Errors if there is no
+/// box yet (`who` names the asker).
+pub fn at_step<T>(
+    sim: &mut Sim,
+    step: u64,
+    who: &str,
+    f: impl FnOnce(&mut Sim) -> T,
+) -> Result<T, String> {
     let w = sim
         .world
         .as_mut()
         .ok_or_else(|| format!("{who} needs a simulation box"))?;
-    let now = w.step;
-    w.step = step;
-    let vals: Result<Vec<Option<f64>>, String> = names
-        .iter()
-        .map(|name| {
-            let Some(name) = name else { return Ok(None) };
-            match sim.script.vars.get(name) {
-                Some(Variable::Equal(f)) => eval_equal(sim, f)
-                    .map(Some)
-                    .map_err(|e| format!("variable {name}: {}", e.message)),
-                Some(_) => Err(format!("{who}: variable '{name}' is not equal-style{hint}")),
-                None => Err(format!("{who}: no variable '{name}'")),
-            }
-        })
-        .collect();
+    let now = std::mem::replace(&mut w.step, step);
+    let out = f(sim);
     sim.world.as_mut().expect("checked").step = now;
-    vals
+    Ok(out)
 }
 
 /// The equal-style variable `name` at full precision (a moving region's displacement

@@ -406,18 +406,19 @@ impl Sim {
             .map_or(&self.setup.exclude, |w| &w.neighbor.exclude)
     }
 
-    /// Sets the neighbor settings and exclusions where they live now (see
-    /// [`Sim::install_world`]).
-    pub fn set_neighbor(&mut self, s: NeighborSettings, exclude: rdem::Exclusions) {
+    /// Sets the neighbor settings where they live now (see [`Sim::install_world`]).
+    pub fn set_neighbor(&mut self, s: NeighborSettings) {
         match &mut self.world {
-            Some(w) => {
-                w.neighbor.settings = s;
-                w.neighbor.exclude = exclude;
-            }
-            None => {
-                self.setup.neighbor = s;
-                self.setup.exclude = exclude;
-            }
+            Some(w) => w.neighbor.settings = s,
+            None => self.setup.neighbor = s,
+        }
+    }
+
+    /// Sets the `neigh_modify exclude` pairs where they live now.
+    pub fn set_exclusions(&mut self, exclude: rdem::Exclusions) {
+        match &mut self.world {
+            Some(w) => w.neighbor.exclude = exclude,
+            None => self.setup.exclude = exclude,
         }
     }
 

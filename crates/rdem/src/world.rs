@@ -251,6 +251,11 @@ impl World {
         Ok(())
     }
 
+    /// The engine fix `id`, to change its parameters.
+    pub fn fix_mut(&mut self, id: &str) -> Option<&mut Fix> {
+        self.fixes.iter_mut().find(|f| f.id == id)
+    }
+
     /// Removes the fix `id`; returns false if there was none.
     pub fn remove_fix(&mut self, id: &str) -> bool {
         let n = self.fixes.len();

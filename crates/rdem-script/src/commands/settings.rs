@@ -376,8 +376,7 @@ pub(super) fn neighbor(sim: &mut Sim, a: &mut Args) -> CmdResult {
     a.done()?;
     let mut s = sim.neighbor_settings();
     s.skin = skin;
-    let exclude = sim.exclusions().clone();
-    sim.set_neighbor(s, exclude);
+    sim.set_neighbor(s);
     Ok(())
 }
 
@@ -421,7 +420,8 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
         }
     }
     s.validate().map_err(|e| a.error_cmd(e.to_string(), None))?;
-    sim.set_neighbor(s, exclude);
+    sim.set_neighbor(s);
+    sim.set_exclusions(exclude);
     Ok(())
 }
 

@@ -154,15 +154,12 @@ impl ScriptFix for Gravity {
         if self.values.iter().all(|v| v.var().is_none()) {
             return Ok(());
         }
-        let names: Vec<Option<&str>> = self.values.iter().map(NumOrVar::var).collect();
-        let vars = context::eval_equal_at(sim, step, &names, "fix gravity", "")?;
-        let nums: Vec<f64> = self
-            .values
-            .iter()
-            .zip(vars)
-            .map(|(v, x)| v.num().or(x).expect("a number or an evaluated variable"))
+        let values: Vec<&NumOrVar> = self.values.iter().collect();
+        let nums: Vec<f64> = context::values_at(sim, step, &values, "fix gravity", "")?
+            .into_iter()
+            .map(|x| x.expect("a number or an evaluated variable"))
             .collect();
-        let w = sim.world.as_mut().expect("eval_equal_at checked");
+        let w = sim.world.as_mut().expect("values_at checked");
         let acc = accel(self.style, nums[0], &nums[1..], self.flat)
             .filter(|g| g.is_finite())
             .ok_or_else(|| {
@@ -172,9 +169,7 @@ impl ScriptFix for Gravity {
                 )
             })?;
         let fix = w
-            .fixes
-            .iter_mut()
-            .find(|f| f.id == head.id)
+            .fix_mut(&head.id)
             .ok_or("fix gravity is not in the engine")?;
         if let FixKind::Gravity { accel } = &mut fix.kind {
             *accel = acc;

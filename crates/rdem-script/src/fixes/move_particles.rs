@@ -56,7 +56,7 @@ impl ScriptFix for FixMove {
     fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
         let (origin_step, prev): (u64, [Option<f64>; 3]) = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
-        let fix = w.fixes.iter_mut().find(|f| f.id == head.id);
+        let fix = w.fix_mut(&head.id);
         let Some(FixKind::Move(m)) = fix.map(|f| &mut f.kind) else {
             return Err("fix move is not in the engine".into());
         };
@@ -92,11 +92,7 @@ impl ScriptFix for FixMove {
         )?;
         let vals: [Option<f64>; 6] = [v[0], v[1], v[2], v[3], v[4], v[5]];
         let w = sim.world.as_mut().expect("eval_equal_at checked");
-        let fix = w
-            .fixes
-            .iter_mut()
-            .find(|f| f.id == head.id)
-            .ok_or("fix move is not in the engine")?;
+        let fix = w.fix_mut(&head.id).ok_or("fix move is not in the engine")?;
         if let FixKind::Move(m) = &mut fix.kind {
             let previous = match &m.style {
                 MoveStyle::Variable { displacement, .. } => *displacement,

@@ -162,21 +162,13 @@ impl ScriptFix for SpeedControl {
         if values.iter().all(|v| v.var().is_none()) && self.moving_region.is_none() {
             return Ok(());
         }
-        let names: Vec<Option<&str>> = values.iter().map(|v| v.var()).collect();
-        let vars = context::eval_equal_at(
-            sim,
-            step,
-            &names,
-            "fix speedcontrol",
-            " (atom-style is not supported yet)",
-        )?;
-        let now: Vec<Option<f64>> = values
-            .iter()
-            .zip(vars)
-            .map(|(v, x)| v.num().or(x))
-            .collect();
+        let who = "fix speedcontrol";
+        let hint = " (atom-style is not supported yet)";
+        let now = context::values_at(sim, step, &values, who, hint)?;
         let region = match &self.moving_region {
-            Some(id) => Some(region_at(sim, id, step)?),
+            Some(id) => Some(context::at_step(sim, step, who, |sim| {
+                crate::regions::region_now(sim, id)
+            })??),
             None => None,
         };
         let gain = now[3].expect("the gain is a number or a variable");
@@ -186,11 +178,9 @@ impl ScriptFix for SpeedControl {
                 &now[..3]
             ));
         }
-        let w = sim.world.as_mut().expect("eval_equal_at checked");
+        let w = sim.world.as_mut().expect("values_at checked");
         let fix = w
-            .fixes
-            .iter_mut()
-            .find(|f| f.id == head.id)
+            .fix_mut(&head.id)
             .ok_or("fix speedcontrol is not in the engine")?;
         if let FixKind::Force(force) = &mut fix.kind {
             if let Some(c) = force.as_any_mut().downcast_mut::<Controller>() {
@@ -207,17 +197,4 @@ impl ScriptFix for SpeedControl {
     fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
         self.inner.unfix(sim, head);
     }
-}
-
-/// Region `id` placed at `step` (its motion's variables evaluated at that step).
-fn region_at(sim: &mut Sim, id: &str, step: u64) -> Result<Region, String> {
-    let w = sim
-        .world
-        .as_mut()
-        .ok_or("fix speedcontrol needs a simulation box")?;
-    let now = w.step;
-    w.step = step;
-    let region = crate::regions::region_now(sim, id);
-    sim.world.as_mut().expect("checked").step = now;
-    region
 }
