@@ -294,7 +294,8 @@ fn a_lost_particle_on_another_rank_is_reported_with_its_tag() {
     let script = format!(
         "{HEAD}create_atoms 1 single 0.02 0.01 0.01 units box\n\
          create_atoms 1 single 0.07 0.01 0.01 units box\n\
-         set atom * diameter 0.004 density 2500\nset atom 2 vz 1e6\nrun 10\n"
+         set atom * diameter 0.004 density 2500\nset atom 2 vz 1e6\n\
+         thermo_modify lost error\nrun 10\n"
     );
     let out = common::run_script_raw(&script, Some(2));
     let err = String::from_utf8_lossy(&out.stderr);

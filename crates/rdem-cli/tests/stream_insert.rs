@@ -398,3 +398,104 @@ run 399
     assert!(r[5] < 0.1 && r[2] < -2.0, "{r:?}");
     assert_eq!(rows.last().unwrap()[1], 40.0);
 }
+
+/// A closed box of mesh walls (x, y in ±0.05, z from −0.2 to 0.16), filled through a
+/// planar face that spans its whole cross-section at z = 0.1, with an oblique stream
+/// (`vel 0.6 0 -1`, a 0.05 m extrusion, `all_in yes`) and soft spheres (E = 1e7, r =
+/// 4 mm; the walls E = 1e8).
+///
+/// LIGGGHTS 3.8 (the same script, `-log none`) keeps all 150 particles, with the
+/// largest x at 0.04600 to 0.04612 (the wall less a radius, plus the overlap) at every
+/// thermo row to step 3000. rdem before commit e0e8abc moved the held particles at the
+/// whole oblique velocity, so they drifted 0.6 · 0.05 = 0.03 m sideways through the
+/// wall (held particles feel no force) and were released outside the box, whose wall
+/// then fired them out: "1 particle(s) lost at step 155", one of the issue's lost
+/// particles from a mesh box (an old build lost one at step 306 in a 0.2 m box of four
+/// STL meshes). The run must keep all of them inside the walls.
+#[test]
+fn an_oblique_stream_into_a_mesh_box_loses_none() {
+    let quad = |a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]| {
+        [[a, b, c], [a, c, d]]
+            .iter()
+            .map(|t| {
+                let v: String = t
+                    .iter()
+                    .map(|p| format!("vertex {} {} {}\n", p[0], p[1], p[2]))
+                    .collect();
+                format!("facet normal 0 0 0\nouter loop\n{v}endloop\nendfacet\n")
+            })
+            .collect::<String>()
+    };
+    let (h, lo, hi) = (0.05, -0.2, 0.16);
+    let walls = [
+        quad([-h, -h, lo], [h, -h, lo], [h, h, lo], [-h, h, lo]),
+        quad([-h, -h, lo], [-h, h, lo], [-h, h, hi], [-h, -h, hi]),
+        quad([h, -h, lo], [h, h, lo], [h, h, hi], [h, -h, hi]),
+        quad([-h, -h, lo], [h, -h, lo], [h, -h, hi], [-h, -h, hi]),
+        quad([-h, h, lo], [h, h, lo], [h, h, hi], [-h, h, hi]),
+    ];
+    let boxstl = format!("solid box\n{}endsolid box\n", walls.concat());
+    let face = format!(
+        "solid face\n{}endsolid face\n",
+        quad([-h, -h, 0.1], [h, -h, 0.1], [h, h, 0.1], [-h, h, 0.1])
+    );
+    let script = "atom_style granular
+units si
+newton off
+communicate single vel yes
+boundary f f f
+region box block -0.1 0.1 -0.1 0.1 -0.25 0.3 units box
+create_box 2 box
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7 1e8
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.4 0.4 0.4 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-4
+fix g all gravity 9.81 vector 0 0 -1
+fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 10037 1 pts 1.0
+fix box all mesh/surface file box.stl type 2
+fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes box
+fix face all mesh/surface/planar file face.stl type 1
+fix ins all insert/stream seed 10039 distributiontemplate pdd nparticles 150 particlerate 2000 vel constant 0.6 0 -1 overlapcheck yes all_in yes insertion_face face extrude_length 0.05
+fix nve all nve/sphere
+variable xlo equal bound(all,xmin)
+variable xhi equal bound(all,xmax)
+variable ylo equal bound(all,ymin)
+variable yhi equal bound(all,ymax)
+variable zlo equal bound(all,zmin)
+thermo_style custom step atoms v_xlo v_xhi v_ylo v_yhi v_zlo
+thermo_modify norm no format float %.15g
+thermo 100
+run 3000
+";
+    let out = run_with_files_raw(script, &[("box.stl", &boxstl), ("face.stl", &face)], None);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!text.contains("WARNING"), "{text}");
+    let rows = thermo_rows(&text);
+    assert_eq!(rows.len(), 31, "{text}");
+    assert_eq!(rows.last().unwrap()[1], 150.0, "{text}");
+    // No particle at step 0: bound() of an empty group is ±1e20, as LIGGGHTS prints it.
+    assert_eq!(&rows[0][1..4], &[0.0, 1e20, -1e20], "{text}");
+    // Every particle inside the walls, less its radius, at every row (an overlap of
+    // 0.5 mm at most: LIGGGHTS' largest x is 0.04612).
+    for r in rows.iter().filter(|r| r[1] > 0.0) {
+        for v in [-r[2], r[3], -r[4], r[5]] {
+            assert!(
+                v < 0.0465,
+                "step {}: a particle at {v} against walls at 0.05: {text}",
+                r[0]
+            );
+        }
+        assert!(r[6] > -0.2, "{text}");
+    }
+}

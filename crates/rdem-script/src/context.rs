@@ -421,12 +421,14 @@ impl Context for Ctx<'_> {
                     "zmax" => (2, false),
                     _ => return Err(format!("bound(): '{which}' is not xmin, xmax, ..., zmax")),
                 };
+                // An empty group gives ±1e20, as LIGGGHTS prints it (its `BIG`).
+                const BIG: f64 = 1e20;
                 if lo {
                     w.comm
-                        .min(sel.iter().map(|&i| p.x[i][a]).fold(f64::MAX, f64::min))
+                        .min(sel.iter().map(|&i| p.x[i][a]).fold(BIG, f64::min))
                 } else {
                     w.comm
-                        .max(sel.iter().map(|&i| p.x[i][a]).fold(-f64::MAX, f64::max))
+                        .max(sel.iter().map(|&i| p.x[i][a]).fold(-BIG, f64::max))
                 }
             }
             _ => {

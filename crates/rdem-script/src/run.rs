@@ -156,8 +156,8 @@ pub fn run_chunk(sim: &mut Sim, a: &Args, chunk: Chunk) -> CmdResult {
 /// `run` command's line in the help), else at the `run` command.
 fn run_error(a: &Args, e: RunError) -> ScriptError {
     let help = e.message.contains("lost").then(|| {
-        "particles that leave through a fixed face stop the run by default; \
-         'thermo_modify lost ignore' (or warn) drops them instead"
+        "'thermo_modify lost error' stops the run when particles leave through a fixed face; \
+         'lost warn' (the default) drops them with one warning, 'lost ignore' silently"
             .to_string()
     });
     let mut err = match &e.origin {

@@ -129,7 +129,7 @@ impl Default for Setup {
             // LIGGGHTS' default for SI units.
             dt: rdem::world::DEFAULT_TIMESTEP,
             sort: rdem::SortSettings::default(),
-            lost: rdem::LostPolicy::Error,
+            lost: rdem::LostPolicy::default(),
             procs: [0; 3],
             units: crate::units::Units::Si,
             dimension: 3,

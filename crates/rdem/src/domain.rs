@@ -266,6 +266,14 @@ impl Domain {
         Ok(())
     }
 
+    /// True when some face of the box is fixed (`f`), so that particles can be lost.
+    pub fn has_fixed_face(&self) -> bool {
+        self.boundary
+            .iter()
+            .flatten()
+            .any(|&b| b == Boundary::Fixed)
+    }
+
     /// True when a particle at `x` has left a fixed face and must be dropped.
     pub fn is_lost(&self, x: DVec3) -> bool {
         (0..3).any(|a| {

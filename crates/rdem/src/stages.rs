@@ -94,6 +94,13 @@ impl World {
                 wall.setup(&self.materials, &self.meshes, &mut self.particles)?;
             }
         }
+        // Where each particle last touched a wall, for the lost-particle report.
+        let reports = self.lost_policy != LostPolicy::Ignore && self.domain.has_fixed_face();
+        if reports && self.fixes.iter().any(|fix| fix.kind.as_wall().is_some()) {
+            let none = [-1.0; crate::wall::TOUCH_WIDTH];
+            self.particles
+                .add_property(crate::wall::TOUCH_PROPERTY, none.len(), &none)?;
+        }
         if self.heat.is_none() {
             // A wall at a fixed temperature conducts into the particles' temperatures.
             for fix in &self.fixes {
@@ -272,9 +279,10 @@ impl World {
         self.remove_whole_bodies(&mut lost);
         self.particles.remove_locals(&lost);
         self.lost += nlost;
-        if self.lost_policy == LostPolicy::Warn {
+        if self.lost_policy == LostPolicy::Warn && !self.lost_warned {
+            self.lost_warned = true;
             self.warnings.push(format!(
-                "{nlost} particle(s) lost at step {} (left a fixed boundary); first lost tag {first_tag} {detail}",
+                "{nlost} particle(s) lost at step {} (left a fixed boundary); first lost tag {first_tag} {detail}. The run goes on without them, as in LIGGGHTS; this warning is given once (thermo_modify lost ignore: none; lost error: stop)",
                 self.step
             ));
         }
@@ -282,12 +290,13 @@ impl World {
     }
 
     /// Where the first lost particle (owned particle `owned` on the rank that has it, the
-    /// same text on every rank) was found, its velocity, and the wall surface that its
-    /// path traced back crosses first ([`crate::lost::crossing`]).
+    /// same text on every rank) was found, its velocity, the wall surface that its path
+    /// traced back crosses first ([`crate::lost::crossing`]), and the wall it last
+    /// touched ([`crate::wall::touch`]).
     fn lost_detail(&self, owned: Option<usize>) -> String {
         // The owner's values; the other ranks give +inf, so a minimum over the ranks
-        // hands the owner's to all (-1 stands for "no crossing").
-        let mut vals = [f64::INFINITY; 10];
+        // hands the owner's to all (-1 stands for "no crossing" and "no touch").
+        let mut vals = [f64::INFINITY; 13];
         if let Some(i) = owned {
             let (x, v) = (self.particles.x[i], self.particles.v[i]);
             vals[..3].copy_from_slice(&x.to_array());
@@ -295,42 +304,75 @@ impl World {
             match crate::lost::crossing(&self.fixes, &self.meshes, x, v) {
                 Some(c) => {
                     let (m, t) = c.mesh.map_or((-1.0, -1.0), |(m, t)| (m as f64, t as f64));
-                    vals[6..].copy_from_slice(&[c.fix as f64, m, t, c.back]);
+                    vals[6..10].copy_from_slice(&[c.fix as f64, m, t, c.back]);
                 }
-                None => vals[6..].fill(-1.0),
+                None => vals[6..10].fill(-1.0),
+            }
+            match self.particles.property(crate::wall::TOUCH_PROPERTY) {
+                Some(id) => {
+                    let w = crate::wall::TOUCH_WIDTH;
+                    vals[10..]
+                        .copy_from_slice(&self.particles.props[id.0].data[i * w..(i + 1) * w]);
+                }
+                // No record kept: neither "touched" nor "touched none".
+                None => vals[10..].fill(-2.0),
             }
         }
         for v in &mut vals {
             *v = self.comm.min(*v);
         }
-        let [x, y, z, vx, vy, vz, fix, mesh, tri, back] = vals;
+        let [x, y, z, vx, vy, vz, fix, mesh, tri, back, touch_fix, touch_tri, touch_step] = vals;
         let (xs, vs) = (DVec3::new(x, y, z), DVec3::new(vx, vy, vz));
         let mut s = format!(
             "at {} with velocity {}",
             crate::lost::show(xs),
             crate::lost::show(vs)
         );
+        if touch_fix >= 0.0 && touch_fix.is_finite() {
+            let surface = if touch_tri >= 0.0 {
+                let (m, t) = crate::wall::touch::unpack_triangle(touch_tri);
+                Some((m, t))
+            } else {
+                None
+            };
+            s.push_str(&format!(
+                "; it last touched {} at step {} ({} steps before)",
+                self.surface_name(touch_fix as usize, surface),
+                touch_step as u64,
+                self.step.saturating_sub(touch_step as u64)
+            ));
+        } else if touch_fix == crate::wall::touch::REMOVED {
+            s.push_str(&format!(
+                "; it last touched a wall at step {}, whose fix was removed since",
+                touch_step as u64
+            ));
+        } else if touch_fix == -1.0 {
+            s.push_str("; it has touched no wall");
+        }
         if fix < 0.0 || !fix.is_finite() {
             s.push_str("; traced back along its velocity, its path crosses no wall");
             return s;
         }
         // The crossing point, on the path back from the particle.
         let p = xs - back * vs / vs.length();
-        let id = &self.fixes[fix as usize].id;
-        let surface = if mesh >= 0.0 {
-            format!(
-                "mesh '{}' triangle {} of wall '{id}'",
-                self.meshes[mesh as usize].id, tri as u64
-            )
-        } else {
-            format!("wall '{id}'")
-        };
+        let surface = (mesh >= 0.0).then_some((mesh as usize, tri as u32));
         s.push_str(&format!(
-            "; traced back along its velocity, its path crosses {surface} at {}, {} back",
+            "; traced back along its velocity, its path crosses {} at {}, {} back",
+            self.surface_name(fix as usize, surface),
             crate::lost::show(p),
             crate::lost::g6(back)
         ));
         s
+    }
+
+    /// "wall 'ID'", or "mesh 'M' triangle T of wall 'ID'" for a mesh (`surface`: its
+    /// index in the world's meshes and the triangle), for reports.
+    fn surface_name(&self, fix: usize, surface: Option<(usize, u32)>) -> String {
+        let id = &self.fixes[fix].id;
+        match surface {
+            Some((m, t)) => format!("mesh '{}' triangle {t} of wall '{id}'", self.meshes[m].id),
+            None => format!("wall '{id}'"),
+        }
     }
 
     /// Re-neighboring 7: the owned particles sorted by spatial bin when a sort is due.

@@ -247,6 +247,7 @@ impl World {
             &mut self.particles,
             self.dt,
             update,
+            self.step,
             &*self.comm,
         );
         self.conduct_heat(update);

@@ -18,12 +18,15 @@ use crate::timers::Timers;
 /// What to do when particles leave a fixed boundary (`thermo_modify lost`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LostPolicy {
-    /// Stop the run (LIGGGHTS default).
-    #[default]
+    /// Stop the run, with a report of the first lost particle.
     Error,
-    /// Count them and report a warning.
+    /// Drop them and go on; the first loss (only the first, as in LIGGGHTS) gives a
+    /// warning with the report. The default: LIGGGHTS' default is `ignore` (its manual,
+    /// and measured on 3.8: a sphere shot through a fixed face is dropped and the run
+    /// goes on), so the run goes on as there, and the warning says what LIGGGHTS does not.
+    #[default]
     Warn,
-    /// Count them silently.
+    /// Drop them silently.
     Ignore,
 }
 
@@ -86,6 +89,8 @@ pub struct World {
     pub timers: Timers,
     /// Particles lost so far (all ranks).
     pub lost: u64,
+    /// True once a lost-particle warning was given ([`LostPolicy::Warn`] warns once).
+    pub lost_warned: bool,
     /// Warnings raised during runs (lost particles under `warn`, ...), oldest first.
     pub warnings: Vec<String>,
     /// Set by the caller before a step (or a set-up) whose pair contact virial it needs:
@@ -131,10 +136,11 @@ impl World {
             dt: DEFAULT_TIMESTEP,
             step: 0,
             comm: crate::comm::default_comm(),
-            lost_policy: LostPolicy::Error,
+            lost_policy: LostPolicy::default(),
             sort: SortSettings::default(),
             timers: Timers::default(),
             lost: 0,
+            lost_warned: false,
             warnings: Vec::new(),
             want_virial: false,
             virial: Vec::new(),
@@ -258,9 +264,14 @@ impl World {
 
     /// Removes the fix `id`; returns false if there was none.
     pub fn remove_fix(&mut self, id: &str) -> bool {
-        let n = self.fixes.len();
-        self.fixes.retain(|f| f.id != id);
-        n != self.fixes.len()
+        let Some(k) = self.fixes.iter().position(|f| f.id == id) else {
+            return false;
+        };
+        self.fixes.remove(k);
+        if let Some(pid) = self.particles.property(crate::wall::TOUCH_PROPERTY) {
+            crate::wall::touch::forget_fix(&mut self.particles.props[pid.0].data, k);
+        }
+        true
     }
 
     /// Gives untagged owned particles new tags: max+1, max+2, ... over all ranks, each rank

@@ -12,7 +12,7 @@ use crate::error::{check, Error, Result};
 use crate::par::{all_finite, parallel, View, CHUNK};
 use crate::particles::Particles;
 use crate::wall::primitive::chunk_hist;
-use crate::wall::PrimitiveWall;
+use crate::wall::{PrimitiveWall, TOUCH_WIDTH};
 
 /// What a fix does.
 #[derive(Debug, Clone)]
@@ -362,14 +362,16 @@ pub(crate) fn post_force(
     p: &mut Particles,
     dt: f64,
     update: bool,
+    step: u64,
     comm: &dyn crate::comm::Comm,
 ) -> bool {
+    let at = |start: usize| At { start, step };
     let mut start = 0;
     let mut ok = true;
     for k in 0..fixes.len() {
         if acts_alone(&fixes[k].kind) {
             if start < k {
-                ok &= post_force_pass(&fixes[start..k], meshes, p, dt, update);
+                ok &= post_force_pass(&fixes[start..k], at(start), meshes, p, dt, update);
             }
             if let FixKind::WallRegionSph(w) = &fixes[k].kind {
                 w.apply(p, fixes[k].groupbit);
@@ -382,7 +384,7 @@ pub(crate) fn post_force(
         }
     }
     // The last pass runs also without fixes: it checks that every force is finite.
-    ok & post_force_pass(&fixes[start..], meshes, p, dt, update)
+    ok & post_force_pass(&fixes[start..], at(start), meshes, p, dt, update)
 }
 
 /// The post-force fixes that act alone between the parallel passes: `aveforce` (a sum over
@@ -456,10 +458,19 @@ fn cut<'a>(v: &'a mut [f64], id: &Option<(usize, usize)>, n: usize) -> &'a mut [
     }
 }
 
+/// Where a pass of [`post_force_pass`] is: the index of its first fix in the world's
+/// fixes, and the step (for the walls' last-touch records, [`crate::wall::touch`]).
+#[derive(Clone, Copy)]
+struct At {
+    start: usize,
+    step: u64,
+}
+
 /// The post-force fixes `fixes` (none of them `aveforce`) in one pass over the owned
 /// particles; false when some force or torque is then not finite.
 fn post_force_pass(
     fixes: &[Fix],
+    at: At,
     meshes: &[crate::wall::MeshSurface],
     p: &mut Particles,
     dt: f64,
@@ -484,7 +495,12 @@ fn post_force_pass(
             (hist, store.map(|id| (id.0, p.props[id.0].width)))
         })
         .collect();
+    // Where each particle last touched a wall, when the lost-particle report asks for it.
+    let touch_id = p
+        .property(crate::wall::TOUCH_PROPERTY)
+        .filter(|_| fixes.iter().any(|fix| fix.kind.as_wall().is_some()));
     let (view, f, torque, props, sparse) = View::split(p);
+    let mut touch_data = touch_id.map_or_else(Vec::new, |id| std::mem::take(&mut props[id.0].data));
     let mut data: Vec<[Vec<f64>; 2]> = taken
         .iter()
         .map(|(h, s)| {
@@ -494,14 +510,23 @@ fn post_force_pass(
             ]
         })
         .collect();
-    let chunk = |lo: usize, f: &mut [DVec3], torque: &mut [DVec3], hs: &mut [[&mut [f64]; 2]]| {
-        for (fix, [h, store]) in fixes.iter().zip(hs.iter_mut()) {
+    let chunk = |lo: usize,
+                 f: &mut [DVec3],
+                 torque: &mut [DVec3],
+                 hs: &mut [[&mut [f64]; 2]],
+                 touch: &mut [f64]| {
+        for (k, (fix, [h, store])) in fixes.iter().zip(hs.iter_mut()).enumerate() {
             let stored = !store.is_empty();
             if stored {
                 crate::wall::store_begin(f, store);
             }
             if let Some(wall) = fix.kind.as_wall() {
-                wall.apply_range(meshes, &view, lo, f, torque, h, dt, update);
+                let touches = crate::wall::Touches {
+                    data: &mut *touch,
+                    fix: at.start + k,
+                    step: at.step,
+                };
+                wall.apply_range(meshes, &view, lo, f, torque, h, touches, dt, update);
             } else {
                 fix.post_force_range(&view, lo, f, torque, dt);
             }
@@ -517,7 +542,8 @@ fn post_force_pass(
             .zip(&taken)
             .map(|([h, s], (_, sid))| [&mut h[..], cut(s, sid, n)])
             .collect();
-        chunk(0, &mut f[..n], &mut torque[..n], &mut hs)
+        let touch = cut(&mut touch_data, &touch_id.map(|_| (0, TOUCH_WIDTH)), n);
+        chunk(0, &mut f[..n], &mut torque[..n], &mut hs, touch)
     } else {
         let mut per: Vec<Vec<[&mut [f64]; 2]>> = (0..n.div_ceil(CHUNK))
             .map(|_| Vec::with_capacity(fixes.len()))
@@ -533,12 +559,15 @@ fn post_force_pass(
                 c.push([hc, sc]);
             }
         }
+        let tw = if touch_id.is_some() { TOUCH_WIDTH } else { 0 };
+        let touches = chunk_hist(&mut touch_data, n, tw);
         let oks: Vec<bool> = f[..n]
             .par_chunks_mut(CHUNK)
             .zip(torque[..n].par_chunks_mut(CHUNK))
             .zip(per)
+            .zip(touches)
             .enumerate()
-            .map(|(c, ((f, torque), mut hs))| chunk(c * CHUNK, f, torque, &mut hs))
+            .map(|(c, (((f, torque), mut hs), touch))| chunk(c * CHUNK, f, torque, &mut hs, touch))
             .collect();
         oks.into_iter().all(|ok| ok)
     };
@@ -549,6 +578,9 @@ fn post_force_pass(
         if let Some((id, _)) = sid {
             props[*id].data = s;
         }
+    }
+    if let Some(id) = touch_id {
+        props[id.0].data = touch_data;
     }
     ok
 }

@@ -17,7 +17,7 @@ use crate::multicontact::MultiContact;
 use crate::par::View;
 use crate::particles::{Particles, PropId, SparseId};
 
-use super::{MeshSurface, MeshWall, PrimitiveWall};
+use super::{MeshSurface, MeshWall, PrimitiveWall, Touches};
 
 /// The multicontact store a wall reads, with the number of the wall in it.
 pub type MultiSlot = Option<(std::sync::Arc<MultiContact>, u64)>;
@@ -84,6 +84,7 @@ pub trait Wall {
         f: &mut [DVec3],
         torque: &mut [DVec3],
         hist: &mut [f64],
+        touches: Touches,
         dt: f64,
         update: bool,
     );
@@ -166,10 +167,11 @@ impl Wall for PrimitiveWall {
         f: &mut [DVec3],
         torque: &mut [DVec3],
         hist: &mut [f64],
+        touches: Touches,
         dt: f64,
         update: bool,
     ) {
-        PrimitiveWall::apply_range(self, view, lo, f, torque, hist, dt, update);
+        PrimitiveWall::apply_range(self, view, lo, f, torque, hist, touches, dt, update);
     }
 }
 
@@ -243,9 +245,10 @@ impl Wall for MeshWall {
         f: &mut [DVec3],
         torque: &mut [DVec3],
         hist: &mut [f64],
+        touches: Touches,
         dt: f64,
         update: bool,
     ) {
-        MeshWall::apply_range(self, meshes, view, lo, f, torque, hist, dt, update);
+        MeshWall::apply_range(self, meshes, view, lo, f, torque, hist, touches, dt, update);
     }
 }

@@ -480,6 +480,7 @@ impl MeshWall {
         f: &mut [DVec3],
         torque: &mut [DVec3],
         hist: &mut [f64],
+        touches: super::Touches,
         dt: f64,
         update: bool,
     ) {
@@ -495,6 +496,7 @@ impl MeshWall {
             f,
             torque,
             hist,
+            touches,
             dt,
             update,
             rec: None,
@@ -604,6 +606,8 @@ pub(super) struct MeshPass<'a> {
     pub(super) f: &'a mut [DVec3],
     pub(super) torque: &'a mut [DVec3],
     pub(super) hist: &'a mut [f64],
+    /// Where each particle last touched a wall, for the lost-particle report.
+    pub(super) touches: super::Touches<'a>,
     pub(super) dt: f64,
     pub(super) update: bool,
     /// Where each contact is recorded, for per-contact output (`None` in a force pass).
@@ -811,6 +815,7 @@ impl MeshPass<'_> {
             f,
             torque,
             hist,
+            touches: mut last_touch,
             dt,
             update,
             mut rec,
@@ -909,6 +914,10 @@ impl MeshPass<'_> {
                 }
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
                 let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
+                last_touch.note(
+                    k,
+                    super::touch::pack_triangle(wall.meshes[t.mesh as usize], t.tri),
+                );
                 if let (Some((store, _, _)), Some(key), true) = (&mc, mc_key, update) {
                     store.record_wall((p.tag[i], p.x[i]), key, t.n, t.dist, out.fn_total);
                 }

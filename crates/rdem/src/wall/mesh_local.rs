@@ -131,6 +131,7 @@ impl MeshWall {
             f: &mut f,
             torque: &mut torque,
             hist: &mut hist,
+            touches: super::Touches::none(),
             dt,
             update: false,
             rec: Some(&mut out),

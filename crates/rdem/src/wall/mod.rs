@@ -6,11 +6,13 @@ pub mod mesh;
 pub mod mesh_local;
 pub mod mesh_stress;
 pub mod primitive;
+pub mod touch;
 
 pub use any::{MultiSlot, Wall};
 pub use mesh::{MeshSurface, MeshWall};
 pub use mesh_local::{WallContact, WallContacts};
 pub use primitive::{PrimitiveWall, WallShape};
+pub use touch::{Touches, TOUCH_PROPERTY, TOUCH_WIDTH};
 
 /// Whether each owned particle holds an intact wall bond, read from the wall's history
 /// property `hist` at offset `flag` (none without bonds).

@@ -282,7 +282,17 @@ impl PrimitiveWall {
         if self.store.is_some() {
             super::store_begin(&mut f[..n], &mut store[..3 * n]);
         }
-        self.apply_range(&view, 0, &mut f[..n], &mut torque[..n], hist, dt, update);
+        let touches = super::Touches::none();
+        self.apply_range(
+            &view,
+            0,
+            &mut f[..n],
+            &mut torque[..n],
+            hist,
+            touches,
+            dt,
+            update,
+        );
         if let Some(id) = self.store {
             super::store_end(&mut f[..n], &mut store[..3 * n]);
             props[id.0].data = store;
@@ -310,6 +320,7 @@ impl PrimitiveWall {
         f: &mut [DVec3],
         torque: &mut [DVec3],
         hist: &mut [f64],
+        touches: super::Touches,
         dt: f64,
         update: bool,
     ) {
@@ -325,6 +336,7 @@ impl PrimitiveWall {
             f,
             torque,
             hist,
+            touches,
             dt,
             update,
         });
@@ -349,6 +361,7 @@ struct WallPass<'a> {
     f: &'a mut [DVec3],
     torque: &'a mut [DVec3],
     hist: &'a mut [f64],
+    touches: super::Touches<'a>,
     dt: f64,
     update: bool,
 }
@@ -378,6 +391,7 @@ impl WallPass<'_> {
             f,
             torque,
             hist: hist_data,
+            mut touches,
             dt,
             update,
         } = self;
@@ -463,6 +477,7 @@ impl WallPass<'_> {
             }
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
+            touches.note(k, -1.0);
             if let (Some((store, _, key)), true) = (&mc, update) {
                 store.record_wall((p.tag[i], p.x[i]), *key, n, d, out.fn_total);
             }
