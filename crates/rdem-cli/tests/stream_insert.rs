@@ -499,3 +499,69 @@ run 3000
         assert!(r[6] > -0.2, "{text}");
     }
 }
+
+/// The rate lines at the first set-up, as LIGGGHTS 3.8 prints them (with `verbose no`
+/// too, which silences only the per-insertion lines): `insert/rate/region` with a mass
+/// limit of 0.05 kg of 4 mm spheres at 0.2 kg/s every 300 steps (dt 1e-4) printed
+/// "8.952466 particles every 300 steps - particle rate 298.415518  (mass rate
+/// 2.000000e-01)" and "74 particles (mass 4.959528e-02) within 2400 steps" (74 / 8.95
+/// gives 8 whole packets of 300 steps); the tutorial insert_stream (5000 particles in
+/// packets of 300 every 30000 steps) "within 480000 steps", and nothing after the rate
+/// line with `nparticles INF`.
+#[test]
+fn rate_lines_give_the_limit_as_liggghts() {
+    let script = "atom_style granular
+boundary f f f
+units si
+region box block -0.1 0.1 -0.1 0.1 0 0.3 units box
+create_box 1 box
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-4
+fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 10037 1 pts 1.0
+region ins block -0.05 0.05 -0.05 0.05 0.1 0.2 units box
+fix ins all insert/rate/region seed 10039 distributiontemplate pdd mass 0.05 massrate 0.2 insert_every 300 overlapcheck yes verbose no region ins
+fix nve all nve/sphere
+run 1
+";
+    let out = common::run_script(script, None);
+    assert!(
+        out.contains(
+            "INFO: Particle insertion ins: 8.952466 particles every 300 steps - particle rate 298.415518  (mass rate 2.000000e-01)\n      74 particles (mass 4.959528e-02) within 2400 steps\n"
+        ),
+        "{out}"
+    );
+    assert!(!out.contains("inserted"), "verbose no: {out}");
+    let stl = square(0.1);
+    for (limit, line) in [
+        ("nparticles 5000", Some("      5000 particles (mass ")),
+        ("nparticles INF", None),
+    ] {
+        let script = format!(
+            "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd {limit} \
+             particlerate 2000 insert_every 100 vel constant 0 0 -2 insertion_face face
+run 1
+"
+        );
+        let out = run_with_files_raw(&script, &[("face.stl", &stl)], None);
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        let info = text
+            .lines()
+            .position(|l| l.contains("20.000000 particles every 100 steps"))
+            .unwrap_or_else(|| panic!("{text}"));
+        let next = text.lines().nth(info + 1).unwrap();
+        match line {
+            // 5000 / 20 = 250 packets of 100 steps.
+            Some(start) => {
+                assert!(next.starts_with(start), "{text}");
+                assert!(next.ends_with("within 25000 steps"), "{text}");
+            }
+            None => assert!(!next.contains("within"), "{text}"),
+        }
+    }
+}

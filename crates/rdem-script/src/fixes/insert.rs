@@ -52,7 +52,7 @@ pub(super) const ROW_PACK: FixRow = style(
 pub(super) const ROW_RATE: FixRow = style(
     "insert/rate/region",
     parse,
-    Stages::PRE_EXCHANGE.and(Stages::VALUES),
+    Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
     "`nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `insert_every`, the placement keywords of insert/pack",
 )
 .atoi();
@@ -447,7 +447,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         rate: rate_state,
         verbose,
         announce: None,
-        rate_line_due: false,
+        rate_line_due: rate,
     }))
 }
 
@@ -497,7 +497,8 @@ impl ScriptFix for Inserter {
     }
 
     /// `insert/stream`: at each run's set-up, the packets follow the run's time step (a
-    /// `timestep` after the fix counts, as in LIGGGHTS 3.8).
+    /// `timestep` after the fix counts, as in LIGGGHTS 3.8). `insert/stream` and
+    /// `insert/rate/region` print their rate lines at the first run's set-up.
     fn pre_step(
         &mut self,
         sim: &mut Sim,
@@ -505,16 +506,39 @@ impl ScriptFix for Inserter {
         _step: u64,
         setup: bool,
     ) -> Result<(), String> {
-        let (InsertEngine::Stream(st), true) = (&mut self.pack, setup) else {
+        if !setup {
             return Ok(());
-        };
+        }
         let Some(w) = sim.world.as_ref() else {
             return Ok(());
         };
-        st.set_timestep(w.dt)
-            .map_err(|e| format!("fix {} (insert/stream): {e}", head.id))?;
-        if std::mem::take(&mut self.rate_line_due) {
-            let line = super::insert_stream::rate_line(&head.id, st);
+        let due = std::mem::take(&mut self.rate_line_due);
+        let line = match (&mut self.pack, &self.rate) {
+            (InsertEngine::Stream(st), _) => {
+                st.set_timestep(w.dt)
+                    .map_err(|e| format!("fix {} (insert/stream): {e}", head.id))?;
+                due.then(|| super::insert_stream::rate_line(&head.id, st))
+            }
+            (
+                InsertEngine::Pack(p),
+                Some(RateState {
+                    limit,
+                    per: per @ PerInsertion::Rate { per_time, every },
+                    ..
+                }),
+            ) => due.then(|| {
+                super::insert_stream::rate_lines(
+                    &head.id,
+                    per.count(w.dt),
+                    *every,
+                    *per_time,
+                    p.dist.mean_particle_mass(),
+                    *limit,
+                )
+            }),
+            _ => None,
+        };
+        if let Some(line) = line {
             sim.outputs.out.line(&line);
         }
         Ok(())

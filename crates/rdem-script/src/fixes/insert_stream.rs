@@ -130,17 +130,50 @@ pub(super) fn build(
         rate: None,
         verbose,
         announce: None,
-        rate_line_due: verbose,
+        rate_line_due: true,
     }))
 }
 
-/// The line `verbose yes` prints at the first run's set-up.
+/// The lines an insertion at a rate prints at the first run's set-up (with `verbose`
+/// yes or no, as LIGGGHTS 3.8): the packet size, its period and the rates, and with a
+/// limit of `limit` particles, their mass and the steps they take
+/// (whole packets × period, as LIGGGHTS: 5000 particles in packets of 300 every 30000
+/// steps "within 480000 steps").
+pub(super) fn rate_lines(
+    id: &str,
+    per_insertion: f64,
+    every: u64,
+    rate: f64,
+    mean_mass: f64,
+    limit: Option<u64>,
+) -> String {
+    let mut s = format!(
+        "INFO: Particle insertion {id}: {per_insertion:.6} particles every {every} steps - particle rate {rate:.6}  (mass rate {})",
+        format_e(rate * mean_mass)
+    );
+    if let Some(n) = limit {
+        let packets = if per_insertion > 0.0 {
+            (n as f64 / per_insertion).floor() as u64
+        } else {
+            0
+        };
+        s.push_str(&format!(
+            "\n      {n} particles (mass {}) within {} steps",
+            format_e(n as f64 * mean_mass),
+            packets * every
+        ));
+    }
+    s
+}
+
+/// [`rate_lines`] of an `insert/stream`.
 pub(super) fn rate_line(id: &str, st: &rdem::insert::InsertStream) -> String {
-    format!(
-        "INFO: Particle insertion {id}: {:.6} particles every {} steps - particle rate {:.6}  (mass rate {})",
+    rate_lines(
+        id,
         st.per_insertion,
         st.every,
         st.rate(),
-        format_e(st.rate() * st.dist.mean_particle_mass())
+        st.dist.mean_particle_mass(),
+        st.limit,
     )
 }
