@@ -232,6 +232,42 @@ impl TriMesh {
         &self.edge_tris[self.edge_first[e] as usize..self.edge_first[e + 1] as usize]
     }
 
+    /// Per triangle, how many triangles share an edge with it (an edge shared by `k`
+    /// triangles counts `k − 1` for each): LIGGGHTS' `nneighs`.
+    pub fn neighbour_counts(&self) -> Vec<u32> {
+        self.tri_edges
+            .iter()
+            .map(|es| {
+                es.iter()
+                    .map(|&e| self.triangles_of_edge(e).len() as u32 - 1)
+                    .sum()
+            })
+            .collect()
+    }
+
+    /// Per triangle, its active edges as LIGGGHTS 3.8 counts them (`dump mesh/vtk
+    /// aedges`): an edge of one triangle is active; an edge whose triangles all lie
+    /// within the angle of `coplanar_cos` of the first is not (one flat surface); any
+    /// other shared edge is active once, for the last of its triangles. Measured on
+    /// LIGGGHTS 3.8: a flat square 2 2, a ridge or a valley 2 3, a tetrahedron 0 1 2 3,
+    /// a flat fan 1 each, and every triangle of the tutorials' meshes (1616 of the chute).
+    pub fn active_edge_counts(&self, coplanar_cos: f64) -> Vec<u32> {
+        let mut count = vec![0; self.tris.len()];
+        for e in 0..self.edges.len() as u32 {
+            let ts = self.triangles_of_edge(e);
+            let n0 = self.normals[ts[0] as usize];
+            let flat = ts.len() > 1
+                && ts[1..]
+                    .iter()
+                    .all(|&t| n0.dot(self.normals[t as usize]).abs() >= coplanar_cos);
+            if !flat {
+                let last = *ts.iter().max().expect("an edge has a triangle");
+                count[last as usize] += 1;
+            }
+        }
+        count
+    }
+
     /// The corners of triangle `t`.
     #[inline]
     pub fn corners(&self, t: u32) -> [DVec3; 3] {
@@ -334,6 +370,58 @@ fn bbox_diagonal(v: &[DVec3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Active edges and neighbour counts of small meshes, as LIGGGHTS 3.8 wrote them
+    /// (`dump mesh/vtk aedges nneighs`, curvature at its default).
+    #[test]
+    fn active_edges_and_neighbours_as_liggghts() {
+        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        let mesh = |soup: &[[DVec3; 3]]| TriMesh::from_triangles(soup, 1e-8, false).unwrap().0;
+        let cos = 1.0 - 1e-5;
+        let square = mesh(&[
+            [v(0., 0., 0.), v(1., 0., 0.), v(1., 1., 0.)],
+            [v(0., 0., 0.), v(1., 1., 0.), v(0., 1., 0.)],
+        ]);
+        assert_eq!(square.active_edge_counts(cos), [2, 2]);
+        assert_eq!(square.neighbour_counts(), [1, 1]);
+        for z in [0.5, -0.5, 0.0175] {
+            // A ridge, a valley, and a 1° bend: the shared edge counts for the second.
+            let ridge = mesh(&[
+                [v(0., 0., 0.), v(1., 0., 0.), v(0.5, 1., z)],
+                [v(1., 0., 0.), v(0., 0., 0.), v(0.5, -1., z)],
+            ]);
+            assert_eq!(ridge.active_edge_counts(cos), [2, 3], "z = {z}");
+        }
+        // A 0.1° bend is flat.
+        let bend = mesh(&[
+            [v(0., 0., 0.), v(1., 0., 0.), v(0.5, 1., 0.00175)],
+            [v(1., 0., 0.), v(0., 0., 0.), v(0.5, -1., 0.00175)],
+        ]);
+        assert_eq!(bend.active_edge_counts(cos), [2, 2]);
+        let tet = mesh(&[
+            [v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)],
+            [v(0., 0., 0.), v(0., 0., 1.), v(1., 0., 0.)],
+            [v(0., 0., 0.), v(0., 1., 0.), v(0., 0., 1.)],
+            [v(1., 0., 0.), v(0., 0., 1.), v(0., 1., 0.)],
+        ]);
+        assert_eq!(tet.active_edge_counts(cos), [0, 1, 2, 3]);
+        assert_eq!(tet.neighbour_counts(), [3, 3, 3, 3]);
+        let one = mesh(&[[v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)]]);
+        assert_eq!(one.active_edge_counts(cos), [3]);
+        assert_eq!(one.neighbour_counts(), [0]);
+        // A flat fan of six about the origin: only the rim.
+        let p = |k: usize| {
+            let a = std::f64::consts::TAU * k as f64 / 6.0;
+            v(a.cos(), a.sin(), 0.0)
+        };
+        let fan: Vec<[DVec3; 3]> = (0..6).map(|k| [v(0., 0., 0.), p(k), p(k + 1)]).collect();
+        let fan = mesh(&fan);
+        assert_eq!(fan.active_edge_counts(cos), [1; 6]);
+        assert_eq!(fan.neighbour_counts(), [2; 6]);
+        // Raised 1 cm at the centre (0.57°): the spokes count, each for the later one.
+        let cone: Vec<[DVec3; 3]> = (0..6).map(|k| [v(0., 0., 0.01), p(k), p(k + 1)]).collect();
+        assert_eq!(mesh(&cone).active_edge_counts(cos), [1, 2, 2, 2, 2, 3]);
+    }
 
     fn square() -> Vec<[DVec3; 3]> {
         let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);

@@ -14,9 +14,9 @@ use crate::sim::Sim;
 pub(super) const ROW: DumpRow = DumpRow::runs(
     "mesh/vtk",
     parse,
-    "`stress` (normal_stress_average, shear_stress_average), `stresscomponents` (stress: force on the triangle / its area, 3 components), `id` (meshid), `wear`, `area`, `vel` (v), then mesh IDs; `output` accepted",
+    "`stress` (normal_stress_average, shear_stress_average), `stresscomponents` (stress: force on the triangle / its area, 3 components), `id` (meshid), `wear`, `owner` (the rank whose subdomain holds the triangle's centroid), `area`, `aedges` (active_edges), `nneighs`, `vel` (v), then mesh IDs; `output` accepted",
 )
-.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays in LIGGGHTS' fixed order, whatever the order of the values), with a `.pvd` series; `owner`, `aedges`, `acorners`, `nneighs` stop with an error");
+.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays in LIGGGHTS' fixed order, whatever the order of the values), with a `.pvd` series; `aedges` and `nneighs` count as LIGGGHTS 3.8 does (checked on every tutorial mesh); `acorners` stops with an error: LIGGGHTS' rule for an active corner is not known to rdem");
 
 /// The registry row of the old name.
 pub(super) const ROW_OLD_NAME: DumpRow =
@@ -24,11 +24,24 @@ pub(super) const ROW_OLD_NAME: DumpRow =
 
 /// The values rdem writes, in the order LIGGGHTS 3.8 writes their arrays (measured: the
 /// order of the values in the command does not matter).
-const FIELDS: [&str; 6] = ["stress", "stresscomponents", "id", "wear", "area", "vel"];
+const FIELDS: [&str; 9] = [
+    "stress",
+    "stresscomponents",
+    "id",
+    "wear",
+    "owner",
+    "area",
+    "aedges",
+    "nneighs",
+    "vel",
+];
+
+/// The cell arrays LIGGGHTS writes as integers.
+const INT_ARRAYS: [&str; 4] = ["meshid", "owner", "active_edges", "nneighs"];
 
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
     // [output face|interpolate|original] fields... mesh IDs...
-    const LATER_FIELDS: [&str; 4] = ["owner", "aedges", "acorners", "nneighs"];
+    const LATER_FIELDS: [&str; 1] = ["acorners"];
     // The style word as written (`dump` has it at word 3, `write_dump` at word 2).
     let style = a
         .words()
@@ -120,7 +133,8 @@ impl DumpStyle for MeshVtk {
 /// The triangles of the meshes `ids` (all without any) of `w` and the cell arrays
 /// `fields` asks for (`stress`: normal_stress_average and shear_stress_average,
 /// `stresscomponents`: stress, the force of the particles on the triangle over its area,
-/// `id`: meshid, the triangle's index (integers), `wear`, `area`, `vel`: v, the velocity
+/// `id`: meshid, the triangle's index (integers), `wear`, `owner`: the rank of the
+/// triangle's centroid, `area`, `aedges`: active_edges, `nneighs`, `vel`: v, the velocity
 /// of each triangle's centroid).
 fn mesh_arrays(
     w: &rdem::World,
@@ -139,8 +153,8 @@ fn mesh_arrays(
             name: name.to_string(),
             components,
             values: values.to_vec(),
-            // LIGGGHTS writes the triangle indices as integers.
-            int: name == "meshid",
+            // LIGGGHTS writes indices and counts as integers.
+            int: INT_ARRAYS.contains(&name),
         }),
     };
     for m in w
@@ -199,6 +213,30 @@ fn mesh_arrays(
                 "id" => {
                     let ids: Vec<f64> = (0..n).map(|t| t as f64).collect();
                     push("meshid", 1, &ids);
+                }
+                "owner" => {
+                    let d = &w.domain;
+                    let owner: Vec<f64> = (0..n as u32)
+                        .map(|t| {
+                            let [a, b, c] = m.mesh.corners(t);
+                            d.rank_of(d.owner_loc((a + b + c) / 3.0)) as f64
+                        })
+                        .collect();
+                    push("owner", 1, &owner);
+                }
+                "aedges" => {
+                    let count = m.mesh.active_edge_counts(m.coplanar_cos);
+                    let count: Vec<f64> = count.into_iter().map(f64::from).collect();
+                    push("active_edges", 1, &count);
+                }
+                "nneighs" => {
+                    let count: Vec<f64> = m
+                        .mesh
+                        .neighbour_counts()
+                        .into_iter()
+                        .map(f64::from)
+                        .collect();
+                    push("nneighs", 1, &count);
                 }
                 _ => {
                     let area: Vec<f64> = (0..n as u32)
