@@ -7,8 +7,10 @@ use glam::DVec3;
 
 use crate::error::{check, Error, Result};
 
+mod columns;
 mod image;
 mod sparse;
+use columns::{particle_columns, Column, Wire};
 pub use image::Image;
 pub use sparse::{SparseId, SparseProperty};
 
@@ -108,61 +110,40 @@ impl NewParticle {
     }
 }
 
-/// Values per particle in [`Particles::pack`] before the named properties.
-const PACK_FIXED: usize = 18;
 /// Mass of a sphere of `density` and `radius` (the one formula every particle's mass
 /// comes from, so that masses computed apart agree bit for bit).
 pub fn sphere_mass(density: f64, radius: f64) -> f64 {
     density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
 }
 
-/// Values per particle in [`Particles::pack_forward`].
-pub const FORWARD_LEN: usize = 11;
 /// `origin` of a ghost copied from another rank: this plus the owner's rank.
 pub const REMOTE_GHOST: usize = 1 << 60;
 
-/// Struct-of-arrays particle container: indices `0..nlocal` are owned particles,
-/// `nlocal..len` are ghosts (periodic images or, with MPI, copies of other ranks' particles).
-#[derive(Debug, Clone, Default)]
-pub struct Particles {
-    nlocal: usize,
+particle_columns! {
     /// Global identifiers.
-    pub tag: Vec<Tag>,
+    tag: Tag, wire, once;
     /// Types, 1-based.
-    pub ty: Vec<u32>,
+    ty: u32, wire, once;
     /// Group membership bits.
-    pub mask: Vec<u32>,
+    mask: u32, wire, once;
     /// Positions.
-    pub x: Vec<DVec3>,
+    x: DVec3, shifted, forward;
     /// Velocities.
-    pub v: Vec<DVec3>,
+    v: DVec3, wire, forward;
     /// Angular velocities.
-    pub omega: Vec<DVec3>,
+    omega: DVec3, wire, forward;
     /// Forces.
-    pub f: Vec<DVec3>,
+    f: DVec3, local, once;
     /// Torques.
-    pub torque: Vec<DVec3>,
+    torque: DVec3, local, once;
     /// Radii.
-    pub radius: Vec<f64>,
+    radius: f64, wire, forward;
     /// Masses.
-    pub rmass: Vec<f64>,
+    rmass: f64, wire, forward;
     /// Densities.
-    pub density: Vec<f64>,
+    density: f64, wire, once;
     /// Periodic image counts, packed ([`Image`]).
-    pub image: Vec<Image>,
-    /// For each ghost (index `g - nlocal`): index of the particle it copies (the owner,
-    /// for serial periodic images), or [`REMOTE_GHOST`] plus the owner's rank. A local
-    /// particle is its own origin and has no entry (see [`Particles::origin`]).
-    ghost_origin: Vec<usize>,
-    /// Named per-particle properties added by fixes.
-    pub props: Vec<Property>,
-    /// Named properties held for few owned particles ([`SparseProperty`]).
-    pub sparse: Vec<SparseProperty>,
-    /// With rigid clumps only (else empty): the mass each particle's contacts use for
-    /// their effective mass, its body's for a clump's sphere and its own otherwise (as
-    /// LIGGGHTS does), refreshed before each force computation
-    /// ([`Particles::contact_mass`]).
-    pub mass_of_contact: Vec<f64>,
+    image: Image, wire, once;
 }
 
 /// Applies `new[i] = old[perm[i]]` in place, cycle by cycle with one temporary
@@ -409,19 +390,20 @@ impl Particles {
         }
         debug_assert_eq!(self.nghost(), 0, "add_local with ghosts present");
         self.clear_ghosts();
-        let mass = sphere_mass(p.density, p.radius);
-        self.push_raw(
-            p.tag,
-            p.ty,
-            p.mask | 1,
-            p.x,
-            p.v,
-            p.omega,
-            p.radius,
-            mass,
-            p.density,
-            [0; 3],
-        );
+        self.push_row(Row {
+            tag: p.tag,
+            ty: p.ty,
+            mask: p.mask | 1,
+            x: p.x,
+            v: p.v,
+            omega: p.omega,
+            f: DVec3::ZERO,
+            torque: DVec3::ZERO,
+            radius: p.radius,
+            rmass: sphere_mass(p.density, p.radius),
+            density: p.density,
+            image: Image::new([0; 3]),
+        });
         let i = self.len() - 1;
         for prop in &mut self.props {
             prop.data.extend_from_slice(&prop.default);
@@ -430,50 +412,11 @@ impl Particles {
         Ok(i)
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn push_raw(
-        &mut self,
-        tag: Tag,
-        ty: u32,
-        mask: u32,
-        x: DVec3,
-        v: DVec3,
-        omega: DVec3,
-        radius: f64,
-        rmass: f64,
-        density: f64,
-        image: [i32; 3],
-    ) {
-        self.tag.push(tag);
-        self.ty.push(ty);
-        self.mask.push(mask);
-        self.x.push(x);
-        self.v.push(v);
-        self.omega.push(omega);
-        self.f.push(DVec3::ZERO);
-        self.torque.push(DVec3::ZERO);
-        self.radius.push(radius);
-        self.rmass.push(rmass);
-        self.density.push(density);
-        self.image.push(Image::new(image));
-    }
-
     /// Appends a ghost copy of particle `src` displaced by `shift`; returns its index.
     /// Properties are copied too, so pair code may read them on ghosts.
     pub fn push_ghost(&mut self, src: usize, shift: DVec3) -> usize {
         let origin = self.origin(src);
-        self.push_raw(
-            self.tag[src],
-            self.ty[src],
-            self.mask[src],
-            self.x[src] + shift,
-            self.v[src],
-            self.omega[src],
-            self.radius[src],
-            self.rmass[src],
-            self.density[src],
-            self.image[src].get(),
-        );
+        self.push_row(self.copied_row(src, shift));
         let i = self.len() - 1;
         self.ghost_origin.push(origin);
         for prop in &mut self.props {
@@ -494,28 +437,7 @@ impl Particles {
     /// included) to `buf`, with its position displaced by `shift`, for migration or a
     /// ghost copy on another rank. Integers travel as `f64` (exact below 2^53).
     pub fn pack(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
-        let x = self.x[i] + shift;
-        let (v, w, im) = (self.v[i], self.omega[i], self.image[i].get());
-        buf.extend_from_slice(&[
-            self.tag[i] as f64,
-            self.ty[i] as f64,
-            self.mask[i] as f64,
-            x.x,
-            x.y,
-            x.z,
-            v.x,
-            v.y,
-            v.z,
-            w.x,
-            w.y,
-            w.z,
-            self.radius[i],
-            self.rmass[i],
-            self.density[i],
-            im[0] as f64,
-            im[1] as f64,
-            im[2] as f64,
-        ]);
+        self.pack_columns(i, shift, buf);
         for prop in &self.props {
             buf.extend_from_slice(prop.get(i));
         }
@@ -529,19 +451,7 @@ impl Particles {
     /// or as a ghost owned by rank `ghost_of`. Returns the values read.
     pub fn unpack(&mut self, buf: &[f64], ghost_of: Option<usize>) -> usize {
         debug_assert!(ghost_of.is_some() || self.nghost() == 0);
-        let v3 = |k: usize| DVec3::new(buf[k], buf[k + 1], buf[k + 2]);
-        self.push_raw(
-            buf[0] as Tag,
-            buf[1] as u32,
-            buf[2] as u32,
-            v3(3),
-            v3(6),
-            v3(9),
-            buf[12],
-            buf[13],
-            buf[14],
-            [buf[15] as i32, buf[16] as i32, buf[17] as i32],
-        );
+        self.push_row(Self::unpack_row(buf));
         let i = self.len() - 1;
         let mut k = PACK_FIXED;
         for prop in &mut self.props {
@@ -569,20 +479,7 @@ impl Particles {
     /// by `shift`, velocity, angular velocity, radius, mass: [`FORWARD_LEN`] values; then
     /// the values of the forwarded properties: [`Particles::forward_len`] in all).
     pub fn pack_forward(&self, i: usize, shift: DVec3, buf: &mut Vec<f64>) {
-        let (x, v, w) = (self.x[i] + shift, self.v[i], self.omega[i]);
-        buf.extend_from_slice(&[
-            x.x,
-            x.y,
-            x.z,
-            v.x,
-            v.y,
-            v.z,
-            w.x,
-            w.y,
-            w.z,
-            self.radius[i],
-            self.rmass[i],
-        ]);
+        self.pack_forward_columns(i, shift, buf);
         for prop in self.props.iter().filter(|p| p.forward) {
             buf.extend_from_slice(prop.get(i));
         }
@@ -590,11 +487,7 @@ impl Particles {
 
     /// Sets ghost `g` from values packed by [`Particles::pack_forward`].
     pub fn unpack_forward(&mut self, g: usize, c: &[f64]) {
-        self.x[g] = DVec3::new(c[0], c[1], c[2]);
-        self.v[g] = DVec3::new(c[3], c[4], c[5]);
-        self.omega[g] = DVec3::new(c[6], c[7], c[8]);
-        self.radius[g] = c[9];
-        self.rmass[g] = c[10];
+        self.unpack_forward_columns(g, c);
         let mut k = FORWARD_LEN;
         for prop in self.props.iter_mut().filter(|p| p.forward) {
             let w = prop.width;
@@ -606,11 +499,7 @@ impl Particles {
     /// Refreshes ghost `g` from particle `i` of this process (a periodic image displaced
     /// by `shift`), as forward communication does across ranks.
     pub fn copy_forward(&mut self, g: usize, i: usize, shift: DVec3) {
-        self.x[g] = self.x[i] + shift;
-        self.v[g] = self.v[i];
-        self.omega[g] = self.omega[i];
-        self.radius[g] = self.radius[i];
-        self.rmass[g] = self.rmass[i];
+        self.copy_forward_columns(g, i, shift);
         for prop in self.props.iter_mut().filter(|p| p.forward) {
             let w = prop.width;
             prop.data.copy_within(i * w..(i + 1) * w, g * w);
@@ -643,18 +532,9 @@ impl Particles {
     /// Drops all ghosts.
     pub fn clear_ghosts(&mut self) {
         let n = self.nlocal;
-        self.tag.truncate(n);
-        self.ty.truncate(n);
-        self.mask.truncate(n);
-        self.x.truncate(n);
-        self.v.truncate(n);
-        self.omega.truncate(n);
-        self.f.truncate(n);
-        self.torque.truncate(n);
-        self.radius.truncate(n);
-        self.rmass.truncate(n);
-        self.density.truncate(n);
-        self.image.truncate(n);
+        for c in self.columns_mut() {
+            c.truncate(n);
+        }
         self.ghost_origin.clear();
         for prop in &mut self.props {
             prop.data.truncate(n * prop.width);
@@ -665,18 +545,9 @@ impl Particles {
     /// current count. Arrays grown one particle at a time by doubling hold up to twice
     /// what they use: 5 % more at a million particles, 31 % more at 800,000.
     pub fn shrink_to_fit(&mut self) {
-        self.tag.shrink_to_fit();
-        self.ty.shrink_to_fit();
-        self.mask.shrink_to_fit();
-        self.x.shrink_to_fit();
-        self.v.shrink_to_fit();
-        self.omega.shrink_to_fit();
-        self.f.shrink_to_fit();
-        self.torque.shrink_to_fit();
-        self.radius.shrink_to_fit();
-        self.rmass.shrink_to_fit();
-        self.density.shrink_to_fit();
-        self.image.shrink_to_fit();
+        for c in self.columns_mut() {
+            c.shrink();
+        }
         self.ghost_origin.shrink_to_fit();
         for prop in &mut self.props {
             prop.data.shrink_to_fit();
@@ -698,18 +569,9 @@ impl Particles {
                 continue;
             }
             if dst != src {
-                self.tag[dst] = self.tag[src];
-                self.ty[dst] = self.ty[src];
-                self.mask[dst] = self.mask[src];
-                self.x[dst] = self.x[src];
-                self.v[dst] = self.v[src];
-                self.omega[dst] = self.omega[src];
-                self.f[dst] = self.f[src];
-                self.torque[dst] = self.torque[src];
-                self.radius[dst] = self.radius[src];
-                self.rmass[dst] = self.rmass[src];
-                self.density[dst] = self.density[src];
-                self.image[dst] = self.image[src];
+                for c in self.columns_mut() {
+                    c.copy(src, dst);
+                }
                 for prop in &mut self.props {
                     let w = prop.width;
                     prop.data.copy_within(src * w..(src + 1) * w, dst * w);
@@ -732,18 +594,9 @@ impl Particles {
         self.clear_ghosts();
         assert_eq!(perm.len(), self.nlocal);
         let mut done = vec![false; perm.len()];
-        permute_in_place(&mut self.tag, perm, &mut done);
-        permute_in_place(&mut self.ty, perm, &mut done);
-        permute_in_place(&mut self.mask, perm, &mut done);
-        permute_in_place(&mut self.x, perm, &mut done);
-        permute_in_place(&mut self.v, perm, &mut done);
-        permute_in_place(&mut self.omega, perm, &mut done);
-        permute_in_place(&mut self.f, perm, &mut done);
-        permute_in_place(&mut self.torque, perm, &mut done);
-        permute_in_place(&mut self.radius, perm, &mut done);
-        permute_in_place(&mut self.rmass, perm, &mut done);
-        permute_in_place(&mut self.density, perm, &mut done);
-        permute_in_place(&mut self.image, perm, &mut done);
+        for c in self.columns_mut() {
+            c.permute(perm, &mut done);
+        }
         for prop in &mut self.props {
             permute_chunks_in_place(&mut prop.data, prop.width, perm, &mut done);
         }
@@ -827,18 +680,7 @@ impl Particles {
     /// (allocated capacity, so it is what the process really holds).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        self.tag.capacity() * size_of::<Tag>()
-            + self.ty.capacity() * size_of::<u32>()
-            + self.mask.capacity() * size_of::<u32>()
-            + (self.x.capacity()
-                + self.v.capacity()
-                + self.omega.capacity()
-                + self.f.capacity()
-                + self.torque.capacity())
-                * size_of::<DVec3>()
-            + (self.radius.capacity() + self.rmass.capacity() + self.density.capacity())
-                * size_of::<f64>()
-            + self.image.capacity() * size_of::<Image>()
+        self.columns().iter().map(|c| c.bytes()).sum::<usize>()
             + self.ghost_origin.capacity() * size_of::<usize>()
             + self
                 .props
