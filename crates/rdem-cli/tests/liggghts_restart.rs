@@ -15,19 +15,6 @@ fn data(name: &str) -> PathBuf {
 const HEAD: &str =
     "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n";
 
-/// Runs `script` (its `read_restart` line reading `restart`); returns the directory kept
-/// and the screen output; the run must succeed.
-fn run(prefix: &str, script: &str, ranks: Option<usize>) -> (PathBuf, String) {
-    let (dir, out) = run_kept(prefix, script, &[], ranks);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (dir, text)
-}
-
 /// `ITEM: ATOMS` rows of a dump by tag (the columns after id and type).
 fn rows(text: &str) -> std::collections::BTreeMap<u64, Vec<f64>> {
     text.lines()
@@ -51,7 +38,7 @@ fn settled_bed_particles_are_those_liggghts_dumped() {
         "{HEAD}read_restart {}\nwrite_dump all custom bed.dump id type x y z vx vy vz omegax omegay omegaz radius mass density modify sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n",
         data("bed.restart").display()
     );
-    let (dir, out) = run("lig-bed-dump", &script, None);
+    let (dir, out) = common::run_kept_ok("lig-bed-dump", &script, &[], None);
     let ours = std::fs::read_to_string(dir.join("bed.dump")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(ours, std::fs::read_to_string(data("bed.dump")).unwrap());
@@ -82,7 +69,7 @@ fn two_processor_periodic_file_gives_particles_images_and_groups() {
         "{HEAD}read_restart {}\nvariable n equal count(upper)\nprint \"upper: ${{n}}\"\nwrite_dump all custom bed2.dump id type ix iy iz x y z vx vy vz omegax omegay omegaz radius mass density modify sort id format \"%d %d %d %d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n",
         data("bed2.restart").display()
     );
-    let (dir, out) = run("lig-bed2-dump", &script, None);
+    let (dir, out) = common::run_kept_ok("lig-bed2-dump", &script, &[], None);
     let ours = std::fs::read_to_string(dir.join("bed2.dump")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(ours, std::fs::read_to_string(data("bed2.dump")).unwrap());
@@ -101,7 +88,7 @@ fn continue_bed(prefix: &str, restart: &Path, ranks: Option<usize>) -> ([f64; 3]
             "read_restart bed.restart",
             &format!("read_restart {}", restart.display()),
         );
-    let (dir, out) = run(prefix, &script, ranks);
+    let (dir, out) = common::run_kept_ok(prefix, &script, &[], ranks);
     let ours = rows(&std::fs::read_to_string(dir.join("final.dump")).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
     let theirs = rows(&std::fs::read_to_string(data("final.dump")).unwrap());
@@ -278,7 +265,7 @@ fn property_atom_values_come_back_to_the_fix_of_their_id() {
             "read_restart pa.restart",
             &format!("read_restart {}", data("pa.restart").display()),
         );
-    let (dir, out) = run("lig-pa", &script, None);
+    let (dir, out) = common::run_kept_ok("lig-pa", &script, &[], None);
     let ours = std::fs::read_to_string(dir.join("back.dump")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(ours, std::fs::read_to_string(data("pa.dump")).unwrap());
@@ -310,7 +297,7 @@ fn a_script_boundary_other_than_the_files_gives_way_with_a_warning() {
         "{HEAD}boundary p p f\nread_restart {}\nvariable lx equal lx\nprint \"lx ${{lx}}\"\n",
         data("bed.restart").display()
     );
-    let (dir, out) = run("lig-boundary", &script, None);
+    let (dir, out) = common::run_kept_ok("lig-boundary", &script, &[], None);
     let _ = std::fs::remove_dir_all(&dir);
     assert!(
         out.contains(
@@ -319,9 +306,10 @@ fn a_script_boundary_other_than_the_files_gives_way_with_a_warning() {
         "{out}"
     );
     // Nothing said when the script leaves the default.
-    let (dir, out) = run(
+    let (dir, out) = common::run_kept_ok(
         "lig-boundary-default",
         &format!("{HEAD}read_restart {}\n", data("bed.restart").display()),
+        &[],
         None,
     );
     let _ = std::fs::remove_dir_all(&dir);

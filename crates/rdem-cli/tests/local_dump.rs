@@ -12,32 +12,13 @@ fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/local")
 }
 
-/// Runs `script` (from tests/data/local) in a fresh directory with `post/`; returns it.
-fn run(script: &str) -> PathBuf {
-    let dir = common::scratch_dir("local");
-    std::fs::create_dir_all(dir.join("post")).unwrap();
-    std::fs::copy(data().join(script), dir.join(script)).unwrap();
-    let out = common::rdem_command(None)
-        .current_dir(&dir)
-        .args(["-in", script, "-log", "none"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    dir
-}
-
 fn read(p: PathBuf) -> String {
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
 #[test]
 fn default_columns_match_liggghts_byte_for_byte() {
-    let dir = run("in.pair");
+    let dir = common::run_data_script("local", &data(), "in.pair", &[]).0;
     for f in ["pair0.txt", "pair2.txt"] {
         assert_eq!(
             read(dir.join("post").join(f)),
@@ -51,7 +32,7 @@ fn default_columns_match_liggghts_byte_for_byte() {
 fn keyword_order_is_liggghts_order() {
     // Keywords given as delta contactArea force_tangential force_normal; LIGGGHTS writes
     // force_normal, force_tangential, contactArea, delta.
-    let dir = run("in.pair_split");
+    let dir = common::run_data_script("local", &data(), "in.pair_split", &[]).0;
     assert_eq!(read(dir.join("post/q2.txt")), read(data().join("q2.txt")));
 }
 
@@ -65,7 +46,7 @@ fn last_row(text: &str) -> Vec<f64> {
 
 #[test]
 fn normal_force_is_damped_hertz() {
-    let dir = run("in.pair");
+    let dir = common::run_data_script("local", &data(), "in.pair", &[]).0;
     let r = last_row(&read(dir.join("post/pair2.txt")));
     assert_eq!(
         r.len(),
@@ -136,7 +117,7 @@ fn contact_point_matches_liggghts_byte_for_byte() {
     // 35 columns, contactPoint last whatever the keyword order; the force chains with the
     // contact point as a third point (3 points, 3 lines, a blank line after the nine
     // point values, as VTK's legacy writer puts it).
-    let dir = run("in.point");
+    let dir = common::run_data_script("local", &data(), "in.point", &[]).0;
     for f in ["pt2.txt", "pt2.vtk"] {
         assert_eq!(
             read(dir.join("post").join(f)),
@@ -201,7 +182,7 @@ fn xml_force_chains_match_liggghts() {
     // VTK: the same text, every number printed in full (shortest round trip). The contact
     // law's last bits differ (rdem and LIGGGHTS sum in another order): measured worst
     // 3.2e-13 relative, so numbers must agree to 1e-11.
-    let dir = run("in.point");
+    let dir = common::run_data_script("local", &data(), "in.point", &[]).0;
     for f in ["pt2.vtp", "pu2.vtu"] {
         let (ours, a) = skeleton(&read(dir.join("post").join(f)));
         let (theirs, b) = skeleton(&read(data().join(f)));
@@ -215,7 +196,7 @@ fn xml_force_chains_match_liggghts() {
         }
     }
     // Without contacts, the files are the same byte for byte.
-    let dir = run("in.none");
+    let dir = common::run_data_script("local", &data(), "in.none", &[]).0;
     for f in ["none2.vtp", "none2.vtu"] {
         assert_eq!(read(dir.join("post").join(f)), read(data().join(f)), "{f}");
     }
@@ -304,7 +285,7 @@ for f in sys.argv[2:]:
 
 #[test]
 fn force_chain_vtk_matches_liggghts_byte_for_byte() {
-    let dir = run("in.vtk");
+    let dir = common::run_data_script("local", &data(), "in.vtk", &[]).0;
     assert_eq!(
         read(dir.join("post/all2.vtk")),
         read(data().join("all2.vtk"))
@@ -323,7 +304,7 @@ fn force_chain_vtk_reads_back_in_vtk() {
         eprintln!("note: python3 with vtk not found; VTK read-back skipped");
         return;
     }
-    let dir = run("in.vtk_many");
+    let dir = common::run_data_script("local", &data(), "in.vtk_many", &[]).0;
     let code = "import sys, vtk\n\
 r = vtk.vtkGenericDataObjectReader(); r.SetFileName(sys.argv[1]); r.Update()\n\
 o = r.GetOutput(); cd = o.GetCellData()\n\

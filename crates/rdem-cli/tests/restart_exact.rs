@@ -33,17 +33,6 @@ struct Case {
 /// The end state and the thermo rows of the last run.
 const FINAL: &str = "write_dump all custom final.dump id type x y z vx vy vz omegax omegay omegaz radius mass modify sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n";
 
-fn run_ok(prefix: &str, script: &str, files: &[(&str, &str)]) -> (std::path::PathBuf, String) {
-    let (dir, out) = run_kept(prefix, script, files, None);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{prefix}: {text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (dir, text)
-}
-
 /// Thermo rows after the last `Step` header, as printed.
 fn last_rows(out: &str) -> Vec<String> {
     let start = out.rfind("Step").expect("a thermo header");
@@ -63,12 +52,12 @@ fn check_split(name: &str, c: &Case) -> (String, Vec<Vec<f64>>) {
         c.head, c.make_box, c.defs, c.init, c.after, c.n1, c.n2
     );
     let files: Vec<(&str, &str)> = c.files.iter().map(|(n, t)| (*n, t.as_str())).collect();
-    let (d0, out0) = run_ok(&format!("{name}-unbroken"), &unbroken, &files);
+    let (d0, out0) = common::run_kept_ok(&format!("{name}-unbroken"), &unbroken, &files, None);
     let first = format!(
         "{}{}{}{}{}run {}\nwrite_restart state.restart\n",
         c.head, c.make_box, c.defs, c.init, c.after, c.n1
     );
-    let (d1, _) = run_ok(&format!("{name}-first"), &first, &files);
+    let (d1, _) = common::run_kept_ok(&format!("{name}-first"), &first, &files, None);
     // The continuing script runs in a new process and directory with the restart file
     // beside its own files.
     let second = format!(
@@ -79,7 +68,7 @@ fn check_split(name: &str, c: &Case) -> (String, Vec<Vec<f64>>) {
         c.after,
         c.n2
     );
-    let (dir2, out2) = run_ok(&format!("{name}-second"), &second, &files);
+    let (dir2, out2) = common::run_kept_ok(&format!("{name}-second"), &second, &files, None);
     let a = std::fs::read_to_string(d0.join("final.dump")).unwrap();
     let b = std::fs::read_to_string(dir2.join("final.dump")).unwrap();
     let (ra, rb) = (last_rows(&out0), last_rows(&out2));

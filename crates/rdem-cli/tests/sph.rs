@@ -47,26 +47,6 @@ fn read_dump(path: &Path) -> BTreeMap<u64, Frame> {
     out
 }
 
-/// Runs `script` (a file of `tests/data/sph`) with rdem in a scratch directory; returns
-/// the directory and the screen output.
-fn run_case(script: &str) -> (PathBuf, String) {
-    let dir = scratch_dir("sph");
-    std::fs::copy(data().join(script), dir.join(script)).unwrap();
-    let out = rdem_command(None)
-        .args(["-in", script, "-log", "none"])
-        .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{script}: {text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (dir, text)
-}
-
 /// Compares rdem's dump `name` (in `dir`) with LIGGGHTS' (in `tests/data/sph`): the
 /// same steps, atoms and columns, every value within `tol` relative to the largest
 /// magnitude of its column at that step (positions: relative to 1 m). Returns the
@@ -121,7 +101,7 @@ fn compare_dumps(dir: &Path, name: &str, tol: f64) -> f64 {
 /// dρ/dt zeroed, gravity acting).
 #[test]
 fn three_particles_match_liggghts_step_by_step() {
-    let (dir, _) = run_case("in.three");
+    let (dir, _) = common::run_data_script("sph", &data(), "in.three", &[]);
     let worst = compare_dumps(&dir, "three.dump", 1e-11);
     eprintln!("three particles: largest relative difference {worst:e}");
     let _ = std::fs::remove_dir_all(&dir);
@@ -133,7 +113,7 @@ fn three_particles_match_liggghts_step_by_step() {
 /// 3.8's to 1e-12 relative, with its rounded normalisation constants.
 #[test]
 fn kernels_and_density_summation_match_liggghts() {
-    let (dir, _) = run_case("in.kernels");
+    let (dir, _) = common::run_data_script("sph", &data(), "in.kernels", &[]);
     for name in [
         "cubicspline",
         "cubicspline2d",
@@ -152,7 +132,7 @@ fn kernels_and_density_summation_match_liggghts() {
 /// positions and pressures equal LIGGGHTS 3.8's for three steps to 1e-12.
 #[test]
 fn wall_and_equations_of_state_match_liggghts() {
-    let (dir, _) = run_case("in.wall");
+    let (dir, _) = common::run_data_script("sph", &data(), "in.wall", &[]);
     let worst = compare_dumps(&dir, "wall.dump", 1e-12);
     eprintln!("wall/sph: largest relative difference {worst:e}");
     let _ = std::fs::remove_dir_all(&dir);
@@ -164,7 +144,7 @@ fn wall_and_equations_of_state_match_liggghts() {
 /// three steps to 1e-12.
 #[test]
 fn wall_region_matches_liggghts() {
-    let (dir, _) = run_case("in.wall_region");
+    let (dir, _) = common::run_data_script("sph", &data(), "in.wall_region", &[]);
     let worst = compare_dumps(&dir, "wall_region.dump", 1e-12);
     eprintln!("wall/region/sph: largest relative difference {worst:e}");
     let _ = std::fs::remove_dir_all(&dir);

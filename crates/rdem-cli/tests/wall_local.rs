@@ -13,28 +13,6 @@ fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/wall_local")
 }
 
-/// Runs `script` (from tests/data/wall_local, with the plate) in a fresh directory with
-/// `post/`; returns the directory and what rdem printed.
-fn run(script: &str) -> (PathBuf, String) {
-    let dir = common::scratch_dir("wall_local");
-    std::fs::create_dir_all(dir.join("post")).unwrap();
-    for f in [script, "plate.stl"] {
-        std::fs::copy(data().join(f), dir.join(f)).unwrap();
-    }
-    let out = common::rdem_command(None)
-        .current_dir(&dir)
-        .args(["-in", script, "-log", "none"])
-        .output()
-        .unwrap();
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{text}");
-    (dir, text)
-}
-
 fn read(p: PathBuf) -> String {
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
@@ -75,7 +53,7 @@ fn assert_same(ours: &str, theirs: &str, what: &str) {
 
 #[test]
 fn default_columns_match_liggghts() {
-    let (dir, out) = run("in.wall");
+    let (dir, out) = common::run_data_script("wall_local", &data(), "in.wall", &["plate.stl"]);
     assert!(
         out.contains("primitive walls found"),
         "the primitive wall is reported, as LIGGGHTS warns: {out}"
@@ -89,7 +67,7 @@ fn default_columns_match_liggghts() {
 fn keyword_order_is_liggghts_order() {
     // Keywords given as delta contactArea force_tangential force_normal; LIGGGHTS writes
     // force_normal, force_tangential, contactArea, delta.
-    let (dir, _) = run("in.wall_split");
+    let (dir, _) = common::run_data_script("wall_local", &data(), "in.wall_split", &["plate.stl"]);
     for f in ["split0.txt", "split2.txt"] {
         assert_same(&read(dir.join("post").join(f)), &read(data().join(f)), f);
     }
@@ -111,7 +89,7 @@ fn keyword_order_is_liggghts_order() {
 fn contact_point_is_zero_for_walls_as_in_liggghts() {
     // LIGGGHTS 3.8 leaves a wall contact's point at 0 0 0 (point2.txt) and draws it as a
     // third point in the force chains (point2.vtk: 6 points, 6 lines for 2 contacts).
-    let (dir, _) = run("in.wall_point");
+    let (dir, _) = common::run_data_script("wall_local", &data(), "in.wall_point", &["plate.stl"]);
     let ours = read(dir.join("post/point2.txt"));
     assert_same(&ours, &read(data().join("point2.txt")), "point2.txt");
     for row in rows(&ours) {
@@ -152,7 +130,7 @@ fn wall_local_needs_a_mesh_wall() {
 /// `heatFlux` without `fix heat/gran` stops the run, as LIGGGHTS 3.8 does (the values
 /// themselves are checked in heat_local.rs).
 fn heat_flux_needs_heat_conduction() {
-    let (dir, _) = run("in.wall");
+    let (dir, _) = common::run_data_script("wall_local", &data(), "in.wall", &["plate.stl"]);
     let script = read(dir.join("in.wall")).replace(
         "compute wgl all wall/gran/local",
         "compute wgl all wall/gran/local pos vel id force torque history contactArea heatFlux",

@@ -101,6 +101,55 @@ pub fn run_kept(
     (dir, out)
 }
 
+/// [`run_kept`] for a script that must succeed: the directory and the screen output
+/// (the failure message has the standard error too).
+pub fn run_kept_ok(
+    prefix: &str,
+    script: &str,
+    files: &[(&str, &str)],
+    ranks: Option<usize>,
+) -> (std::path::PathBuf, String) {
+    let (dir, out) = run_kept(prefix, script, files, ranks);
+    (dir, success(prefix, &out))
+}
+
+/// Runs the script file `script` of the directory `data` in a fresh scratch directory
+/// named after `prefix`, with `files` of `data` copied beside it and an empty `post/`,
+/// with `-log none` and one thread; the script must succeed. Returns the directory
+/// (kept) and the screen output, standard error after it.
+pub fn run_data_script(
+    prefix: &str,
+    data: &std::path::Path,
+    script: &str,
+    files: &[&str],
+) -> (std::path::PathBuf, String) {
+    let dir = scratch_dir(prefix);
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    for f in std::iter::once(&script).chain(files) {
+        std::fs::copy(data.join(f), dir.join(f)).unwrap();
+    }
+    let out = rdem_command(None)
+        .args(["-in", script, "-log", "none"])
+        .env("RDEM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = success(script, &out) + &String::from_utf8_lossy(&out.stderr);
+    (dir, text)
+}
+
+/// The standard output of a run that must have succeeded (`what` names it in the
+/// failure message, with the standard error).
+pub fn success(what: &str, out: &std::process::Output) -> String {
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what}: {text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}
+
 /// [`run_script_raw`] for a script that must succeed; returns the screen output.
 pub fn run_script(script: &str, ranks: Option<usize>) -> String {
     run_with_files(script, &[], ranks)
