@@ -20,7 +20,6 @@
 //! spelling) is the temperature.
 
 use rdem::heat::{self, ContactArea, HeatConduction, HeatProps};
-use rdem::NormalKind;
 
 use super::property_atom::{self, PropertyAtom};
 use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
@@ -234,10 +233,7 @@ impl ScriptFix for HeatGran {
         };
         let ratio = if self.area_correction {
             // The stress–strain exponent of the contact model: δ ~ F^(1/p).
-            let p = match pair.model.normal {
-                NormalKind::Hertz | NormalKind::HertzStiffness => 1.5,
-                NormalKind::Hooke | NormalKind::HookeHysteresis | NormalKind::HookeStiffness => 1.0,
-            };
+            let p = pair.model.normal.traits().force_exponent;
             let y = per_type(sim, "youngsModulus", n)?;
             let nu = per_type(sim, "poissonsRatio", n)?;
             let yo = per_type(sim, "youngsModulusOriginal", n)?;

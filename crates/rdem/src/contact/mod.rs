@@ -18,28 +18,60 @@ use glam::DVec3;
 
 pub use materials::{CoeffTable, LiquidProperties, Materials, Needs, PairCoeff};
 
-/// Normal force model (`model ...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NormalKind {
+/// The normal force laws, one row each: the kind, the law's type (a
+/// [`normal::Normal`]) and its script name. The kind enum, the names the script reads
+/// ([`names::NORMAL_MODELS`]) and the kernel dispatch all come from this table.
+macro_rules! normal_laws {
+    ($($(#[$doc:meta])* $kind:ident => $law:ty, $name:literal;)*) => {
+        /// Normal force model (`model ...`).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum NormalKind {
+            $($(#[$doc])* $kind,)*
+        }
+
+        impl NormalKind {
+            /// Every kind with its script name, in the table's order.
+            pub const NAMES: &[(&str, NormalKind)] = &[$(($name, NormalKind::$kind),)*];
+
+            /// What the rest of rdem needs to know of the law ([`normal::LawTraits`]).
+            pub fn traits(self) -> normal::LawTraits {
+                match self {
+                    $(Self::$kind => <$law as normal::Normal>::TRAITS,)*
+                }
+            }
+        }
+
+        impl ContactModel {
+            /// [`ContactModel::dispatch`]'s first choice: the normal law.
+            fn d_normal<V: Visitor>(&self, v: V) -> V::Output {
+                match self.normal {
+                    $(NormalKind::$kind => self.d_tan::<$law, V>(v),)*
+                }
+            }
+        }
+    };
+}
+
+normal_laws! {
     /// `hertz`.
-    Hertz,
+    Hertz => normal::Hertz, "hertz";
     /// `hooke`.
-    Hooke,
+    Hooke => normal::Hooke, "hooke";
     /// `hooke/hysteresis` (Walton–Braun).
-    HookeHysteresis,
+    HookeHysteresis => normal::HookeHysteresis, "hooke/hysteresis";
     /// `hertz/stiffness`: the per-type-pair `kn`, `kt`, `gamman`, `gammat` given directly,
     /// each times √(R*δ) (the damping also times m*).
-    HertzStiffness,
+    HertzStiffness => normal::HertzStiffness, "hertz/stiffness";
     /// `hooke/stiffness`: the per-type-pair `kn`, `kt` and damping given directly
     /// (`gamman`, `gammat` times m*, or with `absolute_damping on` `gamman_abs`, `gammat_abs`).
-    HookeStiffness,
+    HookeStiffness => normal::HookeStiffness, "hooke/stiffness";
 }
 
 impl NormalKind {
     /// True for the models whose stiffness and damping come from `kn`, `kt`, `gamman`,
     /// `gammat` rather than from Young's modulus and the coefficient of restitution.
     pub fn is_stiffness(self) -> bool {
-        matches!(self, Self::HertzStiffness | Self::HookeStiffness)
+        self.traits().stiffness
     }
 }
 
@@ -169,11 +201,8 @@ impl ContactModel {
             rolling_stiffness: self.rolling == RollingKind::Epsd3,
             cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
             liquid: self.cohesion == CohesionKind::Easo,
-            characteristic_velocity: matches!(
-                self.normal,
-                NormalKind::Hooke | NormalKind::HookeHysteresis
-            ),
-            hysteresis: self.normal == NormalKind::HookeHysteresis,
+            characteristic_velocity: self.normal.traits().characteristic_velocity,
+            hysteresis: self.normal.traits().hysteresis,
             stiffness: if self.normal.is_stiffness() {
                 Some(self.flags.absolute_damping)
             } else {
@@ -228,13 +257,7 @@ impl ContactModel {
     /// Calls `v.visit::<K>()` with the kernel type `K` of this selection: the one place
     /// where the runtime choice becomes a type.
     pub fn dispatch<V: Visitor>(&self, v: V) -> V::Output {
-        match self.normal {
-            NormalKind::Hertz => self.d_tan::<normal::Hertz, V>(v),
-            NormalKind::Hooke => self.d_tan::<normal::Hooke, V>(v),
-            NormalKind::HookeHysteresis => self.d_tan::<normal::HookeHysteresis, V>(v),
-            NormalKind::HertzStiffness => self.d_tan::<normal::HertzStiffness, V>(v),
-            NormalKind::HookeStiffness => self.d_tan::<normal::HookeStiffness, V>(v),
-        }
+        self.d_normal(v)
     }
     fn d_tan<N: normal::Normal, V: Visitor>(&self, v: V) -> V::Output {
         match self.tangential {

@@ -4,14 +4,9 @@
 
 use super::{CohesionKind, NormalKind, RollingKind, SurfaceKind, TangentialKind};
 
-/// Normal models (`model ...`): the one table of their names.
-pub const NORMAL_MODELS: &[(&str, NormalKind)] = &[
-    ("hertz", NormalKind::Hertz),
-    ("hooke", NormalKind::Hooke),
-    ("hooke/hysteresis", NormalKind::HookeHysteresis),
-    ("hertz/stiffness", NormalKind::HertzStiffness),
-    ("hooke/stiffness", NormalKind::HookeStiffness),
-];
+/// Normal models (`model ...`): their names, from the table of normal laws in
+/// `contact/mod.rs` (a law and its name are one row there).
+pub const NORMAL_MODELS: &[(&str, NormalKind)] = NormalKind::NAMES;
 
 /// Tangential models (`tangential ...`).
 pub const TANGENTIAL_MODELS: &[(&str, TangentialKind)] = &[
@@ -62,7 +57,8 @@ mod tests {
 
     /// Every kind has exactly one name. The lists below are checked by exhaustive matches:
     /// a new kind does not compile here until it is listed, and then fails until its
-    /// table names it.
+    /// table names it. The normal laws' names come from the same row as their kinds, so
+    /// only the uniqueness of the names is left to check for them.
     #[test]
     fn every_model_kind_has_one_name() {
         use CohesionKind as C;
@@ -70,22 +66,7 @@ mod tests {
         use RollingKind as R;
         use SurfaceKind as S;
         use TangentialKind as T;
-        let normal = [
-            N::Hertz,
-            N::Hooke,
-            N::HookeHysteresis,
-            N::HertzStiffness,
-            N::HookeStiffness,
-        ];
-        for k in normal {
-            match k {
-                N::Hertz
-                | N::Hooke
-                | N::HookeHysteresis
-                | N::HertzStiffness
-                | N::HookeStiffness => {}
-            }
-        }
+        let normal: Vec<N> = NORMAL_MODELS.iter().map(|(_, k)| *k).collect();
         let tangential = [T::History, T::NoHistory];
         for k in tangential {
             match k {

@@ -4,10 +4,28 @@
 
 use super::{Flags, Geom, NormalOut, PairCoeff};
 
-/// A normal force law.
+/// What the rest of rdem needs to know of a normal law besides its force: the material
+/// properties it reads and how its force grows with the overlap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawTraits {
+    /// Stiffness and damping come from `kn`, `kt`, `gamman`, `gammat`, not from Young's
+    /// modulus and the coefficient of restitution.
+    pub stiffness: bool,
+    /// It reads `characteristicVelocity`.
+    pub characteristic_velocity: bool,
+    /// It reads the hysteresis properties (`loadingStiffness`, ...).
+    pub hysteresis: bool,
+    /// The exponent p of its elastic force, F ~ δ^p (heat/gran's area correction).
+    pub force_exponent: f64,
+}
+
+/// A normal force law. A new law is a type implementing this, one row of the table in
+/// `contact/mod.rs` (its kind and script name), its material properties, and its tests.
 pub trait Normal {
     /// History values it keeps per contact.
     const HIST: usize;
+    /// What the rest of rdem needs to know of it.
+    const TRAITS: LawTraits;
     /// Normal force for normal relative velocity `vn` (negative while approaching).
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut;
 }
@@ -28,6 +46,12 @@ pub struct Hertz;
 
 impl Normal for Hertz {
     const HIST: usize = 0;
+    const TRAITS: LawTraits = LawTraits {
+        stiffness: false,
+        characteristic_velocity: false,
+        hysteresis: false,
+        force_exponent: 1.5,
+    };
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
         let sq = (g.r_star * g.delta).sqrt();
@@ -68,6 +92,12 @@ pub struct Hooke;
 
 impl Normal for Hooke {
     const HIST: usize = 0;
+    const TRAITS: LawTraits = LawTraits {
+        stiffness: false,
+        characteristic_velocity: true,
+        hysteresis: false,
+        force_exponent: 1.0,
+    };
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
         let kn = hooke_kn(c, g.r_star, g.m_star);
@@ -93,6 +123,12 @@ pub struct HookeHysteresis;
 
 impl Normal for HookeHysteresis {
     const HIST: usize = 1;
+    const TRAITS: LawTraits = LawTraits {
+        stiffness: false,
+        characteristic_velocity: true,
+        hysteresis: true,
+        force_exponent: 1.0,
+    };
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, _flags: Flags, hist: &mut [f64]) -> NormalOut {
         let k1 = hooke_kn(c, g.r_star, g.m_star);
@@ -142,6 +178,12 @@ pub struct HertzStiffness;
 
 impl Normal for HertzStiffness {
     const HIST: usize = 0;
+    const TRAITS: LawTraits = LawTraits {
+        stiffness: true,
+        characteristic_velocity: false,
+        hysteresis: false,
+        force_exponent: 1.5,
+    };
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
         let sq = (g.r_star * g.delta).sqrt();
@@ -165,6 +207,12 @@ pub struct HookeStiffness;
 
 impl Normal for HookeStiffness {
     const HIST: usize = 0;
+    const TRAITS: LawTraits = LawTraits {
+        stiffness: true,
+        characteristic_velocity: false,
+        hysteresis: false,
+        force_exponent: 1.0,
+    };
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, _hist: &mut [f64]) -> NormalOut {
         let m = if flags.absolute_damping {
