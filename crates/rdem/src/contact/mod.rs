@@ -75,55 +75,77 @@ impl NormalKind {
     }
 }
 
-/// Tangential model (`tangential ...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TangentialKind {
-    /// `history`: incremental spring with Coulomb cap.
-    History,
-    /// `no_history`: damping only, with Coulomb cap.
-    NoHistory,
+/// A vocabulary of sub-models, one row each: the kind and its script name. The kind enum
+/// and its name table (`NAMES`, which [`names`] lists) come from this one declaration;
+/// the kernel dispatch below matches every kind (a missing arm does not compile).
+macro_rules! model_kinds {
+    ($(#[$edoc:meta])* $Enum:ident { $($(#[$doc:meta])* $kind:ident = $name:literal,)* }) => {
+        $(#[$edoc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum $Enum {
+            $($(#[$doc])* $kind,)*
+        }
+
+        impl $Enum {
+            /// Every kind with its script name, in the table's order.
+            pub const NAMES: &[(&str, $Enum)] = &[$(($name, $Enum::$kind),)*];
+        }
+    };
 }
 
-/// Rolling friction model (`rolling_friction ...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RollingKind {
-    /// No rolling friction.
-    Off,
-    /// `cdt`: constant directional torque.
-    Cdt,
-    /// `epsd`: elastic–plastic spring–dashpot (Ai et al.).
-    Epsd,
-    /// `epsd2`: Iwashita–Oda spring, no damping.
-    Epsd2,
-    /// `epsd3`: as `epsd` with the rolling stiffness prefactor given by the user
-    /// (`rollingStiffness`) instead of 2.25.
-    Epsd3,
+model_kinds! {
+    /// Tangential model (`tangential ...`).
+    TangentialKind {
+        /// `history`: incremental spring with Coulomb cap.
+        History = "history",
+        /// `no_history`: damping only, with Coulomb cap.
+        NoHistory = "no_history",
+    }
 }
 
-/// Cohesion model (`cohesion ...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CohesionKind {
-    /// No cohesion.
-    Off,
-    /// `sjkr`: F = k · (exact lens contact area).
-    Sjkr,
-    /// `sjkr2`: F = k · 2π δ (2R*).
-    Sjkr2,
-    /// `bond`: the parallel-bond model ([`crate::bond`]); the contact itself has no
-    /// cohesion.
-    Bond,
-    /// `easo/capillary/viscous`: liquid bridges ([`liquid`]).
-    Easo,
+model_kinds! {
+    /// Rolling friction model (`rolling_friction ...`).
+    RollingKind {
+        /// No rolling friction.
+        Off = "off",
+        /// `cdt`: constant directional torque.
+        Cdt = "cdt",
+        /// `epsd`: elastic–plastic spring–dashpot (Ai et al.).
+        Epsd = "epsd",
+        /// `epsd2`: Iwashita–Oda spring, no damping.
+        Epsd2 = "epsd2",
+        /// `epsd3`: as `epsd` with the rolling stiffness prefactor given by the user
+        /// (`rollingStiffness`) instead of 2.25.
+        Epsd3 = "epsd3",
+    }
 }
 
-/// Surface model (`surface ...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SurfaceKind {
-    /// `default`: smooth spheres.
-    Default,
-    /// `multicontact`: each contact's overlap corrected for the particle's other contacts
-    /// ([`crate::multicontact`], with `fix multicontact/halfspace`).
-    Multicontact,
+model_kinds! {
+    /// Cohesion model (`cohesion ...`).
+    CohesionKind {
+        /// No cohesion.
+        Off = "off",
+        /// `sjkr`: F = k · (exact lens contact area).
+        Sjkr = "sjkr",
+        /// `sjkr2`: F = k · 2π δ (2R*).
+        Sjkr2 = "sjkr2",
+        /// `bond`: the parallel-bond model ([`crate::bond`]); the contact itself has no
+        /// cohesion.
+        Bond = "bond",
+        /// `easo/capillary/viscous`: liquid bridges ([`liquid`]).
+        Easo = "easo/capillary/viscous",
+    }
+}
+
+model_kinds! {
+    /// Surface model (`surface ...`).
+    SurfaceKind {
+        /// `default`: smooth spheres.
+        Default = "default",
+        /// `multicontact`: each contact's overlap corrected for the particle's other
+        /// contacts ([`crate::multicontact`], with `fix multicontact/halfspace`).
+        Multicontact = "multicontact",
+    }
 }
 
 /// Model keywords that are plain switches.

@@ -1,6 +1,7 @@
 //! The script names of the contact sub-models: one (name, kind) table per vocabulary, read
 //! by the script parser (`pair_style gran`, `fix wall/gran`), its error messages and help,
-//! the 2.x syntax, and the tests that replay LIGGGHTS scripts. A kind has exactly one name.
+//! the 2.x syntax, and the tests that replay LIGGGHTS scripts. Each name is declared with
+//! its kind, in one row of `contact/mod.rs`.
 
 use super::{CohesionKind, NormalKind, RollingKind, SurfaceKind, TangentialKind};
 
@@ -9,92 +10,56 @@ use super::{CohesionKind, NormalKind, RollingKind, SurfaceKind, TangentialKind};
 pub const NORMAL_MODELS: &[(&str, NormalKind)] = NormalKind::NAMES;
 
 /// Tangential models (`tangential ...`).
-pub const TANGENTIAL_MODELS: &[(&str, TangentialKind)] = &[
-    ("history", TangentialKind::History),
-    ("no_history", TangentialKind::NoHistory),
-];
+pub const TANGENTIAL_MODELS: &[(&str, TangentialKind)] = TangentialKind::NAMES;
 
 /// Cohesion models (`cohesion ...`).
-pub const COHESION_MODELS: &[(&str, CohesionKind)] = &[
-    ("off", CohesionKind::Off),
-    ("sjkr", CohesionKind::Sjkr),
-    ("sjkr2", CohesionKind::Sjkr2),
-    ("bond", CohesionKind::Bond),
-    ("easo/capillary/viscous", CohesionKind::Easo),
-];
+pub const COHESION_MODELS: &[(&str, CohesionKind)] = CohesionKind::NAMES;
 
 /// Surface models (`surface ...`).
-pub const SURFACE_MODELS: &[(&str, SurfaceKind)] = &[
-    ("default", SurfaceKind::Default),
-    ("multicontact", SurfaceKind::Multicontact),
-];
+pub const SURFACE_MODELS: &[(&str, SurfaceKind)] = SurfaceKind::NAMES;
 
 /// Rolling friction models (`rolling_friction ...`).
-pub const ROLLING_MODELS: &[(&str, RollingKind)] = &[
-    ("off", RollingKind::Off),
-    ("cdt", RollingKind::Cdt),
-    ("epsd", RollingKind::Epsd),
-    ("epsd2", RollingKind::Epsd2),
-    ("epsd3", RollingKind::Epsd3),
-];
+pub const ROLLING_MODELS: &[(&str, RollingKind)] = RollingKind::NAMES;
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `table` names each of `all` once, and no name twice.
-    fn once<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)], all: &[K]) {
-        for k in all {
-            let n = table.iter().filter(|(_, v)| v == k).count();
-            assert_eq!(n, 1, "{k:?} has {n} names");
+    /// No two names of `table` are the same, no two kinds either, and no name is empty.
+    /// (Each kind has its name by construction: both are one row of `contact/mod.rs`.)
+    fn unique<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)]) {
+        for (i, (n, k)) in table.iter().enumerate() {
+            assert!(!n.is_empty(), "{k:?} has an empty name");
+            for (m, l) in &table[i + 1..] {
+                assert_ne!(n, m, "the name '{n}' is given twice");
+                assert_ne!(k, l, "{k:?} has two names");
+            }
         }
-        assert_eq!(table.len(), all.len());
-        let mut names: Vec<&str> = table.iter().map(|(n, _)| *n).collect();
-        names.sort_unstable();
-        names.dedup();
-        assert_eq!(names.len(), table.len(), "a name is given twice");
     }
 
-    /// Every kind has exactly one name. The lists below are checked by exhaustive matches:
-    /// a new kind does not compile here until it is listed, and then fails until its
-    /// table names it. The normal laws' names come from the same row as their kinds, so
-    /// only the uniqueness of the names is left to check for them.
+    /// The names of `table`, in order, as one line.
+    fn names<K>(table: &[(&str, K)]) -> String {
+        table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
+    }
+
     #[test]
-    fn every_model_kind_has_one_name() {
-        use CohesionKind as C;
-        use NormalKind as N;
-        use RollingKind as R;
-        use SurfaceKind as S;
-        use TangentialKind as T;
-        let normal: Vec<N> = NORMAL_MODELS.iter().map(|(_, k)| *k).collect();
-        let tangential = [T::History, T::NoHistory];
-        for k in tangential {
-            match k {
-                T::History | T::NoHistory => {}
-            }
-        }
-        let cohesion = [C::Off, C::Sjkr, C::Sjkr2, C::Bond, C::Easo];
-        for k in cohesion {
-            match k {
-                C::Off | C::Sjkr | C::Sjkr2 | C::Bond | C::Easo => {}
-            }
-        }
-        let rolling = [R::Off, R::Cdt, R::Epsd, R::Epsd2, R::Epsd3];
-        for k in rolling {
-            match k {
-                R::Off | R::Cdt | R::Epsd | R::Epsd2 | R::Epsd3 => {}
-            }
-        }
-        let surface = [S::Default, S::Multicontact];
-        for k in surface {
-            match k {
-                S::Default | S::Multicontact => {}
-            }
-        }
-        once(NORMAL_MODELS, &normal);
-        once(TANGENTIAL_MODELS, &tangential);
-        once(COHESION_MODELS, &cohesion);
-        once(ROLLING_MODELS, &rolling);
-        once(SURFACE_MODELS, &surface);
+    fn names_are_unique() {
+        unique(NORMAL_MODELS);
+        unique(TANGENTIAL_MODELS);
+        unique(COHESION_MODELS);
+        unique(ROLLING_MODELS);
+        unique(SURFACE_MODELS);
+        // The names scripts use, in the order the help lists them.
+        assert_eq!(
+            names(NORMAL_MODELS),
+            "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness"
+        );
+        assert_eq!(names(TANGENTIAL_MODELS), "history no_history");
+        assert_eq!(
+            names(COHESION_MODELS),
+            "off sjkr sjkr2 bond easo/capillary/viscous"
+        );
+        assert_eq!(names(ROLLING_MODELS), "off cdt epsd epsd2 epsd3");
+        assert_eq!(names(SURFACE_MODELS), "default multicontact");
     }
 }
