@@ -138,16 +138,26 @@ fn wall_and_equations_of_state_match_liggghts() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `fix wall/region/sph` on a block: particles of two types near three faces at several
-/// distances, with positive and negative pressures, moving towards or away from the
-/// walls: forces, velocities, positions, densities and pressures equal LIGGGHTS 3.8's for
-/// three steps to 1e-12.
+/// `fix wall/region/sph` on a block (particles of two types near three faces), a sphere
+/// (near its surface in several directions), a z cylinder with finite ends (near its
+/// curved surface, its lower cap, and the edge where the upper cap meets the curved
+/// surface, feeling both) and an open x cylinder, at several distances, with positive
+/// and negative pressures, moving towards or away from the walls: forces, velocities,
+/// positions, densities and pressures equal LIGGGHTS 3.8's for three steps to 1e-12.
 #[test]
 fn wall_region_matches_liggghts() {
-    let (dir, _) = common::run_data_script("sph", &data(), "in.wall_region", &[]);
-    let worst = compare_dumps(&dir, "wall_region.dump", 1e-12);
-    eprintln!("wall/region/sph: largest relative difference {worst:e}");
-    let _ = std::fs::remove_dir_all(&dir);
+    // A block, a sphere, a z cylinder with its caps and an open x cylinder.
+    for case in [
+        "wall_region",
+        "wall_sphere",
+        "wall_cylinder",
+        "wall_xcylinder",
+    ] {
+        let (dir, _) = common::run_data_script("sph", &data(), &format!("in.{case}"), &[]);
+        let worst = compare_dumps(&dir, &format!("{case}.dump"), 1e-12);
+        eprintln!("wall/region/sph {case}: largest relative difference {worst:e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
 
 const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
@@ -333,5 +343,30 @@ fn sph_errors_are_located_and_list_the_choices() {
         assert!(!out.status.success(), "{line}: accepted");
         assert!(err.contains("in.test:6"), "{line}: not located:\n{err}");
         assert!(err.contains(want), "{line}: no '{want}' in:\n{err}");
+    }
+}
+
+/// `wall/region/sph` on a region it does not support (a cone, a block seen from
+/// outside) stops at the region's word with the shapes it does support.
+#[test]
+fn wall_region_on_other_shapes_is_a_located_error() {
+    let script = std::fs::read_to_string(data().join("in.wall_region")).unwrap();
+    for region in [
+        "region        boxw cone z 0.5 0.5 0.1 0.3 0.0 0.9 units box",
+        "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 side out units box",
+    ] {
+        let bad = script.replace(
+            "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 units box",
+            region,
+        );
+        assert_ne!(bad, script);
+        let out = common::run_script_raw(&bad, None);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains("supports block, sphere and cylinder regions"),
+            "{err}"
+        );
+        assert!(err.contains("in.test:"), "located: {err}");
     }
 }

@@ -5,7 +5,7 @@
 //! `set group all sphkernel NAME` after them, as in the LIGGGHTS tutorials.
 
 use rdem::region::Shape;
-use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall};
+use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall, SphWallRegion};
 use rdem::FixKind;
 
 use super::engine::engine_fix;
@@ -69,9 +69,9 @@ pub(super) const ROW_WALL_REGION: FixRow = style(
     "wall/region/sph",
     wall_region,
     Stages::ENGINE,
-    "`region-ID r0 D` (a block region, side in): the wall/sph force from each face, plus the pressure force of the particle's copy at the wall",
+    "`region-ID r0 D` (a block, sphere or cylinder region, side in): the wall/sph force from each part of its surface within r0, plus the pressure force of the particle's copy at the wall",
 )
-.notes("block regions only so far (other shapes: a located error)");
+.notes("block, sphere and cylinder regions (side in, not moving), as LAMMPS' surface_interior: a cylinder's curved surface and its finite end caps; other shapes stop with a located error");
 
 /// The SPH fixes need atom_style sph.
 fn need_sph(sim: &Sim, a: &Args, head: &FixHead) -> CmdResult {
@@ -185,11 +185,34 @@ fn wall(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>
 fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     need_sph(sim, a, head)?;
     let region = sim.fixed_region(a, "fix wall/region/sph")?;
-    let (lo, hi) = match (&region.shape, region.outside, &region.pose) {
-        (Shape::Block { lo, hi }, false, None) => (*lo, *hi),
+    let shape = match (&region.shape, region.outside, &region.pose) {
+        (Shape::Block { lo, hi }, false, None) => SphWallRegion::Block { lo: *lo, hi: *hi },
+        (Shape::Sphere { centre, radius }, false, None) => SphWallRegion::Sphere {
+            centre: *centre,
+            radius: *radius,
+        },
+        (
+            &Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            },
+            false,
+            None,
+        ) => SphWallRegion::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        },
         _ => {
             return Err(a.error_prev(
-                "fix wall/region/sph supports block regions (side in) only so far",
+                "fix wall/region/sph supports block, sphere and cylinder regions (side in, not moving) only so far",
                 None,
             ))
         }
@@ -198,8 +221,7 @@ fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scr
     let d = a.f64("D")?;
     a.done()?;
     let w = SphRegionWall {
-        lo,
-        hi,
+        region: shape,
         r0,
         d,
         kernel: None,
