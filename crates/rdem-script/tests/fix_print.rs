@@ -37,18 +37,6 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
-fn run(script: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.fp", script) {
-        panic!(
-            "{:?}\n--- output ---\n{}",
-            miette::Report::new(*e),
-            common::screen(&i)
-        );
-    }
-    i
-}
-
 /// The screen lines that are not thermo rows, run headers or the loop summary, with
 /// the step of each thermo row as `@N` (to check where the prints fall).
 fn printed(i: &Interpreter) -> Vec<String> {
@@ -105,7 +93,7 @@ fn prints_and_files_as_liggghts() {
         p("q.txt"),
         p("r.txt")
     );
-    let i = run(&script);
+    let i = common::run("in.fp", &script);
     assert_eq!(
         printed(&i),
         [
@@ -159,7 +147,7 @@ fn steps_of_the_prints_as_liggghts() {
          run 3\n",
         x.display()
     );
-    let i = run(&script);
+    let i = common::run("in.fp", &script);
     let lines: Vec<String> = printed(&i)
         .into_iter()
         .filter(|l| !l.starts_with('@'))
@@ -224,7 +212,7 @@ fn csv_of_massflow_values() {
          run 150\n",
         csv.display()
     );
-    let i = run(&script);
+    let i = common::run("in.fp", &script);
     let text = std::fs::read_to_string(&csv).unwrap();
     let rows: Vec<Vec<f64>> = text
         .lines()

@@ -27,18 +27,6 @@ pair_coeff * *
 timestep 0.00001
 ";
 
-fn run(script: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.test", script) {
-        panic!(
-            "{:?}\n--- output ---\n{}",
-            miette::Report::new(*e),
-            common::screen(&i)
-        );
-    }
-    i
-}
-
 fn screen(i: &Interpreter) -> String {
     common::screen(i)
 }
@@ -64,9 +52,12 @@ fn printed(i: &Interpreter, key: &str) -> f64 {
 /// tutorial (tests/data/tutorials/cohesion.log in rdem-cli).
 #[test]
 fn thermo_layout_is_liggghts() {
-    let i = run(&format!(
+    let i = common::run(
+        "in.test",
+        &format!(
         "{HEAD}compute rke all erotate/sphere\nthermo_style custom step atoms ke c_rke vol\nrun 0\n"
-    ));
+    ),
+    );
     let s = screen(&i);
     assert!(
         s.contains("\n    Step    Atoms         KinEng            rke         Volume \n       0        0              0              0         0.0015 \n"),
@@ -79,7 +70,7 @@ fn thermo_layout_is_liggghts() {
 /// growths in a 100-step run); the mass follows the radius at constant density.
 #[test]
 fn adapt_grows_radius_and_mass() {
-    let i = run(&format!(
+    let i = common::run("in.test", &format!(
         "{HEAD}create_atoms 1 single 0 0 0.05 units box\ncreate_atoms 1 single 0.02 0 0.05 units box\n\
          set type 1 diameter 0.002 density 2500\ncompute r all property/atom radius\n\
          variable d atom 2.0*c_r*1.01\nfix grow all adapt 10 atom diameter v_d\nrun 100\n"
@@ -100,7 +91,7 @@ fn adapt_grows_radius_and_mass() {
 /// insert/rate/region: rate × dt × insert_every particles per insertion until nparticles.
 #[test]
 fn insert_rate_region_counts() {
-    let i = run(&format!(
+    let i = common::run("in.test", &format!(
         "{HEAD}fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.002\n\
          fix pd all particledistribution/discrete 10009 1 pts 1.0\n\
          region inlet block -0.04 0.04 -0.04 0.04 0.08 0.14 units box\n\
@@ -135,7 +126,7 @@ fn insert_rate_region_counts() {
 fn a_mass_limit_counts_whole_particles_rounded_down() {
     let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.005f64.powi(3);
     for (mass, count) in [(10.8 * m, 10), (10.0 * m, 10), (10.3 * m, 10)] {
-        let i = run(&format!(
+        let i = common::run("in.test", &format!(
             "{HEAD}fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.005\n\
              fix pd all particledistribution/discrete 10009 1 pts 1.0\n\
              region inlet block -0.04 0.04 -0.04 0.04 0.02 0.14 units box\n\
@@ -151,11 +142,14 @@ fn a_mass_limit_counts_whole_particles_rounded_down() {
 /// averages the window means.
 #[test]
 fn ave_time_windows() {
-    let i = run(&format!(
-        "{HEAD}variable s equal step\nfix a all ave/time 2 3 10 v_s\n\
+    let i = common::run(
+        "in.test",
+        &format!(
+            "{HEAD}variable s equal step\nfix a all ave/time 2 3 10 v_s\n\
          fix b all ave/time 2 3 10 v_s ave running\nrun 20\n\
          variable fa equal f_a\nvariable fb equal f_b\nprint \"a=${{fa}}\"\nprint \"b=${{fb}}\"\n"
-    ));
+        ),
+    );
     // Window at 20: steps 16, 18, 20 -> 18; running: (8 + 18)/2 = 13.
     assert_eq!(printed(&i, "a="), 18.0);
     assert_eq!(printed(&i, "b="), 13.0);
@@ -165,11 +159,14 @@ fn ave_time_windows() {
 /// particle: π r √(ρ/G) / (0.1631 ν + 0.8766).
 #[test]
 fn check_timestep_rayleigh_fraction() {
-    let i = run(&format!(
+    let i = common::run(
+        "in.test",
+        &format!(
         "{HEAD}create_atoms 1 single 0 0 0.05 units box\nset type 1 diameter 0.004 density 2500\n\
          fix ts all check/timestep/gran 10 0.5 0.5\nrun 10\nvariable fr equal f_ts[1]\n\
          print \"fr=${{fr}}\"\n"
-    ));
+    ),
+    );
     let g: f64 = 5e6 / (2.0 * 1.45);
     let t_r = std::f64::consts::PI * 0.002 * (2500.0 / g).sqrt() / (0.1631 * 0.45 + 0.8766);
     let fr = printed(&i, "fr=");
@@ -181,19 +178,25 @@ fn check_timestep_rayleigh_fraction() {
 fn data_file_round_trip() {
     let d = tmpdir("data");
     let f = d.join("state.data");
-    let i = run(&format!(
-        "{HEAD}lattice sc 0.01\nregion small block -0.02 0.02 -0.02 0.02 0.02 0.05 units box\n\
+    let i = common::run(
+        "in.test",
+        &format!(
+            "{HEAD}lattice sc 0.01\nregion small block -0.02 0.02 -0.02 0.02 0.02 0.05 units box\n\
          create_atoms 1 region small\nset type 1 diameter 0.004 density 2600\n\
          velocity all set 0.1 NULL -0.2\nwrite_data {}\n",
-        f.display()
-    ));
+            f.display()
+        ),
+    );
     let a = &i.sim.world.as_ref().unwrap().particles;
     // sc points with -0.02 <= x, y <= 0.02 and 0.02 <= z <= 0.05 (region bounds inclusive).
     assert_eq!(a.nlocal(), 5 * 5 * 4);
-    let j = run(&format!(
-        "atom_style granular\nboundary f f f\nunits si\nread_data {}\n",
-        f.display()
-    ));
+    let j = common::run(
+        "in.test",
+        &format!(
+            "atom_style granular\nboundary f f f\nunits si\nread_data {}\n",
+            f.display()
+        ),
+    );
     let b = &j.sim.world.as_ref().unwrap().particles;
     assert_eq!(b.nlocal(), a.nlocal());
     for k in 0..a.nlocal() {
@@ -210,7 +213,7 @@ fn data_file_round_trip() {
 #[test]
 fn dump_custom_text() {
     let d = tmpdir("dump");
-    run(&format!(
+    common::run("in.test", &format!(
         "{HEAD}create_atoms 1 single 0.01 0 0.05 units box\ncreate_atoms 1 single -0.01 0 0.05 units box\n\
          set atom 2 diameter 0.003\ngroup two id 2\n\
          dump d two custom 5 {}/d.*.txt id type z radius\ndump_modify d sort id\nrun 5\n",
@@ -228,7 +231,7 @@ fn dump_custom_text() {
 /// group, velocity, delete_atoms (with tag compression) and run upto.
 #[test]
 fn groups_velocity_delete_and_upto() {
-    let i = run(&format!(
+    let i = common::run("in.test", &format!(
         "{HEAD}lattice sc 0.01\ncreate_atoms 1 box\nset type 1 diameter 0.002 density 2500\n\
          region low block INF INF INF INF INF 0.05 units box\ngroup low region low\n\
          velocity low set 0 0 1.5\nvariable n equal count(low)\nvariable vz equal vcm(low,z)\n\
@@ -251,7 +254,7 @@ fn groups_velocity_delete_and_upto() {
 /// are dropped with lost ignore and stop the run with lost error.
 #[test]
 fn norm_and_lost() {
-    let i = run(&format!(
+    let i = common::run("in.test", &format!(
         "{HEAD}create_atoms 1 single 0 0 0.05 units box\ncreate_atoms 1 single 0.02 0 0.05 units box\n\
          set type 1 diameter 0.002 density 1000\nvelocity all set 2 0 0\n\
          thermo_style custom step ke\nthermo_modify norm yes\nvariable k equal ke\nrun 0\nprint \"k=${{k}}\"\n"
@@ -280,7 +283,7 @@ fn norm_and_lost() {
          velocity all set 10 0 0\nfix nve all nve/sphere\nthermo_modify lost ignore\nrun 100\n\
          variable n equal atoms\nprint \"n=${{n}}\"\n"
     );
-    assert_eq!(printed(&run(&script), "n="), 0.0);
+    assert_eq!(printed(&common::run("in.test", &script), "n="), 0.0);
     let mut j = common::interpreter();
     let err = j
         .run_source("in.test", &script.replace("lost ignore", "lost error"))
@@ -294,7 +297,7 @@ fn norm_and_lost() {
 /// step), then integrated normally.
 #[test]
 fn insertion_happens_inside_the_step() {
-    let i = run(&format!(
+    let i = common::run("in.test", &format!(
         "{HEAD}fix g all gravity 9.81 vector 0 0 -1\n\
          fix pts all particletemplate/sphere 10007 atom_type 1 density constant 2500 radius constant 0.002\n\
          fix pd all particledistribution/discrete 10009 1 pts 1.0\n\
@@ -321,7 +324,8 @@ fn insertion_happens_inside_the_step() {
 /// immediate formulas print with 20 significant digits as LIGGGHTS does.
 #[test]
 fn time_and_immediate_format() {
-    let i = run(
+    let i = common::run(
+        "in.test",
         "units si\nregion r block 0 1 0 1 0 1 units box\ncreate_box 1 r\nreset_timestep 10\n\
          timestep 0.001\nvariable t equal time\nprint \"t=${t}\"\nprint \"third=$(1/3)\"\n",
     );
@@ -337,7 +341,10 @@ fn time_and_immediate_format() {
 /// prints `0.33333333333333298176 0.999999999999999` for this script.
 #[test]
 fn equal_variables_enter_formulas_as_text() {
-    let i = run("variable a equal 1/3\nvariable b equal v_a*3\nprint \"x=$(v_a) ${b}\"\n");
+    let i = common::run(
+        "in.test",
+        "variable a equal 1/3\nvariable b equal v_a*3\nprint \"x=$(v_a) ${b}\"\n",
+    );
     assert!(
         screen(&i).contains("x=0.33333333333333298176 0.999999999999999\n"),
         "{}",

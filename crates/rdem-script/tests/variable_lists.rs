@@ -15,18 +15,6 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
-fn run(script: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.x", script) {
-        panic!(
-            "{:?}\n--- output ---\n{}",
-            miette::Report::new(*e),
-            common::screen(&i)
-        );
-    }
-    i
-}
-
 fn screen(i: &Interpreter) -> Vec<String> {
     let s = common::screen(i);
     s.lines().map(String::from).collect()
@@ -74,7 +62,7 @@ fn file_variables_read_lines_as_liggghts() {
         d.join("other_missing.txt").display(),
         v2.display()
     );
-    let i = run(&script);
+    let i = common::run("in.x", &script);
     assert_eq!(
         screen(&i),
         [
@@ -98,7 +86,7 @@ fn file_variables_read_lines_as_liggghts() {
         vals.display(),
         v2.display()
     );
-    assert_eq!(screen(&run(&script)), ["  2.5e3 \tt1"]);
+    assert_eq!(screen(&common::run("in.x", &script)), ["  2.5e3 \tt1"]);
 
     // LIGGGHTS: "Cannot open file variable file nofile.txt", "File variable could not
     // read value" (a file of blank and comment lines).
@@ -118,14 +106,17 @@ fn file_variables_read_lines_as_liggghts() {
 /// value 2 ...`, `upad=02`.
 #[test]
 fn uloop_counts_as_loop_with_liggghts_lines() {
-    let i = run("variable u uloop 3\n\
+    let i = common::run(
+        "in.x",
+        "variable u uloop 3\n\
          label l2\n\
          print \"u=$u\"\n\
          next u\n\
          jump SELF l2\n\
          print \"out\"\n\
          variable p uloop 12 pad\n\
-         print \"upad=$p\"\n");
+         print \"upad=$p\"\n",
+    );
     let inc = |k: usize| format!("Increment via next: value {k} on partition 0");
     assert_eq!(
         screen(&i),
@@ -159,7 +150,9 @@ fn uloop_counts_as_loop_with_liggghts_lines() {
 /// variables in next command must be same style".
 #[test]
 fn universe_steps_as_index_with_liggghts_lines() {
-    let i = run("variable w universe a b c\n\
+    let i = common::run(
+        "in.x",
+        "variable w universe a b c\n\
          variable w universe z\n\
          print \"w=$w\"\n\
          next w\n\
@@ -172,7 +165,8 @@ fn universe_steps_as_index_with_liggghts_lines() {
          variable u uloop 2\n\
          variable x universe p q\n\
          next u x\n\
-         print \"$u $x\"\n");
+         print \"$u $x\"\n",
+    );
     let inc = |k: usize| format!("Increment via next: value {k} on partition 0");
     assert_eq!(
         screen(&i),

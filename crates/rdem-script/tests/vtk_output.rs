@@ -7,21 +7,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use rdem_script::Interpreter;
-
 mod common;
-
-fn run(script: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.test", script) {
-        panic!(
-            "{:?}\n--- output ---\n{}",
-            miette::Report::new(*e),
-            common::screen(&i)
-        );
-    }
-    i
-}
 
 fn tmpdir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("rdem-vtk-{name}-{}", std::process::id()));
@@ -114,7 +100,7 @@ fn reference_script(dir: &Path) -> String {
 #[test]
 fn atom_vtk_matches_liggghts() {
     let dir = tmpdir("liggghts");
-    let i = run(&reference_script(&dir));
+    let i = common::run("in.test", &reference_script(&dir));
     let mut names: Vec<String> = fs::read_dir(dir.join("post"))
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -371,7 +357,7 @@ dump_modify u sort id compressor lz4
 run 10
 "
     );
-    let i = run(&script);
+    let i = common::run("in.test", &script);
     let w = i.sim.world.as_ref().unwrap();
     let p = &w.particles;
     let mut order: Vec<usize> = (0..p.nlocal()).collect();
@@ -586,7 +572,7 @@ run 10
 write_dump all atom/vtk {d}/wd_*.vtu modify binary yes
 "
     );
-    run(&script);
+    common::run("in.test", &script);
     for f in [
         "deep/er/pad_000000.vtu",
         "deep/er/pad_000004.vtu",

@@ -24,6 +24,16 @@ pub fn screen(i: &Interpreter) -> String {
     i.sim.outputs.out.captured.clone().unwrap_or_default()
 }
 
+/// Runs script `src` (named `name` in messages) in a fresh interpreter that must
+/// succeed: the interpreter; a failure panics with the rendered error and the screen.
+pub fn run(name: &str, src: &str) -> Interpreter {
+    let mut i = interpreter();
+    if let Err(e) = i.run_source(name, src) {
+        panic!("{}\n--- output ---\n{}", render(&e), screen(&i));
+    }
+    i
+}
+
 /// Runs script `src` (named `name` in messages) in a fresh interpreter: the interpreter,
 /// or the rendered error.
 pub fn try_run(name: &str, src: &str) -> Result<Interpreter, String> {
