@@ -263,6 +263,84 @@ impl Region {
         self.pose.map_or(x, |p| p.inverse(x))
     }
 
+    /// True for the regions [`Region::surface_interior`] knows: a block, a sphere or a
+    /// cylinder, `side in`, where it was defined.
+    pub fn has_surface_interior(&self) -> bool {
+        !self.outside
+            && self.pose.is_none()
+            && matches!(
+                self.shape,
+                Shape::Block { .. } | Shape::Sphere { .. } | Shape::Cylinder { .. }
+            )
+    }
+
+    /// The parts of the surface within `reach` of a point `x` inside the region, seen
+    /// from inside, as LAMMPS' `surface_interior`: `(distance, unit normal into the
+    /// region)` for each, written to `out`; their number (none when `x` is not strictly
+    /// inside). Each of a block's faces, a sphere's surface, a cylinder's curved surface
+    /// and each finite end cap counts on its own. Other regions
+    /// ([`Region::has_surface_interior`] false) have none.
+    pub fn surface_interior(&self, x: DVec3, reach: f64, out: &mut [(f64, DVec3); 6]) -> usize {
+        if !self.has_surface_interior() {
+            return 0;
+        }
+        let mut n = 0;
+        match self.shape {
+            Shape::Block { lo, hi } => {
+                if !(0..3).all(|a| lo[a] < x[a] && x[a] < hi[a]) {
+                    return 0;
+                }
+                for a in 0..3 {
+                    let e = DVec3::AXES[a];
+                    for (r, normal) in [(x[a] - lo[a], e), (hi[a] - x[a], -e)] {
+                        if r < reach {
+                            out[n] = (r, normal);
+                            n += 1;
+                        }
+                    }
+                }
+            }
+            Shape::Sphere { centre, radius } => {
+                let d = x - centre;
+                let rho = d.length();
+                if rho < radius && rho > 0.0 && radius - rho < reach {
+                    out[0] = (radius - rho, -d / rho);
+                    n = 1;
+                }
+            }
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let (a, b) = others(axis);
+                let mut d = DVec3::ZERO;
+                d[a] = x[a] - c1;
+                d[b] = x[b] - c2;
+                let rho = d.length();
+                if !(rho < radius && lo < x[axis] && x[axis] < hi) {
+                    return 0;
+                }
+                if rho > 0.0 && radius - rho < reach {
+                    out[n] = (radius - rho, -d / rho);
+                    n += 1;
+                }
+                let e = DVec3::AXES[axis];
+                for (r, normal) in [(x[axis] - lo, e), (hi - x[axis], -e)] {
+                    if r < reach {
+                        out[n] = (r, normal);
+                        n += 1;
+                    }
+                }
+            }
+            _ => {}
+        }
+        n
+    }
+
     /// True if `x` is in the region (boundary included for `side in`).
     pub fn contains(&self, x: DVec3) -> bool {
         self.in_shape(self.local(x)) != self.outside

@@ -4,8 +4,7 @@
 //! becomes an engine fix; the kernel of the density fixes and the wall is set by
 //! `set group all sphkernel NAME` after them, as in the LIGGGHTS tutorials.
 
-use rdem::region::Shape;
-use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall, SphWallRegion};
+use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall};
 use rdem::FixKind;
 
 use super::engine::engine_fix;
@@ -185,43 +184,17 @@ fn wall(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>
 fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     need_sph(sim, a, head)?;
     let region = sim.fixed_region(a, "fix wall/region/sph")?;
-    let shape = match (&region.shape, region.outside, &region.pose) {
-        (Shape::Block { lo, hi }, false, None) => SphWallRegion::Block { lo: *lo, hi: *hi },
-        (Shape::Sphere { centre, radius }, false, None) => SphWallRegion::Sphere {
-            centre: *centre,
-            radius: *radius,
-        },
-        (
-            &Shape::Cylinder {
-                axis,
-                c1,
-                c2,
-                radius,
-                lo,
-                hi,
-            },
-            false,
+    if !region.has_surface_interior() {
+        return Err(a.error_prev(
+            "fix wall/region/sph supports block, sphere and cylinder regions (side in, not moving) only so far",
             None,
-        ) => SphWallRegion::Cylinder {
-            axis,
-            c1,
-            c2,
-            radius,
-            lo,
-            hi,
-        },
-        _ => {
-            return Err(a.error_prev(
-                "fix wall/region/sph supports block, sphere and cylinder regions (side in, not moving) only so far",
-                None,
-            ))
-        }
-    };
+        ));
+    }
     let r0 = a.positive("r0")?;
     let d = a.f64("D")?;
     a.done()?;
     let w = SphRegionWall {
-        region: shape,
+        region,
         r0,
         d,
         kernel: None,

@@ -42,7 +42,7 @@ use crate::world::World;
 
 pub use kernel::{Kernel, KernelKind};
 pub use pair::SphPair;
-pub use wall::{SphRegionWall, SphWall, SphWallRegion};
+pub use wall::{SphRegionWall, SphWall};
 
 /// Per-particle density (`rho` in dumps, `set meso_rho`).
 pub const RHO: &str = "sph_rho";

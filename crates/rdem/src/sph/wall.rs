@@ -8,6 +8,7 @@
 use glam::DVec3;
 
 use super::kernel::KernelKind;
+use crate::region::Region;
 
 /// A `wall/sph` fix.
 #[derive(Debug, Clone, PartialEq)]
@@ -43,115 +44,16 @@ impl SphWall {
     }
 }
 
-/// The region of a `wall/region/sph` (`side in`): its surface seen from inside.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SphWallRegion {
-    /// An axis-aligned block: its six faces.
-    Block {
-        /// Lower corner.
-        lo: DVec3,
-        /// Upper corner.
-        hi: DVec3,
-    },
-    /// A sphere: its surface.
-    Sphere {
-        /// Centre.
-        centre: DVec3,
-        /// Radius.
-        radius: f64,
-    },
-    /// A cylinder along `axis` through (c1, c2) (the other two coordinates in increasing
-    /// order): its curved surface and, where finite, its two end caps.
-    Cylinder {
-        /// Axis direction (0 = x).
-        axis: usize,
-        /// First other coordinate of the axis.
-        c1: f64,
-        /// Second other coordinate.
-        c2: f64,
-        /// Radius.
-        radius: f64,
-        /// Lower end along the axis (may be −∞).
-        lo: f64,
-        /// Upper end (may be +∞).
-        hi: f64,
-    },
-}
-
-impl SphWallRegion {
-    /// The surface points within `reach` of `x`, seen from inside: `(distance, unit
-    /// normal into the region)` for each, written to `out`; their number (none when `x`
-    /// is not inside). As LAMMPS' `surface_interior`: a block's faces, a sphere's surface,
-    /// a cylinder's curved surface and its finite end caps, each on its own.
-    pub fn contacts(&self, x: DVec3, reach: f64, out: &mut [(f64, DVec3); 6]) -> usize {
-        let mut n = 0;
-        match *self {
-            SphWallRegion::Block { lo, hi } => {
-                if !(0..3).all(|a| lo[a] < x[a] && x[a] < hi[a]) {
-                    return 0;
-                }
-                for a in 0..3 {
-                    let e = DVec3::AXES[a];
-                    for (r, normal) in [(x[a] - lo[a], e), (hi[a] - x[a], -e)] {
-                        if r < reach {
-                            out[n] = (r, normal);
-                            n += 1;
-                        }
-                    }
-                }
-            }
-            SphWallRegion::Sphere { centre, radius } => {
-                let d = x - centre;
-                let rho = d.length();
-                if rho < radius && rho > 0.0 && radius - rho < reach {
-                    out[0] = (radius - rho, -d / rho);
-                    n = 1;
-                }
-            }
-            SphWallRegion::Cylinder {
-                axis,
-                c1,
-                c2,
-                radius,
-                lo,
-                hi,
-            } => {
-                let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
-                let (a1, a2) = (a1.min(a2), a1.max(a2));
-                let mut d = DVec3::ZERO;
-                d[a1] = x[a1] - c1;
-                d[a2] = x[a2] - c2;
-                let rho = d.length();
-                if !(rho < radius && lo < x[axis] && x[axis] < hi) {
-                    return 0;
-                }
-                if rho > 0.0 && radius - rho < reach {
-                    out[n] = (radius - rho, -d / rho);
-                    n += 1;
-                }
-                let e = DVec3::AXES[axis];
-                for (r, normal) in [(x[axis] - lo, e), (hi - x[axis], -e)] {
-                    if r < reach {
-                        out[n] = (r, normal);
-                        n += 1;
-                    }
-                }
-            }
-        }
-        n
-    }
-}
-
 /// `fix wall/region/sph region r0 D` (`side in`): each part of the region's surface
-/// within r0 of a particle inside it ([`SphWallRegion::contacts`]) pushes it inwards with
+/// within r0 of a particle inside it ([`Region::surface_interior`]) pushes it inwards with
 /// the force of [`SphWall`], plus the pressure force of a copy of the particle at the
 /// wall, −m² (2P/ρ²) dW/dr(r, sl) (measured on LIGGGHTS 3.8: no viscous or
 /// tensile-correction term, only within r0; the manual: "they can see a clone of
 /// theirself at the wall"; a sphere region's force points to its centre, measured).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SphRegionWall {
-    /// The region.
-    pub region: SphWallRegion,
+    /// The region (one with [`Region::has_surface_interior`]).
+    pub region: Region,
     /// Reach r0.
     pub r0: f64,
     /// Strength D.
@@ -186,7 +88,7 @@ impl SphRegionWall {
             if p.mask[i] & bit == 0 {
                 continue;
             }
-            let n = self.region.contacts(p.x[i], self.r0, &mut found);
+            let n = self.region.surface_interior(p.x[i], self.r0, &mut found);
             if n == 0 {
                 continue;
             }
