@@ -52,13 +52,7 @@ thermo_modify norm no format float %.15g
 fn run(script: &str) -> Vec<Vec<f64>> {
     let stl = square(0.1);
     let out = run_with_files_raw(script, &[("face.stl", &stl)], None);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    thermo_rows(&text)
+    thermo_rows(&common::success("the stream", &out))
 }
 
 /// Streaming down at 2 m/s through the face z = 0.1 from a 0.05 m extrusion with
@@ -435,10 +429,8 @@ fn an_oblique_stream_into_a_mesh_box_loses_none() {
         quad([-h, h, lo], [h, h, lo], [h, h, hi], [-h, h, hi]),
     ];
     let boxstl = format!("solid box\n{}endsolid box\n", walls.concat());
-    let face = format!(
-        "solid face\n{}endsolid face\n",
-        quad([-h, -h, 0.1], [h, -h, 0.1], [h, h, 0.1], [-h, h, 0.1])
-    );
+    // The face spans the box: the 0.1 m square at z = 0.1.
+    let face = square(0.1);
     let script = "atom_style granular
 units si
 newton off
@@ -474,12 +466,7 @@ thermo 100
 run 3000
 ";
     let out = run_with_files_raw(script, &[("box.stl", &boxstl), ("face.stl", &face)], None);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = common::success("the mesh box", &out);
     assert!(!text.contains("WARNING"), "{text}");
     let rows = thermo_rows(&text);
     assert_eq!(rows.len(), 31, "{text}");
