@@ -91,6 +91,13 @@ impl From<String> for RunError {
     }
 }
 
+/// An error of the engine's step (lost or non-finite particles, ...).
+impl From<rdem::Error> for RunError {
+    fn from(e: rdem::Error) -> Self {
+        RunError::at(None, "rdem::run::engine", e.to_string())
+    }
+}
+
 impl From<&str> for RunError {
     fn from(message: &str) -> Self {
         message.to_string().into()

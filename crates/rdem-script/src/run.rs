@@ -1,12 +1,11 @@
-//! `run N [upto]`: set-up, the steps with the front-end hooks around and inside the
-//! engine's [`World::advance_with`] (`rdem::step` writes down the order of a step and where
-//! these front-end stages sit in it), thermo and dump output, and LIGGGHTS' end-of-run
-//! report (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
+//! `run N [upto]`: set-up, the steps (`rdem::step::step`, which writes down the order of
+//! a step, with the script's fixes as its front-end stages: [`Front`]), thermo and dump
+//! output, and LIGGGHTS' end-of-run report (`Loop time of T on P procs for N steps with M atoms` and the stage breakdown).
 
 use std::time::Instant;
 
 use rdem::timers::Stage;
-use rdem::{HookMask, StepHooks, World};
+use rdem::{HookMask, NoHooks, StepHooks, StepHost, World};
 
 use crate::args::{Args, CmdResult};
 use crate::diagnostic::{RunError, ScriptError};
@@ -265,20 +264,7 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     let stages = RunStages::of(sim);
     if setup {
         // Set-up: adapt acts before the set-up forces as in LIGGGHTS (setup_pre_force).
-        stages.pre_step(sim, start_step, true)?;
-        // As LIGGGHTS: only when there is no fix at all.
-        if sim.defs.fixes.is_empty() {
-            sim.warn_once("No fixes defined, atoms won't move");
-        }
-        sim.outputs.out.line("Setting up run ...");
-        let want = stages.wants_virial(sim, start_step, true);
-        let w = sim.world.as_mut().expect("checked");
-        w.want_virial = want;
-        w.start_servos();
-        w.setup().map_err(engine_error)?;
-        sim.script.set_up = true;
-        stages.end_of_step(sim, start_step, true)?;
-        flush_world_warnings(sim);
+        rdem::step::set_up(&mut Front::new(sim, &stages))?;
         let mem = peak_resident_bytes()
             .unwrap_or_else(|| sim.world.as_ref().map_or(0, |w| w.memory_bytes()))
             as f64
@@ -340,14 +326,7 @@ fn step_loop(
     let mut stopped = None;
     for k in 0..nsteps {
         let step = start_step + k + 1;
-        stages.pre_step(sim, step, false)?;
-        let want = stages.wants_virial(sim, step, false);
-        if let Some(w) = &mut sim.world {
-            w.want_virial = want;
-        }
-        stages.advance(sim, step)?;
-        flush_world_warnings(sim);
-        stages.end_of_step(sim, step, false)?;
+        rdem::step::step(&mut Front::new(sim, stages))?;
         let t_out = Instant::now();
         let every = sim.outputs.thermo.every;
         if (every > 0 && step % every == 0) || step == sim.script.run_last {
@@ -383,32 +362,104 @@ fn step_loop(
     Ok((done, stopped))
 }
 
-/// The fixes due in a step's pre-exchange stage (insertion), out of `Sim::fixes` while
-/// the engine holds the world, and what they print.
+/// The script's fixes as the front-end stages of a step ([`StepHost`]): the pre-step
+/// and end-of-step fixes around the engine's part, the insertions inside it.
+struct Front<'a> {
+    sim: &'a mut Sim,
+    stages: &'a RunStages,
+}
+
+impl<'a> Front<'a> {
+    fn new(sim: &'a mut Sim, stages: &'a RunStages) -> Self {
+        Self { sim, stages }
+    }
+}
+
+impl StepHost for Front<'_> {
+    type Error = RunError;
+
+    fn world(&mut self) -> &mut World {
+        self.sim.world.as_mut().expect("a run has a world")
+    }
+
+    /// The fixes due in the step's pre-exchange stage (insertion) act on the world while
+    /// the engine holds it; their lines are printed once the engine is done.
+    fn with_hooks(
+        &mut self,
+        f: impl FnOnce(&mut World, &mut dyn StepHooks) -> rdem::Result<()>,
+    ) -> Result<(), RunError> {
+        let Sim { world, defs, .. } = &mut *self.sim;
+        let w = world.as_mut().expect("a run has a world");
+        let step = w.step + 1;
+        let fixes = &mut defs.fixes;
+        if !self
+            .stages
+            .pre_exchange
+            .iter()
+            .any(|&k| fixes[k].imp.due(step))
+        {
+            return Ok(f(w, &mut NoHooks)?);
+        }
+        let mut hooks = Insertions {
+            fixes,
+            candidates: &self.stages.pre_exchange,
+            step,
+            notes: Notes::default(),
+        };
+        let result = f(w, &mut hooks);
+        hooks.notes.print(&mut self.sim.outputs.out);
+        Ok(result?)
+    }
+
+    fn pre_step(&mut self, step: u64, setup: bool) -> Result<(), RunError> {
+        let (sim, stages) = (&mut *self.sim, self.stages);
+        stages.pre_step(sim, step, setup)?;
+        if setup {
+            // As LIGGGHTS: only when there is no fix at all.
+            if sim.defs.fixes.is_empty() {
+                sim.warn_once("No fixes defined, atoms won't move");
+            }
+            sim.outputs.out.line("Setting up run ...");
+        }
+        let want = stages.wants_virial(sim, step, setup);
+        self.world().want_virial = want;
+        Ok(())
+    }
+
+    fn end_of_step(&mut self, step: u64, setup: bool) -> Result<(), RunError> {
+        let sim = &mut *self.sim;
+        if setup {
+            sim.script.set_up = true;
+        }
+        flush_world_warnings(sim);
+        self.stages.end_of_step(sim, step, setup)
+    }
+}
+
+/// The fixes due in a step's pre-exchange stage (insertion), borrowed from the script's
+/// fix list while the engine holds the world, and what they print.
 struct Insertions<'a> {
-    due: &'a mut [(usize, FixEntry)],
+    fixes: &'a mut [FixEntry],
+    /// The fixes with a pre-exchange stage; those due at `step` act.
+    candidates: &'a [usize],
+    step: u64,
     notes: Notes,
 }
 
 impl StepHooks for Insertions<'_> {
     fn mask(&self) -> HookMask {
-        HookMask {
-            pre_exchange: true,
-            end_of_step: false,
-        }
+        HookMask { pre_exchange: true }
     }
 
     fn pre_exchange(&mut self, w: &mut World) -> rdem::Result<()> {
-        for (_, f) in self.due.iter_mut() {
-            f.imp.pre_exchange(&f.head, w, &mut self.notes)?;
+        for &k in self.candidates {
+            let f = &mut self.fixes[k];
+            if f.imp.due(self.step) {
+                f.imp.pre_exchange(&f.head, w, &mut self.notes)?;
+            }
         }
         Ok(())
     }
-}
-
-/// An error of the engine's step (lost or non-finite particles, ...).
-fn engine_error(e: rdem::Error) -> RunError {
-    RunError::at(None, "rdem::run::engine", e.to_string())
 }
 
 /// An error of fix `k`'s stage, at the fix's style word.
@@ -469,34 +520,6 @@ impl RunStages {
             fixes::with_fix(sim, k, |f, sim, head| f.end_of_run(sim, head))
                 .map_err(|m| fix_error(sim, k, m))?;
         }
-        Ok(())
-    }
-
-    /// One step of the engine, with the fixes due at `step` acting in its pre-exchange
-    /// stage as in LIGGGHTS (after the initial integration: new particles are not moved
-    /// in the step they appear, get their forces and the final half kick).
-    fn advance(&self, sim: &mut Sim, step: u64) -> Result<(), RunError> {
-        let mut due: Vec<(usize, FixEntry)> = Vec::new();
-        for &k in &self.pre_exchange {
-            if sim.defs.fixes[k].imp.due(step) {
-                due.push((k, fixes::take(sim, k)));
-            }
-        }
-        let w = sim.world.as_mut().expect("a run has a world");
-        if due.is_empty() {
-            return w.advance().map_err(engine_error);
-        }
-        let mut hooks = Insertions {
-            due: &mut due,
-            notes: Notes::default(),
-        };
-        let result = w.advance_with(&mut hooks);
-        let notes = hooks.notes;
-        for (k, f) in due {
-            sim.defs.fixes[k] = f;
-        }
-        result.map_err(engine_error)?;
-        notes.print(&mut sim.outputs.out);
         Ok(())
     }
 }

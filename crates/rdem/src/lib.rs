@@ -52,6 +52,6 @@ pub use fix::{Fix, FixKind};
 pub use neighbor::{Exclusions, NeighborSettings};
 pub use pair::PairGran;
 pub use particles::{NewParticle, Particles, Tag};
-pub use step::{HookMask, NoHooks, StepHooks};
+pub use step::{HookMask, NoHooks, StepHooks, StepHost};
 pub use wall::{PrimitiveWall, WallShape};
 pub use world::{LostPolicy, SortSettings, World};

@@ -5,12 +5,14 @@
 //! modules named for what they do (sorting, insertion, walls, mesh stress). The timer each
 //! stage counts against ([`Stage`], printed in the end-of-run breakdown) is in brackets.
 //!
-//! # One timestep ([`World::advance_with`])
+//! # One timestep ([`step`])
 //!
-//! Before the step, the front end (rdem-script's `run.rs`) runs its pre-step fixes
-//! (`Stages::PRE_STEP`: `fix adapt`, new radii) and says whether it wants the contact
-//! virial ([`World::want_virial`]).
+//! A front end that owns the world ([`StepHost`]: rdem-script's `run.rs`) runs each step
+//! through [`step`]; without one, [`World::advance`] runs stages 0–14 alone.
 //!
+//! −1. the front end's pre-step stage ([`StepHost::pre_step`]): its pre-step fixes
+//!     (rdem-script's `Stages::PRE_STEP`: `fix adapt`, new radii), and whether it wants
+//!     the contact virial this step ([`World::want_virial`]) [Modify]
 //! 0. a full set-up first if particles were added since the last one ([`World::setup`])
 //! 1. `step += 1`
 //! 2. initial integrate (`nve/sphere`: half kick, drift; `move`: the prescribed positions
@@ -55,22 +57,22 @@
 //!     [Modify]; then the rigid clumps: each body's force and torque summed from its
 //!     spheres (gravity at the centre of mass), its half kick, its spheres' velocities
 //! 14. finiteness check of positions and velocities [Other]
-//! 15. [`StepHooks::end_of_step`] (LIGGGHTS' `end_of_step`) [Modify]
-//! 16. the front end's end-of-step fixes (rdem-script's `Stages::END_OF_STEP`:
-//!     `ave/euler`, `massflow/mesh`, `check/timestep/gran`, `ave/time`), in definition
-//!     order, in rdem-script's `run.rs` once [`World::advance_with`] has returned (they
-//!     need the script's variables and computes, so they cannot run while the engine
-//!     holds the world). This is the last stage of a step; the thermo output and the
-//!     dumps that are due follow [Output].
+//! 15. the front end's end-of-step stage ([`StepHost::end_of_step`], LIGGGHTS'
+//!     `end_of_step`): the world's warnings of the step printed, then rdem-script's
+//!     `Stages::END_OF_STEP` fixes (`ave/euler`, `ave/atom`, `ave/time`, `ave/histo`,
+//!     `massflow/mesh`, `check/timestep/gran`, `print`) in definition order, with the
+//!     whole script state (variables, computes) in reach. This is the last stage of a
+//!     step; the thermo output and the dumps that are due follow [Modify].
 //!
 //! The finiteness checks stop the run at the first NaN or infinite value with the
 //! particle's tag and the step (the pair pass treats a NaN distance as no contact, so a
 //! broken particle does not spread NaN to its neighbours first).
 //!
-//! # Set-up before a run ([`World::setup`], LAMMPS' `setup`)
+//! # Set-up before a run ([`set_up`]: [`World::setup`], LAMMPS' `setup`)
 //!
-//! Before it, the front end applies `fix adapt` (LIGGGHTS' `setup_pre_force`); after it,
-//! its set-up end of step (`ave/euler`), thermo output and dumps.
+//! Before it, the front end's pre-step stage with `setup` (`fix adapt`, LIGGGHTS'
+//! `setup_pre_force`); after it, its end-of-step stage with `setup` (`ave/euler`), then
+//! the front end's thermo output and dumps.
 //!
 //! 1. checks: timestep, neighbor settings; tags for untagged particles; particle types
 //!    within the material table when a pair style or a wall uses it
@@ -109,8 +111,8 @@ use crate::timers::Stage;
 use crate::world::World;
 use crate::Particles;
 
-/// Front-end stages the step calls at their place in the order (LAMMPS' fix masks): a
-/// hook that the front end leaves out costs nothing.
+/// The front end's stage inside the engine's step (LAMMPS' fix masks): a hook that the
+/// front end leaves out costs nothing.
 pub trait StepHooks {
     /// Which hooks act (LAMMPS' `setmask`); a stage left out is skipped, untimed.
     fn mask(&self) -> HookMask {
@@ -124,12 +126,6 @@ pub trait StepHooks {
         let _ = world;
         Ok(())
     }
-
-    /// Step 15: after the final integration and its checks (LIGGGHTS' `end_of_step`).
-    fn end_of_step(&mut self, world: &mut World) -> Result<()> {
-        let _ = world;
-        Ok(())
-    }
 }
 
 /// The stages a [`StepHooks`] acts in.
@@ -137,21 +133,15 @@ pub trait StepHooks {
 pub struct HookMask {
     /// [`StepHooks::pre_exchange`] acts.
     pub pre_exchange: bool,
-    /// [`StepHooks::end_of_step`] acts.
-    pub end_of_step: bool,
 }
 
 impl HookMask {
     /// No hook acts.
     pub const NONE: Self = Self {
         pre_exchange: false,
-        end_of_step: false,
     };
     /// Every hook acts.
-    pub const ALL: Self = Self {
-        pre_exchange: true,
-        end_of_step: true,
-    };
+    pub const ALL: Self = Self { pre_exchange: true };
 }
 
 /// No front-end stage: the engine's step alone ([`World::advance`]).
@@ -162,6 +152,57 @@ impl StepHooks for NoHooks {
     fn mask(&self) -> HookMask {
         HookMask::NONE
     }
+}
+
+/// A front end that owns the world and has stages of its own before, inside and after
+/// the engine's part of a step (rdem-script's run). [`step`] and [`set_up`] call them in
+/// the order of this module's list.
+pub trait StepHost {
+    /// The front end's error; the engine's errors convert into it.
+    type Error: From<crate::Error>;
+
+    /// The world.
+    fn world(&mut self) -> &mut World;
+
+    /// Runs `f` on the world with the front end's in-step hooks ([`StepHooks`]), then
+    /// whatever the front end does once they have acted (their printed lines).
+    fn with_hooks(
+        &mut self,
+        f: impl FnOnce(&mut World, &mut dyn StepHooks) -> Result<()>,
+    ) -> std::result::Result<(), Self::Error>;
+
+    /// Step −1: before step `step` (with `setup`, before a run's set-up): the
+    /// front end's pre-step fixes and [`World::want_virial`].
+    fn pre_step(&mut self, step: u64, setup: bool) -> std::result::Result<(), Self::Error>;
+
+    /// Step 15: after step `step` (with `setup`, after a run's set-up forces).
+    fn end_of_step(&mut self, step: u64, setup: bool) -> std::result::Result<(), Self::Error>;
+}
+
+/// One whole timestep of a front end's run: its pre-step stage, the engine's stages 0–14
+/// ([`World::advance_with`], its in-step hooks at their place) and its end-of-step stage.
+pub fn step<H: StepHost>(host: &mut H) -> std::result::Result<(), H::Error> {
+    let t0 = Instant::now();
+    let step = host.world().step + 1;
+    host.pre_step(step, false)?;
+    host.world().timers.lap(Stage::Modify, t0);
+    host.with_hooks(|w, hooks| w.advance_with(hooks))?;
+    let t1 = Instant::now();
+    host.end_of_step(step, false)?;
+    host.world().timers.lap(Stage::Modify, t1);
+    Ok(())
+}
+
+/// A front end's set-up before a run: its pre-step stage with `setup`, the engine's
+/// set-up ([`World::setup`], servo controllers started) and its end-of-step stage with
+/// `setup`.
+pub fn set_up<H: StepHost>(host: &mut H) -> std::result::Result<(), H::Error> {
+    let step = host.world().step;
+    host.pre_step(step, true)?;
+    let w = host.world();
+    w.start_servos();
+    w.setup()?;
+    host.end_of_step(step, true)
 }
 
 impl World {
@@ -181,9 +222,9 @@ impl World {
         self.advance_with(&mut NoHooks)
     }
 
-    /// One timestep, stages 0–15 of [`crate::step`], with the front end's `hooks` at
+    /// One timestep, stages 0–14 of [`crate::step`], with the front end's `hooks` at
     /// their places.
-    pub fn advance_with(&mut self, hooks: &mut impl StepHooks) -> Result<()> {
+    pub fn advance_with(&mut self, hooks: &mut (impl StepHooks + ?Sized)) -> Result<()> {
         let mask = hooks.mask();
         if self.needs_reneighbor {
             self.setup()?;
@@ -216,11 +257,6 @@ impl World {
         let p = &self.particles;
         self.check_finite(["position", "velocity"], &p.x, &p.v, None)?;
         self.timers.lap(Stage::Other, t3);
-        if mask.end_of_step {
-            let t4 = Instant::now();
-            hooks.end_of_step(self)?;
-            self.timers.lap(Stage::Modify, t4);
-        }
         Ok(())
     }
 
@@ -334,7 +370,6 @@ mod tests {
     #[derive(Default)]
     struct Record {
         pre_exchange: Vec<(u64, f64, usize)>,
-        end_of_step: Vec<(u64, f64, usize)>,
     }
 
     impl StepHooks for Record {
@@ -346,19 +381,56 @@ mod tests {
             }
             Ok(())
         }
+    }
 
-        fn end_of_step(&mut self, w: &mut World) -> Result<()> {
-            let p = &w.particles;
-            self.end_of_step.push((w.step, p.v[0].z, p.nlocal()));
+    /// A front end that records what its stages see: (stage, step argument, world
+    /// step, velocity of particle 0, particle count).
+    struct Host {
+        world: World,
+        hooks: Record,
+        seen: Vec<(&'static str, u64, bool, u64, f64, usize)>,
+    }
+
+    impl Host {
+        fn note(&mut self, stage: &'static str, step: u64, setup: bool) {
+            let p = &self.world.particles;
+            let row = (stage, step, setup, self.world.step, p.v[0].z, p.nlocal());
+            self.seen.push(row);
+        }
+    }
+
+    impl StepHost for Host {
+        type Error = crate::Error;
+
+        fn world(&mut self) -> &mut World {
+            &mut self.world
+        }
+
+        fn with_hooks(
+            &mut self,
+            f: impl FnOnce(&mut World, &mut dyn StepHooks) -> Result<()>,
+        ) -> Result<()> {
+            f(&mut self.world, &mut self.hooks)
+        }
+
+        fn pre_step(&mut self, step: u64, setup: bool) -> Result<()> {
+            self.note("pre_step", step, setup);
+            Ok(())
+        }
+
+        fn end_of_step(&mut self, step: u64, setup: bool) -> Result<()> {
+            self.note("end_of_step", step, setup);
             Ok(())
         }
     }
 
-    /// A sphere falling freely under gravity g (velocity Verlet, dt): the pre-exchange
-    /// hook sees the velocity after the initial half kick, −g (n − ½) dt at step n, the
-    /// end-of-step hook after the final one, −g n dt; a particle added in the
-    /// pre-exchange hook of step 2 is there at the end of that step, and the hooks of
-    /// [`NoHooks`] are never called.
+    /// A sphere falling freely under gravity g (velocity Verlet, dt): the front end's
+    /// pre-step stage sees the state of the step before, the pre-exchange hook the
+    /// velocity after the initial half kick, −g (n − ½) dt at step n, the end-of-step
+    /// stage the velocity after the final one, −g n dt; a particle added in the
+    /// pre-exchange hook of step 2 is there at the end of that step; the set-up calls
+    /// the two front-end stages with `setup` at step 0; the hooks of [`NoHooks`] are
+    /// never called.
     #[test]
     fn hooks_run_at_their_place_in_the_step() {
         let (g, dt) = (9.81, 1e-3);
@@ -371,23 +443,33 @@ mod tests {
             .unwrap();
         w.add_fix(Fix::gravity("g", 1, g, DVec3::NEG_Z).unwrap())
             .unwrap();
-        w.setup().unwrap();
-        let mut rec = Record::default();
+        let mut host = Host {
+            world: w,
+            hooks: Record::default(),
+            seen: Vec::new(),
+        };
+        set_up(&mut host).unwrap();
         for _ in 0..3 {
-            w.advance_with(&mut rec).unwrap();
+            step(&mut host).unwrap();
         }
-        for (k, (&(s0, v0, n0), &(s1, v1, n1))) in
-            rec.pre_exchange.iter().zip(&rec.end_of_step).enumerate()
-        {
-            let n = k as u64 + 1;
-            assert_eq!((s0, s1), (n, n));
+        let seen = &host.seen;
+        assert_eq!(seen.len(), 8);
+        assert_eq!(seen[0], ("pre_step", 0, true, 0, 0.0, 1));
+        assert_eq!(seen[1], ("end_of_step", 0, true, 0, 0.0, 1));
+        for n in 1..=3u64 {
+            let (pre, end) = (seen[2 * n as usize], seen[2 * n as usize + 1]);
+            let (s0, v0, n0) = host.hooks.pre_exchange[n as usize - 1];
+            assert_eq!((pre.0, pre.1, pre.2, pre.3), ("pre_step", n, false, n - 1));
+            assert!((pre.4 + g * (n - 1) as f64 * dt).abs() < 1e-15, "{pre:?}");
+            assert_eq!(s0, n);
             assert!((v0 + g * (n as f64 - 0.5) * dt).abs() < 1e-15, "{v0}");
-            assert!((v1 + g * n as f64 * dt).abs() < 1e-15, "{v1}");
             assert_eq!(n0, if n <= 2 { 1 } else { 2 });
-            assert_eq!(n1, if n < 2 { 1 } else { 2 });
+            assert_eq!((end.0, end.1, end.2, end.3), ("end_of_step", n, false, n));
+            assert!((end.4 + g * n as f64 * dt).abs() < 1e-15, "{end:?}");
+            assert_eq!(end.5, if n < 2 { 1 } else { 2 });
         }
         assert_eq!(NoHooks.mask(), HookMask::NONE);
-        w.advance().unwrap();
-        assert_eq!(w.step, 4);
+        host.world.advance().unwrap();
+        assert_eq!(host.world.step, 4);
     }
 }
