@@ -180,17 +180,27 @@ class Run:
 
 TIMING = ("CPU", "T/CPU", "S/CPU")  # thermo's cpu, tpcpu, spcpu: shown, not compared
 REL_TOL = 1e-6  # one LIGGGHTS value (or three identical ones): this relative tolerance
-WIDEN = 0.10  # the spread [min, max] of three is widened by 10 % of (max - min) ...
-FLOOR = 1e-9  # ... plus FLOOR * max |value|
+FLOOR = 1e-9  # the spread is at least [min, max] widened by FLOOR * max |value|
+# Student's t, two-sided 95 %, for n - 1 degrees of freedom (n LIGGGHTS runs).
+T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776}
 
 
 def spread(values):
+    """LIGGGHTS' spread of one column from its n runs: the 95 % prediction interval of one
+    more run, mean ± t(0.975, n − 1) · s · √(1 + 1/n), with s the sample standard
+    deviation (so a run of the same distribution falls outside it 1 time in 20 if the
+    values are normal). [min, max] alone would reject such a run half of the time for
+    n = 3 (P(outside the range of 3 draws) = 2/4)."""
     lo, hi = min(values), max(values)
     if lo == hi:
         w = REL_TOL * abs(lo)
-    else:
-        w = WIDEN * (hi - lo) + FLOOR * max(abs(lo), abs(hi))
-    return lo - w, hi + w
+        return lo - w, hi + w
+    n = len(values)
+    mean = sum(values) / n
+    s = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
+    half = T95[n - 1] * s * math.sqrt(1 + 1 / n)
+    floor = FLOOR * max(abs(lo), abs(hi))
+    return min(lo, mean - half) - floor, max(hi, mean + half) + floor
 
 
 def fmt(x):
@@ -241,10 +251,8 @@ def verdict(ligs, r):
 
 def spread_verdict(ligs, rdems):
     """`overlap`, or the columns where rdem's seed runs `rdems` and LIGGGHTS' runs `ligs`
-    do not overlap: rdem's [min, max] against LIGGGHTS' spread (widened as in `verdict`),
-    and the atom ranges within max(2, 1 %). One run of each program is a single draw: with
-    three LIGGGHTS draws, a fourth draw of the same distribution lies outside their range
-    half of the time, so `verdict` alone calls many agreeing scripts off."""
+    do not overlap: rdem's [min, max] against LIGGGHTS' spread (as in `verdict`), and the
+    atom ranges within max(2, 1 %)."""
     why = []
     counts = [l.atoms for l in ligs if l.atoms is not None]
     rcounts = [r.atoms for r in rdems if r.atoms is not None]
@@ -306,7 +314,7 @@ def cmd_table(a):
         v2 = spread_verdict(ligs, rdems) if both else ""
         if v2:
             tally2[v2 == "overlap"] = tally2.get(v2 == "overlap", 0) + 1
-        notes = [f"seed run {k + 1}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
+        notes = [f"LIGGGHTS run {k + 2}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
         if notes:
             v += " (" + "; ".join(notes) + ")"
         kind = (
@@ -354,6 +362,8 @@ Each `in.*` script of `Tutorials_public/*/` runs unmodified from a fresh copy of
 folder (`-in SCRIPT -log none`). LIGGGHTS also runs it twice more with other seeds: every
 `seed N` of a `fix insert/*` and the first number after `particletemplate/*` and
 `particledistribution/*` replaced by other primes (from {BASES[1]} and {BASES[2]} on).
+A script without seeds is run twice more by LIGGGHTS on 2 and 3 MPI processes instead:
+only the order of its sums differs, which a chaotic run grows into another end state.
 All three kinds are replaced because rdem draws positions, template choices and
 multisphere mass properties from its own random generator, so none of LIGGGHTS' random
 sequences carries over to rdem. The columns "last thermo" are the last thermo row of the
@@ -364,18 +374,25 @@ LIGGGHTS' wall time over rdem's (first seed).
 rdem agrees with LIGGGHTS when
 - the atom count is within max(2, 1 %) of the range of LIGGGHTS' counts;
 - the last thermo row has the same Step;
-- every other column of that row (but the timings CPU, T/CPU, S/CPU) lies in LIGGGHTS' spread: [min, max] of its three values
-  widened on each side by {WIDEN:.0%} of (max − min) plus {FLOOR:g} × max |value|. Where the
-  script has no seeds (one LIGGGHTS run) or the three values are identical (a constant
-  such as a volume), the spread is that value ± {REL_TOL:g} × |value|.
+- every other column of that row (but the timings CPU, T/CPU, S/CPU) lies in LIGGGHTS' spread:
+  the 95 % prediction interval of one more LIGGGHTS run from its three, mean ± t · s · √(1 + 1/3)
+  with s their sample standard deviation and t = {T95[2]} (Student, 2 degrees of freedom),
+  and never narrower than [min, max] widened by {FLOOR:g} × max |value|. Where the three
+  values are identical (a constant such as a volume) or there is one LIGGGHTS run, the
+  spread is that value ± {REL_TOL:g} × |value|.
+
+Why not [min, max] of the three: a fourth draw of the same distribution falls outside
+the range of three draws half of the time, so that test calls half of the agreeing
+random columns off (the table of 2026-12-04 used it, widened by 10 %, and judged 12 rows
+apart whose seed spreads met). The prediction interval misses such a draw 1 time in 20
+when the values are normal. It is wide, because three runs say little of a spread; the
+"spreads" column below is the second look.
 
 The last column compares the two programs' seed spreads: rdem also runs the script with
 the two other seed sets, and the spreads overlap when, for the atom count and each column,
 rdem's [min, max] over its runs meets LIGGGHTS' spread (as above; atoms within max(2, 1 %)).
-A single run is a single draw: with three LIGGGHTS draws of a random quantity, a fourth
-draw of the same distribution lies outside their range half of the time, so the verdict
-on one rdem run calls many scripts off that agree in distribution; "spreads" is the test
-of the two distributions. It still says nothing finer than three draws of each can.
+It says nothing finer than three draws of each can. (Without seeds rdem runs once: its
+results do not depend on the thread count.)
 
 A script LIGGGHTS cannot run shows LIGGGHTS' error; one LIGGGHTS does not finish within
 the budget is marked timeout for both and rdem is not run. Otherwise the verdict says

@@ -17,7 +17,8 @@
 #   1. by LIGGGHTS as it is;
 #   2. by rdem as it is (with --threads 1), unless LIGGGHTS ran out of time;
 #   3. by LIGGGHTS twice more with its insertion seeds replaced by other primes, if it
-#      has any and run 1 ended well: the three LIGGGHTS runs give LIGGGHTS' own spread;
+#      has any and run 1 ended well; without seeds, on 2 and 3 MPI processes instead:
+#      the three LIGGGHTS runs give LIGGGHTS' own spread;
 #   4. then by rdem with the same two seed sets, if its run 2 ended well: rdem's spread.
 # Every run starts from a fresh copy of the folder, runs in it with `-in SCRIPT -log none`
 # and stdin from /dev/null, under `timeout BUDGET_SECONDS`. One run at a time. Nothing is
@@ -59,19 +60,23 @@ else
 fi
 
 # --- one run ---------------------------------------------------------------------------
-# run_one WHO RUN_DIR FOLDER SCRIPT [SEED_VARIANT]
-# Copies tutorial FOLDER to RUN_DIR/work, replaces its seeds if SEED_VARIANT is given,
-# runs WHO (liggghts or rdem) on SCRIPT there and leaves RUN_DIR/{out,err,rc,secs}.
+# run_one WHO RUN_DIR FOLDER SCRIPT [VARIANT]
+# Copies tutorial FOLDER to RUN_DIR/work, replaces its seeds if VARIANT is a seed set
+# (1 or 2), runs WHO (liggghts or rdem) on SCRIPT there (LIGGGHTS on N MPI processes if
+# VARIANT is npN) and leaves RUN_DIR/{out,err,rc,secs}.
 run_one() {
   local who="$1" dir="$2" folder="$3" script="$4" variant="${5:-}"
   mkdir -p "$dir"
   cp -r "$tutorials/$folder" "$dir/work"
-  if [ -n "$variant" ]; then
+  if [[ "$variant" =~ ^[0-9]+$ ]]; then
     python3 "$here/scripts/parity.py" reseed "$dir/work/$script" "$variant" >/dev/null
   fi
   # LIGGGHTS' screen output is line-buffered (stdbuf): an error that ends in MPI_Abort
   # would otherwise lose its ERROR line, still in the buffer of the file it goes to.
   local cmd=(stdbuf -oL liggghts -in "$script" -log none)
+  if [[ "$variant" =~ ^np([0-9]+)$ ]]; then
+    cmd=(mpirun --allow-run-as-root --oversubscribe -np "${BASH_REMATCH[1]}" "${cmd[@]}")
+  fi
   [ "$who" = rdem ] && cmd=("$rdem" -in "$script" -log none --threads 1)
   local start end
   start=$(date +%s.%N)
@@ -80,7 +85,7 @@ run_one() {
   echo $? >"$dir/rc"
   end=$(date +%s.%N)
   python3 -c "print(f'{$end - $start:.3f}')" >"$dir/secs"
-  echo "parity:   $who${variant:+ (seeds $variant)}: exit $(cat "$dir/rc") in $(cat "$dir/secs") s" >&2
+  echo "parity:   $who${variant:+ ($variant)}: exit $(cat "$dir/rc") in $(cat "$dir/secs") s" >&2
   rm -rf "$dir/work" # dumps and other files the script wrote are not needed
 }
 
@@ -110,6 +115,11 @@ while IFS= read -r path; do
       run_one rdem "$d/rdem1" "$folder" "$script" 1
       run_one rdem "$d/rdem2" "$folder" "$script" 2
     fi
+  elif [ "$(cat "$d/lig0/rc")" = 0 ]; then
+    # No seeds: LIGGGHTS' spread from 2 and 3 MPI processes (only the order of its sums
+    # differs, which a chaotic run grows into a different end state).
+    run_one liggghts "$d/lig1" "$folder" "$script" np2
+    run_one liggghts "$d/lig2" "$folder" "$script" np3
   fi
 done < <(find "$tutorials" -mindepth 2 -maxdepth 2 -type f -name 'in.*' | LC_ALL=C sort)
 [ "$n" -gt 0 ] || { echo "parity: no tutorial script matches '$pattern'" >&2; exit 2; }
