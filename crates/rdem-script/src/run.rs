@@ -9,7 +9,7 @@ use rdem::{HookMask, NoHooks, StepHooks, StepHost, World};
 
 use crate::args::{Args, CmdResult};
 use crate::diagnostic::{RunError, ScriptError};
-use crate::fixes::{self, FixEntry, Notes, Stages};
+use crate::fixes::{self, FixEntry, Notes, StageCtx, Stages};
 use crate::sim::Sim;
 use crate::thermo;
 
@@ -379,7 +379,7 @@ impl StepHost for Front<'_> {
     type Error = RunError;
 
     fn world(&mut self) -> &mut World {
-        self.sim.world.as_mut().expect("a run has a world")
+        self.sim.world.as_mut().expect(WORLD)
     }
 
     /// The fixes due in the step's pre-exchange stage (insertion) act on the world while
@@ -389,7 +389,7 @@ impl StepHost for Front<'_> {
         f: impl FnOnce(&mut World, &mut dyn StepHooks) -> rdem::Result<()>,
     ) -> Result<(), RunError> {
         let Sim { world, defs, .. } = &mut *self.sim;
-        let w = world.as_mut().expect("a run has a world");
+        let w = world.as_mut().expect(WORLD);
         let step = w.step + 1;
         let fixes = &mut defs.fixes;
         if !self
@@ -501,28 +501,38 @@ impl RunStages {
 
     fn pre_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
         for &k in &self.pre_step {
-            fixes::with_fix(sim, k, |f, sim, head| f.pre_step(sim, head, step, setup))
-                .map_err(|m| fix_error(sim, k, m))?;
+            fixes::with_fix(sim, k, |f, sim, head| {
+                f.pre_step(&mut StageCtx::new(sim, step, setup).expect(WORLD), head)
+            })
+            .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
 
     fn end_of_step(&self, sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> {
         for &k in &self.end_of_step {
-            fixes::with_fix(sim, k, |f, sim, head| f.end_of_step(sim, head, step, setup))
-                .map_err(|m| fix_error(sim, k, m))?;
+            fixes::with_fix(sim, k, |f, sim, head| {
+                f.end_of_step(&mut StageCtx::new(sim, step, setup).expect(WORLD), head)
+            })
+            .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
 
     fn end_of_run(&self, sim: &mut Sim) -> Result<(), RunError> {
+        let step = sim.world.as_ref().expect(WORLD).step;
         for &k in &self.end_of_run {
-            fixes::with_fix(sim, k, |f, sim, head| f.end_of_run(sim, head))
-                .map_err(|m| fix_error(sim, k, m))?;
+            fixes::with_fix(sim, k, |f, sim, head| {
+                f.end_of_run(&mut StageCtx::new(sim, step, false).expect(WORLD), head)
+            })
+            .map_err(|m| fix_error(sim, k, m))?;
         }
         Ok(())
     }
 }
+
+/// A run has a world (`run_steps` checks it first).
+const WORLD: &str = "a run has a world";
 
 fn flush_world_warnings(sim: &mut Sim) {
     if let Some(w) = &mut sim.world {

@@ -3,7 +3,7 @@
 //! gives; the mass follows at constant density. With `reset yes` the radii return to
 //! their values of the run's start when the run ends.
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::context;
 use crate::sim::Sim;
@@ -87,27 +87,18 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
 }
 
 impl ScriptFix for Adapt {
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
-        if !setup && step % self.every != 0 {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        if !ctx.setup && ctx.step % self.every != 0 {
             return Ok(());
         }
         let var = &self.var;
-        let formula = match sim.script.vars.get(var) {
+        let formula = match ctx.view().script.vars.get(var) {
             Some(Variable::Atom(f)) => f.clone(),
             Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style")),
             None => return Err(format!("fix adapt: no variable '{var}'")),
         };
-        let d = context::eval_atom(sim, &formula)?;
-        let w = sim
-            .world
-            .as_mut()
-            .ok_or("fix adapt needs a simulation box")?;
+        let d = context::eval_atom(ctx.view(), &formula)?;
+        let w = ctx.world();
         let p = &w.particles;
         if self.reset && self.saved.is_none() {
             self.saved = Some((0..p.nlocal()).map(|i| (p.tag[i], p.radius[i])).collect());
@@ -125,8 +116,9 @@ impl ScriptFix for Adapt {
             .map_err(|e| format!("fix {}: {e}", head.id))
     }
 
-    fn end_of_run(&mut self, sim: &mut Sim, _head: &FixHead) -> Result<(), String> {
-        if let (Some(saved), Some(w)) = (self.saved.take(), &mut sim.world) {
+    fn end_of_run(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+        if let Some(saved) = self.saved.take() {
+            let w = ctx.world();
             let p = &w.particles;
             let saved: std::collections::HashMap<_, _> = saved.into_iter().collect();
             let mut r: Vec<f64> = p.radius[..p.nlocal()].to_vec();

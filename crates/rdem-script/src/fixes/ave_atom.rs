@@ -10,7 +10,7 @@
 //! `nextvalid` (with `Nrepeat` 1 a multiple of `Nfreq` at a run's set-up is sampled).
 
 use super::sampling::Schedule;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{id_help, Args, CmdResult};
 use crate::sim::Sim;
 use crate::thermo::split_reference;
@@ -210,21 +210,15 @@ impl ScriptFix for AveAtom {
         Ok((0..p.nlocal()).map(|i| prop.get(i)[k]).collect())
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
         let Some(first) = self.schedule.due(step) else {
             return Ok(());
         };
         let values: Vec<Vec<f64>> = (0..self.inputs.len())
-            .map(|k| self.input(sim, k))
+            .map(|k| self.input(ctx.view(), k))
             .collect::<Result<_, _>>()?;
-        let w = sim.world.as_mut().ok_or("no simulation box")?;
-        let p = &mut w.particles;
+        let p = &mut ctx.world().particles;
         let id = p.property(&self.prop).ok_or("its values are gone")?;
         let n = p.nlocal();
         let width = self.inputs.len();

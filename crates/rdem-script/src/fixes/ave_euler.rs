@@ -5,7 +5,7 @@
 
 use rdem::euler::{self, EulerGrid};
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -100,19 +100,13 @@ impl ScriptFix for AveEuler {
         due(self.nevery, step, setup)
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
-        let Some(w) = sim.world.as_ref() else {
-            return Ok(());
-        };
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
+        let setup = ctx.setup;
         if !due(self.nevery, step, setup) {
             return Ok(());
         }
+        let w = ctx.world_ref();
         let virial = w.current_virial().ok_or_else(|| {
             format!(
                 "fix {} (ave/euler): the contact virial of step {step} was not computed",

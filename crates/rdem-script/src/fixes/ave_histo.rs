@@ -20,7 +20,7 @@
 //!   third is written in scalar mode too).
 
 use super::sampling::Schedule;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{id_help, Args, CmdResult};
 use crate::sim::Sim;
 use crate::thermo::{column_value, split_reference};
@@ -351,13 +351,8 @@ impl ScriptFix for AveHisto {
         Ok(self.stats_total.to_vec())
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
         let Some(first) = self.schedule.due(step) else {
             return Ok(());
         };
@@ -367,7 +362,7 @@ impl ScriptFix for AveHisto {
         }
         let peratom = self.inputs.first().is_some_and(Input::is_peratom);
         for k in 0..self.inputs.len() {
-            let values = self.inputs[k].values(sim, head.groupbit)?;
+            let values = self.inputs[k].values(ctx.view(), head.groupbit)?;
             values.into_iter().for_each(|v| self.bin(v));
         }
         if !self.schedule.sampled(step) {
@@ -375,8 +370,7 @@ impl ScriptFix for AveHisto {
         }
         if peratom {
             // Each rank binned its own particles over the samples: add the ranks' sums.
-            let w = sim.world.as_ref().ok_or("no simulation box")?;
-            let c = &w.comm;
+            let c = &ctx.world_ref().comm;
             if c.size() > 1 {
                 c.sum_slice(&mut self.hist);
                 let s = &mut self.stats;
@@ -396,7 +390,7 @@ impl ScriptFix for AveHisto {
             }
             wrote = wrote.and_then(|()| f.append(block.as_bytes()));
         }
-        super::agree_write(sim, "fix ave/histo", wrote.map_err(|e| e.to_string()))
+        ctx.agree_write("fix ave/histo", wrote.map_err(|e| e.to_string()))
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

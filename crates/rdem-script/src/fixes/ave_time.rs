@@ -2,7 +2,7 @@
 //! (`c_ID`, `c_ID[i]`, `f_ID[i]`, `v_name`) over `Nrepeat` samples every `Nfreq` steps,
 //! one row per average in an optional file; `f_ID[i]` is the last average.
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 use crate::thermo;
@@ -186,13 +186,9 @@ impl ScriptFix for AveTime {
         Ok(self.values.clone())
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        _head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
+        let setup = ctx.setup;
         if setup {
             return Ok(());
         }
@@ -205,7 +201,7 @@ impl ScriptFix for AveTime {
             return Ok(());
         }
         for (j, i) in self.inputs.iter().enumerate() {
-            self.sum[j] += thermo::column_value(sim, i)?.0;
+            self.sum[j] += thermo::column_value(ctx.view(), i)?.0;
         }
         self.count += 1;
         if step % self.nfreq == 0 {
@@ -232,7 +228,7 @@ impl ScriptFix for AveTime {
                     .append(format!("{step} {}\n", row.join(" ")).as_bytes())
                     .map_err(|e| e.to_string());
             }
-            super::agree_write(sim, "fix ave/time", wrote)?;
+            ctx.agree_write("fix ave/time", wrote)?;
         }
         Ok(())
     }

@@ -2,7 +2,7 @@
 //! fraction of the Rayleigh time and of the Hertz time of the fastest collision; a warning
 //! (or an error) above the limits; `f_ID[1]`, `f_ID[2]`.
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -116,20 +116,16 @@ impl ScriptFix for CheckTimestep {
         true
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
+        let setup = ctx.setup;
         if setup || step % self.every != 0 {
             return Ok(());
         }
-        let Some((tr, th)) = timestep_limits(sim, self.vmax) else {
+        let Some((tr, th)) = timestep_limits(ctx.view(), self.vmax) else {
             return Ok(());
         };
-        let dt = sim.world.as_ref().map(|w| w.dt).unwrap_or(0.0);
+        let dt = ctx.world_ref().dt;
         let vals = [dt / tr, if th < f64::MAX { dt / th } else { 0.0 }];
         self.values = vals;
         for (v, f, what) in [
@@ -147,7 +143,7 @@ impl ScriptFix for CheckTimestep {
                     return Err(msg);
                 }
                 if self.warn {
-                    sim.warn_once(&msg);
+                    ctx.warn_once(&msg);
                 }
             }
         }

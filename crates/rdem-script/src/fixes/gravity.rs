@@ -17,9 +17,8 @@ use glam::DVec3;
 use rdem::{Fix, FixKind};
 
 use super::engine::InEngine;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Accept, Args, CmdResult, NumOrVar};
-use crate::context;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -144,22 +143,16 @@ impl ScriptFix for Gravity {
 
     /// With variables: the acceleration of the coming step (or of the set-up), from the
     /// variables evaluated at that step.
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
         if self.values.iter().all(|v| v.var().is_none()) {
             return Ok(());
         }
         let values: Vec<&NumOrVar> = self.values.iter().collect();
-        let nums: Vec<f64> = context::values_at(sim, step, &values, "fix gravity", "")?
+        let nums: Vec<f64> = ctx
+            .values_at(&values, "fix gravity", "")?
             .into_iter()
             .map(|x| x.expect("a number or an evaluated variable"))
             .collect();
-        let w = sim.world.as_mut().expect("values_at checked");
         let acc = accel(self.style, nums[0], &nums[1..], self.flat)
             .filter(|g| g.is_finite())
             .ok_or_else(|| {
@@ -168,7 +161,8 @@ impl ScriptFix for Gravity {
                     &nums[1..]
                 )
             })?;
-        let fix = w
+        let fix = ctx
+            .world()
             .fix_mut(&head.id)
             .ok_or("fix gravity is not in the engine")?;
         if let FixKind::Gravity { accel } = &mut fix.kind {

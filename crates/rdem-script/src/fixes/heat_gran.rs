@@ -22,7 +22,7 @@
 use rdem::heat::{self, ContactArea, HeatConduction, HeatProps};
 
 use super::property_atom::{self, PropertyAtom};
-use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -209,16 +209,11 @@ impl ScriptFix for HeatGran {
     }
 
     /// At a run's set-up: the per-type tables from the `fix property/global` values.
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        _head: &FixHead,
-        _step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
-        if !setup {
+    fn pre_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+        if !ctx.setup {
             return Ok(());
         }
+        let sim = ctx.view();
         let n = sim.ntypes();
         let k = per_type(sim, "thermalConductivity", n)?;
         if let Some(bad) = k.iter().find(|k| **k < 0.0) {
@@ -227,8 +222,7 @@ impl ScriptFix for HeatGran {
             ));
         }
         let c = per_type(sim, "thermalCapacity", n)?;
-        let w = sim.world.as_ref().ok_or("no simulation box")?;
-        let Some(pair) = &w.pair else {
+        let Some(pair) = &ctx.world_ref().pair else {
             return Err("heat/gran needs a granular pair style (pair_style gran ...)".into());
         };
         let ratio = if self.area_correction {
@@ -250,8 +244,7 @@ impl ScriptFix for HeatGran {
         } else {
             None
         };
-        let w = sim.world.as_mut().ok_or("no simulation box")?;
-        let heat = w.heat.as_mut().ok_or("heat conduction is gone")?;
+        let heat = ctx.world().heat.as_mut().ok_or("heat conduction is gone")?;
         heat.set_coefficients(k, c, ratio)
             .map_err(|e| format!("heat/gran: {e}"))
     }

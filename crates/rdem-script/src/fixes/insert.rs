@@ -8,7 +8,7 @@ use rdem::World;
 
 use glam::DVec3;
 
-use super::{mesh_ref, style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
+use super::{mesh_ref, style, FixHead, FixRow, Notes, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{suggest, Args, CmdResult};
 use crate::diagnostic::one_of;
 use crate::sim::Sim;
@@ -499,19 +499,11 @@ impl ScriptFix for Inserter {
     /// `insert/stream`: at each run's set-up, the packets follow the run's time step (a
     /// `timestep` after the fix counts, as in LIGGGHTS 3.8). `insert/stream` and
     /// `insert/rate/region` print their rate lines at the first run's set-up.
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        _step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
-        if !setup {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+        if !ctx.setup {
             return Ok(());
         }
-        let Some(w) = sim.world.as_ref() else {
-            return Ok(());
-        };
+        let w = ctx.world_ref();
         let due = std::mem::take(&mut self.rate_line_due);
         let line = match (&mut self.pack, &self.rate) {
             (InsertEngine::Stream(st), _) => {
@@ -539,7 +531,7 @@ impl ScriptFix for Inserter {
             _ => None,
         };
         if let Some(line) = line {
-            sim.outputs.out.line(&line);
+            ctx.line(&line);
         }
         Ok(())
     }

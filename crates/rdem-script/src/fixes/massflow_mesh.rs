@@ -4,7 +4,7 @@
 
 use rdem_io::AppendFile;
 
-use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
@@ -239,18 +239,13 @@ impl ScriptFix for MassFlowFix {
         Ok(self.rates(w.step, w.dt).to_vec())
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        _head: &FixHead,
-        _step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+        let setup = ctx.setup;
         if setup {
             return Ok(());
         }
-        let time = sim.time();
-        let w = sim.world.as_mut().ok_or("needs a simulation box")?;
+        let time = ctx.time();
+        let w = ctx.world();
         self.flow.update(w).map_err(|e| e.to_string())?;
         let Some(out) = &mut self.out else {
             return Ok(());
@@ -282,7 +277,7 @@ impl ScriptFix for MassFlowFix {
                 wrote = file.append(text.as_bytes()).map_err(|e| e.to_string());
             }
         }
-        super::agree_write(sim, "fix massflow/mesh", wrote)
+        ctx.agree_write("fix massflow/mesh", wrote)
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

@@ -44,6 +44,7 @@ mod property_global;
 mod sampling;
 mod speedcontrol;
 mod sph;
+mod stage_ctx;
 mod wall_gran;
 mod wall_gran_old;
 
@@ -59,6 +60,7 @@ pub use check_timestep_gran::timestep_limits;
 pub use insert::insertion_report;
 pub use modify::fix_modify;
 pub use particletemplate_multisphere::parse_spheres;
+pub use stage_ctx::StageCtx;
 
 /// The stages a fix takes part in (LAMMPS' `setmask`): the run loop calls each stage only
 /// on the fixes that declare it, so a stage nobody uses costs nothing.
@@ -146,8 +148,9 @@ impl<T: Any> AsAny for T {
 }
 
 /// A fix as the script defined it. Each method is one stage; a fix implements those its
-/// registry row declares (the others are never called). Methods that take the whole
-/// [`Sim`] are called with the fix itself out of `Sim::fixes` (see [`with_fix`]).
+/// registry row declares (the others are never called). The run-time stages see the
+/// simulation through a [`StageCtx`]; methods that take the whole [`Sim`] (definition
+/// and `fix_modify`) are called with the fix itself out of `Sim::fixes` (see [`with_fix`]).
 ///
 /// A definition has three steps, as LAMMPS' constructor, `init` and destructor: the
 /// style's parser reads the words with the script state read-only (a definition that
@@ -182,14 +185,9 @@ pub trait ScriptFix: AsAny {
         false
     }
 
-    /// [`Stages::PRE_STEP`]: before step `step` (with `setup`, before a run's set-up).
-    fn pre_step(
-        &mut self,
-        _sim: &mut Sim,
-        _head: &FixHead,
-        _step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    /// [`Stages::PRE_STEP`]: before step `ctx.step` (with `ctx.setup`, before a run's
+    /// set-up).
+    fn pre_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
         Ok(())
     }
 
@@ -215,20 +213,14 @@ pub trait ScriptFix: AsAny {
         false
     }
 
-    /// [`Stages::END_OF_STEP`]: after step `step`'s final integration, or after a run's
-    /// set-up (`setup`).
-    fn end_of_step(
-        &mut self,
-        _sim: &mut Sim,
-        _head: &FixHead,
-        _step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    /// [`Stages::END_OF_STEP`]: after step `ctx.step`'s final integration, or after a
+    /// run's set-up (`ctx.setup`).
+    fn end_of_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
         Ok(())
     }
 
     /// [`Stages::END_OF_RUN`]: when a run ends.
-    fn end_of_run(&mut self, _sim: &mut Sim, _head: &FixHead) -> Result<(), String> {
+    fn end_of_run(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
         Ok(())
     }
 

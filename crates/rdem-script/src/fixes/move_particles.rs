@@ -13,9 +13,8 @@ use rdem::fix::motion::{Move, MoveStyle};
 use rdem::FixKind;
 
 use super::engine::InEngine;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Accept, Args, CmdResult};
-use crate::context;
 use crate::sim::Sim;
 use crate::variables::Variable;
 
@@ -69,30 +68,20 @@ impl ScriptFix for FixMove {
 
     /// `variable`: the displacement and velocity of the coming step, from the variables
     /// evaluated at that step (as LAMMPS evaluates them in its initial integration).
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
         let Some(vars) = &self.vars else {
             return Ok(());
         };
-        if setup {
+        if ctx.setup {
             return Ok(());
         }
         let names: Vec<Option<&str>> = vars.iter().map(|n| n.as_deref()).collect();
-        let v = context::eval_equal_at(
-            sim,
-            step,
-            &names,
-            "fix move",
-            " (atom-style is not supported yet)",
-        )?;
+        let v = ctx.eval_equal_at(&names, "fix move", " (atom-style is not supported yet)")?;
         let vals: [Option<f64>; 6] = [v[0], v[1], v[2], v[3], v[4], v[5]];
-        let w = sim.world.as_mut().expect("eval_equal_at checked");
-        let fix = w.fix_mut(&head.id).ok_or("fix move is not in the engine")?;
+        let fix = ctx
+            .world()
+            .fix_mut(&head.id)
+            .ok_or("fix move is not in the engine")?;
         if let FixKind::Move(m) = &mut fix.kind {
             let previous = match &m.style {
                 MoveStyle::Variable { displacement, .. } => *displacement,

@@ -18,7 +18,7 @@
 //! rank 0 writes the file; `rdem -check` writes none and substitutes the text once at the
 //! set-up of each run, so a variable it names that does not exist is reported.
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::lexer::Command;
 use crate::sim::Sim;
@@ -130,28 +130,24 @@ impl ScriptFix for FixPrint {
         Ok(())
     }
 
-    fn end_of_step(
-        &mut self,
-        sim: &mut Sim,
-        _head: &FixHead,
-        step: u64,
-        setup: bool,
-    ) -> Result<(), String> {
-        let check_setup = setup && sim.script.check;
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+        let step = ctx.step;
+        let setup = ctx.setup;
+        let check_setup = setup && ctx.checking();
         if (setup || step % self.every != 0) && !check_setup {
             return Ok(());
         }
-        let line = crate::input::substitute_vars(sim, &self.text)
+        let line = crate::input::substitute_vars(ctx.view(), &self.text)
             .map_err(|e| e.message)?
             .text;
         if check_setup {
             return Ok(());
         }
         if self.screen {
-            sim.outputs.out.line(&line);
+            ctx.line(&line);
         }
         let wrote = self.write(&line);
-        super::agree_write(sim, "fix print", wrote)
+        ctx.agree_write("fix print", wrote)
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}

@@ -24,9 +24,8 @@ use rdem::region::Region;
 use rdem::{Fix, FixKind};
 
 use super::engine::InEngine;
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Accept, Args, CmdResult, NumOrVar};
-use crate::context;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -151,24 +150,16 @@ impl ScriptFix for SpeedControl {
 
     /// The set velocities and gain of the coming step (or of the set-up) from their
     /// variables, and the moving region where it is at that step.
-    fn pre_step(
-        &mut self,
-        sim: &mut Sim,
-        head: &FixHead,
-        step: u64,
-        _setup: bool,
-    ) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
         let values = [&self.set[0], &self.set[1], &self.set[2], &self.gain];
         if values.iter().all(|v| v.var().is_none()) && self.moving_region.is_none() {
             return Ok(());
         }
         let who = "fix speedcontrol";
         let hint = " (atom-style is not supported yet)";
-        let now = context::values_at(sim, step, &values, who, hint)?;
+        let now = ctx.values_at(&values, who, hint)?;
         let region = match &self.moving_region {
-            Some(id) => Some(context::at_step(sim, step, who, |sim| {
-                crate::regions::region_now(sim, id)
-            })??),
+            Some(id) => Some(ctx.at_step(who, |sim| crate::regions::region_now(sim, id))??),
             None => None,
         };
         let gain = now[3].expect("the gain is a number or a variable");
@@ -178,8 +169,8 @@ impl ScriptFix for SpeedControl {
                 &now[..3]
             ));
         }
-        let w = sim.world.as_mut().expect("values_at checked");
-        let fix = w
+        let fix = ctx
+            .world()
             .fix_mut(&head.id)
             .ok_or("fix speedcontrol is not in the engine")?;
         if let FixKind::Force(force) = &mut fix.kind {
