@@ -814,3 +814,68 @@ run 20000
     }
     assert!(spun, "the clumps never turned: {out}");
 }
+
+/// Issue 41's clump case, built anew: 140 dumbbells (two 1 mm spheres 1.5 mm apart)
+/// poured by `insert/rate/region` from a cylinder region clear of the wall into a
+/// `zcylinder` wall of radius 1 cm on a floor, `f f f`, 40000 steps. LIGGGHTS 3.8 keeps
+/// all 280 spheres and ends with a mean height of 3.5674, 3.5277 and 3.5812 mm for the
+/// insertion seeds 86028121, 49979687 and 67867967 (rdem: 3.5827, 3.5224, 3.5202 mm).
+/// rdem must keep every sphere at every thermo row, inside the cylinder (centre distance
+/// from the axis plus radius below R + 0.01 mm), and end within LIGGGHTS' spread: the 95 %
+/// prediction interval of one more LIGGGHTS run from its three, mean ± 4.303 · s · √(4/3)
+/// = [3.423, 3.695] mm.
+#[test]
+fn dumbbells_poured_into_a_cylinder_stay_in_it_as_in_liggghts() {
+    let script = "\
+atom_style sphere
+atom_modify map array sort 0 0
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block -0.011 0.011 -0.011 0.011 0.0 0.05 units box
+create_box 1 reg
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix zwall all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix cwall all wall/gran model hertz tangential history primitive type 1 zcylinder 0.01 0. 0.
+fix pts1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 1000000 spheres 0. 0. 0. 0.001 0.0015 0. 0. 0.001 type 1
+fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+region bc cylinder z 0.0 0.0 0.0065 0.01 0.045 units box
+fix ins all insert/rate/region seed 86028121 distributiontemplate pdd1 nparticles 140 particlerate 7000 insert_every 1000 overlapcheck yes vel constant 0. 0. -0.3 region bc ntry_mc 10000
+fix integr all multisphere
+compute z all reduce ave z
+thermo_style custom step atoms ke c_z
+thermo 2000
+thermo_modify lost warn norm no
+run 40000
+";
+    let (i, out) = common::try_run_screen("in.dumb", script).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!out.contains("lost at step"), "{out}");
+    let rows: Vec<Vec<f64>> = out
+        .lines()
+        .filter_map(|l| {
+            let r: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse::<f64>).collect();
+            r.ok().filter(|r| r.len() == 4)
+        })
+        .collect();
+    assert_eq!(rows.len(), 21, "{out}");
+    for r in &rows[1..] {
+        assert_eq!(r[1], 280.0, "step {}: {out}", r[0]);
+    }
+    let p = &i.sim.world.as_ref().unwrap().particles;
+    let reach = (0..p.nlocal())
+        .map(|k| p.x[k].truncate().length() + p.radius[k])
+        .fold(0.0, f64::max);
+    assert!(reach < 0.01 + 1e-5, "{reach}");
+    let z = rows.last().unwrap()[3];
+    assert!((3.423e-3..=3.695e-3).contains(&z), "mean height {z}");
+}
