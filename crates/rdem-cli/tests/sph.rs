@@ -141,17 +141,30 @@ fn wall_and_equations_of_state_match_liggghts() {
 /// `fix wall/region/sph` on a block (particles of two types near three faces), a sphere
 /// (near its surface in several directions), a z cylinder with finite ends (near its
 /// curved surface, its lower cap, and the edge where the upper cap meets the curved
-/// surface, feeling both) and an open x cylinder, at several distances, with positive
-/// and negative pressures, moving towards or away from the walls: forces, velocities,
-/// positions, densities and pressures equal LIGGGHTS 3.8's for three steps to 1e-12.
+/// surface, feeling both) and an open x cylinder; side out: a sphere, a block (near
+/// faces, edges and corners) and a finite cylinder (curved surface, caps, rims); two
+/// planes (side in and out); a union of two overlapping blocks (particles near the
+/// parts' inner faces feel nothing) and the intersection of a slab and a sphere; at
+/// several distances, with positive and negative pressures, moving towards or away from
+/// the walls: forces, velocities, positions, densities and pressures equal LIGGGHTS
+/// 3.8's for three steps to 1e-12.
 #[test]
 fn wall_region_matches_liggghts() {
-    // A block, a sphere, a z cylinder with its caps and an open x cylinder.
+    // A block, a sphere, a z cylinder with its caps and an open x cylinder (side in);
+    // a sphere, a block and a finite cylinder side out (faces, edges, corners, rims);
+    // planes on either side; a union of two blocks (its inner faces give nothing) and
+    // the intersection of a slab and a sphere.
     for case in [
         "wall_region",
         "wall_sphere",
         "wall_cylinder",
         "wall_xcylinder",
+        "wall_sphere_out",
+        "wall_block_out",
+        "wall_cylinder_out",
+        "wall_plane",
+        "wall_union",
+        "wall_intersect",
     ] {
         let (dir, _) = common::run_data_script("sph", &data(), &format!("in.{case}"), &[]);
         let worst = compare_dumps(&dir, &format!("{case}.dump"), 1e-12);
@@ -346,14 +359,27 @@ fn sph_errors_are_located_and_list_the_choices() {
     }
 }
 
-/// `wall/region/sph` on a region it does not support (a cone, a block seen from
-/// outside) stops at the region's word with the shapes it does support.
+/// `wall/region/sph` on a region it does not support (a cone, a side-out union, a moving
+/// block) stops at the region's word with the shapes it does support.
 #[test]
 fn wall_region_on_other_shapes_is_a_located_error() {
     let script = std::fs::read_to_string(data().join("in.wall_region")).unwrap();
-    for region in [
-        "region        boxw cone z 0.5 0.5 0.1 0.3 0.0 0.9 units box",
-        "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 side out units box",
+    let shapes = "supports block, sphere, cylinder and plane regions";
+    for (region, want) in [
+        (
+            "region        boxw cone z 0.5 0.5 0.1 0.3 0.0 0.9 units box",
+            shapes,
+        ),
+        (
+            "region        rb block 0. 0.9 -0.5 0.3 0. 0.9 units box\n\
+             region        boxw union 1 rb side out",
+            shapes,
+        ),
+        (
+            "variable      dx equal 0.001*step\n\
+             region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 move v_dx NULL NULL units box",
+            "moves (move/rotate)",
+        ),
     ] {
         let bad = script.replace(
             "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 units box",
@@ -363,10 +389,7 @@ fn wall_region_on_other_shapes_is_a_located_error() {
         let out = common::run_script_raw(&bad, None);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{err}");
-        assert!(
-            err.contains("supports block, sphere and cylinder regions"),
-            "{err}"
-        );
+        assert!(err.contains(want), "{err}");
         assert!(err.contains("in.test:"), "located: {err}");
     }
 }

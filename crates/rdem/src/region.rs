@@ -12,6 +12,10 @@ use glam::DVec3;
 use crate::error::{Error, Result};
 pub use crate::region_tet::TetMesh;
 
+/// The most contacts [`Region::surface`] gives (regions that could give more are
+/// refused by [`Region::max_surface_contacts`]).
+pub const MAX_SURFACE_CONTACTS: usize = 24;
+
 /// Shape of a region.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
@@ -263,76 +267,160 @@ impl Region {
         self.pose.map_or(x, |p| p.inverse(x))
     }
 
-    /// True for the regions [`Region::surface_interior`] knows: a block, a sphere or a
-    /// cylinder, `side in`, where it was defined.
-    pub fn has_surface_interior(&self) -> bool {
-        !self.outside
-            && self.pose.is_none()
-            && matches!(
-                self.shape,
-                Shape::Block { .. } | Shape::Sphere { .. } | Shape::Cylinder { .. }
-            )
+    /// The most surface contacts [`Region::surface`] gives for this region, or `None`
+    /// for a region it does not know: a block (6 inside, 1 outside), a sphere, a
+    /// cylinder (3 inside, 1 outside) or a plane, either side, and unions and
+    /// intersections of those (`side in`), all where they were defined (not moving).
+    pub fn max_surface_contacts(&self) -> Option<usize> {
+        if self.pose.is_some() {
+            return None;
+        }
+        match &self.shape {
+            Shape::Block { .. } => Some(if self.outside { 1 } else { 6 }),
+            Shape::Cylinder { .. } => Some(if self.outside { 1 } else { 3 }),
+            Shape::Sphere { .. } | Shape::Plane { .. } => Some(1),
+            Shape::Union(parts) | Shape::Intersect(parts) if !self.outside => parts
+                .iter()
+                .map(Region::max_surface_contacts)
+                .sum::<Option<usize>>()
+                .filter(|&n| n <= MAX_SURFACE_CONTACTS),
+            _ => None,
+        }
     }
 
-    /// The parts of the surface within `reach` of a point `x` inside the region, seen
-    /// from inside, as LAMMPS' `surface_interior`: `(distance, unit normal into the
-    /// region)` for each, written to `out`; their number (none when `x` is not strictly
-    /// inside). Each of a block's faces, a sphere's surface, a cylinder's curved surface
-    /// and each finite end cap counts on its own. Other regions
-    /// ([`Region::has_surface_interior`] false) have none.
-    pub fn surface_interior(&self, x: DVec3, reach: f64, out: &mut [(f64, DVec3); 6]) -> usize {
-        if !self.has_surface_interior() {
+    /// The parts of the surface within `reach` of a point `x` in the region, seen from
+    /// the region, as LAMMPS' `surface`: `(distance, unit normal into the region)` for
+    /// each, written to `out`; their number (none when `x` is not strictly in the
+    /// region, or the region is one [`Region::max_surface_contacts`] does not know).
+    ///
+    /// - `side in`: each of a block's faces, a sphere's surface, a cylinder's curved
+    ///   surface and each finite end cap counts on its own (LAMMPS' `surface_interior`);
+    /// - `side out`: the one nearest point of the block, sphere or cylinder (an edge or a
+    ///   corner, too) (LAMMPS' `surface_exterior`);
+    /// - a plane: the distance from it, on either side;
+    /// - a union keeps the contacts of its parts whose point on the surface lies in no
+    ///   other part; an intersection those whose point lies in every other part.
+    pub fn surface(
+        &self,
+        x: DVec3,
+        reach: f64,
+        out: &mut [(f64, DVec3); MAX_SURFACE_CONTACTS],
+    ) -> usize {
+        if self.max_surface_contacts().is_none() {
             return 0;
         }
-        let mut n = 0;
-        match self.shape {
-            Shape::Block { lo, hi } => {
-                if !(0..3).all(|a| lo[a] < x[a] && x[a] < hi[a]) {
-                    return 0;
-                }
+        self.surface_from(x, reach, out, 0)
+    }
+
+    /// [`Region::surface`] writing from `out[n]` on; the new count.
+    fn surface_from(
+        &self,
+        x: DVec3,
+        reach: f64,
+        out: &mut [(f64, DVec3); MAX_SURFACE_CONTACTS],
+        mut n: usize,
+    ) -> usize {
+        let mut add = |r: f64, normal: DVec3| {
+            if r < reach {
+                out[n] = (r, normal);
+                n += 1;
+            }
+        };
+        match (&self.shape, self.outside) {
+            (&Shape::Block { lo, hi }, false) if (0..3).all(|a| lo[a] < x[a] && x[a] < hi[a]) => {
                 for a in 0..3 {
                     let e = DVec3::AXES[a];
-                    for (r, normal) in [(x[a] - lo[a], e), (hi[a] - x[a], -e)] {
-                        if r < reach {
-                            out[n] = (r, normal);
-                            n += 1;
-                        }
+                    add(x[a] - lo[a], e);
+                    add(hi[a] - x[a], -e);
+                }
+            }
+            (&Shape::Block { lo, hi }, true) => {
+                let d = x - x.clamp(lo, hi);
+                let r = d.length();
+                if r > 0.0 {
+                    add(r, d / r);
+                }
+            }
+            (&Shape::Sphere { centre, radius }, outside) => {
+                let d = x - centre;
+                let rho = d.length();
+                if rho > 0.0 {
+                    if !outside && rho < radius {
+                        add(radius - rho, -d / rho);
+                    } else if outside && rho > radius {
+                        add(rho - radius, d / rho);
                     }
                 }
             }
-            Shape::Sphere { centre, radius } => {
-                let d = x - centre;
-                let rho = d.length();
-                if rho < radius && rho > 0.0 && radius - rho < reach {
-                    out[0] = (radius - rho, -d / rho);
-                    n = 1;
-                }
-            }
-            Shape::Cylinder {
-                axis,
-                c1,
-                c2,
-                radius,
-                lo,
-                hi,
-            } => {
+            (
+                &Shape::Cylinder {
+                    axis,
+                    c1,
+                    c2,
+                    radius,
+                    lo,
+                    hi,
+                },
+                outside,
+            ) => {
                 let (a, b) = others(axis);
                 let mut d = DVec3::ZERO;
                 d[a] = x[a] - c1;
                 d[b] = x[b] - c2;
                 let rho = d.length();
-                if !(rho < radius && lo < x[axis] && x[axis] < hi) {
-                    return 0;
-                }
-                if rho > 0.0 && radius - rho < reach {
-                    out[n] = (radius - rho, -d / rho);
-                    n += 1;
-                }
+                let t = x[axis];
                 let e = DVec3::AXES[axis];
-                for (r, normal) in [(x[axis] - lo, e), (hi - x[axis], -e)] {
-                    if r < reach {
-                        out[n] = (r, normal);
-                        n += 1;
+                if !outside {
+                    if rho < radius && lo < t && t < hi {
+                        if rho > 0.0 {
+                            add(radius - rho, -d / rho);
+                        }
+                        add(t - lo, e);
+                        add(hi - t, -e);
+                    }
+                } else {
+                    // The nearest point of the solid cylinder: radially within the
+                    // radius, axially within the ends.
+                    let radial = if rho > radius {
+                        d * (1.0 - radius / rho)
+                    } else {
+                        DVec3::ZERO
+                    };
+                    let axial = (t - t.clamp(lo, hi)) * e;
+                    let v = radial + axial;
+                    let r = v.length();
+                    if r > 0.0 {
+                        add(r, v / r);
+                    }
+                }
+            }
+            (&Shape::Plane { point, normal }, outside) => {
+                let u = if outside { -normal } else { normal }.normalize();
+                let r = (x - point).dot(u);
+                if r > 0.0 {
+                    add(r, u);
+                }
+            }
+            (Shape::Union(parts) | Shape::Intersect(parts), false) => {
+                let union = matches!(self.shape, Shape::Union(_));
+                for (i, part) in parts.iter().enumerate() {
+                    let start = n;
+                    let end = part.surface_from(x, reach, out, start);
+                    // Keep the contacts whose point on the surface is on the whole
+                    // region's surface.
+                    for k in start..end {
+                        let (r, normal) = out[k];
+                        let xs = x - r * normal;
+                        let mut others = parts.iter().enumerate().filter(|&(j, _)| j != i);
+                        let keep = if union {
+                            !others.any(|(_, q)| q.contains(xs))
+                        } else {
+                            others.all(|(_, q)| q.contains(xs))
+                        };
+                        if keep {
+                            out[n] = out[k];
+                            n += 1;
+                        }
                     }
                 }
             }

@@ -44,15 +44,15 @@ impl SphWall {
     }
 }
 
-/// `fix wall/region/sph region r0 D` (`side in`): each part of the region's surface
-/// within r0 of a particle inside it ([`Region::surface_interior`]) pushes it inwards with
+/// `fix wall/region/sph region r0 D`: each part of the region's surface within r0 of a
+/// particle in it ([`Region::surface`]) pushes it away from the surface with
 /// the force of [`SphWall`], plus the pressure force of a copy of the particle at the
 /// wall, −m² (2P/ρ²) dW/dr(r, sl) (measured on LIGGGHTS 3.8: no viscous or
 /// tensile-correction term, only within r0; the manual: "they can see a clone of
 /// theirself at the wall"; a sphere region's force points to its centre, measured).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SphRegionWall {
-    /// The region (one with [`Region::has_surface_interior`]).
+    /// The region (one that [`Region::max_surface_contacts`] knows).
     pub region: Region,
     /// Reach r0.
     pub r0: f64,
@@ -83,12 +83,12 @@ impl SphRegionWall {
         let n = p.nlocal();
         let rho = &p.props[props.rho.0].data;
         let pr = &p.props[props.p.0].data;
-        let mut found = [(0.0, DVec3::ZERO); 6];
+        let mut found = [(0.0, DVec3::ZERO); crate::region::MAX_SURFACE_CONTACTS];
         for i in 0..n {
             if p.mask[i] & bit == 0 {
                 continue;
             }
-            let n = self.region.surface_interior(p.x[i], self.r0, &mut found);
+            let n = self.region.surface(p.x[i], self.r0, &mut found);
             if n == 0 {
                 continue;
             }
