@@ -315,10 +315,11 @@ def cmd_table(a):
         if v2:
             tally2[v2 == "overlap"] = tally2.get(v2 == "overlap", 0) + 1
         notes = [f"LIGGGHTS run {k + 2}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
+        agrees = v == "agree"
         if notes:
-            v += " (" + "; ".join(notes) + ")"
+            v += " (" + "; ".join(notes) + f"; the spread is that of {len(ligs)} runs)"
         kind = (
-            "agree" if v == "agree"
+            "agree" if agrees
             else "LIGGGHTS timeout" if l0.status.startswith("timeout")
             else "LIGGGHTS error" if not l0.ok
             else "rdem error/timeout" if not r.ok
