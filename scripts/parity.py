@@ -363,11 +363,11 @@ Each `in.*` script of `Tutorials_public/*/` runs unmodified from a fresh copy of
 folder (`-in SCRIPT -log none`). LIGGGHTS also runs it twice more with other seeds: every
 `seed N` of a `fix insert/*` and the first number after `particletemplate/*` and
 `particledistribution/*` replaced by other primes (from {BASES[1]} and {BASES[2]} on).
-A script without seeds is run twice more by LIGGGHTS on 2 and 3 MPI processes instead:
-only the order of its sums differs, which a chaotic run grows into another end state.
 All three kinds are replaced because rdem draws positions, template choices and
 multisphere mass properties from its own random generator, so none of LIGGGHTS' random
-sequences carries over to rdem. The columns "last thermo" are the last thermo row of the
+sequences carries over to rdem. A script without seeds is run twice more by LIGGGHTS on
+2 and 3 MPI processes instead: only the order of its sums differs, which a chaotic run
+grows into another end state. The columns "last thermo" are the last thermo row of the
 last run (names from the last `Step` header); atoms is the count of the last `Loop time`
 line. "LIG runs" is the number of LIGGGHTS runs that gave the spread; "time L/R" is
 LIGGGHTS' wall time over rdem's (first seed).
