@@ -162,6 +162,18 @@ fn axial_box(axis: usize, c1: f64, c2: f64, r: f64, lo: f64, hi: f64) -> Option<
     Some((l, h))
 }
 
+/// The point of the segment from `p0` to `p1` nearest to `q` (in a plane).
+fn nearest_on_segment(q: (f64, f64), p0: (f64, f64), p1: (f64, f64)) -> (f64, f64) {
+    let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
+    let len2 = dx * dx + dy * dy;
+    let s = if len2 > 0.0 {
+        (((q.0 - p0.0) * dx + (q.1 - p0.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p0.0 + s * dx, p0.1 + s * dy)
+}
+
 /// Finite and > 0 (false for NaN).
 fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
@@ -269,7 +281,7 @@ impl Region {
 
     /// The most surface contacts [`Region::surface`] gives for this region, or `None`
     /// for a region it does not know: a block (6 inside, 1 outside), a sphere, a
-    /// cylinder (3 inside, 1 outside) or a plane, either side, and unions and
+    /// cylinder or a cone (3 inside, 1 outside) or a plane, either side, and unions and
     /// intersections of those (`side in`), all where they were defined (not moving).
     pub fn max_surface_contacts(&self) -> Option<usize> {
         if self.pose.is_some() {
@@ -277,7 +289,7 @@ impl Region {
         }
         match &self.shape {
             Shape::Block { .. } => Some(if self.outside { 1 } else { 6 }),
-            Shape::Cylinder { .. } => Some(if self.outside { 1 } else { 3 }),
+            Shape::Cylinder { .. } | Shape::Cone { .. } => Some(if self.outside { 1 } else { 3 }),
             Shape::Sphere { .. } | Shape::Plane { .. } => Some(1),
             Shape::Union(parts) | Shape::Intersect(parts) if !self.outside => parts
                 .iter()
@@ -294,9 +306,10 @@ impl Region {
     /// region, or the region is one [`Region::max_surface_contacts`] does not know).
     ///
     /// - `side in`: each of a block's faces, a sphere's surface, a cylinder's curved
-    ///   surface and each finite end cap counts on its own (LAMMPS' `surface_interior`);
-    /// - `side out`: the one nearest point of the block, sphere or cylinder (an edge or a
-    ///   corner, too) (LAMMPS' `surface_exterior`);
+    ///   surface or a cone's slanted side (its nearest point), and each finite end cap
+    ///   counts on its own (LAMMPS' `surface_interior`);
+    /// - `side out`: the one nearest point of the block, sphere, cylinder or cone (an
+    ///   edge, a rim or a corner, too) (LAMMPS' `surface_exterior`);
     /// - a plane: the distance from it, on either side;
     /// - a union keeps the contacts of its parts whose point on the surface lies in no
     ///   other part; an intersection those whose point lies in every other part.
@@ -388,6 +401,57 @@ impl Region {
                     };
                     let axial = (t - t.clamp(lo, hi)) * e;
                     let v = radial + axial;
+                    let r = v.length();
+                    if r > 0.0 {
+                        add(r, v / r);
+                    }
+                }
+            }
+            (
+                &Shape::Cone {
+                    axis,
+                    c1,
+                    c2,
+                    rlo,
+                    rhi,
+                    lo,
+                    hi,
+                },
+                outside,
+            ) => {
+                // In the half-plane through the axis and x: (ρ, t) of x, the lateral
+                // surface the segment from (rlo, lo) to (rhi, hi).
+                let (a, b) = others(axis);
+                let mut d = DVec3::ZERO;
+                d[a] = x[a] - c1;
+                d[b] = x[b] - c2;
+                let rho = d.length();
+                let u = if rho > 0.0 { d / rho } else { DVec3::AXES[a] };
+                let e = DVec3::AXES[axis];
+                let t = x[axis];
+                let (p0, p1) = ((rlo, lo), (rhi, hi));
+                let on_side = nearest_on_segment((rho, t), p0, p1);
+                let radius = rlo + (rhi - rlo) * (t - lo) / (hi - lo);
+                // A point of the half-plane as a vector from x.
+                let from_x = |(pr, pt): (f64, f64)| (pr - rho) * u + (pt - t) * e;
+                if !outside {
+                    if lo < t && t < hi && rho < radius {
+                        let v = -from_x(on_side);
+                        let r = v.length();
+                        if r > 0.0 {
+                            add(r, v / r);
+                        }
+                        add(t - lo, e);
+                        add(hi - t, -e);
+                    }
+                } else if !(lo <= t && t <= hi && rho <= radius) {
+                    // The nearest point of the solid cone: on its side or on a cap.
+                    let caps = [(rho.min(rlo), lo), (rho.min(rhi), hi)];
+                    let v = [on_side, caps[0], caps[1]]
+                        .map(|q| -from_x(q))
+                        .into_iter()
+                        .min_by(|p, q| p.length_squared().total_cmp(&q.length_squared()))
+                        .expect("three candidates");
                     let r = v.length();
                     if r > 0.0 {
                         add(r, v / r);

@@ -70,7 +70,7 @@ pub(super) const ROW_WALL_REGION: FixRow = style(
     Stages::ENGINE,
     "`region-ID r0 D` (a block, sphere or cylinder region, side in): the wall/sph force from each part of its surface within r0, plus the pressure force of the particle's copy at the wall",
 )
-.notes("block, sphere, cylinder and plane regions, side in (each face, a cylinder's curved surface and its finite end caps) or out (the nearest point of the shape), and unions and intersections of them (side in), as LAMMPS' region surfaces; cones, moving regions and side-out unions stop with a located error");
+.notes("block, sphere, cylinder, cone and plane regions, side in (each face, a cylinder's or cone's side and its finite end caps) or out (the nearest point of the shape), and unions and intersections of them (side in), as LAMMPS' region surfaces; moving regions and side-out unions stop with a located error");
 
 /// The SPH fixes need atom_style sph.
 fn need_sph(sim: &Sim, a: &Args, head: &FixHead) -> CmdResult {
@@ -186,7 +186,7 @@ fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scr
     let region = sim.fixed_region(a, "fix wall/region/sph")?;
     if region.max_surface_contacts().is_none() {
         return Err(a.error_prev(
-            "fix wall/region/sph supports block, sphere, cylinder and plane regions (side in or out), and unions and intersections of them (side in), not moving, only so far",
+            "fix wall/region/sph supports block, sphere, cylinder, cone and plane regions (side in or out), and unions and intersections of them (side in), not moving, only so far",
             None,
         ));
     }

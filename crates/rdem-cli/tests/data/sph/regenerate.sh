@@ -2,7 +2,8 @@
 # Regenerates the LIGGGHTS 3.8 reference data of the SPH tests (tests/sph.rs):
 #  - three.dump, kernel_*.dump, wall.dump, wall_region.dump, wall_sphere.dump,
 #    wall_cylinder.dump, wall_xcylinder.dump, wall_sphere_out.dump, wall_block_out.dump,
-#    wall_cylinder_out.dump, wall_plane.dump, wall_union.dump, wall_intersect.dump: the
+#    wall_cylinder_out.dump, wall_plane.dump, wall_union.dump, wall_intersect.dump,
+#    wall_cone.dump, wall_cone_out.dump: the
 #    small cases in.three, in.kernels, in.wall and in.wall_* of the same names
 #    (dumps of every step, full precision);
 #  - sph_2_short.log: the tutorial sph_2 (liggghts-doc, unmodified) up to and including
@@ -23,7 +24,8 @@ for w in "${WHAT[@]}"; do
   case "$w" in
     small)
       for c in three kernels wall wall_region wall_sphere wall_cylinder wall_xcylinder \
-          wall_sphere_out wall_block_out wall_cylinder_out wall_plane wall_union wall_intersect; do
+          wall_sphere_out wall_block_out wall_cylinder_out wall_plane wall_union wall_intersect \
+          wall_cone wall_cone_out; do
         (cd "$HERE" && "$LIGGGHTS" -in "in.$c" -log none > /dev/null)
       done ;;
     short|full)
