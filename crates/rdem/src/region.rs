@@ -143,10 +143,25 @@ fn others(axis: usize) -> (usize, usize) {
     }
 }
 
+/// The offset of `x` from the line along `axis` through (c1, c2), at right angles to it.
+fn radial(x: DVec3, axis: usize, c1: f64, c2: f64) -> DVec3 {
+    let (a, b) = others(axis);
+    let mut d = DVec3::ZERO;
+    d[a] = x[a] - c1;
+    d[b] = x[b] - c2;
+    d
+}
+
 /// Squared distance of `x` from the line along `axis` through (c1, c2).
 fn radial2(x: DVec3, axis: usize, c1: f64, c2: f64) -> f64 {
-    let (a, b) = others(axis);
-    (x[a] - c1).powi(2) + (x[b] - c2).powi(2)
+    radial(x, axis, c1, c2).length_squared()
+}
+
+/// `v` as (length, unit vector), if it is not zero: a contact from the surface point
+/// `x − v` to `x`.
+fn split(v: DVec3) -> Option<(f64, DVec3)> {
+    let r = v.length();
+    (r > 0.0).then(|| (r, v / r))
 }
 
 /// The box around a cylinder of radius `r` along `axis` from `lo` to `hi`.
@@ -348,10 +363,8 @@ impl Region {
                 }
             }
             (&Shape::Block { lo, hi }, true) => {
-                let d = x - x.clamp(lo, hi);
-                let r = d.length();
-                if r > 0.0 {
-                    add(r, d / r);
+                if let Some((r, u)) = split(x - x.clamp(lo, hi)) {
+                    add(r, u);
                 }
             }
             (&Shape::Sphere { centre, radius }, outside) => {
@@ -376,10 +389,7 @@ impl Region {
                 },
                 outside,
             ) => {
-                let (a, b) = others(axis);
-                let mut d = DVec3::ZERO;
-                d[a] = x[a] - c1;
-                d[b] = x[b] - c2;
+                let d = radial(x, axis, c1, c2);
                 let rho = d.length();
                 let t = x[axis];
                 let e = DVec3::AXES[axis];
@@ -400,10 +410,8 @@ impl Region {
                         DVec3::ZERO
                     };
                     let axial = (t - t.clamp(lo, hi)) * e;
-                    let v = radial + axial;
-                    let r = v.length();
-                    if r > 0.0 {
-                        add(r, v / r);
+                    if let Some((r, u)) = split(radial + axial) {
+                        add(r, u);
                     }
                 }
             }
@@ -421,12 +429,13 @@ impl Region {
             ) => {
                 // In the half-plane through the axis and x: (ρ, t) of x, the lateral
                 // surface the segment from (rlo, lo) to (rhi, hi).
-                let (a, b) = others(axis);
-                let mut d = DVec3::ZERO;
-                d[a] = x[a] - c1;
-                d[b] = x[b] - c2;
+                let d = radial(x, axis, c1, c2);
                 let rho = d.length();
-                let u = if rho > 0.0 { d / rho } else { DVec3::AXES[a] };
+                let u = if rho > 0.0 {
+                    d / rho
+                } else {
+                    DVec3::AXES[others(axis).0]
+                };
                 let e = DVec3::AXES[axis];
                 let t = x[axis];
                 let (p0, p1) = ((rlo, lo), (rhi, hi));
@@ -436,10 +445,8 @@ impl Region {
                 let from_x = |(pr, pt): (f64, f64)| (pr - rho) * u + (pt - t) * e;
                 if !outside {
                     if lo < t && t < hi && rho < radius {
-                        let v = -from_x(on_side);
-                        let r = v.length();
-                        if r > 0.0 {
-                            add(r, v / r);
+                        if let Some((r, u)) = split(-from_x(on_side)) {
+                            add(r, u);
                         }
                         add(t - lo, e);
                         add(hi - t, -e);
@@ -452,9 +459,8 @@ impl Region {
                         .into_iter()
                         .min_by(|p, q| p.length_squared().total_cmp(&q.length_squared()))
                         .expect("three candidates");
-                    let r = v.length();
-                    if r > 0.0 {
-                        add(r, v / r);
+                    if let Some((r, u)) = split(v) {
+                        add(r, u);
                     }
                 }
             }
