@@ -153,8 +153,8 @@ fn variable_value<'py>(py: Python<'py>, sim: &Sim, name: &str) -> PyResult<Bound
     match sim.script.vars.get(name) {
         None => Err(PyKeyError::new_err(format!("no variable '{name}'"))),
         Some(Variable::Atom(_)) => {
-            let v = rdem_script::context::eval_atom(sim, &format!("v_{name}"))
-                .map_err(PyValueError::new_err)?;
+            let v =
+                rdem_script::context::eval_atom(sim, &format!("v_{name}")).map_err(value_error)?;
             Ok(PyArray1::from_vec(py, v).into_any())
         }
         Some(Variable::Equal(_)) => {
@@ -163,8 +163,7 @@ fn variable_value<'py>(py: Python<'py>, sim: &Sim, name: &str) -> PyResult<Bound
             Ok(v.into_pyobject(py)?.into_any())
         }
         Some(_) => {
-            let t =
-                rdem_script::context::variable_text(sim, name).map_err(PyValueError::new_err)?;
+            let t = rdem_script::context::variable_text(sim, name).map_err(value_error)?;
             Ok(t.into_pyobject(py)?.into_any())
         }
     }
@@ -249,7 +248,7 @@ macro_rules! readers {
             #[pyo3(signature = (id, index=None))]
             fn compute(&self, id: &str, index: Option<usize>) -> PyResult<f64> {
                 rdem_script::context::compute_global(self.sim()?, id, crate::index(index)?)
-                    .map_err(PyValueError::new_err)
+                    .map_err(value_error)
             }
             /// A per-particle compute (or its column, 1-based), in storage order.
             #[pyo3(signature = (id, column=None))]
@@ -261,14 +260,14 @@ macro_rules! readers {
             ) -> PyResult<Bound<'py, PyArray1<f64>>> {
                 let v =
                     rdem_script::context::compute_peratom(self.sim()?, id, crate::index(column)?)
-                        .map_err(PyValueError::new_err)?;
+                        .map_err(value_error)?;
                 Ok(PyArray1::from_vec(py, v))
             }
             /// A global value of a fix: its scalar, or value `index` (1-based).
             #[pyo3(signature = (id, index=None))]
             fn fix(&self, id: &str, index: Option<usize>) -> PyResult<f64> {
                 rdem_script::fixes::fix_value(self.sim()?, id, crate::index(index)?)
-                    .map_err(PyValueError::new_err)
+                    .map_err(value_error)
             }
             /// A per-particle fix value (or its column, 1-based), in storage order.
             #[pyo3(signature = (id, column=None))]
@@ -279,7 +278,7 @@ macro_rules! readers {
                 column: Option<usize>,
             ) -> PyResult<Bound<'py, PyArray1<f64>>> {
                 let v = rdem_script::fixes::fix_peratom(self.sim()?, id, crate::index(column)?)
-                    .map_err(PyValueError::new_err)?;
+                    .map_err(value_error)?;
                 Ok(PyArray1::from_vec(py, v))
             }
             /// The current step.
@@ -361,6 +360,11 @@ impl Simulation {
     }
 }
 
+/// A Python `ValueError` with the message of an error of the script crate.
+fn value_error(e: rdem_script::error::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
 /// The hook a run calls after every step: stops at Ctrl-C, calls the callback every
 /// `n` steps.
 fn step_hook(
@@ -398,7 +402,7 @@ fn step_hook(
                 Err(e) => {
                     let m = format!("the callback raised {e}");
                     *raised.borrow_mut() = Some(e);
-                    Err(m)
+                    Err(m.into())
                 }
             }
         })

@@ -36,6 +36,7 @@
 //!   since no step runs: each `jump` command is followed at most [`MAX_JUMPS`] times,
 //!   then the script goes on past it, and a note line says so.
 
+use crate::error::Error;
 use std::collections::{BTreeMap, BTreeSet};
 
 use crate::diagnostic::{RunError, ScriptReport};
@@ -300,7 +301,7 @@ pub(crate) fn after_setup(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
 }
 
 /// Resolves the columns of dump `k` (the `c_`, `f_` and `v_` references) without writing.
-pub(crate) fn dump_columns(sim: &Sim, k: usize) -> Result<(), String> {
+pub(crate) fn dump_columns(sim: &Sim, k: usize) -> Result<(), Error> {
     let d = &sim.outputs.dumps[k];
     d.style.resolve(sim, &d.columns)
 }

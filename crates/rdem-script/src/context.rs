@@ -2,6 +2,7 @@
 //! references, atom values by ID (`x[12]`), group functions, and atom-style formulas
 //! evaluated for every owned particle.
 
+use crate::error::Error;
 use std::collections::HashMap;
 
 use rdem::World;
@@ -23,10 +24,8 @@ pub struct Ctx<'a> {
     atom: Option<(usize, &'a mut HashMap<String, Vec<f64>>)>,
 }
 
-fn world(sim: &Sim) -> Result<&World, String> {
-    sim.world
-        .as_ref()
-        .ok_or_else(|| "the simulation box is not defined yet".to_string())
+fn world(sim: &Sim) -> Result<&World, Error> {
+    sim.world.as_ref().ok_or(Error::NoBox)
 }
 
 /// Evaluates an equal-style formula.
@@ -54,7 +53,7 @@ pub fn eval_equal_at(
     names: &[Option<&str>],
     who: &str,
     hint: &str,
-) -> Result<Vec<Option<f64>>, String> {
+) -> Result<Vec<Option<f64>>, Error> {
     at_step(sim, step, who, |sim| {
         names
             .iter()
@@ -63,9 +62,11 @@ pub fn eval_equal_at(
                 match sim.script.vars.get(name) {
                     Some(Variable::Equal(f)) => eval_equal(sim, f)
                         .map(Some)
-                        .map_err(|e| format!("variable {name}: {}", e.message)),
-                    Some(_) => Err(format!("{who}: variable '{name}' is not equal-style{hint}")),
-                    None => Err(format!("{who}: no variable '{name}'")),
+                        .map_err(|e| Error::invalid(format!("variable {name}: {}", e.message))),
+                    Some(_) => Err(Error::invalid(format!(
+                        "{who}: variable '{name}' is not equal-style{hint}"
+                    ))),
+                    None => Err(Error::undefined("variable", *name).within(who)),
                 }
             })
             .collect()
@@ -80,7 +81,7 @@ pub fn values_at(
     values: &[&NumOrVar],
     who: &str,
     hint: &str,
-) -> Result<Vec<Option<f64>>, String> {
+) -> Result<Vec<Option<f64>>, Error> {
     let names: Vec<Option<&str>> = values.iter().map(|v| v.var()).collect();
     let vars = eval_equal_at(sim, step, &names, who, hint)?;
     Ok(values
@@ -98,11 +99,11 @@ pub fn at_step<T>(
     step: u64,
     who: &str,
     f: impl FnOnce(&mut Sim) -> T,
-) -> Result<T, String> {
+) -> Result<T, Error> {
     let w = sim
         .world
         .as_mut()
-        .ok_or_else(|| format!("{who} needs a simulation box"))?;
+        .ok_or_else(|| Error::NeedsBox(who.to_string()))?;
     let now = std::mem::replace(&mut w.step, step);
     let out = f(sim);
     sim.world.as_mut().expect("checked").step = now;
@@ -112,14 +113,17 @@ pub fn at_step<T>(
 /// The equal-style variable `name` at full precision (a moving region's displacement
 /// or angle, which LAMMPS takes as a number, not as text), evaluated `depth` levels
 /// down a chain of references.
-pub(crate) fn equal_variable(sim: &Sim, name: &str, depth: usize) -> Result<f64, String> {
+pub(crate) fn equal_variable(sim: &Sim, name: &str, depth: usize) -> Result<f64, Error> {
     if depth > MAX_DEPTH {
-        return Err("variables and regions refer to each other in a loop".into());
+        return Err(Error::Loop("variables and regions"));
     }
     match sim.script.vars.get(name) {
-        None => Err(format!("no variable '{name}'")),
+        None => Err(Error::undefined("variable", name)),
         Some(Variable::Equal(f)) => {
-            let e = expr::parse(f).map_err(|e| format!("in variable '{name}': {}", e.message))?;
+            let e = expr::parse(f).map_err(|e| Error::InVariable {
+                name: name.to_string(),
+                source: e,
+            })?;
             expr::eval(
                 &e,
                 &mut Ctx {
@@ -128,14 +132,17 @@ pub(crate) fn equal_variable(sim: &Sim, name: &str, depth: usize) -> Result<f64,
                     atom: None,
                 },
             )
-            .map_err(|e| format!("in variable '{name}': {}", e.message))
+            .map_err(|e| Error::InVariable {
+                name: name.to_string(),
+                source: e,
+            })
         }
-        Some(_) => Err(format!("variable '{name}' is not equal-style")),
+        Some(_) => Err(format!("variable '{name}' is not equal-style").into()),
     }
 }
 
 /// Text of `${name}` / `$x`.
-pub fn variable_text(sim: &Sim, name: &str) -> Result<String, String> {
+pub fn variable_text(sim: &Sim, name: &str) -> Result<String, Error> {
     sim.script.vars.text(
         name,
         &mut Ctx {
@@ -147,7 +154,7 @@ pub fn variable_text(sim: &Sim, name: &str) -> Result<String, String> {
 }
 
 /// Evaluates an atom-style formula for every owned particle.
-pub fn eval_atom(sim: &Sim, formula: &str) -> Result<Vec<f64>, String> {
+pub fn eval_atom(sim: &Sim, formula: &str) -> Result<Vec<f64>, Error> {
     let mut cache = HashMap::new();
     eval_atom_depth(sim, formula, 0, &mut cache)
 }
@@ -157,7 +164,7 @@ fn eval_atom_depth(
     formula: &str,
     depth: usize,
     cache: &mut HashMap<String, Vec<f64>>,
-) -> Result<Vec<f64>, String> {
+) -> Result<Vec<f64>, Error> {
     let w = world(sim)?;
     let e = expr::parse(formula).map_err(|e| e.message)?;
     let n = w.particles.nlocal();
@@ -173,43 +180,43 @@ fn eval_atom_depth(
     Ok(out)
 }
 
-fn find_compute<'s>(sim: &'s Sim, id: &str) -> Result<&'s crate::computes::Compute, String> {
+fn find_compute<'s>(sim: &'s Sim, id: &str) -> Result<&'s crate::computes::Compute, Error> {
     sim.defs
         .computes
         .iter()
         .find(|c| c.id() == id)
-        .ok_or_else(|| format!("no compute '{id}'"))
+        .ok_or_else(|| Error::undefined("compute", id))
 }
 
 /// Per-atom values of a compute (column `col`, 1-based, for array computes).
-pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
+pub fn compute_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, Error> {
     world(sim)?;
     let c = find_compute(sim, id)?;
     c.imp.peratom(sim, &c.head, col)
 }
 
 /// Global value of a compute: its scalar, or element `idx` (1-based) of its vector.
-pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
+pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, Error> {
     world(sim)?;
     let c = find_compute(sim, id)?;
     c.imp.global(sim, &c.head, idx)
 }
 
 impl Ctx<'_> {
-    fn group(&self, g: &str) -> Result<u32, String> {
+    fn group(&self, g: &str) -> Result<u32, Error> {
         self.sim
             .defs
             .groups
             .find(g)
             .map(|k| 1u32 << k)
-            .ok_or_else(|| format!("no group '{g}'"))
+            .ok_or_else(|| Error::undefined("group", g))
     }
 
     fn atom_vector(
         &mut self,
         key: &str,
-        make: impl FnOnce(&Sim, usize) -> Result<Vec<f64>, String>,
-    ) -> Result<f64, String> {
+        make: impl FnOnce(&Sim, usize) -> Result<Vec<f64>, Error>,
+    ) -> Result<f64, Error> {
         let sim = self.sim;
         let depth = self.depth;
         let (i, cache) = self.atom.as_mut().expect("atom context");
@@ -222,9 +229,9 @@ impl Ctx<'_> {
 }
 
 impl Context for Ctx<'_> {
-    fn name(&mut self, name: &Name) -> Result<f64, String> {
+    fn name(&mut self, name: &Name) -> Result<f64, Error> {
         if self.depth > MAX_DEPTH {
-            return Err("variables refer to each other in a loop".into());
+            return Err(Error::Loop("variables"));
         }
         let sim = self.sim;
         match name {
@@ -232,15 +239,18 @@ impl Context for Ctx<'_> {
                 if self.atom.is_some() && atom_fields::is_field(k) {
                     let w = world(sim)?;
                     let i = self.atom.as_ref().map(|a| a.0).unwrap_or(0);
-                    return atom_fields::value(w, k, i).ok_or_else(|| format!("bad field {k}"));
+                    return atom_fields::value(w, k, i)
+                        .ok_or_else(|| Error::invalid(format!("bad field {k}")));
                 }
                 crate::thermo::keyword(sim, k)
             }
             Name::Variable(v) => match sim.script.vars.get(v) {
-                None => Err(format!("no variable '{v}'")),
+                None => Err(Error::undefined("variable", v)),
                 Some(Variable::Equal(f)) => {
-                    let e =
-                        expr::parse(f).map_err(|e| format!("in variable '{v}': {}", e.message))?;
+                    let e = expr::parse(f).map_err(|e| Error::InVariable {
+                        name: v.to_string(),
+                        source: e,
+                    })?;
                     let depth = self.depth + 1;
                     match self.atom.as_mut() {
                         Some((i, cache)) => {
@@ -260,7 +270,10 @@ impl Context for Ctx<'_> {
                             },
                         ),
                     }
-                    .map_err(|e| format!("in variable '{v}': {}", e.message))
+                    .map_err(|e| Error::InVariable {
+                        name: v.to_string(),
+                        source: e,
+                    })
                     // LIGGGHTS passes an equal-style variable into a formula as its text,
                     // `%.15g`: v_a with a = 1/3 is 0.333333333333333.
                     .map(|x| {
@@ -271,7 +284,8 @@ impl Context for Ctx<'_> {
                     if self.atom.is_none() {
                         return Err(format!(
                             "atom-style variable '{v}' used where one number is needed"
-                        ));
+                        )
+                        .into());
                     }
                     let f = f.clone();
                     self.atom_vector(&format!("v_{v}"), |s, d| {
@@ -281,8 +295,9 @@ impl Context for Ctx<'_> {
                 }
                 Some(_) => {
                     let t = variable_text(sim, v)?;
-                    crate::args::parse_f64(t.trim())
-                        .ok_or_else(|| format!("variable '{v}' is '{t}', not a number"))
+                    crate::args::parse_f64(t.trim()).ok_or_else(|| {
+                        Error::invalid(format!("variable '{v}' is '{t}', not a number"))
+                    })
                 }
             },
             Name::Compute(id, idx) => {
@@ -291,12 +306,12 @@ impl Context for Ctx<'_> {
                     .computes
                     .iter()
                     .find(|c| c.id() == id)
-                    .ok_or_else(|| format!("no compute '{id}'"))?;
+                    .ok_or_else(|| Error::undefined("compute", id))?;
                 if c.is_peratom() {
                     if self.atom.is_none() {
                         return Err(format!(
                             "compute {id} is per-atom: use it in an atom-style variable or reduce it"
-                        ));
+                        ).into());
                     }
                     let (id, idx) = (id.clone(), *idx);
                     let key = format!("c_{id}[{idx:?}]");
@@ -309,7 +324,8 @@ impl Context for Ctx<'_> {
                 if self.atom.is_none() {
                     return Err(format!(
                         "fix {id} is per-atom: use it in an atom-style variable or reduce it"
-                    ));
+                    )
+                    .into());
                 }
                 let (id, idx) = (id.clone(), *idx);
                 let key = format!("f_{id}[{idx:?}]");
@@ -323,7 +339,8 @@ impl Context for Ctx<'_> {
                     return Err(format!(
                         "unknown atom value '{field}' (valid: {})",
                         atom_fields::NAMES.join(" ")
-                    ));
+                    )
+                    .into());
                 }
                 let i = w.particles.find_tag(*tag);
                 let here = i
@@ -331,14 +348,14 @@ impl Context for Ctx<'_> {
                     .unwrap_or(0.0);
                 let found = w.comm.sum_count(i.is_some() as u64);
                 if found == 0 {
-                    return Err(format!("{field}[{tag}]: no atom with ID {tag}"));
+                    return Err(format!("{field}[{tag}]: no atom with ID {tag}").into());
                 }
                 Ok(w.comm.sum(here))
             }
         }
     }
 
-    fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, String> {
+    fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, Error> {
         const GROUP_FNS: [&str; 6] = ["count", "mass", "xcm", "vcm", "bound", "ke"];
         if !GROUP_FNS.contains(&name) {
             return Ok(None);
@@ -357,7 +374,7 @@ impl Context for Ctx<'_> {
             Some(r) if raw.len() == plain + 1 => {
                 let r = r.trim();
                 if !self.sim.defs.regions.contains_key(r) {
-                    return Err(format!("{name}(): no region '{r}'"));
+                    return Err(Error::undefined("region", r).within(format!("{name}()")));
                 }
                 Some(crate::regions::posed(self.sim, r, self.depth + 1)?)
             }
@@ -372,14 +389,14 @@ impl Context for Ctx<'_> {
         } else {
             raw.len()
         };
-        let dim = |s: Option<&String>| -> Result<usize, String> {
+        let dim = |s: Option<&String>| -> Result<usize, Error> {
             match s.map(|s| s.trim()) {
                 Some("x") => Ok(0),
                 Some("y") => Ok(1),
                 Some("z") => Ok(2),
-                other => Err(format!(
-                    "{name}(): dimension must be x, y or z, not {other:?}"
-                )),
+                other => {
+                    Err(format!("{name}(): dimension must be x, y or z, not {other:?}").into())
+                }
             }
         };
         let mass: f64 = w.comm.sum(sel.iter().map(|&i| p.rmass[i]).sum()) + 0.0;
@@ -419,7 +436,11 @@ impl Context for Ctx<'_> {
                     "ymax" => (1, false),
                     "zmin" => (2, true),
                     "zmax" => (2, false),
-                    _ => return Err(format!("bound(): '{which}' is not xmin, xmax, ..., zmax")),
+                    _ => {
+                        return Err(
+                            format!("bound(): '{which}' is not xmin, xmax, ..., zmax").into()
+                        )
+                    }
                 };
                 // An empty group gives ±1e20, as LIGGGHTS prints it (its `BIG`).
                 const BIG: f64 = 1e20;
@@ -439,7 +460,8 @@ impl Context for Ctx<'_> {
                     } else {
                         "2 (group, dimension) or 3 (group, dimension, region)"
                     }
-                ))
+                )
+                .into())
             }
         }))
     }

@@ -98,6 +98,13 @@ impl From<rdem::Error> for RunError {
     }
 }
 
+/// An error below the command level, reported at the `run` command.
+impl From<crate::error::Error> for RunError {
+    fn from(e: crate::error::Error) -> Self {
+        e.to_string().into()
+    }
+}
+
 impl From<&str> for RunError {
     fn from(message: &str) -> Self {
         message.to_string().into()

@@ -6,6 +6,7 @@
 //! `fix ave/euler`: [`check_euler_dump_name`] when the dump is defined,
 //! [`euler_snapshot`] (or [`write_euler_snapshot`]) when it is due.
 
+use crate::error::Error;
 use std::path::Path;
 
 use crate::fixes::ave_euler::AveEuler;
@@ -22,13 +23,13 @@ pub fn euler_fix_id(sim: &Sim) -> Option<&str> {
 }
 
 /// Checks a `dump euler/vtk` file name (must contain `*`; `%` and `.bin` are errors).
-pub fn check_euler_dump_name(name: &str) -> Result<(), String> {
-    rdem_io::euler_vtk::check_euler_vtk_name(name)
+pub fn check_euler_dump_name(name: &str) -> Result<(), Error> {
+    rdem_io::euler_vtk::check_euler_vtk_name(name).map_err(Error::Invalid)
 }
 
 /// The text of a `dump euler/vtk` file: the last result of fix `fix_id` (`None`: the
 /// one `fix ave/euler`).
-pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, String> {
+pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, Error> {
     let id = match fix_id {
         Some(id) => id,
         None => {
@@ -40,12 +41,13 @@ pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, String>
         .fixes
         .iter()
         .find(|f| f.id() == id)
-        .ok_or_else(|| format!("dump euler/vtk: no fix '{id}'"))?;
+        .ok_or_else(|| Error::undefined("fix", id).within("dump euler/vtk"))?;
     let Some(e) = f.downcast::<AveEuler>() else {
         return Err(format!(
             "dump euler/vtk: fix {id} is {}, not ave/euler",
             f.head.style
-        ));
+        )
+        .into());
     };
     let cells = e.cells.as_ref().ok_or_else(|| {
         format!("dump euler/vtk: fix {id} (ave/euler) has not been evaluated yet (it is at a run's set-up)")
@@ -57,11 +59,11 @@ pub fn euler_snapshot(sim: &Sim, fix_id: Option<&str>) -> Result<String, String>
 /// rank 0; the cells are global (summed over the ranks by [`rdem::euler::average`]), so
 /// the other ranks only check that there is something to write. Returns whether this
 /// rank wrote the file.
-pub fn write_euler_snapshot(sim: &Sim, fix_id: Option<&str>, path: &Path) -> Result<bool, String> {
+pub fn write_euler_snapshot(sim: &Sim, fix_id: Option<&str>, path: &Path) -> Result<bool, Error> {
     let text = euler_snapshot(sim, fix_id)?;
     let root = sim.world.as_ref().is_none_or(|w| w.comm.is_root());
     if root {
-        rdem_io::write_atomic(path, text.as_bytes()).map_err(|e| e.to_string())?;
+        rdem_io::write_atomic(path, text.as_bytes())?;
     }
     Ok(root)
 }

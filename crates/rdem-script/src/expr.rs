@@ -8,6 +8,7 @@
 //! Parsing gives an [`Expr`]; errors carry a byte range inside the formula so the caller
 //! can point at the offending part of the script line.
 
+use crate::error::Error;
 use std::ops::Range;
 
 /// A parse or evaluation error, with the byte range in the formula it is about.
@@ -118,10 +119,10 @@ pub enum Expr {
 /// What a formula needs from the simulation.
 pub trait Context {
     /// Value of a name, or an error message (e.g. "unknown thermo keyword").
-    fn name(&mut self, name: &Name) -> Result<f64, String>;
+    fn name(&mut self, name: &Name) -> Result<f64, Error>;
     /// A function that is not plain math (group, region and special functions, random,
     /// ramp, …): `Ok(None)` if the name is not one.
-    fn function(&mut self, name: &str, raw_args: &[String]) -> Result<Option<f64>, String>;
+    fn function(&mut self, name: &str, raw_args: &[String]) -> Result<Option<f64>, Error>;
 }
 
 /// Parses `src` as a formula.
@@ -483,16 +484,16 @@ mod tests {
 
     struct Ctx;
     impl Context for Ctx {
-        fn name(&mut self, n: &Name) -> Result<f64, String> {
+        fn name(&mut self, n: &Name) -> Result<f64, Error> {
             match n {
                 Name::Keyword(k) if k == "step" => Ok(100.0),
                 Name::Variable(v) if v == "r" => Ok(0.5),
                 Name::Compute(c, Some(2)) if c == "bc" => Ok(7.0),
                 Name::Atom(a, 3) if a == "x" => Ok(-1.25),
-                other => Err(format!("unknown {other:?}")),
+                other => Err(format!("unknown {other:?}").into()),
             }
         }
-        fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, String> {
+        fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, Error> {
             Ok(match (name, raw) {
                 ("count", [g]) if g == "all" => Some(42.0),
                 ("xcm", [g, d]) if g == "all" && d == "z" => Some(0.125),

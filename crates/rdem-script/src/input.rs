@@ -9,6 +9,7 @@ use crate::args::{suggest, Args, CmdResult};
 use crate::commands;
 use crate::context;
 use crate::diagnostic::ScriptReport;
+use crate::error::Error;
 use crate::lexer::{self, Command, Reference};
 use crate::output::Echo;
 use crate::sim::Sim;
@@ -67,7 +68,7 @@ pub(crate) fn substitute_vars(sim: &Sim, cmd: &Command) -> CmdResult<Command> {
             .map(|v| crate::variables::format_g(v, 20))
             .map_err(|e| {
                 expr_span = Some(e.span);
-                e.message
+                Error::Invalid(e.message)
             }),
     })
     .map_err(|mut e| {

@@ -11,6 +11,7 @@
 //! 3. [`words`]: the command is split into words at white space; single, double or
 //!    triple (`"""`) quotes make one word of text with spaces and are removed.
 
+use crate::error::Error;
 use std::ops::Range;
 
 use crate::diagnostic::ScriptError;
@@ -185,7 +186,7 @@ pub enum Reference {
 /// error of `resolve` is reported at the reference's source span.
 pub fn substitute(
     cmd: &Command,
-    mut resolve: impl FnMut(&Reference) -> Result<String, String>,
+    mut resolve: impl FnMut(&Reference) -> Result<String, Error>,
 ) -> Result<Command, ScriptError> {
     let b = cmd.text.as_bytes();
     let mut text = String::with_capacity(cmd.text.len());
@@ -209,8 +210,8 @@ pub fn substitute(
             continue;
         }
         let (reference, end) = parse_reference(&cmd.text, i)
-            .map_err(|msg| cmd.error(i..(i + 2).min(b.len()), msg, None))?;
-        let value = resolve(&reference).map_err(|msg| cmd.error(i..end, msg, None))?;
+            .map_err(|msg| cmd.error(i..(i + 2).min(b.len()), msg.to_string(), None))?;
+        let value = resolve(&reference).map_err(|msg| cmd.error(i..end, msg.to_string(), None))?;
         text.push_str(&value);
         origin.extend(std::iter::repeat_n(cmd.origin[i], value.len()));
         i = end;
@@ -223,7 +224,7 @@ pub fn substitute(
 }
 
 /// Parses the reference starting at the `$` at byte `i`; returns it and the byte after it.
-fn parse_reference(s: &str, i: usize) -> Result<(Reference, usize), String> {
+fn parse_reference(s: &str, i: usize) -> Result<(Reference, usize), Error> {
     let rest = &s[i + 1..];
     match rest.chars().next() {
         Some('{') => match rest.find('}') {
@@ -430,7 +431,7 @@ mod tests {
             Reference::Variable(n) if n == "lo" => Ok("-1.5".into()),
             Reference::Variable(n) if n == "x" => Ok("7".into()),
             Reference::Immediate(e) => Ok(format!("<{e}>")),
-            Reference::Variable(n) => Err(format!("no variable {n}")),
+            Reference::Variable(n) => Err(format!("no variable {n}").into()),
         })
         .unwrap();
         assert_eq!(s.text, "region r block -1.5 7 <2*3> 'v$x'");

@@ -15,6 +15,7 @@ pub mod computes;
 pub mod context;
 pub mod diagnostic;
 pub mod dumps;
+pub mod error;
 pub mod euler;
 pub mod expr;
 pub mod fixes;

@@ -23,6 +23,7 @@
 //! LIGGGHTS 3.8 starts the `time` of a continued run at 0 at the file's step (measured:
 //! thermo `time` is 0 at the first step after `read_restart`), and so does this reader.
 
+use crate::error::Error;
 use rdem::restart::HistoryState;
 use rdem::{Boundary, Domain, NewParticle, World};
 use rdem_io::liggghts_restart::LiggghtsRestart;
@@ -50,8 +51,8 @@ pub(crate) struct Taken {
 pub(crate) fn restore(
     sim: &mut Sim,
     f: &LiggghtsRestart,
-    decompose: impl FnOnce(&mut Sim, &mut World) -> Result<(), String>,
-) -> Result<Taken, String> {
+    decompose: impl FnOnce(&mut Sim, &mut World) -> Result<(), Error>,
+) -> Result<Taken, Error> {
     if f.tilt.is_some() {
         return Err("its box is triclinic, which rdem does not support".into());
     }
@@ -80,11 +81,10 @@ pub(crate) fn restore(
             letters(boundary)
         ));
     }
-    let domain =
-        Domain::with_faces(f.boxlo.into(), f.boxhi.into(), boundary).map_err(|e| e.to_string())?;
+    let domain = Domain::with_faces(f.boxlo.into(), f.boxhi.into(), boundary)?;
     let mut w = World::new(domain);
     decompose(sim, &mut w)?;
-    w.set_timestep(sim.setup.dt).map_err(|e| e.to_string())?;
+    w.set_timestep(sim.setup.dt)?;
     w.step = f.step;
     w.materials.ntypes = f.ntypes as usize;
     let mut taken = Taken {
@@ -103,10 +103,9 @@ pub(crate) fn restore(
         let uniform = (0..f.atoms.len()).all(|a| p.of(a).len() == SHEAR);
         match wall {
             Some(id) if uniform => {
-                let prop = w
-                    .particles
-                    .add_property(&format!("wallhist_{id}"), SHEAR, &[0.0; SHEAR])
-                    .map_err(|e| e.to_string())?;
+                let prop =
+                    w.particles
+                        .add_property(&format!("wallhist_{id}"), SHEAR, &[0.0; SHEAR])?;
                 walls.push((k, prop));
                 taken.walls.push(id.to_string());
             }
@@ -152,7 +151,7 @@ pub(crate) fn restore(
             radius: a.radius[k],
             density: a.density[k],
         };
-        let i = w.add_particle(&np).map_err(|e| e.to_string())?;
+        let i = w.add_particle(&np)?;
         let p = &mut w.particles;
         p.rmass[i] = a.rmass[k];
         p.image[i] = a.image[k].into();
@@ -168,7 +167,8 @@ pub(crate) fn restore(
             "{} of its {} particles lie outside the box",
             f.natoms - placed,
             f.natoms
-        ));
+        )
+        .into());
     }
     if let Some(h) = f.contact_history() {
         let h = h?;
@@ -177,7 +177,7 @@ pub(crate) fn restore(
                 taken.contacts = state.entries.len() / (2 + SHEAR);
                 w.restore_history(state);
             }
-            Err(why) => taken.not_taken.push(why),
+            Err(why) => taken.not_taken.push(why.to_string()),
         }
     }
     sim.setup.dt = w.dt;
@@ -213,7 +213,7 @@ pub(crate) fn restore(
 /// its lower tag (the other side is its mirror image). Only the tangential history
 /// (three shear values, each changing sign from one particle of a pair to the other, as
 /// the file shows: LIGGGHTS stores every pair from both sides) is mapped.
-fn pair_history(h: &rdem_io::liggghts_restart::ContactHistory) -> Result<HistoryState, String> {
+fn pair_history(h: &rdem_io::liggghts_restart::ContactHistory) -> Result<HistoryState, Error> {
     if h.entries.is_empty() {
         return Ok(HistoryState::default());
     }
@@ -222,7 +222,8 @@ fn pair_history(h: &rdem_io::liggghts_restart::ContactHistory) -> Result<History
             "the pair contact histories ({} values per contact; rdem maps those of tangential \
              history, {SHEAR}): every contact starts afresh",
             h.width
-        ));
+        )
+        .into());
     }
     let stride = 2 + SHEAR;
     let mut from_i: Vec<(u64, u64, &[f64])> = h
@@ -246,7 +247,8 @@ fn pair_history(h: &rdem_io::liggghts_restart::ContactHistory) -> Result<History
                     "the pair contact histories (the contact of particles {i} and {j} is not \
                      stored as mirror images from its two sides, as tangential history's \
                      shear is): every contact starts afresh"
-                ));
+                )
+                .into());
             }
             if i > j {
                 continue;

@@ -2,6 +2,7 @@
 //! LIGGGHTS' property names (`youngsModulus`, `radiusMultiplierBond`, ...) map onto the
 //! engine's typed fields, with the errors about a property's style and value count.
 
+use crate::error::Error;
 use rdem::bond::BondCoefficients;
 use rdem::Materials;
 
@@ -33,7 +34,7 @@ fn bond_table<'a>(b: &'a mut BondCoefficients, name: &str) -> Option<&'a mut Opt
 }
 
 /// Builds the engine's material table from the `fix property/global` values.
-pub fn materials(sim: &Sim) -> Result<Materials, String> {
+pub fn materials(sim: &Sim) -> Result<Materials, Error> {
     let n = sim.ntypes();
     let mut m = Materials {
         ntypes: n,
@@ -53,7 +54,8 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
                     p.fix_id,
                     if scalar { "scalar" } else { "peratomtypepair" },
                     p.style
-                ));
+                )
+                .into());
             }
             if !scalar && p.values.len() != n * n {
                 return Err(format!(
@@ -61,7 +63,7 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
                     p.fix_id,
                     p.values.len(),
                     n * n
-                ));
+                ).into());
             }
             match bond_table(&mut m.bond, name) {
                 Some(table) => *table = Some(p.values.clone()),
@@ -107,7 +109,8 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
                 return Err(format!(
                     "property {name} (fix {}) must be peratomtype or peratomtypepair, not {}",
                     p.fix_id, p.style
-                ))
+                )
+                .into())
             }
         };
         if p.values.len() != want {
@@ -115,7 +118,7 @@ pub fn materials(sim: &Sim) -> Result<Materials, String> {
                 "property {name} (fix {}) has {} value(s); the box has {n} atom type(s), so {want} are needed",
                 p.fix_id,
                 p.values.len()
-            ));
+            ).into());
         }
         *slot = p.values.clone();
     }

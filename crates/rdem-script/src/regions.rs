@@ -3,6 +3,7 @@
 //! equal-style variables that place it. A use of a region takes it where it is at the
 //! current step (LAMMPS evaluates the variables each time a dynamic region is used).
 
+use crate::error::Error;
 use glam::DVec3;
 use rdem::region::{Pose, Region, Shape};
 
@@ -50,16 +51,16 @@ pub fn is_dynamic(sim: &Sim, id: &str) -> bool {
 
 /// Region `id` where it is at the world's current step. Errors: a motion variable that
 /// is missing, not equal-style or fails.
-pub fn region_now(sim: &Sim, id: &str) -> Result<Region, String> {
+pub fn region_now(sim: &Sim, id: &str) -> Result<Region, Error> {
     posed(sim, id, 0)
 }
 
-pub(crate) fn posed(sim: &Sim, id: &str, depth: usize) -> Result<Region, String> {
+pub(crate) fn posed(sim: &Sim, id: &str, depth: usize) -> Result<Region, Error> {
     let def = sim
         .defs
         .regions
         .get(id)
-        .ok_or_else(|| format!("no region '{id}'"))?;
+        .ok_or_else(|| Error::undefined("region", id))?;
     if !is_dynamic(sim, id) {
         return Ok(def.region.clone());
     }

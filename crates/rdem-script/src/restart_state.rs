@@ -19,6 +19,7 @@
 //! (`fix property/atom`, wall histories, temperatures) come back with the particles and
 //! are kept when the fix that holds them is defined again.
 
+use crate::error::Error;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -127,7 +128,7 @@ fn encode<T: Serialize>(v: &T) -> Vec<u8> {
 /// Writes the whole state to `path` as a restart file: every rank sends its block, rank
 /// 0 writes the file under a temporary name and renames it. Under `rdem -check`
 /// nothing is written.
-pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), String> {
+pub(crate) fn write(sim: &Sim, path: &str) -> Result<(), Error> {
     if sim.script.check {
         return Ok(());
     }
@@ -168,7 +169,7 @@ fn write_file(
     natoms: u64,
     fixes: Vec<FixState>,
     blocks: &[Vec<u8>],
-) -> Result<(), String> {
+) -> Result<(), Error> {
     let d = &w.domain;
     let head = RestartHead {
         program: format!("rdem {}", env!("CARGO_PKG_VERSION")),
@@ -196,7 +197,7 @@ fn write_file(
         push_block(&mut payload, b);
     }
     rdem_io::restart_file::fill_header(&mut payload);
-    rdem_io::write_atomic(Path::new(path), &payload).map_err(|e| e.to_string())
+    rdem_io::write_atomic(Path::new(path), &payload).map_err(Error::from)
 }
 
 /// A restart file's contents, decoded.
@@ -208,10 +209,9 @@ pub struct RestartContents {
 }
 
 /// Reads and decodes the restart file at `path`; the message names the file.
-pub fn read(path: &str) -> Result<RestartContents, String> {
-    let (_version, payload) =
-        rdem_io::restart_file::read_restart_file(Path::new(path)).map_err(|e| e.to_string())?;
-    decode(&payload).map_err(|m| format!("'{path}' cannot be decoded ({m}); its checksum is right, so it was written by an rdem whose format differs from this one's"))
+pub fn read(path: &str) -> Result<RestartContents, Error> {
+    let (_version, payload) = rdem_io::restart_file::read_restart_file(Path::new(path))?;
+    decode(&payload).map_err(|m| Error::invalid(format!("'{path}' cannot be decoded ({m}); its checksum is right, so it was written by an rdem whose format differs from this one's")))
 }
 
 /// Reads the blocks of a payload in order.
@@ -221,7 +221,7 @@ struct Cursor<'a> {
 }
 
 impl<'a> Cursor<'a> {
-    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], Error> {
         let s = self
             .buf
             .get(self.at..self.at.saturating_add(n))
@@ -229,18 +229,18 @@ impl<'a> Cursor<'a> {
         self.at += n;
         Ok(s)
     }
-    fn len(&mut self) -> Result<usize, String> {
+    fn len(&mut self) -> Result<usize, Error> {
         Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")) as usize)
     }
-    fn block<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
+    fn block<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, Error> {
         let n = self.len()?;
-        postcard::from_bytes(self.take(n)?).map_err(|e| e.to_string())
+        postcard::from_bytes(self.take(n)?).map_err(|e| Error::Decode(e.to_string()))
     }
 }
 
 /// Decodes the payload of an rdem restart file (after its framing is checked,
 /// [`rdem_io::restart_file::unframe`]); any bytes give the contents or an error.
-pub fn decode(payload: &[u8]) -> Result<RestartContents, String> {
+pub fn decode(payload: &[u8]) -> Result<RestartContents, Error> {
     let mut c = Cursor {
         buf: payload,
         at: 0,
@@ -273,8 +273,8 @@ pub fn decode(payload: &[u8]) -> Result<RestartContents, String> {
 pub(crate) fn restore(
     sim: &mut Sim,
     c: RestartContents,
-    decompose: impl FnOnce(&mut Sim, &mut World) -> Result<(), String>,
-) -> Result<(), String> {
+    decompose: impl FnOnce(&mut Sim, &mut World) -> Result<(), Error>,
+) -> Result<(), Error> {
     let h = c.head;
     sim.setup.units = crate::units::Units::from_name(&h.units)
         .ok_or_else(|| format!("the file's units '{}' are not rdem's", h.units))?;
@@ -285,17 +285,15 @@ pub(crate) fn restore(
             *b = Boundary::from_letter(c).ok_or_else(|| format!("boundary letter '{c}'"))?;
         }
     }
-    let domain =
-        Domain::with_faces(h.boxlo.into(), h.boxhi.into(), boundary).map_err(|e| e.to_string())?;
+    let domain = Domain::with_faces(h.boxlo.into(), h.boxhi.into(), boundary)?;
     let mut w = World::new(domain);
     decompose(sim, &mut w)?;
-    w.set_world_values(&h.world).map_err(|e| e.to_string())?;
+    w.set_world_values(&h.world)?;
     w.materials.ntypes = h.ntypes as usize;
     let mut history = HistoryState::default();
     let mut props = BTreeSet::new();
     for r in &c.ranks {
-        w.restore_particles(&r.particles)
-            .map_err(|e| e.to_string())?;
+        w.restore_particles(&r.particles)?;
         if let Some(b) = &r.bodies {
             w.restore_bodies(b);
         }
@@ -312,7 +310,8 @@ pub(crate) fn restore(
             "{} of its {} particles lie outside the box",
             h.natoms - placed,
             h.natoms
-        ));
+        )
+        .into());
     }
     w.restore_history(history);
     sim.setup.dt = h.world.dt;

@@ -347,9 +347,9 @@ fn step_loop(
             let asked = hook(sim, step);
             sim.outputs.step_hook = Some(hook);
             if let Err(m) = &asked {
-                stopped = Some(m.clone());
+                stopped = Some(m.to_string());
             }
-            if asked != Ok(true) {
+            if !matches!(asked, Ok(true)) {
                 // The run ends here, as if it had been asked for this many steps.
                 done = k + 1;
                 sim.script.run_last = step;
@@ -504,7 +504,7 @@ impl RunStages {
             fixes::with_fix(sim, k, |f, sim, head| {
                 f.pre_step(&mut StageCtx::new(sim, step, setup).expect(WORLD), head)
             })
-            .map_err(|m| fix_error(sim, k, m))?;
+            .map_err(|m| fix_error(sim, k, m.to_string()))?;
         }
         Ok(())
     }
@@ -514,7 +514,7 @@ impl RunStages {
             fixes::with_fix(sim, k, |f, sim, head| {
                 f.end_of_step(&mut StageCtx::new(sim, step, setup).expect(WORLD), head)
             })
-            .map_err(|m| fix_error(sim, k, m))?;
+            .map_err(|m| fix_error(sim, k, m.to_string()))?;
         }
         Ok(())
     }
@@ -525,7 +525,7 @@ impl RunStages {
             fixes::with_fix(sim, k, |f, sim, head| {
                 f.end_of_run(&mut StageCtx::new(sim, step, false).expect(WORLD), head)
             })
-            .map_err(|m| fix_error(sim, k, m))?;
+            .map_err(|m| fix_error(sim, k, m.to_string()))?;
         }
         Ok(())
     }

@@ -3,6 +3,7 @@
 //! insertion templates, computes, variables, thermo and dump settings, and every fix in
 //! definition order (engine fixes live in `World::fixes` under the same ID).
 
+use crate::error::Error;
 use std::collections::BTreeMap;
 use std::time::Instant;
 
@@ -40,7 +41,7 @@ impl Groups {
     }
 
     /// Bit index of `name`, creating the group if needed.
-    pub fn find_or_create(&mut self, name: &str) -> Result<usize, String> {
+    pub fn find_or_create(&mut self, name: &str) -> Result<usize, Error> {
         if let Some(k) = self.find(name) {
             return Ok(k);
         }
@@ -66,7 +67,7 @@ impl Groups {
     }
 
     /// Sets the names by bit (from a restart file): 32 bits, bit 0 `all`.
-    pub fn set_table(&mut self, names: Vec<Option<String>>) -> Result<(), String> {
+    pub fn set_table(&mut self, names: Vec<Option<String>>) -> Result<(), Error> {
         if names.len() != 32 || names[0].as_deref() != Some("all") {
             return Err("its group table is damaged".into());
         }
@@ -169,7 +170,7 @@ pub struct Definitions {
 }
 
 /// See [`Outputs::step_hook`].
-pub type StepHook = Box<dyn FnMut(&Sim, u64) -> Result<bool, String>>;
+pub type StepHook = Box<dyn FnMut(&Sim, u64) -> Result<bool, Error>>;
 
 /// Where results go: thermo, dumps, the screen and log, the progress display.
 pub struct Outputs {
@@ -449,15 +450,15 @@ impl Sim {
     /// step again changes nothing: a script continued from a restart file, which gives
     /// its `timestep` again, counts time with the same formula (and so the same
     /// roundings) as the unbroken run.
-    pub fn set_timestep(&mut self, dt: f64) -> Result<(), String> {
+    pub fn set_timestep(&mut self, dt: f64) -> Result<(), Error> {
         if self.world.is_some() && dt == self.dt() {
             return Ok(());
         }
         let now = (self.world.as_ref().map_or(0, |w| w.step), self.time());
         match &mut self.world {
-            Some(w) => w.set_timestep(dt).map_err(|e| e.to_string())?,
+            Some(w) => w.set_timestep(dt)?,
             None if dt.is_finite() && dt > 0.0 => self.setup.dt = dt,
-            None => return Err(format!("timestep must be finite and > 0, not {dt}")),
+            None => return Err(format!("timestep must be finite and > 0, not {dt}").into()),
         }
         self.script.time_origin = now;
         Ok(())

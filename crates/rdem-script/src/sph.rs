@@ -3,6 +3,7 @@
 //! from `fix property/global` at each run, and the `set` keywords `meso_rho` and
 //! `sphkernel`. The SPH fix styles are in `fixes/sph.rs`.
 
+use crate::error::Error;
 use rdem::sph::{KernelKind, SphPair};
 
 use crate::args::{suggest, Args, CmdResult};
@@ -121,7 +122,7 @@ pub fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
 }
 
 /// Fills the SPH pair style's per-type tables from `fix property/global` (at each run).
-pub fn tables(sim: &mut Sim) -> Result<(), String> {
+pub fn tables(sim: &mut Sim) -> Result<(), Error> {
     let n = sim.ntypes();
     let props = &sim.defs.properties;
     let Some(w) = &mut sim.world else {
@@ -130,7 +131,7 @@ pub fn tables(sim: &mut Sim) -> Result<(), String> {
     let Some(pair) = &mut w.sph else {
         return Ok(());
     };
-    let pertype = |name: &str| -> Result<Vec<f64>, String> {
+    let pertype = |name: &str| -> Result<Vec<f64>, Error> {
         let p = props.get(name).ok_or_else(|| {
             format!("pair_style sph/artVisc/tensCorr needs fix property/global {name} peratomtype ({n} value(s))")
         })?;
@@ -138,19 +139,20 @@ pub fn tables(sim: &mut Sim) -> Result<(), String> {
             return Err(format!(
                 "property {name} (fix {}) must be peratomtype with {n} value(s)",
                 p.fix_id
-            ));
+            )
+            .into());
         }
         let mut v = vec![0.0];
         v.extend_from_slice(&p.values);
         Ok(v)
     };
-    let scalar = |name: &str| -> Result<f64, String> {
+    let scalar = |name: &str| -> Result<f64, Error> {
         let p = props.get(name).ok_or_else(|| {
             format!("pair_style sph/artVisc/tensCorr needs fix property/global {name} scalar")
         })?;
         match (p.style.as_str(), p.values.as_slice()) {
             ("scalar", [v]) => Ok(*v),
-            _ => Err(format!("property {name} (fix {}) must be scalar", p.fix_id)),
+            _ => Err(format!("property {name} (fix {}) must be scalar", p.fix_id).into()),
         }
     };
     pair.sl = pertype("sl")?;
@@ -164,13 +166,14 @@ pub fn tables(sim: &mut Sim) -> Result<(), String> {
         pair.eps = scalar("tensCorrEpsilon")?;
         pair.deltap = pertype("tensCorrDeltaP")?;
     }
-    pair.check(n).map_err(|e| e.to_string())?;
+    pair.check(n)?;
     if sim.setup.sph {
         let tm = &sim.defs.type_mass;
         if let Some(t) = (1..=n).find(|&t| tm.get(t).copied().flatten().is_none()) {
             return Err(format!(
                 "not all per-type masses are set: type {t} has none (use the mass command)"
-            ));
+            )
+            .into());
         }
     }
     Ok(())

@@ -10,6 +10,7 @@
 use crate::computes;
 use crate::context;
 use crate::diagnostic::RunError;
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::variables::format_g;
 
@@ -108,7 +109,7 @@ pub fn valid_column(kw: &str) -> bool {
 /// The value of thermo keyword `kw` (also used by formulas), divided by the atom count
 /// for extensive keywords under `thermo_modify norm yes` (formulas see the normalised
 /// value too, as in LIGGGHTS).
-pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
+pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, Error> {
     let v = raw_keyword(sim, kw)?;
     let n = sim.natoms();
     Ok(
@@ -120,7 +121,7 @@ pub fn keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
     )
 }
 
-fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
+fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, Error> {
     let w = sim.world.as_ref();
     let natoms = sim.natoms();
     let size = w.map(|w| w.domain.boxhi - w.domain.boxlo);
@@ -182,7 +183,8 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, String> {
             return Err(format!(
                 "unknown thermo keyword '{kw}' (valid: {} or c_ID, f_ID, v_name)",
                 KEYWORDS.join(" ")
-            ))
+            )
+            .into())
         }
     })
 }
@@ -205,14 +207,14 @@ pub fn split_reference(col: &str) -> Option<(char, &str, Option<usize>)> {
 }
 
 /// Value of one column and whether it prints as an integer.
-pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
+pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), Error> {
     if let Some((kind, id, idx)) = split_reference(col) {
         let v = match kind {
             'c' => context::compute_global(sim, id, idx)?,
             'f' => crate::fixes::fix_value(sim, id, idx)?,
             _ => {
                 if idx.is_some() {
-                    return Err(format!("{col}: variables have no index here"));
+                    return Err(format!("{col}: variables have no index here").into());
                 }
                 match sim.script.vars.get(id) {
                     Some(crate::variables::Variable::Equal(f)) => {
@@ -223,7 +225,7 @@ pub fn column_value(sim: &Sim, col: &str) -> Result<(f64, bool), String> {
                         crate::args::parse_f64(t.trim())
                             .ok_or_else(|| format!("variable {id} = '{t}' is not a number"))?
                     }
-                    None => return Err(format!("no variable '{id}'")),
+                    None => return Err(Error::undefined("variable", id)),
                 }
             }
         };

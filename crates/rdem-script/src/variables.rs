@@ -11,6 +11,7 @@
 //! (LIGGGHTS also keeps the shared count in a file `tmp.lammps.variable`, which rdem does
 //! not write).
 
+use crate::error::Error;
 use crate::expr::{self, Context};
 use crate::registry::{Registry, Row};
 
@@ -372,7 +373,7 @@ impl Variables {
     /// which must all be of one style (`universe` and `uloop` count as one). Returns
     /// whether one of them was exhausted (they are then deleted, and the `jump` that
     /// follows is skipped) and, for `universe`/`uloop`, the line LIGGGHTS prints.
-    pub fn next(&mut self, names: &[String]) -> Result<Next, String> {
+    pub fn next(&mut self, names: &[String]) -> Result<Next, Error> {
         let mut kind = None;
         for name in names {
             let k = match self.get(name) {
@@ -383,16 +384,17 @@ impl Variables {
                 Some(_) => {
                     return Err(format!(
                         "variable '{name}' is not an index, loop, file, universe or uloop variable"
-                    ))
+                    )
+                    .into())
                 }
-                None => return Err(format!("no variable '{name}'")),
+                None => return Err(Error::undefined("variable", name)),
             };
             match kind {
                 Some(first) if first != k => {
                     return Err(format!(
                         "all variables of one next command must be of the same style ('{name}' is {k}, '{}' is {first})",
                         names[0]
-                    ))
+                    ).into())
                 }
                 _ => kind = Some(k),
             }
@@ -427,9 +429,9 @@ impl Variables {
 
     /// The text `${name}` is replaced by. `equal` variables are evaluated with `ctx`
     /// (which resolves `v_` references, usually through this table again).
-    pub fn text(&self, name: &str, ctx: &mut dyn Context) -> Result<String, String> {
+    pub fn text(&self, name: &str, ctx: &mut dyn Context) -> Result<String, Error> {
         match self.get(name) {
-            None => Err(format!("no variable '{name}'")),
+            None => Err(Error::undefined("variable", name)),
             Some(
                 Variable::Index { values, pos }
                 | Variable::Loop { values, pos }
@@ -440,12 +442,14 @@ impl Variables {
             Some(Variable::Getenv(v)) => Ok(std::env::var(v).unwrap_or_default()),
             Some(Variable::Equal(f)) => {
                 let e = expr::parse(f).map_err(|e| e.message)?;
-                let v = expr::eval(&e, ctx)
-                    .map_err(|e| format!("in variable '{name}': {}", e.message))?;
+                let v = expr::eval(&e, ctx).map_err(|e| Error::InVariable {
+                    name: name.to_string(),
+                    source: e,
+                })?;
                 Ok(format_g(v, 15))
             }
             Some(Variable::Atom(_)) => {
-                Err(format!("atom-style variable '{name}' has no single value"))
+                Err(format!("atom-style variable '{name}' has no single value").into())
             }
         }
     }
@@ -518,18 +522,18 @@ mod tests {
     /// Resolves `v_` references through a variable table, like the real front end.
     struct Ctx<'a>(&'a Variables);
     impl Context for Ctx<'_> {
-        fn name(&mut self, n: &Name) -> Result<f64, String> {
+        fn name(&mut self, n: &Name) -> Result<f64, Error> {
             match n {
                 Name::Variable(v) => {
                     let t = self.0.text(v, &mut Ctx(self.0))?;
                     t.parse()
-                        .map_err(|_| format!("variable '{v}' is not a number: '{t}'"))
+                        .map_err(|_| format!("variable '{v}' is not a number: '{t}'").into())
                 }
                 Name::Keyword(k) if k == "PI" => Ok(std::f64::consts::PI),
-                other => Err(format!("unknown {other:?}")),
+                other => Err(format!("unknown {other:?}").into()),
             }
         }
-        fn function(&mut self, _: &str, _: &[String]) -> Result<Option<f64>, String> {
+        fn function(&mut self, _: &str, _: &[String]) -> Result<Option<f64>, Error> {
             Ok(None)
         }
     }

@@ -2,6 +2,7 @@
 //! `read_restart`, `write_restart`: the whole state from and to rdem's restart files
 //! ([`crate::restart_state`]).
 
+use crate::error::Error;
 use rdem::{Domain, World};
 
 use crate::args::{Args, CmdResult};
@@ -124,7 +125,7 @@ pub(super) fn read_restart(sim: &mut Sim, a: &mut Args) -> CmdResult {
     ));
     let natoms = h.natoms;
     crate::restart_state::restore(sim, c, |sim, w| {
-        decompose(sim, w, a, 1).map_err(|e| e.message)
+        decompose(sim, w, a, 1).map_err(|e| Error::Invalid(e.message))
     })
     .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
     sim.outputs.out.line(&format!("  {natoms} atoms"));
@@ -160,7 +161,7 @@ fn read_liggghts_restart(sim: &mut Sim, a: &mut Args, file: &str) -> CmdResult {
         g(f.boxhi[2])
     ));
     let taken = crate::liggghts_restart::restore(sim, &f, |sim, w| {
-        decompose(sim, w, a, 1).map_err(|e| e.message)
+        decompose(sim, w, a, 1).map_err(|e| Error::Invalid(e.message))
     })
     .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
     let out = &mut sim.outputs.out;
@@ -200,7 +201,7 @@ fn read_liggghts_restart(sim: &mut Sim, a: &mut Args, file: &str) -> CmdResult {
 /// data file, which `read_data` reads. Every rank sends its owned particles; rank 0
 /// writes them all, sorted by tag, under a temporary name renamed to `path` when
 /// complete (`rdem_io`'s atomic writes). Under `rdem -check` nothing is written.
-pub(crate) fn write_data_file(sim: &Sim, path: &str) -> Result<(), String> {
+pub(crate) fn write_data_file(sim: &Sim, path: &str) -> Result<(), Error> {
     if sim.script.check {
         return Ok(());
     }
@@ -214,8 +215,7 @@ pub(crate) fn write_data_file(sim: &Sim, path: &str) -> Result<(), String> {
             &w.domain,
             ntypes,
             w.step,
-        )
-        .map_err(|e| e.to_string())?;
+        )?;
     }
     Ok(())
 }

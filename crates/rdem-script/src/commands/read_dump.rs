@@ -18,6 +18,7 @@
 
 mod snapshot;
 
+use crate::error::Error;
 use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
@@ -160,14 +161,14 @@ struct Columns {
     wrapped: bool,
 }
 
-fn columns(r: &Request, s: &snapshot::Snapshot) -> Result<Columns, String> {
-    let find = |f: &str, default: &str| -> Result<usize, String> {
+fn columns(r: &Request, s: &snapshot::Snapshot) -> Result<Columns, Error> {
+    let find = |f: &str, default: &str| -> Result<usize, Error> {
         let label = r.labels.get(f).map_or(default, |s| s.as_str());
         s.column(label).ok_or_else(|| {
-            format!(
+            Error::invalid(format!(
                 "the snapshot has no column '{label}' (its columns: {})",
                 s.labels.join(" ")
-            )
+            ))
         })
     };
     let id = find("id", "id")?;

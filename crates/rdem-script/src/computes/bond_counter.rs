@@ -1,6 +1,7 @@
 //! `compute ID all bond/counter` (LIGGGHTS-INL; seed 003): bonds created and broken since
 //! the previous evaluation and intact now, for pairs and for walls: a global vector of 6.
 
+use crate::error::Error;
 use std::cell::RefCell;
 
 use super::kernels::{bond_counter, BondCounterState};
@@ -25,12 +26,13 @@ impl ScriptCompute for BondCounter {
         Shape::vector(6)
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         let id = &c.id;
         let Some(_) = idx else {
             return Err(format!(
                 "compute {id} is a global vector of 6: use c_{id}[1] .. c_{id}[6]"
-            ));
+            )
+            .into());
         };
         let k = super::pick_index(id, idx, 6)?;
         Ok(bond_counter(super::world(sim)?, &self.0)[k])

@@ -3,6 +3,7 @@
 use super::kernels::contact_counts;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -25,10 +26,10 @@ impl ScriptCompute for ContactAtom {
         Shape::peratom(0)
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         if col.is_some() {
             let id = &c.id;
-            return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
+            return Err(format!("compute {id} is a per-atom vector: use c_{id}").into());
         }
         Ok(contact_counts(super::world(sim)?))
     }

@@ -17,6 +17,7 @@
 //!   longer than neigh cutoff");
 //! - ghost particles count: periodic images and particles of other ranks, one per image.
 
+use crate::error::Error;
 use rdem::World;
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -106,15 +107,17 @@ impl ScriptCompute for CoordAtom {
         })
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let id = &c.id;
         let ncols = self.ranges.len();
         let k = match (col, ncols) {
             (None, 1) => 0,
-            (Some(_), 1) => return Err(format!("compute {id} is a per-atom vector: use c_{id}")),
+            (Some(_), 1) => {
+                return Err(format!("compute {id} is a per-atom vector: use c_{id}").into())
+            }
             (Some(k), n) if (1..=n).contains(&k) => k - 1,
-            (Some(k), n) => return Err(format!("c_{id}[{k}]: compute {id} has {n} columns")),
-            (None, n) => return Err(format!("compute {id} has {n} columns: use c_{id}[i]")),
+            (Some(k), n) => return Err(format!("c_{id}[{k}]: compute {id} has {n} columns").into()),
+            (None, n) => return Err(format!("compute {id} has {n} columns: use c_{id}[i]").into()),
         };
         let w = super::world(sim)?;
         let reach = type_reach(w);
@@ -125,7 +128,7 @@ impl ScriptCompute for CoordAtom {
             return Err(format!(
                 "compute {id}: coord/atom cutoff {} is longer than the neighbor cutoff {cutmax} (2 × largest radius + skin), as LIGGGHTS 3.8 refuses",
                 self.cutoff
-            ));
+            ).into());
         }
         Ok(coord_counts(
             w,

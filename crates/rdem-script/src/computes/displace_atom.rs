@@ -2,6 +2,7 @@
 //! defined, 4 columns dx dy dz |d|, unwrapped through periodic boundaries with the image
 //! flags (positions are compared as x + image · box length).
 
+use crate::error::Error;
 use std::collections::HashMap;
 
 use glam::DVec3;
@@ -38,7 +39,7 @@ impl ScriptCompute for DisplaceAtom {
         Shape::peratom(4)
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let k = super::pick_index(&c.id, col, 4)?;
         let w = super::world(sim)?;
         let p = &w.particles;

@@ -4,6 +4,7 @@
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row of `ke/atom`.
@@ -40,7 +41,7 @@ impl ScriptCompute for EnergyAtom {
         Shape::peratom(0)
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         super::pick_index(&c.id, col, 1)?;
         let w = super::world(sim)?;
         let p = &w.particles;

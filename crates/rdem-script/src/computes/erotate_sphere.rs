@@ -7,6 +7,7 @@
 use super::kernels::{erotate, erotate_clumps};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -48,10 +49,10 @@ impl ScriptCompute for ERotateSphere {
         true
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         if let Some(k) = idx {
             let id = &c.id;
-            return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
+            return Err(format!("c_{id}[{k}]: compute {id} has no global vector").into());
         }
         let w = super::world(sim)?;
         let clumps = if self.clumps { erotate_clumps(w) } else { 0.0 };

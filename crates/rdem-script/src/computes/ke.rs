@@ -3,6 +3,7 @@
 use super::kernels::kinetic;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -26,10 +27,10 @@ impl ScriptCompute for Ke {
         true
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         if let Some(k) = idx {
             let id = &c.id;
-            return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
+            return Err(format!("c_{id}[{k}]: compute {id} has no global vector").into());
         }
         Ok(kinetic(super::world(sim)?, c.groupbit))
     }

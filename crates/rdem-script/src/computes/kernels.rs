@@ -1,6 +1,7 @@
 //! The calculations behind the compute styles (and thermo's `ke`), on the world's
 //! owned particles, summed over ranks.
 
+use crate::error::Error;
 use std::cell::RefCell;
 
 use rdem::World;
@@ -122,7 +123,7 @@ pub fn stress_atom(
     ke: bool,
     pair: bool,
     col: usize,
-) -> Result<Vec<f64>, String> {
+) -> Result<Vec<f64>, Error> {
     const AB: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
     let p = &w.particles;
     let n = p.nlocal();

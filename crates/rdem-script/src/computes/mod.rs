@@ -25,6 +25,7 @@ mod stress_atom;
 pub mod temp;
 mod wall_gran_local;
 
+use crate::error::Error;
 use rdem::World;
 
 use crate::args::{Args, CmdResult};
@@ -88,22 +89,17 @@ pub trait ScriptCompute: std::fmt::Debug {
     fn shape(&self) -> Shape;
 
     /// Its global scalar (`idx` None) or element `idx` (1-based) of its global vector.
-    fn global(&self, _sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, _sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         let id = &c.id;
         Err(match idx {
-            Some(k) => format!("c_{id}[{k}]: compute {id} has no global vector"),
-            None => format!("compute {id} has no global scalar (it is per-atom)"),
+            Some(k) => format!("c_{id}[{k}]: compute {id} has no global vector").into(),
+            None => format!("compute {id} has no global scalar (it is per-atom)").into(),
         })
     }
 
     /// Its per-atom values (column `col`, 1-based, of an array) for the owned particles.
-    fn peratom(
-        &self,
-        _sim: &Sim,
-        c: &ComputeHead,
-        _col: Option<usize>,
-    ) -> Result<Vec<f64>, String> {
-        Err(format!("compute {} does not compute per-atom values", c.id))
+    fn peratom(&self, _sim: &Sim, c: &ComputeHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
+        Err(format!("compute {} does not compute per-atom values", c.id).into())
     }
 
     /// True if thermo divides its global value by the atom count under
@@ -124,8 +120,8 @@ pub trait ScriptCompute: std::fmt::Debug {
     }
 
     /// Its local (per-contact) rows on this rank: `local_cols` values per row.
-    fn local(&self, _sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
-        Err(format!("compute {} does not compute local values", c.id))
+    fn local(&self, _sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, Error> {
+        Err(format!("compute {} does not compute local values", c.id).into())
     }
 
     /// True if it needs the engine's per-particle contact virial at every step.
@@ -219,19 +215,17 @@ impl Compute {
 }
 
 /// The world, or the error of a compute evaluated before the box exists.
-pub(crate) fn world(sim: &Sim) -> Result<&World, String> {
-    sim.world
-        .as_ref()
-        .ok_or_else(|| "the simulation box is not defined yet".to_string())
+pub(crate) fn world(sim: &Sim) -> Result<&World, Error> {
+    sim.world.as_ref().ok_or(Error::NoBox)
 }
 
 /// The 0-based position of `c_ID` / `c_ID[k]` among `n` values (columns or vector
 /// elements): no index is only valid for a single value.
-pub(crate) fn pick_index(id: &str, idx: Option<usize>, n: usize) -> Result<usize, String> {
+pub(crate) fn pick_index(id: &str, idx: Option<usize>, n: usize) -> Result<usize, Error> {
     match (idx, n) {
         (None, 1) => Ok(0),
         (Some(k), n) if k >= 1 && k <= n => Ok(k - 1),
-        (None, n) => Err(format!("compute {id} gives {n} values: use c_{id}[i]")),
-        (Some(k), n) => Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)")),
+        (None, n) => Err(format!("compute {id} gives {n} values: use c_{id}[i]").into()),
+        (Some(k), n) => Err(format!("c_{id}[{k}]: compute {id} gives {n} value(s)").into()),
     }
 }

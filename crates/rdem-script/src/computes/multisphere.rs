@@ -5,6 +5,7 @@
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row of `erotate/multisphere`.
@@ -46,10 +47,10 @@ impl ScriptCompute for ClumpEnergy {
         true
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         if let Some(k) = idx {
             let id = &c.id;
-            return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
+            return Err(format!("c_{id}[{k}]: compute {id} has no global vector").into());
         }
         let w = super::world(sim)?;
         // Every rank holds every clump: the sum is the same on every rank.

@@ -2,6 +2,7 @@
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -21,10 +22,10 @@ impl ScriptCompute for NBondAtom {
         Shape::peratom(0)
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         if col.is_some() {
             let id = &c.id;
-            return Err(format!("compute {id} is a per-atom vector: use c_{id}"));
+            return Err(format!("compute {id} is a per-atom vector: use c_{id}").into());
         }
         Ok(super::world(sim)?.bonds_per_particle())
     }

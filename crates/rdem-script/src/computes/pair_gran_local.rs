@@ -21,6 +21,7 @@
 //! The contact law is evaluated from the state when the compute is invoked, as
 //! LIGGGHTS does ([`rdem::pair::PairContacts`]).
 
+use crate::error::Error;
 use std::f64::consts::PI;
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -138,13 +139,14 @@ impl ScriptCompute for PairGranLocal {
         self.cols.groups(self.hist_width)
     }
 
-    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, Error> {
         let w = super::world(sim)?;
         let Some(pair) = &w.pair else {
             return Err(format!(
                 "compute {} (pair/gran/local) needs a granular pair style",
                 c.id
-            ));
+            )
+            .into());
         };
         let heat = heat_for(w, &self.cols, c)?;
         let p = &w.particles;
@@ -226,15 +228,15 @@ pub(super) fn heat_for<'w>(
     w: &'w rdem::World,
     cols: &Columns,
     c: &ComputeHead,
-) -> Result<Option<&'w rdem::heat::HeatConduction>, String> {
+) -> Result<Option<&'w rdem::heat::HeatConduction>, Error> {
     if !cols.heat_flux {
         return Ok(None);
     }
     w.heat.as_ref().map(Some).ok_or_else(|| {
-        format!(
+        Error::invalid(format!(
             "compute {}: heatFlux needs the heat flows of a fix heat/gran, and there is none",
             c.id
-        )
+        ))
     })
 }
 

@@ -15,6 +15,7 @@
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -75,13 +76,14 @@ impl ScriptCompute for PairGranLocalBond {
         out
     }
 
-    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, Error> {
         let w = super::world(sim)?;
         let Some(pair) = w.pair.as_ref().filter(|p| p.model.has_bonds()) else {
             return Err(format!(
                 "compute {} (pair/gran/local/bond) needs a pair style with cohesion bond",
                 c.id
-            ));
+            )
+            .into());
         };
         let p = &w.particles;
         let rec = pair.bonds(p, &w.neighbor.list, w.dt);

@@ -4,6 +4,7 @@
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -33,10 +34,10 @@ impl ScriptCompute for Pe {
         true
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         if let Some(k) = idx {
             let id = &c.id;
-            return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
+            return Err(format!("c_{id}[{k}]: compute {id} has no global vector").into());
         }
         super::world(sim)?;
         Ok(0.0)

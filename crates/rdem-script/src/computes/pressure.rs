@@ -11,6 +11,7 @@
 use super::kernels::STRESS_KEYWORDS;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -43,12 +44,14 @@ impl ScriptCompute for Pressure {
         self.pair
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         let w = super::world(sim)?;
         let k = match idx {
             None => None,
             Some(k) if (1..=6).contains(&k) => Some(k - 1),
-            Some(k) => return Err(format!("c_{}[{k}]: compute {} gives 6 values", c.id, c.id)),
+            Some(k) => {
+                return Err(format!("c_{}[{k}]: compute {} gives 6 values", c.id, c.id).into())
+            }
         };
         const AB: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
         let p = &w.particles;

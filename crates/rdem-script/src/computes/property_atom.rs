@@ -4,6 +4,7 @@
 use super::kernels::field_values;
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{suggest, Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -18,10 +19,10 @@ impl ScriptCompute for PropertyAtom {
         Shape::peratom(if self.0.len() > 1 { self.0.len() } else { 0 })
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let k = super::pick_index(&c.id, col, self.0.len())?;
         field_values(super::world(sim)?, &self.0[k])
-            .ok_or_else(|| format!("bad field {}", self.0[k]))
+            .ok_or_else(|| Error::invalid(format!("bad field {}", self.0[k])))
     }
 }
 

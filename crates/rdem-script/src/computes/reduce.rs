@@ -6,6 +6,7 @@ use super::kernels::{field_values, reduce, REDUCE_MODES};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::id_help;
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::thermo;
 use crate::variables::Variable;
@@ -54,7 +55,7 @@ impl ScriptCompute for Reduce {
         matches!(self.mode.as_str(), "sum" | "sumsq")
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         let w = super::world(sim)?;
         let k = super::pick_index(&c.id, idx, self.inputs.len())?;
         let values = match &self.inputs[k] {
@@ -63,7 +64,7 @@ impl ScriptCompute for Reduce {
             Input::Fix(fid, col) => crate::fixes::fix_peratom(sim, fid, *col)?,
             Input::Variable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
-                _ => return Err(format!("variable '{v}' is not atom-style")),
+                _ => return Err(format!("variable '{v}' is not atom-style").into()),
             },
         };
         Ok(reduce(w, &self.mode, c.groupbit, &values))

@@ -15,6 +15,7 @@
 //! frame). Names and values as LIGGGHTS 3.8 writes them, checked against its `dump local`
 //! of three dumbbells in `crates/rdem-script/tests/multisphere.rs`.
 
+use crate::error::Error;
 use glam::DVec3;
 
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -151,21 +152,26 @@ impl ScriptCompute for BodyProperty {
         }
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         let id = &c.id;
         let Some(tag) = self.single else {
             return Err(format!(
                 "compute {id} gives local values (one row per clump): use it in dump local, \
                  or compute multisphere/single for one clump"
-            ));
+            )
+            .into());
         };
         let n = self.width();
         let j = match (idx, n) {
             (None, 1) => 0,
             (Some(k), n) if k >= 1 && k <= n && n > 1 => k - 1,
-            (None, n) => return Err(format!("compute {id} gives a vector of {n}: use c_{id}[i]")),
-            (Some(k), 1) => return Err(format!("c_{id}[{k}]: compute {id} gives a scalar")),
-            (Some(k), n) => return Err(format!("c_{id}[{k}]: compute {id} gives {n} values")),
+            (None, n) => {
+                return Err(format!("compute {id} gives a vector of {n}: use c_{id}[i]").into())
+            }
+            (Some(k), 1) => return Err(format!("c_{id}[{k}]: compute {id} gives a scalar").into()),
+            (Some(k), n) => {
+                return Err(format!("c_{id}[{k}]: compute {id} gives {n} values").into())
+            }
         };
         let w = super::world(sim)?;
         let Some(ms) = &w.multisphere else {
@@ -180,9 +186,9 @@ impl ScriptCompute for BodyProperty {
         self.single.is_none().then(|| self.width())
     }
 
-    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, Error> {
         if self.single.is_some() {
-            return Err(format!("compute {} does not compute local values", c.id));
+            return Err(format!("compute {} does not compute local values", c.id).into());
         }
         let w = super::world(sim)?;
         // Every rank holds every clump: the first rank gives the rows.

@@ -4,6 +4,7 @@
 use super::kernels::{stress_atom, STRESS_KEYWORDS};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -32,7 +33,7 @@ impl ScriptCompute for StressAtom {
         self.pair
     }
 
-    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, c: &ComputeHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let k = super::pick_index(&c.id, col, 6)?;
         stress_atom(super::world(sim)?, c.groupbit, self.ke, self.pair, k)
     }

@@ -13,6 +13,7 @@
 //! 8.73251530866047e+17 in a later run that inserts 10 more (N counted at its set-up is
 //! 20), and 5.72130313326031e+17 for 30 with `dynamic yes`.
 
+use crate::error::Error;
 use rdem::World;
 
 use super::kernels::kinetic;
@@ -79,10 +80,10 @@ impl ScriptCompute for Temp {
         Shape::scalar()
     }
 
-    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, String> {
+    fn global(&self, sim: &Sim, c: &ComputeHead, idx: Option<usize>) -> Result<f64, Error> {
         if let Some(k) = idx {
             let id = &c.id;
-            return Err(format!("c_{id}[{k}]: compute {id} has no global vector"));
+            return Err(format!("c_{id}[{k}]: compute {id} has no global vector").into());
         }
         let w = super::world(sim)?;
         let n = match self.counted {

@@ -22,6 +22,7 @@
 //! contact law is evaluated from the state when the compute is invoked, as LIGGGHTS
 //! does ([`rdem::wall::MeshWall::contacts`]); a wall bond's force is not included.
 
+use crate::error::Error;
 use std::f64::consts::PI;
 
 use rdem::fix::FixKind;
@@ -67,7 +68,7 @@ impl ScriptCompute for WallGranLocal {
         self.cols.groups(self.hist_width)
     }
 
-    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, String> {
+    fn local(&self, sim: &Sim, c: &ComputeHead) -> Result<Vec<f64>, Error> {
         let w = super::world(sim)?;
         let wall = w.fixes.iter().find_map(|f| match &f.kind {
             FixKind::MeshWall(m) if f.id == self.wall => Some(m),
@@ -77,7 +78,8 @@ impl ScriptCompute for WallGranLocal {
             return Err(format!(
                 "compute {} (wall/gran/local): its fix wall/gran {} no longer exists",
                 c.id, self.wall
-            ));
+            )
+            .into());
         };
         let heat = heat_for(w, &self.cols, c)?;
         let p = &w.particles;

@@ -2,6 +2,7 @@
 //! mass, velocity_lin, velocity_ang and force, sorted by id, written on a background
 //! thread.
 
+use crate::error::Error;
 use rdem_io::{AtomVtkDump, Compressor, DumpFileName, Sort};
 
 use super::particles::{gather, Done};
@@ -49,7 +50,7 @@ impl DumpStyle for AtomVtk {
         step: u64,
         time: f64,
         background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let Some((g, _)) = gather(sim, head, columns)? else {
             return Ok(Vec::new());
         };
@@ -63,19 +64,14 @@ impl DumpStyle for AtomVtk {
                 .write(step, p, &sel, procs)
                 .map(|path| vec![(time, path)])
         }
-        .map_err(|e| e.to_string())
+        .map_err(Error::from)
     }
 
-    fn finish(&mut self) -> Result<Done, String> {
-        Ok(self
-            .0
-            .finish()
-            .map_err(|e| e.to_string())?
-            .into_iter()
-            .collect())
+    fn finish(&mut self) -> Result<Done, Error> {
+        Ok(self.0.finish()?.into_iter().collect())
     }
 
-    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), Error> {
         super::particles::columns(sim, columns).map(|_| ())
     }
 

@@ -1,6 +1,7 @@
 //! `dump ID group custom N file columns...`: text in LAMMPS' layout (OVITO reads it); a
 //! `*` in the name gives one file per step.
 
+use crate::error::Error;
 use rdem_io::{DumpFileName, Sort, TextDump, TextOptions};
 
 use super::particles::{gather, read_columns, Done};
@@ -33,20 +34,18 @@ impl DumpStyle for Custom {
         step: u64,
         _time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let Some((g, cols)) = gather(sim, head, columns)? else {
             return Ok(Vec::new());
         };
         let w = sim.world.as_ref().expect("gathered from a world");
         let p = &g.particles;
         let sel: Vec<usize> = (0..p.nlocal()).collect();
-        self.0
-            .write(step, p, &w.domain, &sel, &cols)
-            .map_err(|e| e.to_string())?;
+        self.0.write(step, p, &w.domain, &sel, &cols)?;
         Ok(Vec::new())
     }
 
-    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), Error> {
         super::particles::columns(sim, columns).map(|_| ())
     }
 

@@ -2,6 +2,7 @@
 //! it (`.vtk`, plus its `_boundingBox` file), or VTK XML PolyData (`.vtp`) or
 //! UnstructuredGrid (`.vtu`): the suffix picks the format, as in LIGGGHTS.
 
+use crate::error::Error;
 use rdem_io::{Compressor, DumpFileName, Sort, VtkDump};
 
 use super::particles::{gather, read_columns, Done};
@@ -48,21 +49,18 @@ impl DumpStyle for CustomVtk {
         step: u64,
         time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let Some((g, cols)) = gather(sim, head, columns)? else {
             return Ok(Vec::new());
         };
         let w = sim.world.as_ref().expect("gathered from a world");
         let p = &g.particles;
         let sel: Vec<usize> = (0..p.nlocal()).collect();
-        let [main, _] = self
-            .0
-            .write(step, p, &w.domain, &sel, &cols)
-            .map_err(|e| e.to_string())?;
+        let [main, _] = self.0.write(step, p, &w.domain, &sel, &cols)?;
         Ok(vec![(time, main)])
     }
 
-    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), Error> {
         super::particles::columns(sim, columns).map(|_| ())
     }
 

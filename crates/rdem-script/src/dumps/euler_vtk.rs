@@ -1,6 +1,7 @@
 //! `dump ID group euler/vtk N file_*.vtk`: the cells of the `fix ave/euler` as legacy
 //! VTK, exactly as LIGGGHTS writes them (the dump's group and sort do not apply).
 
+use crate::error::Error;
 use rdem_io::{DumpFileName, Sort};
 
 use super::particles::Done;
@@ -51,7 +52,7 @@ impl DumpStyle for EulerVtk {
         step: u64,
         time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         // The cells are global (summed over the ranks); rank 0 writes them.
         let path = self.0.path(step, 0);
         let wrote = crate::euler::write_euler_snapshot(sim, None, &path)?;

@@ -4,6 +4,7 @@
 //! space. The group is the computes' business (as in LIGGGHTS, where the dump's group is
 //! not used for local data).
 
+use crate::error::Error;
 use rdem::Boundary;
 use rdem_io::{write_atomic, AppendFile, DumpFileName, Printf, Sort, Value};
 
@@ -46,21 +47,19 @@ fn split(word: &str) -> Option<Col> {
 }
 
 /// Resolves a column against the computes: the compute's index and the 0-based column.
-fn resolve_col(sim: &Sim, word: &str) -> Result<(usize, usize), String> {
+fn resolve_col(sim: &Sim, word: &str) -> Result<(usize, usize), Error> {
     let Some(c) = split(word) else {
         return Err(format!(
             "dump local column '{word}': expected c_ID or c_ID[k] of a local compute \
              (f_ID columns are not supported yet)"
-        ));
+        )
+        .into());
     };
     let Some(ci) = sim.compute_index(&c.id) else {
-        return Err(format!("dump local: no compute '{}'", c.id));
+        return Err(format!("dump local: no compute '{}'", c.id).into());
     };
     let Some(n) = sim.defs.computes[ci].imp.local_cols() else {
-        return Err(format!(
-            "dump local: compute {} does not compute local values",
-            c.id
-        ));
+        return Err(format!("dump local: compute {} does not compute local values", c.id).into());
     };
     let k = super::super::computes::pick_index(&c.id, c.k, n)?;
     Ok((ci, k))
@@ -112,7 +111,7 @@ fn letter(b: Boundary) -> char {
 
 /// Every rank's rows of compute `ci`, on rank 0 (`None` elsewhere), and its column count.
 /// Collective.
-pub(super) fn gather_local(sim: &Sim, ci: usize) -> Result<(Option<Vec<f64>>, usize), String> {
+pub(super) fn gather_local(sim: &Sim, ci: usize) -> Result<(Option<Vec<f64>>, usize), Error> {
     let c = &sim.defs.computes[ci];
     let n = c.imp.local_cols().unwrap_or(0);
     let mine = c.imp.local(sim, &c.head)?;
@@ -129,7 +128,7 @@ impl DumpStyle for Local {
         step: u64,
         _time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let resolved = columns
             .iter()
             .map(|c| resolve_col(sim, c))
@@ -194,17 +193,16 @@ impl DumpStyle for Local {
         }
         let path = self.name.path(step, 0);
         if self.name.per_step() {
-            write_atomic(&path, out.as_bytes()).map_err(|e| e.to_string())?;
+            write_atomic(&path, out.as_bytes())?;
         } else {
             self.single
                 .get_or_insert_with(|| AppendFile::new(&path))
-                .append(out.as_bytes())
-                .map_err(|e| e.to_string())?;
+                .append(out.as_bytes())?;
         }
         Ok(Vec::new())
     }
 
-    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), Error> {
         columns
             .iter()
             .try_for_each(|c| resolve_col(sim, c).map(|_| ()))

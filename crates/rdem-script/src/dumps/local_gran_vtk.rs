@@ -13,6 +13,7 @@
 //! centre j, contact point) and three lines (i–j, i–point, j–point) carrying the same
 //! values; so does rdem. The compute ID is written without `c_`, as in LIGGGHTS.
 
+use crate::error::Error;
 use std::path::PathBuf;
 
 use rdem_io::{write_atomic, Compressor, DumpFileName, ForceChains, Sort};
@@ -32,9 +33,9 @@ pub(super) const ROW: DumpRow = DumpRow::runs(
 .notes("parallel `.pvtp`/`.pvtu` not supported yet; `binary`/`compressor` for the XML files only; bonds through `compute pair/gran/local/bond`");
 
 /// The compute's index, or why it cannot be dumped.
-fn compute_of(sim: &Sim, id: &str) -> Result<usize, String> {
+fn compute_of(sim: &Sim, id: &str) -> Result<usize, Error> {
     let Some(ci) = sim.compute_index(id) else {
-        return Err(format!("dump local/gran/vtk: no compute '{id}'"));
+        return Err(Error::undefined("compute", id).within("dump local/gran/vtk"));
     };
     let has_pos = sim.defs.computes[ci]
         .imp
@@ -45,7 +46,8 @@ fn compute_of(sim: &Sim, id: &str) -> Result<usize, String> {
         return Err(format!(
             "dump local/gran/vtk: compute {id} must be a pair/gran/local that writes the \
              positions (keyword pos)"
-        ));
+        )
+        .into());
     }
     Ok(ci)
 }
@@ -154,7 +156,7 @@ impl DumpStyle for LocalGranVtk {
         step: u64,
         time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let ci = compute_of(sim, &columns[0])?;
         let groups = sim.defs.computes[ci].imp.local_groups();
         let (data, n) = gather_local(sim, ci)?;
@@ -168,11 +170,11 @@ impl DumpStyle for LocalGranVtk {
             Format::Vtu => c.format_xml(self.compressor.encoding(self.binary), true),
         };
         let path: PathBuf = self.name.path(step, 0);
-        write_atomic(&path, out.as_bytes()).map_err(|e| e.to_string())?;
+        write_atomic(&path, out.as_bytes())?;
         Ok(vec![(time, path)])
     }
 
-    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, sim: &Sim, columns: &[String]) -> Result<(), Error> {
         compute_of(sim, &columns[0]).map(|_| ())
     }
 

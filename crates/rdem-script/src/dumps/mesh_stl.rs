@@ -2,6 +2,7 @@
 //! IDs) at their current positions, one ASCII STL solid per snapshot, as LIGGGHTS writes
 //! it.
 
+use crate::error::Error;
 use rdem_io::{DumpFileName, Sort};
 
 use super::particles::Done;
@@ -51,7 +52,7 @@ impl DumpStyle for MeshStl {
         step: u64,
         _time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let w = sim
             .world
             .as_ref()
@@ -72,7 +73,7 @@ impl DumpStyle for MeshStl {
                 normals.push(m.mesh.normals[t]);
             }
         }
-        rdem_io::stl::write_ascii_stl(&path, &tris, &normals).map_err(|e| e.to_string())?;
+        rdem_io::stl::write_ascii_stl(&path, &tris, &normals)?;
         Ok(Vec::new())
     }
 

@@ -2,6 +2,7 @@
 //! `mesh/gran/VTK`): the meshes as legacy VTK polydata as LIGGGHTS writes them (three
 //! points per triangle) with the per-triangle values asked for, and a `.pvd` series.
 
+use crate::error::Error;
 use rdem::DVec3;
 use rdem_io::{DumpFileName, Sort};
 
@@ -107,7 +108,7 @@ impl DumpStyle for MeshVtk {
         step: u64,
         time: f64,
         _background: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         let w = sim
             .world
             .as_ref()
@@ -117,7 +118,7 @@ impl DumpStyle for MeshVtk {
         }
         let path = self.name.path(step, 0);
         let (tris, arrays) = mesh_arrays(w, &self.meshes, columns);
-        rdem_io::mesh_vtk::write_mesh_vtk(&path, &tris, &arrays).map_err(|e| e.to_string())?;
+        rdem_io::mesh_vtk::write_mesh_vtk(&path, &tris, &arrays)?;
         Ok(vec![(time, path)])
     }
 

@@ -14,6 +14,7 @@ mod mesh_stl;
 mod mesh_vtk;
 pub(crate) mod particles;
 
+use crate::error::Error;
 use rdem::comm::Comm;
 use rdem_io::{Compressor, DumpFileName, PvdSeries, Sort};
 
@@ -54,16 +55,16 @@ pub trait DumpStyle {
         step: u64,
         time: f64,
         background: bool,
-    ) -> Result<Done, String>;
+    ) -> Result<Done, Error>;
 
     /// Evaluates the columns' references (`c_`, `f_`, `v_`) without writing anything
     /// (`rdem -check`).
-    fn resolve(&self, _sim: &Sim, _columns: &[String]) -> Result<(), String> {
+    fn resolve(&self, _sim: &Sim, _columns: &[String]) -> Result<(), Error> {
         Ok(())
     }
 
     /// Waits for the snapshots being written in the background.
-    fn finish(&mut self) -> Result<Done, String> {
+    fn finish(&mut self) -> Result<Done, Error> {
         Ok(Vec::new())
     }
 
@@ -202,7 +203,7 @@ pub fn write_due(sim: &mut Sim, step: u64, setup: bool) -> Result<(), RunError> 
 
 /// Waits for every snapshot being written in the background and lists it in its `.pvd`.
 /// Collective (only rank 0 writes, so a failure there stops every rank).
-pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
+pub fn finish_all(sim: &mut Sim) -> Result<(), Error> {
     let outcome = sim.outputs.dumps.iter_mut().try_for_each(finish);
     match &sim.world {
         Some(w) => agree(&*w.comm, "dump", outcome),
@@ -210,7 +211,7 @@ pub fn finish_all(sim: &mut Sim) -> Result<(), String> {
     }
 }
 
-fn finish(d: &mut Dump) -> Result<(), String> {
+fn finish(d: &mut Dump) -> Result<(), Error> {
     let done = d
         .style
         .finish()
@@ -219,7 +220,7 @@ fn finish(d: &mut Dump) -> Result<(), String> {
 }
 
 /// Lists completed snapshots in the dump's `.pvd`.
-fn record(d: &mut Dump, done: Done) -> Result<(), String> {
+fn record(d: &mut Dump, done: Done) -> Result<(), Error> {
     if let Some(pvd) = &mut d.pvd {
         for (time, path) in done {
             pvd.add(time, &path)
@@ -232,16 +233,16 @@ fn record(d: &mut Dump, done: Done) -> Result<(), String> {
 /// Makes the outcome of writing a file, which only rank 0 does, the same on every rank: a
 /// failure on rank 0 becomes an error everywhere, so that all ranks stop together instead
 /// of the others going on to the next collective call. Collective.
-pub(crate) fn agree<T>(comm: &dyn Comm, what: &str, r: Result<T, String>) -> Result<T, String> {
+pub(crate) fn agree<T>(comm: &dyn Comm, what: &str, r: Result<T, Error>) -> Result<T, Error> {
     let failed = comm.max(if r.is_err() { 1.0 } else { 0.0 }) > 0.0;
     match r {
-        Ok(_) if failed => Err(format!("{what}: writing failed on rank 0")),
+        Ok(_) if failed => Err(Error::FailedOnRankZero(what.to_string())),
         r => r,
     }
 }
 
 /// Writes dump `k`'s snapshot of `step` and lists its files. Collective.
-fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(), String> {
+fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(), Error> {
     let time = sim.time();
     // The dump is out of `sim.outputs.dumps` while it reads the rest of the state.
     let vacant = Dump {
@@ -263,7 +264,7 @@ fn write_one(sim: &mut Sim, k: usize, step: u64, background: bool) -> Result<(),
         .style
         .write(sim, &d.head, &d.columns, step, time, background);
     let outcome = wrote
-        .map_err(|e| format!("dump {}: {e}", d.head.id))
+        .map_err(|e| e.within(format!("dump {}", d.head.id)))
         .and_then(|done| record(&mut d, done));
     d.last = Some(step);
     let what = format!("dump {}", d.head.id);
@@ -286,7 +287,7 @@ impl DumpStyle for Vacant {
         _: u64,
         _: f64,
         _: bool,
-    ) -> Result<Done, String> {
+    ) -> Result<Done, Error> {
         Ok(Vec::new())
     }
 

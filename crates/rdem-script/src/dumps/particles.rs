@@ -2,6 +2,7 @@
 //! (fields, per-atom computes, atom-style variables), the gathering of every rank's
 //! particles on rank 0, and the snapshot written from them.
 
+use crate::error::Error;
 use std::path::PathBuf;
 
 use rdem::comm::Comm;
@@ -129,7 +130,7 @@ pub(super) fn read_columns(sim: &Sim, a: &mut Args) -> CmdResult<Vec<String>> {
     Ok(cols)
 }
 
-pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String> {
+pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, Error> {
     args.iter()
         .map(|arg| {
             if let Some(f) = Field::parse(arg) {
@@ -154,9 +155,9 @@ pub(super) fn columns(sim: &Sim, args: &[String]) -> Result<Vec<Column>, String>
                 Some(('f', id, col)) => crate::fixes::fix_peratom(sim, id, col)?,
                 Some(('v', id, None)) => match sim.script.vars.get(id) {
                     Some(Variable::Atom(f)) => context::eval_atom(sim, f)?,
-                    _ => return Err(format!("variable {id} is not atom-style")),
+                    _ => return Err(Error::invalid(format!("variable {id} is not atom-style"))),
                 },
-                _ => return Err(format!("bad dump column '{arg}'")),
+                _ => return Err(Error::invalid(format!("bad dump column '{arg}'"))),
             };
             Ok(Column::Custom {
                 name: arg.clone(),
@@ -232,7 +233,7 @@ pub(super) fn gather(
     sim: &Sim,
     head: &DumpHead,
     args: &[String],
-) -> Result<Option<(Gathered, Vec<Column>)>, String> {
+) -> Result<Option<(Gathered, Vec<Column>)>, Error> {
     let cols = columns(sim, args)?;
     let w = sim
         .world

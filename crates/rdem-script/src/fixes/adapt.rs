@@ -6,6 +6,7 @@
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::context;
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::variables::Variable;
 
@@ -87,15 +88,15 @@ fn parse(sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFi
 }
 
 impl ScriptFix for Adapt {
-    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         if !ctx.setup && ctx.step % self.every != 0 {
             return Ok(());
         }
         let var = &self.var;
         let formula = match ctx.view().script.vars.get(var) {
             Some(Variable::Atom(f)) => f.clone(),
-            Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style")),
-            None => return Err(format!("fix adapt: no variable '{var}'")),
+            Some(_) => return Err(format!("fix adapt: variable '{var}' is not atom-style").into()),
+            None => return Err(Error::undefined("variable", var).within("fix adapt")),
         };
         let d = context::eval_atom(ctx.view(), &formula)?;
         let w = ctx.world();
@@ -113,10 +114,10 @@ impl ScriptFix for Adapt {
             })
             .collect();
         w.set_radii(&radii)
-            .map_err(|e| format!("fix {}: {e}", head.id))
+            .map_err(|e| Error::invalid(format!("fix {}: {e}", head.id)))
     }
 
-    fn end_of_run(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_run(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         if let Some(saved) = self.saved.take() {
             let w = ctx.world();
             let p = &w.particles;
@@ -127,7 +128,7 @@ impl ScriptFix for Adapt {
                     *ri = r0;
                 }
             }
-            w.set_radii(&r).map_err(|e| e.to_string())?;
+            w.set_radii(&r)?;
         }
         Ok(())
     }

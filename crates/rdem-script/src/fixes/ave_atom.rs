@@ -12,6 +12,7 @@
 use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{id_help, Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::thermo::split_reference;
 use crate::variables::Variable;
@@ -51,16 +52,16 @@ pub struct AveAtom {
 
 impl AveAtom {
     /// The values of input `k` for the owned particles.
-    fn input(&self, sim: &Sim, k: usize) -> Result<Vec<f64>, String> {
+    fn input(&self, sim: &Sim, k: usize) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         match &self.inputs[k] {
             Input::Field(f) => crate::computes::kernels::field_values(w, f)
-                .ok_or_else(|| format!("bad attribute {f}")),
+                .ok_or_else(|| Error::invalid(format!("bad attribute {f}"))),
             Input::Compute(id, col) => crate::context::compute_peratom(sim, id, *col),
             Input::Fix(id, col) => super::fix_peratom(sim, id, *col),
             Input::Variable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f),
-                _ => Err(format!("variable '{v}' is not atom-style")),
+                _ => Err(format!("variable '{v}' is not atom-style").into()),
             },
         }
     }
@@ -192,16 +193,15 @@ impl ScriptFix for AveAtom {
         Some((if n == 1 { 0 } else { n }, self.schedule.nfreq))
     }
 
-    fn peratom(&self, sim: &Sim, head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let n = self.inputs.len();
         let k = match (col, n) {
             (None, 1) => 0,
             (Some(j), n) if j >= 1 && j <= n && n > 1 => j - 1,
             _ => {
-                return Err(format!(
-                    "f_{}: fix {} gives {n} per-atom value(s)",
-                    head.id, head.id
-                ))
+                return Err(
+                    format!("f_{}: fix {} gives {n} per-atom value(s)", head.id, head.id).into(),
+                )
             }
         };
         let p = &sim.world.as_ref().ok_or("no simulation box")?.particles;
@@ -210,7 +210,7 @@ impl ScriptFix for AveAtom {
         Ok((0..p.nlocal()).map(|i| prop.get(i)[k]).collect())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let Some(first) = self.schedule.due(step) else {
             return Ok(());

@@ -3,6 +3,7 @@
 //! and at a run's set-up, for `dump euler/vtk`. The engine computes the per-particle
 //! contact virial on exactly those steps ([`ScriptFix::wants_virial`]).
 
+use crate::error::Error;
 use rdem::euler::{self, EulerGrid};
 
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
@@ -100,7 +101,7 @@ impl ScriptFix for AveEuler {
         due(self.nevery, step, setup)
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let setup = ctx.setup;
         if !due(self.nevery, step, setup) {

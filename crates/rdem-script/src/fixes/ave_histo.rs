@@ -22,6 +22,7 @@
 use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{id_help, Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::thermo::{column_value, split_reference};
 use crate::variables::{format_g, Variable};
@@ -347,11 +348,11 @@ impl ScriptFix for AveHisto {
         Ok(())
     }
 
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(self.stats_total.to_vec())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let Some(first) = self.schedule.due(step) else {
             return Ok(());
@@ -390,14 +391,14 @@ impl ScriptFix for AveHisto {
             }
             wrote = wrote.and_then(|()| f.append(block.as_bytes()));
         }
-        ctx.agree_write("fix ave/histo", wrote.map_err(|e| e.to_string()))
+        ctx.agree_write("fix ave/histo", wrote.map_err(Error::from))
     }
 
     fn unfix(&mut self, _sim: &mut Sim, _head: &FixHead) {}
 }
 
 /// A global value (`c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]`, `v_name`), read as thermo reads it.
-pub(super) fn global_value(sim: &Sim, word: &str) -> Result<f64, String> {
+pub(super) fn global_value(sim: &Sim, word: &str) -> Result<f64, Error> {
     column_value(sim, word).map(|v| v.0)
 }
 

@@ -4,6 +4,7 @@
 
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::thermo;
 
@@ -146,14 +147,14 @@ impl ScriptFix for AveTime {
         _sim: &mut Sim,
         _head: &FixHead,
         state: &[u8],
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let st: AveTimeState = super::decode_state(state)?;
         let n = self.inputs.len();
         if [st.0.len(), st.2.len(), st.3.len()]
             .iter()
             .any(|&l| l != n && l != 0)
         {
-            return Err(format!("it averages another number of values than {n}"));
+            return Err(format!("it averages another number of values than {n}").into());
         }
         (
             self.sum,
@@ -182,11 +183,11 @@ impl ScriptFix for AveTime {
         Ok(())
     }
 
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(self.values.clone())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let setup = ctx.setup;
         if setup {
@@ -226,7 +227,7 @@ impl ScriptFix for AveTime {
                     .collect();
                 wrote = f
                     .append(format!("{step} {}\n", row.join(" ")).as_bytes())
-                    .map_err(|e| e.to_string());
+                    .map_err(Error::from);
             }
             ctx.agree_write("fix ave/time", wrote)?;
         }

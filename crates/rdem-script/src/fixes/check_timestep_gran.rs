@@ -4,6 +4,7 @@
 
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -106,7 +107,7 @@ pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
 }
 
 impl ScriptFix for CheckTimestep {
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(self.values.to_vec())
     }
 
@@ -116,7 +117,7 @@ impl ScriptFix for CheckTimestep {
         true
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let setup = ctx.setup;
         if setup || step % self.every != 0 {
@@ -140,7 +141,7 @@ impl ScriptFix for CheckTimestep {
                     100.0 * f
                 );
                 if self.error {
-                    return Err(msg);
+                    return Err(Error::Invalid(msg));
                 }
                 if self.warn {
                     ctx.warn_once(&msg);

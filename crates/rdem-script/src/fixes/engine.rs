@@ -4,6 +4,7 @@
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
 
+use crate::error::Error;
 use glam::DVec3;
 use rdem::{Fix, FixKind};
 
@@ -88,11 +89,8 @@ impl ScriptFix for InEngine {
 
     /// `fix aveforce`'s vector: the group's total force before the fix acted, at the last
     /// force evaluation (0 before any).
-    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, String> {
-        let w = sim
-            .world
-            .as_ref()
-            .ok_or("the simulation box is not defined yet")?;
+    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, Error> {
+        let w = sim.world.as_ref().ok_or(Error::NoBox)?;
         match w.fixes.iter().find(|f| f.id == head.id).map(|f| &f.kind) {
             Some(FixKind::AveForce { total, .. }) => Ok(total.to_array().to_vec()),
             _ => Err("computes no global values".into()),

@@ -11,6 +11,7 @@
 //! stage. `gradient`, which LIGGGHTS 3.8's manual names without arguments, stops there with
 //! "Illegal fix gravity command" (checked on LIGGGHTS 3.8), and here with an error.
 
+use crate::error::Error;
 use std::f64::consts::PI;
 
 use glam::DVec3;
@@ -143,7 +144,7 @@ impl ScriptFix for Gravity {
 
     /// With variables: the acceleration of the coming step (or of the set-up), from the
     /// variables evaluated at that step.
-    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         if self.values.iter().all(|v| v.var().is_none()) {
             return Ok(());
         }

@@ -19,6 +19,7 @@
 //! every particle whatever the fix's group); `f_ID` per atom (and `f_ID[0]`, LIGGGHTS' old
 //! spelling) is the temperature.
 
+use crate::error::Error;
 use rdem::heat::{self, ContactArea, HeatConduction, HeatProps};
 
 use super::property_atom::{self, PropertyAtom};
@@ -209,7 +210,7 @@ impl ScriptFix for HeatGran {
     }
 
     /// At a run's set-up: the per-type tables from the `fix property/global` values.
-    fn pre_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         if !ctx.setup {
             return Ok(());
         }
@@ -219,7 +220,8 @@ impl ScriptFix for HeatGran {
         if let Some(bad) = k.iter().find(|k| **k < 0.0) {
             return Err(format!(
                 "heat/gran: thermal conductivity must not be < 0 (thermalConductivity has {bad})"
-            ));
+            )
+            .into());
         }
         let c = per_type(sim, "thermalCapacity", n)?;
         let Some(pair) = &ctx.world_ref().pair else {
@@ -246,10 +248,10 @@ impl ScriptFix for HeatGran {
         };
         let heat = ctx.world().heat.as_mut().ok_or("heat conduction is gone")?;
         heat.set_coefficients(k, c, ratio)
-            .map_err(|e| format!("heat/gran: {e}"))
+            .map_err(|e| Error::invalid(format!("heat/gran: {e}")))
     }
 
-    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
         Ok(vec![w.comm.sum(heat.thermal_energy(&w.particles))])
@@ -260,7 +262,7 @@ impl ScriptFix for HeatGran {
         Some((0, 1))
     }
 
-    fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
         let t = &w.particles.props[heat.props.temp.0].data;
@@ -275,7 +277,7 @@ impl ScriptFix for HeatGran {
 }
 
 /// The first `n` values of the `peratomtype` property `name`.
-fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, String> {
+fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, Error> {
     let p = sim.defs.properties.get(name).ok_or_else(|| {
         format!("heat/gran needs 'fix ID all property/global {name} peratomtype' with {n} value(s) (one per atom type)")
     })?;
@@ -285,7 +287,7 @@ fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, String> {
             p.fix_id,
             p.style,
             p.values.len()
-        ));
+        ).into());
     }
     Ok(p.values[..n].to_vec())
 }

@@ -3,6 +3,7 @@
 //! N steps or at a rate. They act in the step's pre-exchange stage, after the initial
 //! integration, as LIGGGHTS' insertion fixes do.
 
+use crate::error::Error;
 use rdem::insert::{InsertPack, Orientation, PackTarget, VelocityLaw};
 use rdem::World;
 
@@ -492,14 +493,14 @@ impl ScriptFix for Inserter {
     }
 
     /// `f_ID[1]`, `f_ID[2]`: particles inserted so far and their mass.
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(vec![self.total as f64, self.total_mass])
     }
 
     /// `insert/stream`: at each run's set-up, the packets follow the run's time step (a
     /// `timestep` after the fix counts, as in LIGGGHTS 3.8). `insert/stream` and
     /// `insert/rate/region` print their rate lines at the first run's set-up.
-    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         if !ctx.setup {
             return Ok(());
         }
@@ -556,7 +557,7 @@ impl ScriptFix for Inserter {
         _sim: &mut Sim,
         _head: &FixHead,
         state: &[u8],
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let st: InserterState = super::decode_state(state)?;
         if !self.pack.set_progress(&st.progress) {
             return Err(

@@ -3,6 +3,7 @@
 //! `rdem::insert::dense` for the algorithm). It acts in the step's pre-exchange stage, as
 //! the other insertion fixes.
 
+use crate::error::Error;
 use glam::DVec3;
 use rdem::insert::dense::MAX_VOLUME_FRACTION;
 use rdem::insert::{DensePack, VelocityLaw};
@@ -208,7 +209,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 
 impl ScriptFix for InsertDense {
     /// `f_ID[1]`, `f_ID[2]`: particles inserted so far and their mass.
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(vec![self.total as f64, self.total_mass])
     }
 
@@ -229,7 +230,7 @@ impl ScriptFix for InsertDense {
         _sim: &mut Sim,
         _head: &FixHead,
         state: &[u8],
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let (progress, done, total, total_mass): (rdem::insert::InsertProgress, bool, u64, f64) =
             super::decode_state(state)?;
         if !self.pack.set_progress(&progress, done) {

@@ -9,6 +9,7 @@
 //! makes the values at a run's set-up ([`rdem::PairGran::setup_liquid`]), so they read as
 //! an error before the first run. IDs a script has already defined are left alone.
 
+use crate::error::Error;
 use rdem::pair::{LIQUID_CONTENT, LIQUID_FLUX, LIQUID_SOURCE};
 
 use super::{FixEntry, FixHead, ScriptFix, Stages};
@@ -26,7 +27,7 @@ impl ScriptFix for LiquidProperty {
         Some((0, 1))
     }
 
-    fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         let p = &w.particles;
         let id = p.property(self.0).ok_or_else(|| {
@@ -46,7 +47,7 @@ impl ScriptFix for LiquidProperty {
 struct LiquidTransfer;
 
 impl ScriptFix for LiquidTransfer {
-    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         let p = &w.particles;
         let id = p

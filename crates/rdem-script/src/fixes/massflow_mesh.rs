@@ -2,6 +2,7 @@
 //! towards `vec_side`, optionally deleting them; `f_ID[1..6]` gives totals and rates;
 //! `file`/`append` write one line per counted particle.
 
+use crate::error::Error;
 use rdem_io::AppendFile;
 
 use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
@@ -194,7 +195,7 @@ impl ScriptFix for MassFlowFix {
         _sim: &mut Sim,
         _head: &FixHead,
         state: &[u8],
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let st: FlowState = super::decode_state(state)?;
         let f = &mut self.flow;
         (f.mass, f.count, f.deleted_mass, f.deleted) = (st.0, st.1, st.2, st.3);
@@ -234,19 +235,19 @@ impl ScriptFix for MassFlowFix {
         Ok(())
     }
 
-    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("needs a simulation box")?;
         Ok(self.rates(w.step, w.dt).to_vec())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         let setup = ctx.setup;
         if setup {
             return Ok(());
         }
         let time = ctx.time();
         let w = ctx.world();
-        self.flow.update(w).map_err(|e| e.to_string())?;
+        self.flow.update(w)?;
         let Some(out) = &mut self.out else {
             return Ok(());
         };
@@ -274,7 +275,7 @@ impl ScriptFix for MassFlowFix {
         if let Some(all) = w.comm.gather(&rows) {
             let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();
             if let Some(file) = &mut out.writer {
-                wrote = file.append(text.as_bytes()).map_err(|e| e.to_string());
+                wrote = file.append(text.as_bytes()).map_err(Error::from);
             }
         }
         ctx.agree_write("fix massflow/mesh", wrote)

@@ -5,6 +5,7 @@
 
 use super::{style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row of `mesh/surface`.
@@ -58,7 +59,7 @@ impl ScriptFix for Mesh {
 
     /// `f_ID[1..9]` of a `/stress` mesh: total force, torque about the reference point,
     /// the point.
-    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("needs a simulation box")?;
         let st = w
             .mesh_index(&head.id)
@@ -90,11 +91,11 @@ impl ScriptFix for Mesh {
         postcard::to_stdvec(&w.meshes[k].state()).ok()
     }
 
-    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), Error> {
         let st: rdem::restart::MeshState = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let k = w.mesh_index(&head.id).ok_or("the mesh is missing")?;
-        w.meshes[k].set_state(&st)
+        w.meshes[k].set_state(&st).map_err(Error::Invalid)
     }
 
     // The mesh stays in the world (LIGGGHTS keeps a mesh that walls may still use).

@@ -48,6 +48,7 @@ mod stage_ctx;
 mod wall_gran;
 mod wall_gran_old;
 
+use crate::error::Error;
 use std::any::Any;
 
 use rdem::World;
@@ -165,7 +166,7 @@ pub trait ScriptFix: AsAny {
     }
 
     /// [`Stages::VALUES`]: the global values `f_ID[1..]` at the current step.
-    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Err("computes no global values".into())
     }
 
@@ -176,8 +177,8 @@ pub trait ScriptFix: AsAny {
     }
 
     /// Per-atom values (column `col`, 1-based, of an array) for the owned particles.
-    fn peratom(&self, _sim: &Sim, head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, String> {
-        Err(format!("fix {} computes no per-atom values", head.id))
+    fn peratom(&self, _sim: &Sim, head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
+        Err(format!("fix {} computes no per-atom values", head.id).into())
     }
 
     /// True if `thermo_modify norm yes` divides this fix's values by the atom count.
@@ -187,7 +188,7 @@ pub trait ScriptFix: AsAny {
 
     /// [`Stages::PRE_STEP`]: before step `ctx.step` (with `ctx.setup`, before a run's
     /// set-up).
-    fn pre_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         Ok(())
     }
 
@@ -215,12 +216,12 @@ pub trait ScriptFix: AsAny {
 
     /// [`Stages::END_OF_STEP`]: after step `ctx.step`'s final integration, or after a
     /// run's set-up (`ctx.setup`).
-    fn end_of_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         Ok(())
     }
 
     /// [`Stages::END_OF_RUN`]: when a run ends.
-    fn end_of_run(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_run(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         Ok(())
     }
 
@@ -252,12 +253,12 @@ pub trait ScriptFix: AsAny {
         _sim: &mut Sim,
         _head: &FixHead,
         _state: &[u8],
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         Err("this fix style keeps no state in restart files".into())
     }
 
     /// Whether `unfix` may remove the fix now.
-    fn check_unfix(&self, _sim: &Sim, _head: &FixHead) -> Result<(), String> {
+    fn check_unfix(&self, _sim: &Sim, _head: &FixHead) -> Result<(), Error> {
         Ok(())
     }
 
@@ -454,7 +455,7 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
 /// every rank (see [`crate::dumps::agree`]): a failed write stops every rank with rank
 /// 0's report instead of leaving the others in the next collective call. Collective:
 /// every rank calls it at the same point of the same step.
-pub(crate) fn agree_write(sim: &Sim, what: &str, r: Result<(), String>) -> Result<(), String> {
+pub(crate) fn agree_write(sim: &Sim, what: &str, r: Result<(), Error>) -> Result<(), Error> {
     match &sim.world {
         Some(w) => crate::dumps::agree(&*w.comm, what, r),
         None => r,
@@ -469,18 +470,15 @@ pub fn with_stage(sim: &Sim, stage: Stages) -> Vec<usize> {
 }
 
 /// Value `f_ID` / `f_ID[i]` (1-based).
-pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String> {
+pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, Error> {
     let f = sim
         .defs
         .fixes
         .iter()
         .find(|f| f.head.id == id)
-        .ok_or_else(|| format!("no fix '{id}'"))?;
+        .ok_or_else(|| Error::undefined("fix", id))?;
     if !f.stages.has(Stages::VALUES) {
-        return Err(format!(
-            "fix {id} ({}) computes no global values",
-            f.head.style
-        ));
+        return Err(format!("fix {id} ({}) computes no global values", f.head.style).into());
     }
     let v = f
         .imp
@@ -493,12 +491,13 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, String>
             "fix {id} gives {} value(s): use f_{id}[1..{}]",
             v.len(),
             v.len()
-        )),
+        )
+        .into()),
     }
 }
 
 /// The per-particle values `f_ID` / `f_ID[i]` (1-based) of every owned particle.
-pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, String> {
+pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, Error> {
     check_fix_peratom(sim, id, col)?;
     let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
     // `f_ID[0]` of a fix with one value per atom is `f_ID`, as in LIGGGHTS.
@@ -506,27 +505,19 @@ pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, 
 }
 
 /// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
-pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), String> {
+pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), Error> {
     let Some(f) = sim.defs.fixes.iter().find(|f| f.head.id == id) else {
         let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
-        return Err(format!(
-            "no fix '{id}' ({})",
-            crate::args::id_help("fix", id, &ids)
-        ));
+        return Err(format!("no fix '{id}' ({})", crate::args::id_help("fix", id, &ids)).into());
     };
     match (f.imp.peratom_shape().map(|(n, _)| n), col) {
-        (None, _) => Err(format!(
-            "fix {id} ({}) has no per-atom values",
-            f.head.style
-        )),
+        (None, _) => Err(format!("fix {id} ({}) has no per-atom values", f.head.style).into()),
         // `f_ID[0]`: LIGGGHTS' old spelling of a per-atom vector (its manual's
         // `f_Temp[0]`), accepted by LIGGGHTS 3.8 as `f_ID`.
         (Some(0), None | Some(0)) => Ok(()),
         (Some(n), Some(k)) if n > 0 && k >= 1 && k <= n => Ok(()),
-        (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}")),
-        (Some(n), _) => Err(format!(
-            "fix {id} has {n} values per atom: use f_{id}[1..{n}]"
-        )),
+        (Some(0), Some(_)) => Err(format!("fix {id} has one value per atom: use f_{id}").into()),
+        (Some(n), _) => Err(format!("fix {id} has {n} values per atom: use f_{id}[1..{n}]").into()),
     }
 }
 
@@ -595,8 +586,8 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 /// Decodes a state that a fix's [`ScriptFix::save_state`] wrote (the message for
 /// [`ScriptFix::restore_state`]'s error).
-pub(super) fn decode_state<T: serde::de::DeserializeOwned>(state: &[u8]) -> Result<T, String> {
-    postcard::from_bytes(state).map_err(|e| format!("it does not decode ({e})"))
+pub(super) fn decode_state<T: serde::de::DeserializeOwned>(state: &[u8]) -> Result<T, Error> {
+    postcard::from_bytes(state).map_err(|e| Error::Decode(format!("it does not decode ({e})")))
 }
 
 /// After `read_restart`: a fix defined with the ID of a fix of the writing run takes

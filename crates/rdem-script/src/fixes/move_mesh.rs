@@ -4,6 +4,7 @@
 
 use super::{mesh_ref, style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -45,7 +46,7 @@ impl ScriptFix for MoveMesh {
         postcard::to_stdvec(&(t0, base)).ok()
     }
 
-    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), Error> {
         let (t0, base): (f64, Vec<[f64; 3]>) = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let m = &mut w.meshes[self.mesh].motion;
@@ -54,7 +55,8 @@ impl ScriptFix for MoveMesh {
                 "it moves {} vertices, the mesh has {}",
                 base.len(),
                 m.base.len()
-            ));
+            )
+            .into());
         }
         if let Some(x) = m.movers.iter_mut().find(|x| x.0 == head.id) {
             x.2 = t0;
@@ -65,7 +67,7 @@ impl ScriptFix for MoveMesh {
 
     /// Refuses to remove a motion that is not the last one of its mesh (LIGGGHTS' rule:
     /// superposed motions go in reverse order).
-    fn check_unfix(&self, sim: &Sim, head: &FixHead) -> Result<(), String> {
+    fn check_unfix(&self, sim: &Sim, head: &FixHead) -> Result<(), Error> {
         let Some(w) = &sim.world else { return Ok(()) };
         let movers = &w.meshes[self.mesh].motion.movers;
         if let Some(last) = movers.last() {
@@ -73,7 +75,8 @@ impl ScriptFix for MoveMesh {
                 return Err(format!(
                     "move/mesh fixes of mesh {} must be removed in reverse order: unfix {} first",
                     w.meshes[self.mesh].id, last.0
-                ));
+                )
+                .into());
             }
         }
         Ok(())

@@ -8,6 +8,7 @@
 //! the `wiggle` amplitudes and the `rotate` point. `variable` takes equal-style variables,
 //! evaluated before each step at that step's time and step number.
 
+use crate::error::Error;
 use glam::DVec3;
 use rdem::fix::motion::{Move, MoveStyle};
 use rdem::FixKind;
@@ -52,7 +53,7 @@ impl ScriptFix for FixMove {
         postcard::to_stdvec(&(m.origin_step, previous)).ok()
     }
 
-    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), String> {
+    fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), Error> {
         let (origin_step, prev): (u64, [Option<f64>; 3]) = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let fix = w.fix_mut(&head.id);
@@ -68,7 +69,7 @@ impl ScriptFix for FixMove {
 
     /// `variable`: the displacement and velocity of the coming step, from the variables
     /// evaluated at that step (as LAMMPS evaluates them in its initial integration).
-    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let Some(vars) = &self.vars else {
             return Ok(());
         };

@@ -8,6 +8,7 @@
 
 use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -127,7 +128,7 @@ impl ScriptFix for MultisphereFix {
         Ok(true)
     }
 
-    fn check_unfix(&self, sim: &Sim, _head: &FixHead) -> Result<(), String> {
+    fn check_unfix(&self, sim: &Sim, _head: &FixHead) -> Result<(), Error> {
         let n = sim
             .world
             .as_ref()
@@ -136,7 +137,8 @@ impl ScriptFix for MultisphereFix {
         if n > 0 {
             return Err(format!(
                 "fix multisphere cannot be removed while {n} clump(s) exist (delete them first)"
-            ));
+            )
+            .into());
         }
         Ok(())
     }

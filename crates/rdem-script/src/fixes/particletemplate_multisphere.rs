@@ -12,6 +12,7 @@
 //! density is the mass over the Monte Carlo volume (`use_volume`) or the given density
 //! (`use_density`, the volume then the mass over it).
 
+use crate::error::Error;
 use rdem::insert::{ClumpShape, ParticleTemplate};
 use rdem::multisphere::{ClumpTemplate, MassSource, Sphere};
 
@@ -260,14 +261,14 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 
 /// The spheres of a template file: a line `x y z r` per sphere, `#` starting a comment,
 /// blank lines skipped; exactly `n` spheres.
-fn read_spheres(path: &str, n: usize) -> Result<Vec<Sphere>, String> {
-    let text = std::fs::read(path).map_err(|e| e.to_string())?;
+fn read_spheres(path: &str, n: usize) -> Result<Vec<Sphere>, Error> {
+    let text = std::fs::read(path).map_err(|e| Error::Invalid(e.to_string()))?;
     parse_spheres(&text, n)
 }
 
 /// The spheres of the bytes of a template file (see [`read_spheres`]); any bytes give the
 /// spheres or an error.
-pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, String> {
+pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, Error> {
     let text = String::from_utf8_lossy(bytes);
     let mut out = Vec::with_capacity(n.min(bytes.len() / 8 + 1));
     for (k, line) in text.lines().enumerate() {
@@ -280,7 +281,7 @@ pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, String> {
         match nums {
             Some(x) if x.len() == 4 => {
                 if x[3].is_nan() || x[3] <= 0.0 {
-                    return Err(format!("line {}: radius {} must be > 0", k + 1, x[3]));
+                    return Err(format!("line {}: radius {} must be > 0", k + 1, x[3]).into());
                 }
                 out.push(Sphere {
                     x: glam::DVec3::new(x[0], x[1], x[2]),
@@ -291,15 +292,13 @@ pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, String> {
                 return Err(format!(
                     "line {}: expected four numbers 'x y z r', got '{line}'",
                     k + 1
-                ))
+                )
+                .into())
             }
         }
     }
     if out.len() != n {
-        return Err(format!(
-            "holds {} sphere(s), but nspheres says {n}",
-            out.len()
-        ));
+        return Err(format!("holds {} sphere(s), but nspheres says {n}", out.len()).into());
     }
     Ok(out)
 }

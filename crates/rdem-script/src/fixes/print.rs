@@ -20,6 +20,7 @@
 
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::lexer::Command;
 use crate::sim::Sim;
 use rdem_io::atomic::AppendFile;
@@ -90,10 +91,9 @@ fn parse(_sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFi
 
 impl FixPrint {
     /// Writes one line to the file, if there is one.
-    fn write(&mut self, line: &str) -> Result<(), String> {
+    fn write(&mut self, line: &str) -> Result<(), Error> {
         if let Some(f) = &mut self.file {
-            f.append(format!("{line}\n").as_bytes())
-                .map_err(|e| e.to_string())?;
+            f.append(format!("{line}\n").as_bytes())?;
         }
         Ok(())
     }
@@ -130,7 +130,7 @@ impl ScriptFix for FixPrint {
         Ok(())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), String> {
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
         let setup = ctx.setup;
         let check_setup = setup && ctx.checking();

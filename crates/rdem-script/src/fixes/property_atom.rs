@@ -15,6 +15,7 @@
 
 use super::{count_error, style, FixEntry, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row.
@@ -87,7 +88,7 @@ impl ScriptFix for PropertyAtom {
         Some((if self.vector { self.defaults.len() } else { 0 }, 1))
     }
 
-    fn peratom(&self, sim: &Sim, _head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, String> {
+    fn peratom(&self, sim: &Sim, _head: &FixHead, col: Option<usize>) -> Result<Vec<f64>, Error> {
         let w = sim.world.as_ref().ok_or("no simulation box")?;
         let p = &w.particles;
         let id = p

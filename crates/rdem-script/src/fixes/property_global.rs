@@ -4,6 +4,7 @@
 
 use super::{count_error, plural, style, FixHead, FixRow, ScriptFix, Stages};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::{Property, Sim};
 
 /// The registry row.
@@ -28,7 +29,7 @@ impl ScriptFix for PropertyGlobal {
         Ok(())
     }
 
-    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, String> {
+    fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(sim.defs.properties[&self.name].values.clone())
     }
 

@@ -17,6 +17,7 @@
 //! This is the whole fix: it acts through the engine's post-force extension point
 //! ([`rdem::fix::ForceFix`]), in definition order with the other post-force fixes.
 
+use crate::error::Error;
 use glam::DVec3;
 use rdem::fix::ForceFix;
 use rdem::par::View;
@@ -150,7 +151,7 @@ impl ScriptFix for SpeedControl {
 
     /// The set velocities and gain of the coming step (or of the set-up) from their
     /// variables, and the moving region where it is at that step.
-    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), String> {
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let values = [&self.set[0], &self.set[1], &self.set[2], &self.gain];
         if values.iter().all(|v| v.var().is_none()) && self.moving_region.is_none() {
             return Ok(());
@@ -167,7 +168,7 @@ impl ScriptFix for SpeedControl {
             return Err(format!(
                 "fix speedcontrol: the variables give a value that is not finite (set velocity {:?}, gain {gain})",
                 &now[..3]
-            ));
+            ).into());
         }
         let fix = ctx
             .world()

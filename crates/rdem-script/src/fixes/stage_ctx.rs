@@ -1,6 +1,7 @@
 //! [`StageCtx`]: what a fix's run-time stage ([`super::ScriptFix::pre_step`],
 //! [`super::ScriptFix::end_of_step`], [`super::ScriptFix::end_of_run`]) may reach.
 
+use crate::error::Error;
 use rdem::World;
 
 use crate::args::NumOrVar;
@@ -58,7 +59,7 @@ impl<'a> StageCtx<'a> {
         values: &[&NumOrVar],
         who: &str,
         hint: &str,
-    ) -> Result<Vec<Option<f64>>, String> {
+    ) -> Result<Vec<Option<f64>>, Error> {
         context::values_at(self.sim, self.step, values, who, hint)
     }
 
@@ -68,12 +69,12 @@ impl<'a> StageCtx<'a> {
         names: &[Option<&str>],
         who: &str,
         hint: &str,
-    ) -> Result<Vec<Option<f64>>, String> {
+    ) -> Result<Vec<Option<f64>>, Error> {
         context::eval_equal_at(self.sim, self.step, names, who, hint)
     }
 
     /// `f` on the script state with the world's step counter on the stage's step.
-    pub fn at_step<T>(&mut self, who: &str, f: impl FnOnce(&Sim) -> T) -> Result<T, String> {
+    pub fn at_step<T>(&mut self, who: &str, f: impl FnOnce(&Sim) -> T) -> Result<T, Error> {
         context::at_step(self.sim, self.step, who, |sim| f(sim))
     }
 
@@ -99,7 +100,7 @@ impl<'a> StageCtx<'a> {
 
     /// The outcome of a file write that only MPI rank 0 does, made the same on every rank
     /// (see [`super::agree_write`]).
-    pub fn agree_write(&self, what: &str, r: Result<(), String>) -> Result<(), String> {
+    pub fn agree_write(&self, what: &str, r: Result<(), Error>) -> Result<(), Error> {
         super::agree_write(self.sim, what, r)
     }
 }

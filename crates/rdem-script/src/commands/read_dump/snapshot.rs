@@ -1,5 +1,7 @@
 //! One snapshot of a native (text) dump file, as `dump custom` writes it.
 
+use crate::error::Error;
+
 /// A snapshot: its box and its per-atom columns.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Snapshot {
@@ -21,9 +23,10 @@ impl Snapshot {
 }
 
 /// The first snapshot of step `nstep` in `text`.
-pub(crate) fn find(text: &str, nstep: u64) -> Result<Snapshot, String> {
+pub(crate) fn find(text: &str, nstep: u64) -> Result<Snapshot, Error> {
     let mut lines = text.lines();
-    let bad = |what: &str| format!("the dump file is not a native dump file ({what})");
+    let bad =
+        |what: &str| Error::invalid(format!("the dump file is not a native dump file ({what})"));
     while let Some(l) = lines.next() {
         if l.trim_end() != "ITEM: TIMESTEP" {
             continue;
@@ -97,7 +100,7 @@ pub(crate) fn find(text: &str, nstep: u64) -> Result<Snapshot, String> {
             }
         }
     }
-    Err(format!("the dump file has no snapshot of step {nstep}"))
+    Err(format!("the dump file has no snapshot of step {nstep}").into())
 }
 
 #[cfg(test)]
@@ -115,9 +118,13 @@ mod tests {
         assert_eq!(s.rows, vec![vec![4.0, 1.0, 0.25], vec![9.0, 2.0, 1.5]]);
         assert_eq!(s.column("x"), Some(2));
         assert_eq!(find(TEXT, 0).unwrap().rows, vec![vec![1.0, 0.5]]);
-        assert!(find(TEXT, 3).unwrap_err().contains("no snapshot of step 3"));
+        assert!(find(TEXT, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("no snapshot of step 3"));
         assert!(find(&TEXT[..TEXT.len() - 10], 7)
             .unwrap_err()
+            .to_string()
             .contains("only 1 of 2"));
     }
 }

@@ -2,6 +2,7 @@
 
 use super::{global_value, is_atom_variable, unknown_id};
 use crate::args::{Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 use crate::thermo::split_reference;
 use crate::variables::Variable;
@@ -39,7 +40,7 @@ impl Input {
     }
 
     /// The values to bin now (per-atom ones: those of the owned particles in `groupbit`).
-    pub(super) fn values(&self, sim: &Sim, groupbit: u32) -> Result<Vec<f64>, String> {
+    pub(super) fn values(&self, sim: &Sim, groupbit: u32) -> Result<Vec<f64>, Error> {
         let all = match self {
             Input::Scalar(w) => return Ok(vec![global_value(sim, w)?]),
             Input::ComputeVector(id, n) => {
@@ -60,7 +61,7 @@ impl Input {
             Input::FixAtom(id, col) => crate::fixes::fix_peratom(sim, id, *col)?,
             Input::AtomVariable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
-                _ => return Err(format!("variable '{v}' is not atom-style")),
+                _ => return Err(format!("variable '{v}' is not atom-style").into()),
             },
         };
         let mask = &sim
