@@ -147,14 +147,16 @@ fn wall_and_equations_of_state_match_liggghts() {
 /// parts' inner faces feel nothing), the intersection of a slab and a sphere, and a
 /// cone side in (its slanted side, caps and lower rim) and out (side, caps, upper rim); at
 /// several distances, with positive and negative pressures, moving towards or away from
-/// the walls: forces, velocities, positions, densities and pressures equal LIGGGHTS
+/// the walls; the outside of an L-shaped union (its inner edge, and a face under the
+/// parts' overlap that gives nothing); a moving block and a turning cylinder: forces, velocities, positions, densities and pressures equal LIGGGHTS
 /// 3.8's for three steps to 1e-12.
 #[test]
 fn wall_region_matches_liggghts() {
     // A block, a sphere, a z cylinder with its caps and an open x cylinder (side in);
     // a sphere, a block and a finite cylinder side out (faces, edges, corners, rims);
     // planes on either side; a union of two blocks (its inner faces give nothing) and
-    // the intersection of a slab and a sphere; a cone, side in and out.
+    // the intersection of a slab and a sphere; a cone, side in and out; a side-out
+    // union; a block that moves and a cylinder that turns.
     for case in [
         "wall_region",
         "wall_sphere",
@@ -168,6 +170,9 @@ fn wall_region_matches_liggghts() {
         "wall_intersect",
         "wall_cone",
         "wall_cone_out",
+        "wall_union_out",
+        "wall_move",
+        "wall_rotate",
     ] {
         let (dir, _) = common::run_data_script("sph", &data(), &format!("in.{case}"), &[]);
         let worst = compare_dumps(&dir, &format!("{case}.dump"), 1e-12);
@@ -362,33 +367,28 @@ fn sph_errors_are_located_and_list_the_choices() {
     }
 }
 
-/// `wall/region/sph` on a region it does not support (a side-out union, a moving block)
-/// stops at the region's word with the shapes it does support.
+/// `wall/region/sph` on a region it does not support (a union of five blocks, which
+/// could give 30 contacts at once) stops at the region's word with the shapes it does
+/// support.
 #[test]
 fn wall_region_on_other_shapes_is_a_located_error() {
     let script = std::fs::read_to_string(data().join("in.wall_region")).unwrap();
     let shapes = "supports block, sphere, cylinder, cone and plane";
-    for (region, want) in [
-        (
-            "region        rb block 0. 0.9 -0.5 0.3 0. 0.9 units box\n\
-             region        boxw union 1 rb side out",
-            shapes,
-        ),
-        (
-            "variable      dx equal 0.001*step\n\
-             region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 move v_dx NULL NULL units box",
-            "moves (move/rotate)",
-        ),
-    ] {
-        let bad = script.replace(
-            "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 units box",
-            region,
-        );
-        assert_ne!(bad, script);
-        let out = common::run_script_raw(&bad, None);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{err}");
-        assert!(err.contains(want), "{err}");
-        assert!(err.contains("in.test:"), "located: {err}");
-    }
+    let region = "region        b1 block 0. 0.9 -0.5 0.3 0. 0.9 units box\n\
+         region        b2 block 0. 0.8 -0.5 0.3 0. 0.9 units box\n\
+         region        b3 block 0. 0.7 -0.5 0.3 0. 0.9 units box\n\
+         region        b4 block 0. 0.6 -0.5 0.3 0. 0.9 units box\n\
+         region        b5 block 0. 0.5 -0.5 0.3 0. 0.9 units box\n\
+         region        boxw union 5 b1 b2 b3 b4 b5";
+    let bad = script.replace(
+        "region        boxw block 0. 0.9 -0.5 0.3 0. 0.9 units box",
+        region,
+    );
+    assert_ne!(bad, script);
+    let out = common::run_script_raw(&bad, None);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains(shapes), "{err}");
+    assert!(err.contains("at most 24"), "{err}");
+    assert!(err.contains("in.test:"), "located: {err}");
 }

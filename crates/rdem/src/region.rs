@@ -297,28 +297,35 @@ impl Region {
     /// The most surface contacts [`Region::surface`] gives for this region, or `None`
     /// for a region it does not know: a block (6 inside, 1 outside), a sphere, a
     /// cylinder or a cone (3 inside, 1 outside) or a plane, either side, and unions and
-    /// intersections of those (`side in`), all where they were defined (not moving).
+    /// intersections of those, either side, up to [`MAX_SURFACE_CONTACTS`]; where they
+    /// were defined or moved (posed).
     pub fn max_surface_contacts(&self) -> Option<usize> {
-        if self.pose.is_some() {
-            return None;
-        }
+        self.max_contacts(false)
+    }
+
+    /// [`Region::max_surface_contacts`] with the side turned over if `flip` (the parts
+    /// of a side-out union or intersection count from outside).
+    fn max_contacts(&self, flip: bool) -> Option<usize> {
+        let outside = self.outside != flip;
         match &self.shape {
-            Shape::Block { .. } => Some(if self.outside { 1 } else { 6 }),
-            Shape::Cylinder { .. } | Shape::Cone { .. } => Some(if self.outside { 1 } else { 3 }),
+            Shape::Block { .. } => Some(if outside { 1 } else { 6 }),
+            Shape::Cylinder { .. } | Shape::Cone { .. } => Some(if outside { 1 } else { 3 }),
             Shape::Sphere { .. } | Shape::Plane { .. } => Some(1),
-            Shape::Union(parts) | Shape::Intersect(parts) if !self.outside => parts
+            Shape::Union(parts) | Shape::Intersect(parts) => parts
                 .iter()
-                .map(Region::max_surface_contacts)
+                .map(|p| p.max_contacts(outside))
                 .sum::<Option<usize>>()
                 .filter(|&n| n <= MAX_SURFACE_CONTACTS),
-            _ => None,
+            Shape::TetMesh(_) => None,
         }
     }
 
     /// The parts of the surface within `reach` of a point `x` in the region, seen from
     /// the region, as LAMMPS' `surface`: `(distance, unit normal into the region)` for
     /// each, written to `out`; their number (none when `x` is not strictly in the
-    /// region, or the region is one [`Region::max_surface_contacts`] does not know).
+    /// region). A region [`Region::max_surface_contacts`] does not know gives none (a
+    /// tetrahedral mesh), or only the first [`MAX_SURFACE_CONTACTS`] (a union of too
+    /// many parts): check it once, where the region is chosen.
     ///
     /// - `side in`: each of a block's faces, a sphere's surface, a cylinder's curved
     ///   surface or a cone's slanted side (its nearest point), and each finite end cap
@@ -327,34 +334,56 @@ impl Region {
     ///   edge, a rim or a corner, too) (LAMMPS' `surface_exterior`);
     /// - a plane: the distance from it, on either side;
     /// - a union keeps the contacts of its parts whose point on the surface lies in no
-    ///   other part; an intersection those whose point lies in every other part.
+    ///   other part; an intersection those whose point lies in every other part. Side
+    ///   out, the parts' contacts are taken from outside each part, as LAMMPS does;
+    /// - a moving region: the contacts of its shape where it was defined, at the point
+    ///   that is now at `x`, with the normals turned as the region has turned.
     pub fn surface(
         &self,
         x: DVec3,
         reach: f64,
         out: &mut [(f64, DVec3); MAX_SURFACE_CONTACTS],
     ) -> usize {
-        if self.max_surface_contacts().is_none() {
-            return 0;
-        }
-        self.surface_from(x, reach, out, 0)
+        self.surface_from(x, reach, out, 0, false)
     }
 
-    /// [`Region::surface`] writing from `out[n]` on; the new count.
+    /// [`Region::surface`] writing from `out[n]` on, with the side turned over if
+    /// `flip`; the new count.
     fn surface_from(
         &self,
         x: DVec3,
         reach: f64,
         out: &mut [(f64, DVec3); MAX_SURFACE_CONTACTS],
+        n: usize,
+        flip: bool,
+    ) -> usize {
+        let first = n;
+        let n = self.surface_of_shape(self.local(x), reach, out, n, self.outside != flip);
+        if let Some(p) = &self.pose {
+            for c in &mut out[first..n] {
+                c.1 = p.rotation * c.1;
+            }
+        }
+        n
+    }
+
+    /// The contacts of the shape as defined, seen from inside it or from `outside`, at
+    /// the point `x` of its own frame.
+    fn surface_of_shape(
+        &self,
+        x: DVec3,
+        reach: f64,
+        out: &mut [(f64, DVec3); MAX_SURFACE_CONTACTS],
         mut n: usize,
+        outside: bool,
     ) -> usize {
         let mut add = |r: f64, normal: DVec3| {
-            if r < reach {
+            if r < reach && n < MAX_SURFACE_CONTACTS {
                 out[n] = (r, normal);
                 n += 1;
             }
         };
-        match (&self.shape, self.outside) {
+        match (&self.shape, outside) {
             (&Shape::Block { lo, hi }, false) if (0..3).all(|a| lo[a] < x[a] && x[a] < hi[a]) => {
                 for a in 0..3 {
                     let e = DVec3::AXES[a];
@@ -471,11 +500,11 @@ impl Region {
                     add(r, u);
                 }
             }
-            (Shape::Union(parts) | Shape::Intersect(parts), false) => {
+            (Shape::Union(parts) | Shape::Intersect(parts), outside) => {
                 let union = matches!(self.shape, Shape::Union(_));
                 for (i, part) in parts.iter().enumerate() {
                     let start = n;
-                    let end = part.surface_from(x, reach, out, start);
+                    let end = part.surface_from(x, reach, out, start, outside);
                     // Keep the contacts whose point on the surface is on the whole
                     // region's surface.
                     for k in start..end {

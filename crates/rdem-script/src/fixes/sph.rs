@@ -4,12 +4,14 @@
 //! becomes an engine fix; the kernel of the density fixes and the wall is set by
 //! `set group all sphkernel NAME` after them, as in the LIGGGHTS tutorials.
 
+use rdem::region::MAX_SURFACE_CONTACTS;
 use rdem::sph::{Eos, SphFix, SphRegionWall, SphWall};
-use rdem::FixKind;
+use rdem::{Fix, FixKind};
 
-use super::engine::engine_fix;
-use super::{style, FixHead, FixRow, ScriptFix, Stages, STYLE_WORD};
+use super::engine::{engine_fix, InEngine};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{Accept, Args, CmdResult};
+use crate::error::Error;
 use crate::sim::Sim;
 
 /// The registry row of `sph/density/continuity`.
@@ -67,10 +69,10 @@ pub(super) const ROW_WALL: FixRow = style(
 pub(super) const ROW_WALL_REGION: FixRow = style(
     "wall/region/sph",
     wall_region,
-    Stages::ENGINE,
-    "`region-ID r0 D` (a block, sphere or cylinder region, side in): the wall/sph force from each part of its surface within r0, plus the pressure force of the particle's copy at the wall",
+    Stages::ENGINE.and(Stages::PRE_STEP),
+    "`region-ID r0 D`: the wall/sph force from each part of its surface within r0, plus the pressure force of the particle's copy at the wall",
 )
-.notes("block, sphere, cylinder, cone and plane regions, side in (each face, a cylinder's or cone's side and its finite end caps) or out (the nearest point of the shape), and unions and intersections of them (side in), as LAMMPS' region surfaces; moving regions and side-out unions stop with a located error");
+.notes("block, sphere, cylinder, cone and plane regions, side in (each face, a cylinder's or cone's side and its finite end caps) or out (the nearest point of the shape), and unions and intersections of them, either side, as LAMMPS' region surfaces; a moving region (move/rotate) is placed before each step; mesh/tet regions stop with a located error");
 
 /// The SPH fixes need atom_style sph.
 fn need_sph(sim: &Sim, a: &Args, head: &FixHead) -> CmdResult {
@@ -183,13 +185,17 @@ fn wall(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>
 
 fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     need_sph(sim, a, head)?;
-    let region = sim.fixed_region(a, "fix wall/region/sph")?;
+    let id = sim.region_id(a)?;
+    let region = crate::regions::region_now(sim, &id).map_err(|e| a.error_prev(e, None))?;
     if region.max_surface_contacts().is_none() {
         return Err(a.error_prev(
-            "fix wall/region/sph supports block, sphere, cylinder, cone and plane regions (side in or out), and unions and intersections of them (side in), not moving, only so far",
+            format!(
+                "fix wall/region/sph supports block, sphere, cylinder, cone and plane regions, either side, and unions and intersections of them with at most {MAX_SURFACE_CONTACTS} faces in reach, only so far"
+            ),
             None,
         ));
     }
+    let moving = crate::regions::is_dynamic(sim, &id).then_some(id);
     let r0 = a.positive("r0")?;
     let d = a.f64("D")?;
     a.done()?;
@@ -200,5 +206,46 @@ fn wall_region(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scr
         kernel: None,
         sl: Vec::new(),
     };
-    engine_fix(sim, a, head, FixKind::WallRegionSph(w))
+    sim.world_ref(a)?;
+    let fix = Fix::new(&head.id, head.groupbit, FixKind::WallRegionSph(w))
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(Box::new(WallRegion {
+        inner: InEngine::new(fix),
+        moving,
+    }))
+}
+
+/// `fix wall/region/sph`: the engine's wall, and the ID of its region if it moves.
+struct WallRegion {
+    inner: InEngine,
+    /// The region's ID when it moves (placed before each step).
+    moving: Option<String>,
+}
+
+impl ScriptFix for WallRegion {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        self.inner.install(sim, a, head)
+    }
+
+    /// A moving region where it is at the coming step (or at the set-up), as LIGGGHTS
+    /// places it before the wall's force.
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
+        let Some(id) = &self.moving else {
+            return Ok(());
+        };
+        let who = "fix wall/region/sph";
+        let region = ctx.at_step(who, |sim| crate::regions::region_now(sim, id))??;
+        let fix = ctx
+            .world()
+            .fix_mut(&head.id)
+            .ok_or("fix wall/region/sph is not in the engine")?;
+        if let FixKind::WallRegionSph(w) = &mut fix.kind {
+            w.region = region;
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        self.inner.unfix(sim, head);
+    }
 }

@@ -3,7 +3,8 @@
 #  - three.dump, kernel_*.dump, wall.dump, wall_region.dump, wall_sphere.dump,
 #    wall_cylinder.dump, wall_xcylinder.dump, wall_sphere_out.dump, wall_block_out.dump,
 #    wall_cylinder_out.dump, wall_plane.dump, wall_union.dump, wall_intersect.dump,
-#    wall_cone.dump, wall_cone_out.dump: the
+#    wall_cone.dump, wall_cone_out.dump, wall_union_out.dump, wall_move.dump,
+#    wall_rotate.dump: the
 #    small cases in.three, in.kernels, in.wall and in.wall_* of the same names
 #    (dumps of every step, full precision);
 #  - sph_2_short.log: the tutorial sph_2 (liggghts-doc, unmodified) up to and including
@@ -25,7 +26,7 @@ for w in "${WHAT[@]}"; do
     small)
       for c in three kernels wall wall_region wall_sphere wall_cylinder wall_xcylinder \
           wall_sphere_out wall_block_out wall_cylinder_out wall_plane wall_union wall_intersect \
-          wall_cone wall_cone_out; do
+          wall_cone wall_cone_out wall_union_out wall_move wall_rotate; do
         (cd "$HERE" && "$LIGGGHTS" -in "in.$c" -log none > /dev/null)
       done ;;
     short|full)
