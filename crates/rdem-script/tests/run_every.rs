@@ -41,13 +41,7 @@ thermo_modify lost ignore
 ";
 
 fn run(tail: &str) -> Result<String, String> {
-    let mut i = common::interpreter();
-    let r = i.run_source("in.every", &format!("{HEAD}{tail}"));
-    let out = common::screen(&i);
-    match r {
-        Ok(()) => Ok(out),
-        Err(e) => Err(format!("{:?}", miette::Report::new(*e))),
-    }
+    common::try_screen("in.every", &format!("{HEAD}{tail}"))
 }
 
 /// The thermo rows (four numbers each) in order.

@@ -5,6 +5,7 @@
 use rdem_script::Interpreter;
 
 mod common;
+use common::screen;
 
 /// A box 0.1 × 0.1 × 0.15 with one type and materials, no particles.
 const HEAD: &str = "\
@@ -26,17 +27,6 @@ pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
 ";
-
-fn screen(i: &Interpreter) -> String {
-    common::screen(i)
-}
-
-fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-runloop-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn printed(i: &Interpreter, key: &str) -> f64 {
     let s = screen(i);
@@ -176,7 +166,7 @@ fn check_timestep_rayleigh_fraction() {
 /// write_data then read_data in a new run gives back every particle exactly.
 #[test]
 fn data_file_round_trip() {
-    let d = tmpdir("data");
+    let d = common::scratch_dir("runloop-data");
     let f = d.join("state.data");
     let i = common::run(
         "in.test",
@@ -212,7 +202,7 @@ fn data_file_round_trip() {
 /// dump custom writes the requested columns for the group, sorted by id.
 #[test]
 fn dump_custom_text() {
-    let d = tmpdir("dump");
+    let d = common::scratch_dir("runloop-dump");
     common::run("in.test", &format!(
         "{HEAD}create_atoms 1 single 0.01 0 0.05 units box\ncreate_atoms 1 single -0.01 0 0.05 units box\n\
          set atom 2 diameter 0.003\ngroup two id 2\n\
