@@ -14,7 +14,7 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use common::{have_mpirun, rdem_command, scratch_dir};
+use common::{have_mpirun, rdem_in, scratch_dir};
 
 /// 300 spheres falling in a box split in two along x: both ranks own particles and
 /// meet in collective calls every step (exchange, thermo).
@@ -51,10 +51,8 @@ thermo 10
 fn run_2(tag: &str, script: &str) -> (Option<i32>, String) {
     let dir = scratch_dir(tag);
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let mut child = rdem_command(Some(2))
-        .args(["-in", "in.test", "-log", "none"])
+    let mut child = rdem_in(&dir, "in.test", Some(2))
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
         .spawn()

@@ -46,6 +46,15 @@ pub fn rdem_command(ranks: Option<usize>) -> std::process::Command {
     }
 }
 
+/// `rdem -in <input> -log none`, run directly (`ranks: None`) or on MPI ranks
+/// ([`rdem_command`]), in the directory `dir`; the caller adds the thread count and any
+/// other argument.
+pub fn rdem_in(dir: &Path, input: &str, ranks: Option<usize>) -> std::process::Command {
+    let mut c = rdem_command(ranks);
+    c.args(["-in", input, "-log", "none"]).current_dir(dir);
+    c
+}
+
 /// A fresh, empty directory under the system temp directory, named after `prefix`, the
 /// process and a counter.
 pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {
@@ -92,10 +101,8 @@ pub fn run_kept(
         std::fs::write(dir.join(name), text).unwrap();
     }
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(ranks)
-        .args(["-in", "in.test", "-log", "none"])
+    let out = rdem_in(&dir, "in.test", ranks)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
     (dir, out)
@@ -128,10 +135,8 @@ pub fn run_data_script(
     for f in std::iter::once(&script).chain(files) {
         std::fs::copy(data.join(f), dir.join(f)).unwrap();
     }
-    let out = rdem_command(None)
-        .args(["-in", script, "-log", "none"])
+    let out = rdem_in(&dir, script, None)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
     let text = success(script, &out) + &String::from_utf8_lossy(&out.stderr);
