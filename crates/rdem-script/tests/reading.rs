@@ -18,17 +18,18 @@ units si
 ";
 
 /// Materials, contact model and time step after `create_box`.
-const POST: &str = "\
+const POST: &str = concat!(
+    "\
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+",
+    common::materials!(),
+    "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
-";
+"
+);
 
 /// A box -0.05..0.05 × -0.05..0.05 × 0..0.15 with materials and no particles.
 fn head() -> String {

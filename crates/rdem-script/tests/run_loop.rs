@@ -8,7 +8,8 @@ mod common;
 use common::screen;
 
 /// A box 0.1 × 0.1 × 0.15 with one type and materials, no particles.
-const HEAD: &str = "\
+const HEAD: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -19,14 +20,14 @@ region reg block -0.05 0.05 -0.05 0.05 0. 0.15 units box
 create_box 1 reg
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+",
+    common::materials!(),
+    "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
-";
+"
+);
 
 fn printed(i: &Interpreter, key: &str) -> f64 {
     let s = screen(i);

@@ -5,6 +5,27 @@
 
 use rdem_script::{Interpreter, Output, ScriptReport, Sim};
 
+/// The material block of one atom type most scripts here use (the one of
+/// `data/parity/mat.in`): E = 5·10⁶ Pa, ν = 0.45, e = 0.9, μ = 0.05.
+///
+/// A macro, so that `concat!` can build a `const` script around it; [`MATERIALS`] is the
+/// same text for `format!`.
+macro_rules! materials {
+    () => {
+        "\
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+"
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use materials;
+
+/// The text of [`materials!`].
+pub const MATERIALS: &str = materials!();
+
 /// A fresh, empty directory under the system temp directory, named after `prefix`, the
 /// process and a counter.
 pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {
