@@ -3,6 +3,27 @@
 
 use std::path::Path;
 
+/// The material block of one atom type most scripts here use: E = 5·10⁶ Pa, ν = 0.45,
+/// e = 0.6, μ = 0.5.
+///
+/// A macro, so that `concat!` can build a `const` script around it; [`MATERIALS`] is the
+/// same text for `format!`.
+macro_rules! materials {
+    () => {
+        "\
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+"
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use materials;
+
+/// The text of [`materials!`].
+pub const MATERIALS: &str = materials!();
+
 /// Copies the directory `from` (recursively) to `to`.
 pub fn copy_dir(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
