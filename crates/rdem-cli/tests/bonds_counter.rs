@@ -6,7 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::rdem_command;
+use common::rdem_in;
 
 /// A fresh scratch directory.
 fn scratch() -> PathBuf {
@@ -19,11 +19,9 @@ fn thermo(script: &str, ranks: Option<usize>, extra: &[&str]) -> (Vec<Vec<f64>>,
     let dir = scratch();
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bonds");
     std::fs::copy(src.join(script), dir.join(script)).unwrap();
-    let out = rdem_command(ranks)
-        .args(["-in", script, "-log", "none"])
+    let out = rdem_in(&dir, script, ranks)
         .args(extra)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -211,10 +209,9 @@ fn run_threads(script: &str, threads: usize) -> (String, Vec<(String, Vec<u8>)>)
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bonds");
     std::fs::copy(src.join(script), dir.join(script)).unwrap();
     std::fs::create_dir_all(dir.join("post")).unwrap();
-    let out = rdem_command(None)
-        .args(["-in", script, "-log", "none", "--threads"])
+    let out = rdem_in(&dir, script, None)
+        .arg("--threads")
         .arg(threads.to_string())
-        .current_dir(&dir)
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout).into_owned();

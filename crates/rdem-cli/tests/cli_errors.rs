@@ -5,24 +5,16 @@
 //! and `--version` exit as documented.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-const RDEM: &str = env!("CARGO_BIN_EXE_rdem");
+mod common;
 
 fn fixture_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../rdem-script/tests/data/errors")
 }
 
-/// A fresh, empty directory for one test.
-fn temp_dir(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-cli-errors-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
 fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(RDEM)
+    common::rdem_command(None)
         .args(args)
         .current_dir(dir)
         .output()
@@ -48,7 +40,7 @@ fn squeeze(s: &str) -> String {
 
 #[test]
 fn bad_scripts_exit_1_with_the_report_on_stderr() {
-    let dir = temp_dir("fixtures");
+    let dir = common::scratch_dir("cli-errors-fixtures");
     for stem in [
         "001_units_lj",
         "027_pair_order",
@@ -77,7 +69,7 @@ fn bad_scripts_exit_1_with_the_report_on_stderr() {
 
 #[test]
 fn a_missing_script_is_a_clear_error() {
-    let dir = temp_dir("missing");
+    let dir = common::scratch_dir("cli-errors-missing");
     let out = run(&dir, &["-in", "missing.file", "-log", "none"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_ne!(out.status.code(), Some(0), "{stderr}");
@@ -91,7 +83,7 @@ fn a_missing_script_is_a_clear_error() {
 
 #[test]
 fn options_exit_codes() {
-    let dir = temp_dir("options");
+    let dir = common::scratch_dir("cli-errors-options");
     let out = run(&dir, &["--bogus"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown option '--bogus'"));

@@ -2,14 +2,9 @@
 //! `-screen`, and the report after a run.
 
 use std::io::Write;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
 
 const SCRIPT: &str = "\
 units si
@@ -23,8 +18,8 @@ run 3
 
 #[test]
 fn script_from_stdin_with_vars_echo_and_log() {
-    let d = tmp("stdin");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rdem"))
+    let d = common::scratch_dir("cli-stdin");
+    let mut child = common::rdem_command(None)
         .args([
             "-var", "m", "five", "-var", "n", "3", "-echo", "screen", "-log", "run.log",
         ])
@@ -69,9 +64,9 @@ fn script_from_stdin_with_vars_echo_and_log() {
 
 #[test]
 fn screen_none_and_default_log() {
-    let d = tmp("screen");
+    let d = common::scratch_dir("cli-screen");
     std::fs::write(d.join("in.s"), SCRIPT).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
+    let out = common::rdem_command(None)
         .args(["-in", "in.s", "-screen", "none", "-var", "m", "x"])
         .current_dir(&d)
         .output()
@@ -90,9 +85,9 @@ fn screen_none_and_default_log() {
 
 #[test]
 fn threads_flag_and_env() {
-    let d = tmp("threads");
+    let d = common::scratch_dir("cli-threads");
     std::fs::write(d.join("in.s"), SCRIPT).unwrap();
-    let ok = Command::new(env!("CARGO_BIN_EXE_rdem"))
+    let ok = common::rdem_command(None)
         .args([
             "-in",
             "in.s",
@@ -109,7 +104,7 @@ fn threads_flag_and_env() {
         .unwrap();
     assert!(ok.status.success());
     assert!(String::from_utf8_lossy(&ok.stdout).contains("using 2 threads"));
-    let bad = Command::new(env!("CARGO_BIN_EXE_rdem"))
+    let bad = common::rdem_command(None)
         .args(["-in", "in.s", "-log", "none"])
         .env("RDEM_THREADS", "zero")
         .current_dir(&d)

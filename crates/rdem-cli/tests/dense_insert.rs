@@ -2,10 +2,8 @@
 //! are the same on 1 and 2 threads (thermo printed to 15 digits), and the count, centre
 //! of mass and kinetic energy do not depend on the thread count.
 
-use std::process::Command;
-
 mod common;
-use common::{scratch_dir, thermo_rows};
+use common::{rdem_in, scratch_dir, success, thermo_rows};
 
 const SCRIPT: &str = "\
 atom_style granular
@@ -45,20 +43,13 @@ run 400
 fn run(threads: usize) -> String {
     let d = scratch_dir("dense-threads");
     std::fs::write(d.join("in.test"), SCRIPT).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
-        .args(["-in", "in.test", "-log", "none", "--threads"])
+    let out = rdem_in(&d, "in.test", None)
+        .arg("--threads")
         .arg(threads.to_string())
-        .current_dir(&d)
         .output()
         .unwrap();
     let _ = std::fs::remove_dir_all(&d);
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{threads} threads: {text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    text
+    success(&format!("{threads} threads"), &out)
 }
 
 #[test]

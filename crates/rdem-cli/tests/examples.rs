@@ -3,28 +3,18 @@
 //! script prints at its end (checked against what the physics allows).
 
 use std::path::Path;
-use std::process::Command;
+
+mod common;
 
 /// Runs `examples/<dir>/<file>` in a temporary copy; returns (stdout, the copy's path).
 fn run(dir: &str, file: &str) -> (String, std::path::PathBuf) {
     let src = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
         .join(dir);
-    let tmp = std::env::temp_dir().join(format!("rdem-example-{dir}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = common::scratch_dir(&format!("example-{dir}"));
     std::fs::copy(src.join(file), tmp.join(file)).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
-        .args(["-in", file, "-log", "none"])
-        .current_dir(&tmp)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
-    assert!(
-        out.status.success(),
-        "{dir}/{file}: {}\n{stdout}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = common::rdem_in(&tmp, file, None).output().unwrap();
+    let stdout = common::success(&format!("{dir}/{file}"), &out);
     (stdout, tmp)
 }
 

@@ -23,18 +23,12 @@ const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/heat");
 fn run(name: &str) -> (Vec<Vec<f64>>, Dump) {
     let dir = common::scratch_dir("heat");
     common::copy_dir(Path::new(DIR), &dir);
-    let out = common::rdem_command(None)
-        .args(["-in", &format!("in.{name}"), "-log", "none"])
+    let input = format!("in.{name}");
+    let out = common::rdem_in(&dir, &input, None)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = common::success(&input, &out);
     let dump = read_dump(&std::fs::read_to_string(dir.join(format!("dump.{name}"))).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
     (last_table(&text), dump)

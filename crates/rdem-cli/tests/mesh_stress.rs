@@ -8,7 +8,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{scratch_dir, thermo_rows};
+use common::{rdem_in, scratch_dir, success, thermo_rows};
 
 const HEAD: &str = "atom_style granular
 boundary f f f
@@ -35,19 +35,11 @@ fix nve all nve/sphere
 fn run_in(dir: &Path, script: &str, threads: usize) -> String {
     std::fs::write(dir.join("floor.stl"), common::floor_stl()).unwrap();
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
-        .args(["-in", "in.test", "-log", "none"])
+    let out = rdem_in(dir, "in.test", None)
         .env("RDEM_THREADS", threads.to_string())
-        .current_dir(dir)
         .output()
         .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    text
+    success(&format!("{threads} threads"), &out)
 }
 
 /// Cell arrays of legacy VTK files as VTK's vtkPolyDataReader sees them.

@@ -8,7 +8,6 @@
 //! temporary copy of the tutorial directory.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 mod common;
 use common::copy_dir;
@@ -46,9 +45,7 @@ fn run(case: &str, keep: &str) -> (String, Vec<(String, String)>) {
         "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
         src.join(&file).display()
     );
-    let tmp =
-        std::env::temp_dir().join(format!("rdem-mesh-tutorial-{case}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
+    let tmp = common::scratch_dir(&format!("mesh-tutorial-{case}"));
     copy_dir(&src, &tmp);
     let _ = std::fs::remove_dir_all(tmp.join("post"));
     std::fs::create_dir_all(tmp.join("post")).unwrap();
@@ -58,17 +55,8 @@ fn run(case: &str, keep: &str) -> (String, Vec<(String, String)>) {
         format!("include {file}\ninclude stats.in\n"),
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
-        .args(["-in", "wrapper.in", "-log", "none"])
-        .current_dir(&tmp)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
-    assert!(
-        out.status.success(),
-        "{case} failed:\n{}\n{stdout}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = common::rdem_in(&tmp, "wrapper.in", None).output().unwrap();
+    let stdout = common::success(&format!("{case} failed"), &out);
     let mut files: Vec<(String, String)> = std::fs::read_dir(tmp.join("post"))
         .unwrap()
         .map(|e| {

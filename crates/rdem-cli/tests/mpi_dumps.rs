@@ -9,10 +9,10 @@
 //! Skipped (with a note) when `mpirun` is not on PATH.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 mod common;
-use common::{have_mpirun, rdem_command};
+use common::{have_mpirun, rdem_in, success};
 
 const N: usize = 1024;
 /// Half the box's x extent: rank 0 owns x < SPLIT, rank 1 the rest.
@@ -58,36 +58,15 @@ fn init_data() -> String {
 /// files of `post/` by name.
 fn run(np: Option<usize>, nsteps: u64) -> BTreeMap<String, String> {
     let tag = np.map_or("serial".to_string(), |n| format!("np{n}"));
-    let d: PathBuf = std::env::temp_dir().join(format!(
-        "rdem-mpi-dumps-{tag}-{nsteps}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
+    let d = common::scratch_dir(&format!("mpi-dumps-{tag}-{nsteps}"));
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/mpi/in.dumps");
     std::fs::copy(src, d.join("in.dumps")).unwrap();
     std::fs::write(d.join("init.data"), init_data()).unwrap();
-    let args = [
-        "-in",
-        "in.dumps",
-        "-log",
-        "none",
-        "-var",
-        "nsteps",
-        &nsteps.to_string(),
-    ]
-    .map(String::from);
-    let out = rdem_command(np)
-        .args(&args)
-        .current_dir(&d)
+    let out = rdem_in(&d, "in.dumps", np)
+        .args(["-var", "nsteps", &nsteps.to_string()])
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{tag}: {}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    success(&tag, &out);
     let files = std::fs::read_dir(d.join("post"))
         .unwrap()
         .map(|e| {

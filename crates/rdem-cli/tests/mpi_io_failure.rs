@@ -14,11 +14,11 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use common::{have_mpirun, rdem_command, scratch_dir};
+use common::{have_mpirun, rdem_in, scratch_dir};
 
 /// 300 spheres falling in a box split in two along x: both ranks own particles and
 /// meet in collective calls every step (exchange, thermo).
-const SETUP: &str = "atom_style granular
+const SETUP: &str = concat!("atom_style granular
 atom_modify map array
 boundary f f f
 newton off
@@ -29,10 +29,7 @@ region box block -0.05 0.05 -0.05 0.05 0 0.1 units box
 create_box 1 box
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -44,17 +41,15 @@ fix pdd all particledistribution/discrete 32452843 1 pts 1.0
 fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 300 region ins
 fix integr all nve/sphere
 thermo 10
-";
+");
 
 /// Runs `script` on 2 ranks; returns (exit code, stderr), or fails if the job is still
 /// running after two minutes (a hung rank).
 fn run_2(tag: &str, script: &str) -> (Option<i32>, String) {
     let dir = scratch_dir(tag);
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let mut child = rdem_command(Some(2))
-        .args(["-in", "in.test", "-log", "none"])
+    let mut child = rdem_in(&dir, "in.test", Some(2))
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
         .spawn()

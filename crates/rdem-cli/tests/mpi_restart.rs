@@ -19,12 +19,9 @@ units si
 
 const BOX: &str = "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n";
 
-const DEFS: &str = "neighbor 0.002 bin
+const DEFS: &str = concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1
 pair_style gran model hertz tangential history rolling_friction cdt
 pair_coeff * *
@@ -39,7 +36,7 @@ variable ztop equal bound(all,zmax)
 thermo_style custom step atoms v_m v_zc v_ztop
 thermo 1000
 thermo_modify format float %.17g
-";
+");
 
 const INIT: &str = "region ins cylinder z 0 0 0.04 0.005 0.11 units box
 fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004

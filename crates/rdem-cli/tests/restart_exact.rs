@@ -11,7 +11,7 @@
 //! the same bytes.
 
 mod common;
-use common::run_kept;
+use common::{run_kept, MATERIALS};
 
 /// One case.
 struct Case {
@@ -124,12 +124,9 @@ fn settling_bed_with_walls_and_rolling_friction_continues_bit_for_bit() {
     let c = Case {
         head: HEAD,
         make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: "neighbor 0.002 bin
+        defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1
 pair_style gran model hertz tangential history rolling_friction cdt
 pair_coeff * *
@@ -141,7 +138,7 @@ fix integr all nve/sphere
 thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
-",
+"),
         init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
 fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
@@ -300,12 +297,9 @@ fn growing_particles_with_a_running_average_continue_bit_for_bit() {
     let c = Case {
         head: HEAD,
         make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: "neighbor 0.002 bin
+        defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -320,7 +314,7 @@ fix integr all nve/sphere
 thermo_style custom step atoms ke f_at
 thermo 500
 thermo_modify format float %.17g
-",
+"),
         init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
 fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
@@ -358,12 +352,9 @@ fn ave_euler_of_a_settling_bed_continues_bit_for_bit() {
     let c = Case {
         head: HEAD,
         make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: "neighbor 0.002 bin
+        defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -376,7 +367,7 @@ dump e all euler/vtk 2000 euler_*.vtk
 thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
-",
+"),
         init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
 fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
@@ -401,12 +392,9 @@ fn particles_moved_by_fix_move_continue_bit_for_bit() {
     let c = Case {
         head: HEAD,
         make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: "neighbor 0.002 bin
+        defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -416,7 +404,7 @@ fix cyl all wall/gran model hertz tangential history primitive type 1 zcylinder 
 thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
-",
+"),
         init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
 fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
 fix pdd all particledistribution/discrete 32452843 1 pts 1.0
@@ -448,12 +436,9 @@ fn a_dense_packing_is_not_inserted_again_after_a_restart() {
     let c = Case {
         head: HEAD,
         make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: "neighbor 0.002 bin
+        defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+", common::materials!(), "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -468,7 +453,7 @@ fix integr all nve/sphere
 thermo_style custom step atoms ke f_ins[1]
 thermo 1000
 thermo_modify format float %.17g
-",
+"),
         init: "",
         after: "",
         n1: 3000,
@@ -618,11 +603,7 @@ lattice sc 0.005
 region blk block 0.0025 0.1975 0.0025 0.1975 0.0025 0.0975 units box
 create_atoms 1 region blk
 set group all diameter 0.004 density 2500
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
+{MATERIALS}pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
 fix gravi all gravity 9.81 vector 0 0 -1

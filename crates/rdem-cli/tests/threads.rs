@@ -2,8 +2,7 @@
 //! a box, dumped every 800 steps) writes byte-identical dump files on 1, 2 and 4 threads.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 mod common;
 use common::copy_dir;
@@ -12,25 +11,17 @@ const CASE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/c
 
 /// Runs the case on `threads` threads; returns the files of `post/` by name.
 fn run(threads: usize) -> BTreeMap<String, Vec<u8>> {
-    let d: PathBuf =
-        std::env::temp_dir().join(format!("rdem-cli-threads-{threads}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
+    let d = common::scratch_dir(&format!("cli-threads-{threads}"));
     copy_dir(Path::new(CASE), &d);
     let post = d.join("post");
     let _ = std::fs::remove_dir_all(&post);
     std::fs::create_dir_all(&post).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
-        .args(["-in", "in.cohesion", "-log", "none", "--threads"])
+    let out = common::rdem_in(&d, "in.cohesion", None)
+        .arg("--threads")
         .arg(threads.to_string())
-        .current_dir(&d)
         .output()
         .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{threads} threads: {stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let stdout = common::success(&format!("{threads} threads"), &out);
     let plural = if threads == 1 { "" } else { "s" };
     assert!(stdout.contains(&format!("using {threads} thread{plural}")));
     let files = std::fs::read_dir(&post)

@@ -4,8 +4,6 @@
 //! below; the full LIGGGHTS outputs are the itemN.liggghts.* files next to the scripts,
 //! made by regenerate.sh: `liggghts -in itemN.in -log none`).
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
@@ -20,12 +18,7 @@ fn run_item(name: &str, replace: &[(&str, &std::path::Path)]) -> String {
     for (from, to) in replace {
         src = src.replace(from, &to.display().to_string());
     }
-    let mut i = common::interpreter();
-    let out = |i: &Interpreter| common::screen(i);
-    if let Err(e) = i.run_source(name, &src) {
-        panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
-    }
-    out(&i)
+    common::run_screen(name, &src)
 }
 
 /// The numbers of the last thermo row of step `step` in `out`.

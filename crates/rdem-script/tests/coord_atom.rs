@@ -8,13 +8,7 @@
 
 mod common;
 
-use rdem_script::Interpreter;
-
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/coord_atom");
-
-fn run(name: &str, src: &str) -> Result<Interpreter, String> {
-    common::try_run(name, src)
-}
 
 /// The lines after `ITEM: ATOMS` of a dump, trimmed.
 fn atoms(dump: &str) -> Vec<String> {
@@ -32,7 +26,7 @@ fn lattice(bound: &str) -> Vec<Vec<f64>> {
     let src = std::fs::read_to_string(format!("{DIR}/in.{bound}"))
         .unwrap()
         .replace(&format!("{bound}.dump"), &dump.display().to_string());
-    run(&format!("in.{bound}"), &src).unwrap_or_else(|e| panic!("{e}"));
+    common::try_run(&format!("in.{bound}"), &src).unwrap_or_else(|e| panic!("{e}"));
     let ours = atoms(&std::fs::read_to_string(&dump).unwrap());
     let theirs = atoms(&std::fs::read_to_string(format!("{DIR}/{bound}.liggghts.dump")).unwrap());
     assert_eq!(ours.len(), 125);
@@ -145,7 +139,7 @@ fn reach_of_each_type_pair_as_liggghts() {
             .replace("TYPE", &ty.to_string())
             .replace("XJ", &format!("{}", 0.02 + d))
             .replace("CUT", cut);
-        let i = run("in.poly", &src).unwrap_or_else(|e| panic!("{e}"));
+        let i = common::try_run("in.poly", &src).unwrap_or_else(|e| panic!("{e}"));
         let out = common::screen(&i);
         assert!(
             out.lines().any(|l| l.trim() == want),
@@ -156,7 +150,7 @@ fn reach_of_each_type_pair_as_liggghts() {
         .replace("TYPE", "2")
         .replace("XJ", "0.025")
         .replace("CUT", "0.0120001");
-    let e = run("in.poly", &src)
+    let e = common::try_run("in.poly", &src)
         .err()
         .expect("cutoff beyond the neighbor cutoff");
     assert!(e.contains("longer than the neighbor cutoff 0.012"), "{e}");
@@ -185,7 +179,7 @@ fn errors() {
         ("-1", "coord/atom cutoff"),
         ("", "coord/atom cutoff"),
     ] {
-        let e = run(
+        let e = common::try_run(
             "in.bad",
             &format!("{head}compute c all coord/atom {words}\n"),
         )

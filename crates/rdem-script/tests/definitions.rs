@@ -18,9 +18,7 @@ const SETUP: &str = "units si\n\
     fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.01\n";
 
 fn interpreter() -> Interpreter {
-    let mut i = common::interpreter();
-    i.run_source("in.setup", SETUP).expect("set-up runs");
-    i
+    common::run("in.setup", SETUP)
 }
 
 fn engine_fix_ids(i: &Interpreter) -> Vec<String> {

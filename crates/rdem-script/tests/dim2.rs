@@ -3,27 +3,9 @@
 //! (`regenerate.sh`; output in in.2d.liggghts.txt, hard-coded below), closed forms of a
 //! free fall in the plane and of the 2d temperature, and LIGGGHTS 3.8's 2d errors.
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/dim2");
-
-fn run_src(src: &str) -> (Interpreter, String) {
-    let mut i = common::interpreter();
-    let r = i.run_source("in.2d", src);
-    let out = common::screen(&i);
-    if let Err(e) = r {
-        panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
-    }
-    (i, out)
-}
-
-fn error_of(src: &str) -> String {
-    let mut i = common::interpreter();
-    let e = i.run_source("in.t", src).unwrap_err();
-    format!("{:?}", miette::Report::new(*e))
-}
 
 fn close(a: f64, b: f64, rel: f64, what: &str) {
     assert!(
@@ -63,7 +45,8 @@ fn parse(out: &str) -> (Vec<Vec<f64>>, Vec<f64>) {
 #[test]
 fn two_spheres_in_the_plane_as_liggghts() {
     let src = std::fs::read_to_string(format!("{DIR}/in.2d")).unwrap();
-    let (i, out) = run_src(&src);
+    let i = common::run("in.2d", &src);
+    let out = common::screen(&i);
     let (rows, res) = parse(&out);
     let want = [
         [0.0, 2.0, 0.00161006623496477, 0.0, 1.16616504436226e+20],
@@ -101,7 +84,8 @@ fn free_fall_and_temperature_closed_forms() {
         fix g all gravity 9.81 vector 0 -1 1\nfix nve all nve/sphere\nfix e all enforce2d\n\
         timestep 1e-4\nvariable t equal c_thermo_temp\nthermo_style custom step v_t\nrun 0\n\
         print \"T0=$t\"\nrun 1000\n";
-    let (i, out) = run_src(src);
+    let i = common::run("in.2d", src);
+    let out = common::screen(&i);
     // 2d masses are discs' (π r² ρ): LIGGGHTS 3.8 prints mass[1] = 0.196349540849362
     // after `set atom 1 diameter 0.01 density 2500` in 2d, and the same for a data file
     // atom of that diameter and density.
@@ -154,7 +138,7 @@ fn errors_of_2d() {
         ),
         ("dimension 4\n".to_string(), "dimension must be 2 or 3, not '4'"),
     ] {
-        let text = error_of(&src);
+        let text = common::error("in.t", &src);
         assert!(text.contains(msg), "{src}\n{text}");
     }
 }

@@ -17,14 +17,8 @@ fn read(name: &str) -> String {
     std::fs::read_to_string(data_dir().join(name)).unwrap()
 }
 
-fn interp() -> Interpreter {
-    common::interpreter()
-}
-
 fn run(i: &mut Interpreter, src: &str) {
-    if let Err(e) = i.run_source("in.test", src) {
-        panic!("{e:?}");
-    }
+    common::run_on(i, "in.test", src);
 }
 
 /// The reference script without its dump lines (this helper does not own the dump
@@ -79,7 +73,7 @@ fn assert_same_vtk(ours: &str, theirs: &str, what: &str) {
 #[test]
 fn ave_euler_matches_liggghts() {
     for step in [0, 5, 10] {
-        let mut i = interp();
+        let mut i = common::interpreter();
         run(&mut i, &script_without_dumps_and_run("in.euler"));
         run(&mut i, &format!("run {step}\n"));
         let ours = euler::euler_snapshot(&i.sim, None).unwrap();
@@ -93,7 +87,7 @@ fn ave_euler_matches_liggghts() {
 /// (%.17g): all 6 components, with and without the kinetic term.
 #[test]
 fn stress_atom_matches_liggghts() {
-    let mut i = interp();
+    let mut i = common::interpreter();
     run(&mut i, &script_without_dumps_and_run("in.stress"));
     run(&mut i, "run 2\n");
     let text = read("out/stress_2.txt");
@@ -140,7 +134,7 @@ fn command_errors() {
         .collect::<Vec<_>>()
         .join("\n")
         + "\n";
-    let mut i = interp();
+    let mut i = common::interpreter();
     run(&mut i, &head);
     run(
         &mut i,
@@ -178,7 +172,7 @@ fn command_errors() {
 /// 27 points and vertices and the four point arrays with our values.
 #[test]
 fn euler_file_reads_back_with_vtk() {
-    let mut i = interp();
+    let mut i = common::interpreter();
     run(&mut i, &script_without_dumps_and_run("in.euler"));
     run(&mut i, "run 10\n");
     let dir = std::env::temp_dir().join(format!("rdem-euler-{}", std::process::id()));
@@ -291,7 +285,7 @@ fn dump_euler_vtk_writes_liggghts_files_and_a_collection() {
     let script = read("in.euler");
     let cwd = std::env::current_dir().unwrap();
     std::env::set_current_dir(&dir).unwrap();
-    let mut i = interp();
+    let mut i = common::interpreter();
     let r = i.run_source("in.euler", &script);
     std::env::set_current_dir(cwd).unwrap();
     if let Err(e) = r {
@@ -339,7 +333,7 @@ fn cell_sizes_per_axis() {
         .collect::<Vec<_>>()
         .join("\n")
         + "\n";
-    let mut i = interp();
+    let mut i = common::interpreter();
     run(&mut i, &head);
     run(
         &mut i,

@@ -1,8 +1,6 @@
 //! `fix print`: the lines and files LIGGGHTS 3.8 writes for the same scripts, byte for
 //! byte, and a `.csv` of `f_` values of `fix massflow/mesh` against the closed form.
 
-use std::path::PathBuf;
-
 use rdem_script::Interpreter;
 
 mod common;
@@ -29,13 +27,6 @@ pair_coeff * *
 timestep 0.001
 create_atoms 1 single 0.5 0.5 0.5
 ";
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-fixprint-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The screen lines that are not thermo rows, run headers or the loop summary, with
 /// the step of each thermo row as `@N` (to check where the prints fall).
@@ -75,7 +66,7 @@ fn printed(i: &Interpreter) -> Vec<String> {
 /// - r.txt (`title none`): `z`, `z`.
 #[test]
 fn prints_and_files_as_liggghts() {
-    let d = tmpdir("files");
+    let d = common::scratch_dir("fixprint-files");
     let p = |f: &str| d.join(f).display().to_string();
     std::fs::write(p("q.txt"), "old line\n").unwrap();
     let script = format!(
@@ -132,7 +123,7 @@ fn prints_and_files_as_liggghts() {
 /// and x.txt is `# Fix print output for fix pr2` then `[18]`.
 #[test]
 fn steps_of_the_prints_as_liggghts() {
-    let d = tmpdir("steps");
+    let d = common::scratch_dir("fixprint-steps");
     let x = d.join("x.txt");
     let script = format!(
         "{HEAD}\
@@ -175,7 +166,7 @@ fn steps_of_the_prints_as_liggghts() {
 /// is ρ·π·d³/6 = 8.3776e-5 kg, within 1e-12 relative.
 #[test]
 fn csv_of_massflow_values() {
-    let d = tmpdir("csv");
+    let d = common::scratch_dir("fixprint-csv");
     let mesh = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../examples/hopper/meshes/orifice_D25.stl"
@@ -240,7 +231,7 @@ fn csv_of_massflow_values() {
 /// exist (substituted once at each run's set-up).
 #[test]
 fn check_writes_nothing_and_finds_unknown_variables() {
-    let d = tmpdir("check");
+    let d = common::scratch_dir("fixprint-check");
     let f = d.join("p.txt");
     let script = format!(
         "{HEAD}variable a equal 1\n\
@@ -261,7 +252,7 @@ fn check_writes_nothing_and_finds_unknown_variables() {
 /// that fails during the run (`/dev/full`) stops the run with an error at the fix.
 #[test]
 fn io_errors_are_located() {
-    let d = tmpdir("io");
+    let d = common::scratch_dir("fixprint-io");
     std::fs::write(d.join("afile"), "x").unwrap();
     let bad = d.join("afile/p.txt");
     let script = format!("{HEAD}fix pr all print 1 \"x\" file {}\n", bad.display());

@@ -47,26 +47,12 @@ set atom 2 diameter 0.01 density 4000
 ";
 
 fn interp(src: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.heat", src) {
-        let out = common::screen(&i);
-        panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
-    }
-    i
+    common::run("in.heat", src)
 }
 
 /// The error a script stops with, rendered.
 fn error_of(src: &str) -> String {
-    let mut i = common::interpreter();
-    let e = i
-        .run_source("in.heat", src)
-        .expect_err("the script must fail");
-    let mut out = String::new();
-    miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
-        .with_width(10_000)
-        .render_report(&mut out, &*e)
-        .unwrap();
-    out
+    common::error("in.heat", src)
 }
 
 /// Per-atom property `name` of the particles, by tag.

@@ -4,8 +4,6 @@
 //! its `itemN-K.histo` renamed), and their thermo rows (`f_ID[1..4]`) LIGGGHTS' (in
 //! itemN.liggghts.txt) to 1e-6.
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
@@ -23,12 +21,7 @@ fn run_item(n: u32, files: u32) -> (String, std::path::PathBuf) {
         let name = format!("item{n}-{k}.histo");
         src = src.replace(&name, &dir.join(&name).display().to_string());
     }
-    let mut i = common::interpreter();
-    let out = |i: &Interpreter| common::screen(i);
-    if let Err(e) = i.run_source("item.in", &src) {
-        panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
-    }
-    (out(&i), dir)
+    (common::run_screen("item.in", &src), dir)
 }
 
 /// The thermo rows (lines of numbers after a `Step` header) of `out`.

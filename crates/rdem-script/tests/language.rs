@@ -21,20 +21,8 @@ use rdem_script::Interpreter;
 mod common;
 use common::screen;
 
-fn try_run(script: &str) -> (Interpreter, Result<(), String>) {
-    let mut i = common::interpreter();
-    let r = i
-        .run_source("in.test", script)
-        .map_err(|e| format!("{:?}", miette::Report::new(*e)));
-    (i, r)
-}
-
 fn run(script: &str) -> Interpreter {
-    let (i, r) = try_run(script);
-    if let Err(e) = r {
-        panic!("{e}\n--- output ---\n{}", screen(&i));
-    }
-    i
+    common::run("in.test", script)
 }
 
 /// Screen lines that start with `key`, with the key removed and trimmed.
@@ -67,13 +55,6 @@ fn assert_close(got: &[f64], want: &[f64], what: &str) {
     for (k, (g, w)) in got.iter().zip(want).enumerate() {
         assert!(close(*g, *w), "{what}[{k}]: got {g}, want {w}");
     }
-}
-
-fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-language-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 #[test]
@@ -165,7 +146,11 @@ print "after the loop"
         .collect();
     assert_eq!(got, ["L1", "L2", "L3", "after the loop"]);
     // The exhausted loop variable is deleted.
-    let (_, r) = try_run("variable i loop 2\nlabel a\nnext i\njump SELF a\nprint \"${i}\"\n");
+    let r = common::try_run(
+        "in.test",
+        "variable i loop 2\nlabel a\nnext i\njump SELF a\nprint \"${i}\"\n",
+    )
+    .map(|_| ());
     assert!(r.unwrap_err().contains("no variable 'i'"));
 }
 
@@ -231,7 +216,7 @@ if "${{n}} == 4 && 1" then "print 'IF four'"
 
 #[test]
 fn include_runs_a_second_file_in_place() {
-    let d = tmpdir("include");
+    let d = common::scratch_dir("language-include");
     let sub = d.join("in.sub");
     std::fs::write(
         &sub,
@@ -253,7 +238,7 @@ fn include_runs_a_second_file_in_place() {
 
 #[test]
 fn print_to_files_and_log() {
-    let d = tmpdir("print");
+    let d = common::scratch_dir("language-print");
     let (p, l) = (d.join("printed.txt"), d.join("log.test"));
     let i = run(&format!(
         r#"
@@ -399,9 +384,13 @@ fn bad_references_in_formulas_are_errors() {
         ("count(nobody)", "no group 'nobody'"),
         ("v_mv", "atom-style variable 'mv'"),
     ] {
-        let (_, r) = try_run(&format!(
-            "{TWO}variable mv atom mass*vx\ncompute r all reduce max x vx\nprint \"$({formula})\"\n"
-        ));
+        let r = common::try_run(
+            "in.test",
+            &format!(
+                "{TWO}variable mv atom mass*vx\ncompute r all reduce max x vx\nprint \"$({formula})\"\n"
+            ),
+        )
+        .map(|_| ());
         let e = r.expect_err(formula);
         assert!(e.contains(message), "{formula}: {e}");
     }

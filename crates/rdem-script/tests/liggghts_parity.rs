@@ -2,8 +2,6 @@
 //! numbers LIGGGHTS printed for it (hard-coded below; the full LIGGGHTS outputs are the
 //! itemN.liggghts.* files next to the scripts, made by regenerate.sh).
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
@@ -18,12 +16,7 @@ fn run_item(name: &str, dump: Option<(&str, &std::path::Path)>) -> String {
     if let Some((from, to)) = dump {
         src = src.replace(from, &to.display().to_string());
     }
-    let mut i = common::interpreter();
-    let out = |i: &Interpreter| common::screen(i);
-    if let Err(e) = i.run_source(name, &src) {
-        panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
-    }
-    out(&i)
+    common::run_screen(name, &src)
 }
 
 /// Asserts each `key=value` line LIGGGHTS printed appears as is in rdem's output.

@@ -2,8 +2,6 @@
 //! tests/data/liquid/ run here and their numbers are compared with what LIGGGHTS wrote for
 //! them (item40.liggghts.txt, item41.liggghts.txt; regenerate.sh there makes them).
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/liquid");
@@ -14,12 +12,7 @@ fn run(name: &str, from: &str, to: &str) -> String {
     let src = std::fs::read_to_string(format!("{DIR}/{name}"))
         .unwrap()
         .replace(from, to);
-    let mut i = common::interpreter();
-    let out = |i: &Interpreter| common::screen(i);
-    if let Err(e) = i.run_source(name, &src) {
-        panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
-    }
-    out(&i)
+    common::run_screen(name, &src)
 }
 
 /// The numeric rows of a `fix print` file (comment lines skipped).

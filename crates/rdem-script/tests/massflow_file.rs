@@ -6,6 +6,7 @@
 //! two spheres falling under gravity through a square face at z = 0.05.
 
 mod common;
+use common::MATERIALS;
 
 const FACE: &str = "solid face
 facet normal 0 0 1
@@ -38,11 +39,7 @@ region reg block -0.05 0.05 -0.05 0.05 0. 0.15 units box
 create_box 1 reg
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
-pair_style gran model hertz tangential history
+{MATERIALS}pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
 fix gravi all gravity 9.81 vector 0.0 0.0 -1.0

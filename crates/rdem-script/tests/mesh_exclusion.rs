@@ -5,7 +5,7 @@
 //! -log none`, 2026-12-04) with the same STL files and lists, the kept triangles read off
 //! a `dump mesh/stl` at `run 0`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rdem::DVec3;
 use rdem_script::Interpreter;
@@ -72,12 +72,6 @@ fn binary(tris: &[Tri]) -> Vec<u8> {
     b
 }
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-mesh-exclusion-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Runs `HEAD` and the fix line `fix` (with `{d}` the test folder).
 fn run(d: &Path, fix: &str) -> Result<Interpreter, String> {
     let src = format!("{HEAD}{}\n", fix.replace("{d}", &d.display().to_string()));
@@ -100,7 +94,7 @@ fn tris(list: &[Tri]) -> Vec<[DVec3; 3]> {
 /// and 4th for lists `16 2` (ASCII) and `3 1` (binary), one number per line.
 #[test]
 fn mesh_exclusion_read_leaves_out_the_listed_facets() {
-    let d = dir("read");
+    let d = common::scratch_dir("mesh-exclusion-read");
     std::fs::write(d.join("c.stl"), ascii(&FOUR)).unwrap();
     std::fs::write(d.join("cb.stl"), binary(&FOUR)).unwrap();
     std::fs::write(d.join("ex.txt"), "16\n2\n").unwrap();
@@ -135,7 +129,7 @@ fn mesh_exclusion_read_leaves_out_the_listed_facets() {
 /// caret under the list's name in the script.
 #[test]
 fn mesh_exclusion_bad_lists_are_located_errors() {
-    let d = dir("bad");
+    let d = common::scratch_dir("mesh-exclusion-bad");
     std::fs::write(d.join("c.stl"), ascii(&FOUR)).unwrap();
     std::fs::write(d.join("cb.stl"), binary(&FOUR)).unwrap();
     // LIGGGHTS 3.8 on these lists with c.stl: `2 3 16` leaves out only facet 1 (3 ends the
@@ -238,7 +232,7 @@ fn mesh_exclusion_bad_lists_are_located_errors() {
 /// sliver of 0.05729 degrees and not one of 0.0573.
 #[test]
 fn mesh_exclusion_write_lists_bad_triangles() {
-    let d = dir("write");
+    let d = common::scratch_dir("mesh-exclusion-write");
     let sliver: Tri = [[2., 0., 0.], [3., 0., 0.], [2.5, 1e-9, 0.]];
     let m = [FOUR[0], FOUR[1], FOUR[2], FOUR[3], FOUR[0], sliver];
     std::fs::write(d.join("m.stl"), ascii(&m)).unwrap();

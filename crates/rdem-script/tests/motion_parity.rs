@@ -3,8 +3,6 @@
 //! outputs are the itemN.liggghts.* files next to it, made by regenerate.sh) and checks
 //! the numbers LIGGGHTS printed (hard-coded below) and closed forms.
 
-use rdem_script::Interpreter;
-
 mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
@@ -19,12 +17,7 @@ fn run_item(name: &str, replace: &[(&str, String)]) -> String {
     for (from, to) in replace {
         src = src.replace(from, to);
     }
-    let mut i = common::interpreter();
-    let out = |i: &Interpreter| common::screen(i);
-    if let Err(e) = i.run_source(name, &src) {
-        panic!("{:?}\n--- output ---\n{}", miette::Report::new(*e), out(&i));
-    }
-    out(&i)
+    common::run_screen(name, &src)
 }
 
 /// Asserts each line LIGGGHTS printed appears as is in rdem's output.

@@ -11,13 +11,7 @@ mod common;
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/regions");
 
 fn run(src: &str) -> Result<String, String> {
-    let mut i = common::interpreter();
-    let r = i.run_source("in.moving", src);
-    let out = common::screen(&i);
-    match r {
-        Ok(()) => Ok(out),
-        Err(e) => Err(format!("{e:?}")),
-    }
+    common::try_screen("in.moving", src)
 }
 
 /// Every thermo line and every count LIGGGHTS printed, exactly (`%.12g`): the particles

@@ -32,10 +32,7 @@ timestep 1e-6
 run 10
 "
     );
-    let mut i = common::interpreter();
-    i.run_source("in.exclude", &src)
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    i
+    common::run("in.exclude", &src)
 }
 
 /// Speeds of atoms 1, 2, 3 after the run.

@@ -52,14 +52,7 @@ run 3000
 fn run_text(name: &str, script: &str) -> (String, String) {
     let path = std::env::temp_dir().join(format!("rdem-old-{name}-{}.dump", std::process::id()));
     let src = script.replace("DUMP", &path.display().to_string());
-    let mut i = common::interpreter();
-    if let Err(e) = i.run_source("in.old", &src) {
-        panic!(
-            "{name}: {}\n--- output ---\n{}",
-            render(&e),
-            common::screen(&i)
-        );
-    }
+    let i = common::run("in.old", &src);
     let dump = std::fs::read_to_string(&path).expect("dump written");
     let _ = std::fs::remove_file(&path);
     (dump, common::screen(&i))
@@ -229,12 +222,8 @@ fix zwalls all wall/gran model hertz tangential history primitive type 1 zplane 
 
 /// The error of `script` (after the head and a pair style), rendered.
 fn error_of(line: &str) -> String {
-    let mut i = common::interpreter();
     let src = format!("{HEAD}pair_style gran/hertz/history\npair_coeff * *\n{line}\n");
-    let e = i
-        .run_source("in.bad", &src)
-        .expect_err("the line must be refused");
-    render(&e)
+    common::error("in.bad", &src)
 }
 
 /// Asserts that the rendered error says `message` and points at `word` of its line (the

@@ -14,14 +14,7 @@ const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/read_dump");
 /// or the error's text.
 fn run(src: &str) -> Result<(Interpreter, String), String> {
     let head = std::fs::read_to_string(format!("{DIR}/head.in")).unwrap();
-    let src = src.replace("include head.in\n", &head);
-    let mut i = common::interpreter();
-    let r = i.run_source("case.in", &src);
-    let out = common::screen(&i);
-    match r {
-        Ok(()) => Ok((i, out)),
-        Err(e) => Err(format!("{:?}\n{out}", miette::Report::new(*e))),
-    }
+    common::try_run_screen("case.in", &src.replace("include head.in\n", &head))
 }
 
 /// Runs case.in with `line` as its read_dump command and checks the dump and the count

@@ -23,6 +23,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
+mod common;
+
 /// The largest allocation a reader may make for these inputs.
 const LIMIT: usize = 64 << 20;
 
@@ -307,10 +309,7 @@ fn rdem_restart() -> Vec<u8> {
          fix i all nve/sphere\nrun 5\nwrite_restart {}\n",
         file.display()
     );
-    let mut i =
-        rdem_script::Interpreter::new(rdem_script::Sim::new(rdem_script::Output::captured()));
-    i.run_source("in.r", &script)
-        .expect("the restart script runs");
+    common::run("in.r", &script);
     let bytes = std::fs::read(&file).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     bytes

@@ -18,17 +18,18 @@ units si
 ";
 
 /// Materials, contact model and time step after `create_box`.
-const POST: &str = "\
+const POST: &str = concat!(
+    "\
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+",
+    common::materials!(),
+    "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
-";
+"
+);
 
 /// A box -0.05..0.05 × -0.05..0.05 × 0..0.15 with materials and no particles.
 fn head() -> String {
@@ -39,7 +40,7 @@ fn head() -> String {
 
 /// Runs `script`; the screen text, or the rendered error report.
 fn try_run(script: &str) -> Result<String, String> {
-    common::try_run_screen("in.test", script).map(|(_, screen)| screen)
+    common::try_screen("in.test", script)
 }
 
 /// Runs `script`, which must succeed; the screen text.
@@ -185,14 +186,6 @@ fn stable(s: &str) -> String {
         .collect()
 }
 
-/// A temporary directory of its own for a test.
-fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-reading-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// LIGGGHTS 3.8 runs a script with a Latin-1 `µ` (byte 0xB5) in a comment and in a
 /// quoted `print` string: it prints `size 5 \xB5m here` (the byte as it is) and goes on.
 /// rdem reads the byte as the Latin-1 `µ`: the script runs as its ASCII twin does, with
@@ -216,7 +209,7 @@ fn latin1_comments_and_quoted_text_are_read() {
         stable(&b)
     );
     // A file on disk (run_file) reads the same way.
-    let d = tmpdir("latin1");
+    let d = common::scratch_dir("reading-latin1");
     let path = d.join("in.latin1");
     std::fs::write(&path, &latin1).unwrap();
     let mut i = common::interpreter();
@@ -269,7 +262,7 @@ fn a_non_utf8_byte_in_a_command_word_is_an_error_at_it() {
 /// a command word is reported in that file.
 #[test]
 fn included_and_jumped_to_files_are_read_as_bytes() {
-    let d = tmpdir("include");
+    let d = common::scratch_dir("reading-include");
     let good = d.join("good.inc");
     let bad = d.join("bad.inc");
     std::fs::write(&good, b"# \xb5 \xe9\r\nprint \"in good \xb5\"\r\n").unwrap();

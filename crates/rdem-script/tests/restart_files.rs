@@ -6,7 +6,7 @@
 //! run's first step, none at a run's last step unless a multiple of N, and a new one-name
 //! `restart` replaces the old one-name schedule only.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rdem_script::Interpreter;
 
@@ -15,20 +15,7 @@ mod common;
 const SI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units/si.in");
 
 fn run_in(dir: &Path, src: &str) -> Interpreter {
-    let mut i = common::interpreter();
-    let src = src.replace("DIR", &dir.display().to_string());
-    if let Err(e) = i.run_source("in.r", &src) {
-        let out = common::screen(&i);
-        panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
-    }
-    i
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-restart-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::run("in.r", &src.replace("DIR", &dir.display().to_string()))
 }
 
 /// The step in a restart file's title line, and its atom count, through `read_restart`.
@@ -42,7 +29,7 @@ fn read_back(file: &Path) -> (u64, u64, rdem_script::Sim) {
 
 #[test]
 fn files_at_the_steps_liggghts_writes() {
-    let dir = scratch("steps");
+    let dir = common::scratch_dir("restart-steps");
     let base = std::fs::read_to_string(SI).unwrap();
     let (head, _) = base.split_once("run 10000").unwrap();
     let src = format!(
@@ -96,7 +83,7 @@ fn files_at_the_steps_liggghts_writes() {
 /// `restart 0` stops both schedules; unsupported forms are located errors.
 #[test]
 fn restart_zero_and_errors() {
-    let dir = scratch("zero");
+    let dir = common::scratch_dir("restart-zero");
     let base = std::fs::read_to_string(SI).unwrap();
     let (head, _) = base.split_once("run 10000").unwrap();
     run_in(

@@ -8,7 +8,8 @@
 
 mod common;
 
-const HEAD: &str = "\
+const HEAD: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -19,10 +20,9 @@ region reg block 0 0.1 0 0.1 0 0.1 units box
 create_box 1 reg
 neighbor 0.001 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+",
+    common::materials!(),
+    "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 1e-4
@@ -38,16 +38,11 @@ thermo 4
 velocity all set 0 0 0
 velocity all ramp vz 0 10 x 0 0.1 units box
 thermo_modify lost ignore
-";
+"
+);
 
 fn run(tail: &str) -> Result<String, String> {
-    let mut i = common::interpreter();
-    let r = i.run_source("in.every", &format!("{HEAD}{tail}"));
-    let out = common::screen(&i);
-    match r {
-        Ok(()) => Ok(out),
-        Err(e) => Err(format!("{:?}", miette::Report::new(*e))),
-    }
+    common::try_screen("in.every", &format!("{HEAD}{tail}"))
 }
 
 /// The thermo rows (four numbers each) in order.

@@ -5,9 +5,11 @@
 use rdem_script::Interpreter;
 
 mod common;
+use common::screen;
 
 /// A box 0.1 × 0.1 × 0.15 with one type and materials, no particles.
-const HEAD: &str = "\
+const HEAD: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -18,25 +20,14 @@ region reg block -0.05 0.05 -0.05 0.05 0. 0.15 units box
 create_box 1 reg
 neighbor 0.002 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5.e6
-fix m2 all property/global poissonsRatio peratomtype 0.45
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+",
+    common::materials!(),
+    "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 0.00001
-";
-
-fn screen(i: &Interpreter) -> String {
-    common::screen(i)
-}
-
-fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-runloop-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+"
+);
 
 fn printed(i: &Interpreter, key: &str) -> f64 {
     let s = screen(i);
@@ -176,7 +167,7 @@ fn check_timestep_rayleigh_fraction() {
 /// write_data then read_data in a new run gives back every particle exactly.
 #[test]
 fn data_file_round_trip() {
-    let d = tmpdir("data");
+    let d = common::scratch_dir("runloop-data");
     let f = d.join("state.data");
     let i = common::run(
         "in.test",
@@ -212,7 +203,7 @@ fn data_file_round_trip() {
 /// dump custom writes the requested columns for the group, sorted by id.
 #[test]
 fn dump_custom_text() {
-    let d = tmpdir("dump");
+    let d = common::scratch_dir("runloop-dump");
     common::run("in.test", &format!(
         "{HEAD}create_atoms 1 single 0.01 0 0.05 units box\ncreate_atoms 1 single -0.01 0 0.05 units box\n\
          set atom 2 diameter 0.003\ngroup two id 2\n\

@@ -20,9 +20,7 @@ set atom * diameter 0.02 density 2500
 {tail}
 "
     );
-    let mut i = common::interpreter();
-    i.run_source("in.set", &src).map_err(|e| format!("{e:?}"))?;
-    Ok(i)
+    common::try_run("in.set", &src)
 }
 
 #[test]

@@ -6,15 +6,13 @@
 
 use std::path::{Path, PathBuf};
 
-use rdem_script::Interpreter;
-
 mod common;
+use common::screen;
 
 fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-shell-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d.canonicalize().unwrap()
+    common::scratch_dir(&format!("shell-{name}"))
+        .canonicalize()
+        .unwrap()
 }
 
 /// Every file and folder under `d`, relative, sorted (as `find . | sort`).
@@ -32,10 +30,6 @@ fn tree(d: &Path) -> Vec<String> {
     walk(d, d, &mut out);
     out.sort();
     out
-}
-
-fn screen(i: &Interpreter) -> String {
-    common::screen(i)
 }
 
 /// The script LIGGGHTS 3.8 ran, after a `shell cd` into the test folder. LIGGGHTS left

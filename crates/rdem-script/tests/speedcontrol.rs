@@ -65,10 +65,7 @@ fn rows(script: &str) -> Vec<Vec<f64>> {
 
 /// The script's error, rendered.
 fn error(script: &str) -> String {
-    match common::try_run("in.speed", script) {
-        Ok(_) => panic!("the script ran without an error"),
-        Err(e) => e,
-    }
+    common::error("in.speed", script)
 }
 
 /// v_n from rest with a constant set velocity and gain.

@@ -9,15 +9,9 @@ const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/settings");
 /// Runs `name` from tests/data/settings and returns its captured screen output.
 fn run(name: &str) -> String {
     let src = std::fs::read_to_string(format!("{DIR}/{name}")).unwrap();
-    let mut i = common::interpreter();
     // The scripts include ../parity/*.in relative to their folder.
     let src = src.replace("include ../parity/", &format!("include {DIR}/../parity/"));
-    let r = i.run_source(name, &src);
-    let out = common::screen(&i);
-    if let Err(e) = r {
-        panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
-    }
-    out
+    common::run_screen(name, &src)
 }
 
 /// The thermo rows (lines of numbers only) of an output, each as numbers.

@@ -7,19 +7,9 @@ mod common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units");
 
-/// Runs `src` and returns its captured screen output.
-fn run_src(name: &str, src: &str) -> String {
-    let mut i = common::interpreter();
-    let r = i.run_source(name, src);
-    let out = common::screen(&i);
-    if let Err(e) = r {
-        panic!("{:?}\n--- output ---\n{out}", miette::Report::new(*e));
-    }
-    out
-}
-
+/// Runs the script file `name` and returns its captured screen output.
 fn run(name: &str) -> String {
-    run_src(
+    common::run_screen(
         name,
         &std::fs::read_to_string(format!("{DIR}/{name}")).unwrap(),
     )

@@ -2,18 +2,9 @@
 //! `jump`: the screen LIGGGHTS 3.8 printed for the same scripts (`liggghts -in in.x -log
 //! none`, 2026-11-24), line for line.
 
-use std::path::PathBuf;
-
 use rdem_script::Interpreter;
 
 mod common;
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-varlists-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn screen(i: &Interpreter) -> Vec<String> {
     let s = common::screen(i);
@@ -34,7 +25,7 @@ fn error(script: &str) -> String {
 /// `f=[\tt1]`, `f=[ x]`.
 #[test]
 fn file_variables_read_lines_as_liggghts() {
-    let d = tmpdir("file");
+    let d = common::scratch_dir("varlists-file");
     let vals = d.join("vals.txt");
     std::fs::write(
         &vals,

@@ -9,13 +9,6 @@ use std::process::Command;
 
 mod common;
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rdem-vtk-{name}-{}", std::process::id()));
-    let _ = fs::remove_dir_all(&d);
-    fs::create_dir_all(&d).unwrap();
-    d
-}
-
 fn reference_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../rdem-io/tests/data/liggghts/atom_vtk")
 }
@@ -99,7 +92,7 @@ fn reference_script(dir: &Path) -> String {
 /// 1e-9 relative (of the array's largest magnitude), points equal as float32.
 #[test]
 fn atom_vtk_matches_liggghts() {
-    let dir = tmpdir("liggghts");
+    let dir = common::scratch_dir("vtk-liggghts");
     let i = common::run("in.test", &reference_script(&dir));
     let mut names: Vec<String> = fs::read_dir(dir.join("post"))
         .unwrap()
@@ -335,7 +328,7 @@ fn vtk_read(files: &[PathBuf]) -> BTreeMap<PathBuf, Seen> {
 /// values against the engine's state; and the `.pvd` collections.
 #[test]
 fn every_vtk_file_reads_back_with_vtk() {
-    let dir = tmpdir("readers");
+    let dir = common::scratch_dir("vtk-readers");
     let d = dir.display();
     let script = format!(
         "{LATTICE}\
@@ -557,7 +550,7 @@ run 10
 /// no collection), `write_dump`, and the keyword errors.
 #[test]
 fn vtk_file_names_and_options() {
-    let dir = tmpdir("names");
+    let dir = common::scratch_dir("vtk-names");
     let d = dir.display();
     let script = format!(
         "{LATTICE}\
@@ -655,7 +648,7 @@ write_dump all atom/vtk {d}/wd_*.vtu modify binary yes
 /// A dump whose directory cannot be created stops the run with the file and the reason.
 #[test]
 fn write_errors_name_the_file() {
-    let dir = tmpdir("errors");
+    let dir = common::scratch_dir("vtk-errors");
     fs::write(dir.join("plain"), b"").unwrap();
     let d = dir.display();
     let mut i = common::interpreter();

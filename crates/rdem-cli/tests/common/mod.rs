@@ -3,6 +3,27 @@
 
 use std::path::Path;
 
+/// The material block of one atom type most scripts here use: E = 5·10⁶ Pa, ν = 0.45,
+/// e = 0.6, μ = 0.5.
+///
+/// A macro, so that `concat!` can build a `const` script around it; [`MATERIALS`] is the
+/// same text for `format!`.
+macro_rules! materials {
+    () => {
+        "\
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.6
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+"
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use materials;
+
+/// The text of [`materials!`].
+pub const MATERIALS: &str = materials!();
+
 /// Copies the directory `from` (recursively) to `to`.
 pub fn copy_dir(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
@@ -44,6 +65,15 @@ pub fn rdem_command(ranks: Option<usize>) -> std::process::Command {
             c
         }
     }
+}
+
+/// `rdem -in <input> -log none`, run directly (`ranks: None`) or on MPI ranks
+/// ([`rdem_command`]), in the directory `dir`; the caller adds the thread count and any
+/// other argument.
+pub fn rdem_in(dir: &Path, input: &str, ranks: Option<usize>) -> std::process::Command {
+    let mut c = rdem_command(ranks);
+    c.args(["-in", input, "-log", "none"]).current_dir(dir);
+    c
 }
 
 /// A fresh, empty directory under the system temp directory, named after `prefix`, the
@@ -92,10 +122,8 @@ pub fn run_kept(
         std::fs::write(dir.join(name), text).unwrap();
     }
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let out = rdem_command(ranks)
-        .args(["-in", "in.test", "-log", "none"])
+    let out = rdem_in(&dir, "in.test", ranks)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
     (dir, out)
@@ -128,10 +156,8 @@ pub fn run_data_script(
     for f in std::iter::once(&script).chain(files) {
         std::fs::copy(data.join(f), dir.join(f)).unwrap();
     }
-    let out = rdem_command(None)
-        .args(["-in", script, "-log", "none"])
+    let out = rdem_in(&dir, script, None)
         .env("RDEM_THREADS", "1")
-        .current_dir(&dir)
         .output()
         .unwrap();
     let text = success(script, &out) + &String::from_utf8_lossy(&out.stderr);
