@@ -123,12 +123,13 @@ fn cell_arrays(text: &str) -> Vec<(String, usize, String, Vec<f64>)> {
     out
 }
 
-/// `dump mesh/vtk ... owner aedges nneighs` of the tutorials' meshGran hopper (92
+/// `dump mesh/vtk ... owner aedges acorners nneighs` of the tutorials' meshGran hopper (92
 /// triangles) and chute_wear chute (1616, a curved surface whose edges bend by 0.34° to
 /// 18°, against the 0.256° of the default curvature): the arrays, their order and their
 /// values equal LIGGGHTS 3.8's (areas to 1e-9). On 2 ranks each triangle's owner is
 /// LIGGGHTS' (the rank whose subdomain holds its centroid; LIGGGHTS writes the triangles
-/// grouped by rank, so they are matched by meshid). `acorners` stops with an error.
+/// grouped by rank, so they are matched by meshid). A misspelt value stops with the list
+/// of values.
 #[test]
 fn mesh_topology_values_match_liggghts() {
     let tutorials = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
@@ -196,11 +197,13 @@ fn mesh_topology_values_match_liggghts() {
         }
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let bad = script.replace("aedges nneighs id chute", "acorners id chute");
+    let bad = script.replace("acorners aedges nneighs id chute", "acorner id chute");
+    assert_ne!(bad, script);
     let (dir, out) = run_kept("mesh-topology", &bad, &[], None);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("'acorners' is not supported"), "{err}");
+    assert!(err.contains("'acorner' is neither a value"), "{err}");
+    assert!(err.contains("aedges, acorners, nneighs"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -246,23 +246,72 @@ impl TriMesh {
     }
 
     /// Per triangle, its active edges as LIGGGHTS 3.8 counts them (`dump mesh/vtk
-    /// aedges`): an edge of one triangle is active; an edge whose triangles all lie
-    /// within the angle of `coplanar_cos` of the first is not (one flat surface); any
-    /// other shared edge is active once, for the last of its triangles. Measured on
-    /// LIGGGHTS 3.8: a flat square 2 2, a ridge or a valley 2 3, a tetrahedron 0 1 2 3,
-    /// a flat fan 1 each, and every triangle of the tutorials' meshes (1616 of the chute).
+    /// aedges`): each active edge ([`TriMesh::edge_is_active`]) counts once, for the
+    /// last of its triangles. Measured on LIGGGHTS 3.8: a flat square 2 2, a ridge or a
+    /// valley 2 3, a tetrahedron 0 1 2 3, a flat fan 1 each, and every triangle of the
+    /// tutorials' meshes (1616 of the chute).
     pub fn active_edge_counts(&self, coplanar_cos: f64) -> Vec<u32> {
         let mut count = vec![0; self.tris.len()];
         for e in 0..self.edges.len() as u32 {
-            let ts = self.triangles_of_edge(e);
-            let n0 = self.normals[ts[0] as usize];
-            let flat = ts.len() > 1
-                && ts[1..]
-                    .iter()
-                    .all(|&t| n0.dot(self.normals[t as usize]).abs() >= coplanar_cos);
-            if !flat {
-                let last = *ts.iter().max().expect("an edge has a triangle");
+            if self.edge_is_active(e, coplanar_cos) {
+                let last = *self.triangles_of_edge(e).iter().max().expect("a triangle");
                 count[last as usize] += 1;
+            }
+        }
+        count
+    }
+
+    /// Whether edge `e` is active as LIGGGHTS 3.8 counts it: an edge of one triangle
+    /// is; an edge whose triangles all lie within the angle of `coplanar_cos` of the
+    /// first is not (one flat surface); any other shared edge is.
+    pub fn edge_is_active(&self, e: u32, coplanar_cos: f64) -> bool {
+        let ts = self.triangles_of_edge(e);
+        let n0 = self.normals[ts[0] as usize];
+        let flat = ts.len() > 1
+            && ts[1..]
+                .iter()
+                .all(|&t| n0.dot(self.normals[t as usize]).abs() >= coplanar_cos);
+        !flat
+    }
+
+    /// Per triangle, its active corners as LIGGGHTS 3.8 counts them (`dump mesh/vtk
+    /// acorners`): each active corner counts once, for the last of its triangles. A
+    /// corner is active when an active edge ([`TriMesh::edge_is_active`]) meets there
+    /// and none of them runs on in a straight line, within the angle of `coplanar_cos`,
+    /// into another edge that meets there (active or not): inside a flat surface, on a
+    /// straight boundary or on a straight crease it is not. Measured on LIGGGHTS 3.8:
+    /// a square 1 3, a tetrahedron 0 0 1 3, a flat fan 0 1 1 1 1 2, a 2 × 2 grid flat
+    /// and folded along its middle, a boundary kinked by 0.25° (straight) and 0.26° (a
+    /// corner), a cube, an open box, and every triangle of the tutorials' meshGran
+    /// hopper (92) and chute_wear chute (1616).
+    pub fn active_corner_counts(&self, coplanar_cos: f64) -> Vec<u32> {
+        let nv = self.verts.len();
+        // The edges at each vertex: (unit direction away from it, active).
+        let mut at: Vec<Vec<(DVec3, bool)>> = vec![Vec::new(); nv];
+        for (e, &[a, b]) in self.edges.iter().enumerate() {
+            let active = self.edge_is_active(e as u32, coplanar_cos);
+            let d = (self.verts[b as usize] - self.verts[a as usize]).normalize();
+            at[a as usize].push((d, active));
+            at[b as usize].push((-d, active));
+        }
+        let mut last = vec![None::<usize>; nv];
+        for (t, tri) in self.tris.iter().enumerate() {
+            for &v in tri {
+                last[v as usize] = Some(t);
+            }
+        }
+        let mut count = vec![0; self.tris.len()];
+        for (v, edges) in at.iter().enumerate() {
+            let straight_on = |(i, &(d, _)): (usize, &(DVec3, bool))| {
+                edges
+                    .iter()
+                    .enumerate()
+                    .any(|(j, &(d2, _))| j != i && -d.dot(d2) >= coplanar_cos)
+            };
+            let mut active = edges.iter().enumerate().filter(|(_, &(_, a))| a);
+            let corner = active.clone().next().is_some() && !active.any(straight_on);
+            if let (true, Some(t)) = (corner, last[v]) {
+                count[t] += 1;
             }
         }
         count
@@ -421,6 +470,116 @@ mod tests {
         // Raised 1 cm at the centre (0.57°): the spokes count, each for the later one.
         let cone: Vec<[DVec3; 3]> = (0..6).map(|k| [v(0., 0., 0.01), p(k), p(k + 1)]).collect();
         assert_eq!(mesh(&cone).active_edge_counts(cos), [1, 2, 2, 2, 2, 3]);
+    }
+
+    /// Active corners of small meshes, as LIGGGHTS 3.8 wrote them (`dump mesh/vtk
+    /// acorners`, curvature at its default).
+    #[test]
+    fn active_corners_as_liggghts() {
+        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        let mesh = |soup: &[[DVec3; 3]]| TriMesh::from_triangles(soup, 1e-8, false).unwrap().0;
+        let cos = 1.0 - 1e-5;
+        let quad = |a, b, c, d| [[a, b, c], [a, c, d]];
+        let square = mesh(&quad(
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(1., 1., 0.),
+            v(0., 1., 0.),
+        ));
+        assert_eq!(square.active_corner_counts(cos), [1, 3]);
+        for z in [0.5, -0.5] {
+            let ridge = mesh(&[
+                [v(0., 0., 0.), v(1., 0., 0.), v(0.5, 1., z)],
+                [v(1., 0., 0.), v(0., 0., 0.), v(0.5, -1., z)],
+            ]);
+            assert_eq!(ridge.active_corner_counts(cos), [1, 3], "z = {z}");
+        }
+        let tet = mesh(&[
+            [v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)],
+            [v(0., 0., 0.), v(0., 0., 1.), v(1., 0., 0.)],
+            [v(0., 0., 0.), v(0., 1., 0.), v(0., 0., 1.)],
+            [v(1., 0., 0.), v(0., 0., 1.), v(0., 1., 0.)],
+        ]);
+        assert_eq!(tet.active_corner_counts(cos), [0, 0, 1, 3]);
+        let one = mesh(&[[v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)]]);
+        assert_eq!(one.active_corner_counts(cos), [3]);
+        // A flat fan: its centre is inside a flat surface; raised, it is a corner.
+        let p = |k: usize| {
+            let a = std::f64::consts::TAU * k as f64 / 6.0;
+            v(a.cos(), a.sin(), 0.0)
+        };
+        let fan: Vec<[DVec3; 3]> = (0..6).map(|k| [v(0., 0., 0.), p(k), p(k + 1)]).collect();
+        assert_eq!(mesh(&fan).active_corner_counts(cos), [0, 1, 1, 1, 1, 2]);
+        let cone: Vec<[DVec3; 3]> = (0..6).map(|k| [v(0., 0., 0.01), p(k), p(k + 1)]).collect();
+        assert_eq!(mesh(&cone).active_corner_counts(cos), [0, 1, 1, 1, 1, 3]);
+        // A 2 × 2 grid, flat and folded along x = 1: the points halfway along its
+        // straight sides and on the straight fold are not corners.
+        let grid = |fold: f64| {
+            let z = |x: f64| if x <= 1.0 { 0.0 } else { fold * (x - 1.0) };
+            let mut g = Vec::new();
+            for i in 0..2 {
+                for j in 0..2 {
+                    let (x, y) = (i as f64, j as f64);
+                    g.extend(quad(
+                        v(x, y, z(x)),
+                        v(x + 1., y, z(x + 1.)),
+                        v(x + 1., y + 1., z(x + 1.)),
+                        v(x, y + 1., z(x)),
+                    ));
+                }
+            }
+            mesh(&g)
+        };
+        assert_eq!(
+            grid(0.0).active_corner_counts(cos),
+            [0, 1, 0, 1, 1, 0, 0, 1]
+        );
+        assert_eq!(
+            grid(0.3).active_corner_counts(cos),
+            [0, 1, 0, 1, 1, 1, 0, 2]
+        );
+        // A boundary kinked in its plane: straight below the curvature angle (0.256°).
+        for (deg, want) in [
+            (0.1, [0, 2, 2]),
+            (0.25, [0, 2, 2]),
+            (0.26, [0, 2, 3]),
+            (1.0, [0, 2, 3]),
+        ] {
+            let t: f64 = f64::to_radians(deg);
+            let mut soup =
+                quad(v(0., 0., 0.), v(1., 0., 0.), v(1., 1., 0.), v(0., 1., 0.)).to_vec();
+            soup.push([v(1., 0., 0.), v(1. + t.cos(), -t.sin(), 0.), v(1., 1., 0.)]);
+            assert_eq!(mesh(&soup).active_corner_counts(cos), want, "{deg}°");
+        }
+        // A cube and the same box without its lid.
+        let c: Vec<DVec3> = (0..8)
+            .map(|k| v((k / 4) as f64, (k / 2 % 2) as f64, (k % 2) as f64))
+            .collect();
+        let faces = [
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+        ];
+        let boxed = |skip: usize| {
+            let soup: Vec<[DVec3; 3]> = faces
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != skip)
+                .flat_map(|(_, f)| quad(c[f[0]], c[f[1]], c[f[2]], c[f[3]]))
+                .collect();
+            mesh(&soup)
+        };
+        assert_eq!(
+            boxed(usize::MAX).active_corner_counts(cos),
+            [0, 0, 0, 0, 0, 0, 0, 0, 1, 3, 1, 3]
+        );
+        assert_eq!(
+            boxed(1).active_corner_counts(cos),
+            [0, 0, 0, 0, 0, 0, 1, 3, 1, 3]
+        );
     }
 
     fn square() -> Vec<[DVec3; 3]> {

@@ -15,9 +15,9 @@ use crate::sim::Sim;
 pub(super) const ROW: DumpRow = DumpRow::runs(
     "mesh/vtk",
     parse,
-    "`stress` (normal_stress_average, shear_stress_average), `stresscomponents` (stress: force on the triangle / its area, 3 components), `id` (meshid), `wear`, `owner` (the rank whose subdomain holds the triangle's centroid), `area`, `aedges` (active_edges), `nneighs`, `vel` (v), then mesh IDs; `output` accepted",
+    "`stress` (normal_stress_average, shear_stress_average), `stresscomponents` (stress: force on the triangle / its area, 3 components), `id` (meshid), `wear`, `owner` (the rank whose subdomain holds the triangle's centroid), `area`, `aedges` (active_edges), `acorners` (active_corners), `nneighs`, `vel` (v), then mesh IDs; `output` accepted",
 )
-.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays in LIGGGHTS' fixed order, whatever the order of the values), with a `.pvd` series; `aedges` and `nneighs` count as LIGGGHTS 3.8 does (checked on every tutorial mesh); `acorners` stops with an error: LIGGGHTS' rule for an active corner is not known to rdem");
+.notes("legacy VTK polydata as LIGGGHTS writes it (three points per triangle, cell arrays in LIGGGHTS' fixed order, whatever the order of the values), with a `.pvd` series; `aedges`, `acorners` and `nneighs` count as LIGGGHTS 3.8 does (checked on small meshes and on two tutorials' meshes)");
 
 /// The registry row of the old name.
 pub(super) const ROW_OLD_NAME: DumpRow =
@@ -25,7 +25,7 @@ pub(super) const ROW_OLD_NAME: DumpRow =
 
 /// The values rdem writes, in the order LIGGGHTS 3.8 writes their arrays (measured: the
 /// order of the values in the command does not matter).
-const FIELDS: [&str; 9] = [
+const FIELDS: [&str; 10] = [
     "stress",
     "stresscomponents",
     "id",
@@ -33,16 +33,22 @@ const FIELDS: [&str; 9] = [
     "owner",
     "area",
     "aedges",
+    "acorners",
     "nneighs",
     "vel",
 ];
 
 /// The cell arrays LIGGGHTS writes as integers.
-const INT_ARRAYS: [&str; 4] = ["meshid", "owner", "active_edges", "nneighs"];
+const INT_ARRAYS: [&str; 5] = [
+    "meshid",
+    "owner",
+    "active_edges",
+    "active_corners",
+    "nneighs",
+];
 
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
     // [output face|interpolate|original] fields... mesh IDs...
-    const LATER_FIELDS: [&str; 1] = ["acorners"];
     // The style word as written (`dump` has it at word 3, `write_dump` at word 2).
     let style = a
         .words()
@@ -65,12 +71,6 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
             if !cols.iter().any(|c| c == w) {
                 cols.push(w.to_string());
             }
-        } else if LATER_FIELDS.contains(&w) {
-            return Err(a.error_at(
-                a.pos(),
-                format!("dump {style} value '{w}' is not supported by this rdem release yet"),
-                Some(format!("supported: {}", FIELDS.join(", "))),
-            ));
         } else {
             let known = mesh_ids(sim);
             if !known.contains(&w) {
@@ -135,7 +135,7 @@ impl DumpStyle for MeshVtk {
 /// `fields` asks for (`stress`: normal_stress_average and shear_stress_average,
 /// `stresscomponents`: stress, the force of the particles on the triangle over its area,
 /// `id`: meshid, the triangle's index (integers), `wear`, `owner`: the rank of the
-/// triangle's centroid, `area`, `aedges`: active_edges, `nneighs`, `vel`: v, the velocity
+/// triangle's centroid, `area`, `aedges`: active_edges, `acorners`: active_corners, `nneighs`, `vel`: v, the velocity
 /// of each triangle's centroid).
 fn mesh_arrays(
     w: &rdem::World,
@@ -229,6 +229,11 @@ fn mesh_arrays(
                     let count = m.mesh.active_edge_counts(m.coplanar_cos);
                     let count: Vec<f64> = count.into_iter().map(f64::from).collect();
                     push("active_edges", 1, &count);
+                }
+                "acorners" => {
+                    let count = m.mesh.active_corner_counts(m.coplanar_cos);
+                    let count: Vec<f64> = count.into_iter().map(f64::from).collect();
+                    push("active_corners", 1, &count);
                 }
                 "nneighs" => {
                     let count: Vec<f64> = m
