@@ -52,6 +52,12 @@ pub struct NeighborList {
     pub partner: Vec<u32>,
     /// Contact history, `width` values per pair.
     pub hist: Vec<f64>,
+    /// Per pair (with a history width above 0), 1 where the pair touched at the last
+    /// force pass. A pair that stops touching keeps its history, as in LIGGGHTS 3.8,
+    /// until the history is next saved ([`Neighbor::save_history`], before a build),
+    /// which keeps only the pairs that touch; a pair that touches again before then
+    /// goes on from it.
+    pub touch: Vec<u8>,
     /// History values per pair.
     pub width: usize,
     /// Leading history values that change sign when the pair is seen from the other side.
@@ -183,6 +189,7 @@ impl Neighbor {
             self.list.width = width;
             self.list.odd = odd;
             self.list.hist = vec![0.0; self.list.len() * width];
+            self.list.touch = vec![0; if width > 0 { self.list.len() } else { 0 }];
             self.store.clear();
         }
     }
@@ -233,7 +240,7 @@ impl Neighbor {
     }
 
     /// Saves the contact history of the current list by tag pair (contacts whose history
-    /// is all zero are not kept). Call before particles
+    /// is all zero, or that did not touch at the last force pass, are not kept). Call before particles
     /// are reordered, removed, migrated or re-imaged, or ghosts dropped. Only the first
     /// call after a build saves: later calls (ghosts may be gone by then, and the list's
     /// indices stale) keep what was saved, until the next [`Neighbor::build`] restores it.
@@ -287,6 +294,7 @@ impl Neighbor {
         self.list.first = Vec::new();
         self.list.partner = Vec::new();
         self.list.hist = Vec::new();
+        self.list.touch = Vec::new();
         if n == 0 {
             self.list.first.push(0);
             return;
@@ -300,6 +308,9 @@ impl Neighbor {
         }
         let w = self.list.width;
         self.list.hist.resize(self.list.partner.len() * w, 0.0);
+        if w > 0 {
+            self.list.touch.resize(self.list.partner.len(), 0);
+        }
         self.store.restore(&mut self.list, &p.tag, nlocal);
         self.store.clear();
         if let Some(half) = self.short_periodic {
@@ -371,7 +382,10 @@ impl Neighbor {
             for i in 0..rows {
                 for k in self.list.first[i] as usize..self.list.first[i + 1] as usize {
                     let h = &self.list.hist[k * w..(k + 1) * w];
-                    if h.iter().all(|&v| v == 0.0) {
+                    // A pair apart at the last force pass is not written: the next
+                    // build drops its history (see `NeighborList::touch`).
+                    let apart = self.list.touch.get(k) == Some(&0);
+                    if apart || h.iter().all(|&v| v == 0.0) {
                         continue;
                     }
                     entries.push(p.tag[i] as f64);

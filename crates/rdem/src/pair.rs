@@ -301,6 +301,7 @@ impl Phase1<'_> {
         res: &mut [PairOut],
         rv: &mut [[f64; 6]],
         hist: &mut [f64],
+        touch: &mut [u8],
         own: &mut [OwnSum],
     ) {
         if b1 - b0 > 1 {
@@ -315,13 +316,15 @@ impl Phase1<'_> {
                 (&mut [][..], &mut [][..])
             };
             let (ha, hb) = hist.split_at_mut(kh);
+            let kt = if touch.is_empty() { 0 } else { kh / self.width };
+            let (ta, tb) = touch.split_at_mut(kt);
             let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
-                || self.blocks::<K, VIRIAL, BOND>(b0, mid, ra, va, ha, oa),
-                || self.blocks::<K, VIRIAL, BOND>(mid, b1, rb, vb, hb, ob),
+                || self.blocks::<K, VIRIAL, BOND>(b0, mid, ra, va, ha, ta, oa),
+                || self.blocks::<K, VIRIAL, BOND>(mid, b1, rb, vb, hb, tb, ob),
             );
         } else {
-            self.block::<K, VIRIAL, BOND>(b0, res, rv, hist, own);
+            self.block::<K, VIRIAL, BOND>(b0, res, rv, hist, touch, own);
         }
     }
 
@@ -333,6 +336,7 @@ impl Phase1<'_> {
         res: &mut [PairOut],
         rv: &mut [[f64; 6]],
         hist: &mut [f64],
+        touch: &mut [u8],
         own: &mut [OwnSum],
     ) {
         let w = self.width;
@@ -341,6 +345,7 @@ impl Phase1<'_> {
         let k0 = near.first[lo] as usize;
         let h0 = self.list_first[lo] as usize;
         let mut empty: [f64; 0] = [];
+        let mut no_touch = 0u8;
         for i in lo..hi {
             let coeff_row = self.table.row(self.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
@@ -348,12 +353,13 @@ impl Phase1<'_> {
             for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
                 let r = s - k0 + kk;
                 let slot = slot - h0;
-                let hist: &mut [f64] = if w > 0 {
-                    &mut hist[slot * w..(slot + 1) * w]
+                let (hist, touch): (&mut [f64], &mut u8) = if w > 0 {
+                    (&mut hist[slot * w..(slot + 1) * w], &mut touch[slot])
                 } else {
-                    &mut empty
+                    (&mut empty, &mut no_touch)
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
+                else {
                     res[r] = PairOut::default();
                     if VIRIAL {
                         rv[r] = [0.0; 6];
@@ -384,17 +390,18 @@ impl Phase1<'_> {
         k: usize,
         coeff_row: &[PairCoeff],
         hist: &mut [f64],
+        touch: &mut u8,
     ) -> Option<(DVec3, ContactForce)> {
         let d = self.x[i] - self.x[j];
         let rsq = d.length_squared();
         if !BOND {
             return self
-                .contact::<K>(i, j, k, coeff_row, hist, d, rsq)
+                .contact::<K>(i, j, k, coeff_row, hist, touch, d, rsq)
                 .map(|o| (d, o));
         }
         let (vecs, rest) = hist.split_at_mut(bond::VEC);
         let (hc, tail) = rest.split_at_mut(K::HIST);
-        let mut out = self.contact::<K>(i, j, k, coeff_row, hc, d, rsq);
+        let mut out = self.contact::<K>(i, j, k, coeff_row, hc, touch, d, rsq);
         let table = self.bond.expect("bond table");
         let (ti, tj) = (self.ty[i], self.ty[j]);
         let c = table.get(ti, tj);
@@ -422,6 +429,10 @@ impl Phase1<'_> {
         };
         let (b, e) = bond::bond(&g, c, self.bond_flags, vecs, tail);
         self.events.count(e);
+        // A bonded pair keeps its history at a build whether it touches or not.
+        if bond::is_bonded(tail) {
+            *touch = 1;
+        }
         if e != Event::Broken {
             let o = out.get_or_insert_with(ContactForce::default);
             o.f_i += b.f_i;
@@ -444,6 +455,7 @@ impl Phase1<'_> {
         k: usize,
         coeff_row: &[PairCoeff],
         hist: &mut [f64],
+        touch: &mut u8,
         d: DVec3,
         rsq: f64,
     ) -> Option<ContactForce> {
@@ -458,13 +470,18 @@ impl Phase1<'_> {
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(rsq < radsum * radsum) {
             if K::BRIDGE {
-                return self.apart::<K>(i, j, k, coeff_row, hist, d, rsq);
+                // The contact's history is cleared; a live bridge keeps the pair's.
+                let out = self.apart::<K>(i, j, k, coeff_row, hist, d, rsq);
+                let bridge = &hist[K::HIST - K::BRIDGE_HIST..];
+                *touch = bridge.iter().any(|&h| h != 0.0) as u8;
+                return out;
             }
-            if !hist.is_empty() {
-                clear_history(hist);
-            }
+            *touch = 0;
+            // The history stays, as in LIGGGHTS 3.8: a pair that touches again before
+            // the next neighbor build goes on from it (see `NeighborList::touch`).
             return None;
         }
+        *touch = 1;
         let dist = rsq.sqrt();
         let mut delta = radsum - dist;
         let n = if dist > 0.0 {
@@ -587,6 +604,7 @@ impl Phase1<'_> {
     fn serial<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
         &self,
         hist: &mut [f64],
+        touch: &mut [u8],
         f: &mut [DVec3],
         torque: &mut [DVec3],
         virial: &mut [[f64; 6]],
@@ -595,6 +613,7 @@ impl Phase1<'_> {
         let near = self.near;
         let h0 = self.list_first[0] as usize;
         let mut empty: [f64; 0] = [];
+        let mut no_touch = 0u8;
         for i in 0..self.nlocal {
             let coeff_row = self.table.row(self.ty[i]);
             let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
@@ -602,12 +621,13 @@ impl Phase1<'_> {
             let mut tqi = DVec3::ZERO;
             for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
                 let slot = slot - h0;
-                let hist: &mut [f64] = if w > 0 {
-                    &mut hist[slot * w..(slot + 1) * w]
+                let (hist, touch): (&mut [f64], &mut u8) = if w > 0 {
+                    (&mut hist[slot * w..(slot + 1) * w], &mut touch[slot])
                 } else {
-                    &mut empty
+                    (&mut empty, &mut no_touch)
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist) else {
+                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
+                else {
                     continue;
                 };
                 if VIRIAL {
@@ -627,6 +647,15 @@ impl Phase1<'_> {
             f[i] += fi;
             torque[i] += tqi;
         }
+    }
+}
+
+/// The touch flags of pairs `a..b` (none when the model keeps no history).
+fn touch_range(touch: &mut [u8], a: usize, b: usize) -> &mut [u8] {
+    if touch.is_empty() {
+        touch
+    } else {
+        &mut touch[a..b]
     }
 }
 
@@ -820,7 +849,8 @@ impl PairPass<'_> {
         if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
-            ph1.serial::<K, VIRIAL, BOND>(hist, f, torque, virial);
+            let touch = touch_range(&mut list.touch, h0 / w.max(1), h1 / w.max(1));
+            ph1.serial::<K, VIRIAL, BOND>(hist, touch, f, torque, virial);
             return;
         }
         let npairs = ph1.near.partner.len();
@@ -832,7 +862,8 @@ impl PairPass<'_> {
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
             let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
-            ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], own);
+            let touch = touch_range(&mut list.touch, h0 / w.max(1), h1 / w.max(1));
+            ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], touch, own);
         }
         let ph2 = Phase2 {
             near: ph1.near,

@@ -116,7 +116,10 @@ impl HistoryStore {
                 let bits = list.hist[k * w..(k + 1) * w]
                     .iter()
                     .fold(0u64, |a, v| a | (v.to_bits() << 1));
-                let keep = (bits != 0) & ((list.partner[k] as usize) < valid);
+                // A pair apart at the last force pass drops its history here (LIGGGHTS
+                // keeps the histories of the pairs that touch when it rebuilds).
+                let touching = list.touch.get(k).is_none_or(|&t| t != 0);
+                let keep = (bits != 0) & ((list.partner[k] as usize) < valid) & touching;
                 self.sel[ns] = (k as u32, i as u32);
                 ns += keep as usize;
             }
@@ -318,6 +321,9 @@ impl HistoryStore {
                     &mut list.hist[k * w..(k + 1) * w],
                     &self.vals[q * w..(q + 1) * w],
                 );
+                if let Some(t) = list.touch.get_mut(k) {
+                    *t = (q != zero) as u8;
+                }
             }
         }
     }

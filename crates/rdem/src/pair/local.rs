@@ -162,7 +162,8 @@ impl Visitor for Records<'_> {
                 let rsq = d.length_squared();
                 let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
                 scratch.copy_from_slice(h);
-                let Some(c) = ph1.contact::<K>(i, j, s + kk, coeff_row, &mut scratch, d, rsq)
+                let Some(c) =
+                    ph1.contact::<K>(i, j, s + kk, coeff_row, &mut scratch, &mut 0, d, rsq)
                 else {
                     continue;
                 };
@@ -199,7 +200,8 @@ fn bond_records<K: ContactKernel>(
                 continue;
             }
             scratch.copy_from_slice(h);
-            let Some((d, c)) = ph1.eval::<K, true>(i, j, s + kk, coeff_row, &mut scratch) else {
+            let Some((d, c)) = ph1.eval::<K, true>(i, j, s + kk, coeff_row, &mut scratch, &mut 0)
+            else {
                 continue;
             };
             out.i.push(i as u32);
