@@ -308,7 +308,8 @@ impl Phase1<'_> {
             let mid = (b0 + b1) / 2;
             let (lo, m) = (b0 * BLOCK, mid * BLOCK);
             let kn = (self.near.first[m] - self.near.first[lo]) as usize;
-            let kh = (self.list_first[m] - self.list_first[lo]) as usize * self.width;
+            let kp = (self.list_first[m] - self.list_first[lo]) as usize;
+            let kh = kp * self.width;
             let (ra, rb) = res.split_at_mut(kn);
             let (va, vb) = if VIRIAL {
                 rv.split_at_mut(kn)
@@ -316,8 +317,7 @@ impl Phase1<'_> {
                 (&mut [][..], &mut [][..])
             };
             let (ha, hb) = hist.split_at_mut(kh);
-            let kt = if touch.is_empty() { 0 } else { kh / self.width };
-            let (ta, tb) = touch.split_at_mut(kt);
+            let (ta, tb) = touch.split_at_mut(if touch.is_empty() { 0 } else { kp });
             let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
                 || self.blocks::<K, VIRIAL, BOND>(b0, mid, ra, va, ha, ta, oa),
@@ -814,8 +814,8 @@ impl PairPass<'_> {
         if threaded && near.rfirst.len() != n + 1 {
             near.build_reverse(&list.partner, n);
         }
-        let h0 = list.first[0] as usize * w;
-        let h1 = list.first[nlocal] as usize * w;
+        let (p0, p1) = (list.first[0] as usize, list.first[nlocal] as usize);
+        let (h0, h1) = (p0 * w, p1 * w);
         let ph1 = Phase1 {
             near: near.rows(&list.first, &list.partner),
             table,
@@ -849,7 +849,7 @@ impl PairPass<'_> {
         if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
-            let touch = touch_range(&mut list.touch, h0 / w.max(1), h1 / w.max(1));
+            let touch = touch_range(&mut list.touch, p0, p1);
             ph1.serial::<K, VIRIAL, BOND>(hist, touch, f, torque, virial);
             return;
         }
@@ -862,7 +862,7 @@ impl PairPass<'_> {
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
             let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
-            let touch = touch_range(&mut list.touch, h0 / w.max(1), h1 / w.max(1));
+            let touch = touch_range(&mut list.touch, p0, p1);
             ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], touch, own);
         }
         let ph2 = Phase2 {
