@@ -44,9 +44,25 @@ pub enum Sort {
     Descending(usize),
 }
 
+/// Why a `dump_modify sort` argument is refused ([`Sort::parse`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SortError {
+    /// Not `off`, `id`, N or -N.
+    #[error("expected 'off', 'id', N or -N, found '{0}'")]
+    Syntax(String),
+    /// A column the dump does not have.
+    #[error("sort column {n} does not exist (the dump has {ncolumns} columns)")]
+    NoColumn {
+        /// The column asked for (1-based).
+        n: usize,
+        /// The dump's columns.
+        ncolumns: usize,
+    },
+}
+
 impl Sort {
     /// Parses the `dump_modify sort` argument for a dump with `ncolumns` columns.
-    pub fn parse(arg: &str, ncolumns: usize) -> Result<Sort, String> {
+    pub fn parse(arg: &str, ncolumns: usize) -> Result<Sort, SortError> {
         match arg {
             "off" => return Ok(Sort::Off),
             "id" => return Ok(Sort::Id),
@@ -58,11 +74,9 @@ impl Sort {
         };
         let n: usize = digits
             .parse()
-            .map_err(|_| format!("expected 'off', 'id', N or -N, found '{arg}'"))?;
+            .map_err(|_| SortError::Syntax(arg.to_string()))?;
         if n == 0 || n > ncolumns {
-            return Err(format!(
-                "sort column {n} does not exist (the dump has {ncolumns} columns)"
-            ));
+            return Err(SortError::NoColumn { n, ncolumns });
         }
         Ok(if desc {
             Sort::Descending(n)
@@ -285,7 +299,10 @@ mod tests {
         assert_eq!(Sort::parse("off", 2), Ok(Sort::Off));
         assert_eq!(Sort::parse("-2", 2), Ok(Sort::Descending(2)));
         assert_eq!(Sort::parse("1", 2), Ok(Sort::Ascending(1)));
-        assert!(Sort::parse("3", 2).unwrap_err().contains("2 columns"));
+        assert!(Sort::parse("3", 2)
+            .unwrap_err()
+            .to_string()
+            .contains("2 columns"));
         assert!(Sort::parse("0", 2).is_err());
         assert!(Sort::parse("x", 2).is_err());
     }

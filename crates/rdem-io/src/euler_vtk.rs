@@ -30,23 +30,32 @@ use crate::printf::{Printf, Value};
 /// Checks a `dump euler/vtk` file name: it must contain `*` (one file per snapshot, the
 /// timestep in its name); `%` (a file per process) and `.bin` (binary output) are not
 /// available for this style.
-pub fn check_euler_vtk_name(name: &str) -> Result<(), String> {
+pub fn check_euler_vtk_name(name: &str) -> Result<(), EulerVtkNameError> {
+    let name = name.to_string();
     if name.contains('%') {
-        return Err(format!(
-            "dump euler/vtk file '{name}': '%' (one file per process) is not allowed: rank 0 writes the whole grid"
-        ));
+        Err(EulerVtkNameError::PerProcess(name))
+    } else if name.ends_with(".bin") {
+        Err(EulerVtkNameError::Binary(name))
+    } else if !name.contains('*') {
+        Err(EulerVtkNameError::NoStar(name))
+    } else {
+        Ok(())
     }
-    if name.ends_with(".bin") {
-        return Err(format!(
-            "dump euler/vtk file '{name}': binary output (.bin) is not available, only ASCII VTK"
-        ));
-    }
-    if !name.contains('*') {
-        return Err(format!(
-            "dump euler/vtk file '{name}' must contain '*' (replaced by the timestep: one file per snapshot)"
-        ));
-    }
-    Ok(())
+}
+
+/// Why a `dump euler/vtk` file name is refused ([`check_euler_vtk_name`]); each holds the
+/// name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum EulerVtkNameError {
+    /// It has `%` (a file per process).
+    #[error("dump euler/vtk file '{0}': '%' (one file per process) is not allowed: rank 0 writes the whole grid")]
+    PerProcess(String),
+    /// It ends in `.bin` (binary output).
+    #[error("dump euler/vtk file '{0}': binary output (.bin) is not available, only ASCII VTK")]
+    Binary(String),
+    /// It has no `*`.
+    #[error("dump euler/vtk file '{0}' must contain '*' (replaced by the timestep: one file per snapshot)")]
+    NoStar(String),
 }
 
 /// The text of a `dump euler/vtk` file for `cells`.

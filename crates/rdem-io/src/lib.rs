@@ -50,8 +50,10 @@ pub use data_file::{
     format_data, parse_data, read_data, write_data, DataAtom, DataError, DataFile, DataVelocity,
     ReadDataError,
 };
-pub use dump_text::{format_text_snapshot, parse_line_format, Sort, TextDump, TextOptions};
-pub use euler_vtk::{check_euler_vtk_name, format_euler_vtk, write_euler_vtk};
+pub use dump_text::{
+    format_text_snapshot, parse_line_format, Sort, SortError, TextDump, TextOptions,
+};
+pub use euler_vtk::{check_euler_vtk_name, format_euler_vtk, write_euler_vtk, EulerVtkNameError};
 pub use fields::{Column, Field};
 pub use filename::DumpFileName;
 pub use printf::{FormatError, Printf, Value};

@@ -737,41 +737,85 @@ impl LiggghtsRestart {
     /// The pair contact histories of the contact history fix (`contacthistory`), if
     /// the file has one: per atom, the number of partners, then per partner its tag
     /// and the history values.
-    pub fn contact_history(&self) -> Option<Result<ContactHistory, String>> {
+    pub fn contact_history(&self) -> Option<Result<ContactHistory, ContactHistoryError>> {
         let fix = self.peratom.iter().find(|p| p.style == "contacthistory")?;
         Some(read_contacts(fix, &self.atoms.tag))
     }
 }
 
-fn read_contacts(fix: &PerAtomFix, tags: &[u64]) -> Result<ContactHistory, String> {
+/// What is wrong with the contact history of atom `tag` in a LIGGGHTS restart file
+/// ([`LiggghtsRestart::contact_history`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("the contact history of atom {tag}: {what}")]
+pub struct ContactHistoryError {
+    /// The atom's tag.
+    pub tag: u64,
+    /// What is wrong.
+    pub what: BadContacts,
+}
+
+/// The fault of a [`ContactHistoryError`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BadContacts {
+    /// The atom's values are empty.
+    #[error("no partner count")]
+    NoCount,
+    /// The partner count is negative.
+    #[error("a negative partner count")]
+    NegativeCount,
+    /// The values do not split into the partners.
+    #[error("{values} values for {partners} partners")]
+    Split {
+        /// Values after the count.
+        values: usize,
+        /// Partners.
+        partners: usize,
+    },
+    /// Another number of values per contact than the atoms before.
+    #[error("{width} values per contact, other atoms {other}")]
+    Width {
+        /// This atom's.
+        width: usize,
+        /// The atoms' before.
+        other: usize,
+    },
+    /// A partner tag that is not positive.
+    #[error("partner tag {0}")]
+    PartnerTag(i64),
+}
+
+fn read_contacts(fix: &PerAtomFix, tags: &[u64]) -> Result<ContactHistory, ContactHistoryError> {
     let mut width: Option<usize> = None;
     let mut entries = Vec::new();
     for (k, &tag) in tags.iter().enumerate() {
         let v = fix.of(k);
-        let bad = |what: &str| format!("the contact history of atom {tag}: {what}");
+        let bad = |what: BadContacts| ContactHistoryError { tag, what };
         let np = v
             .first()
             .map(|&x| ubuf(x))
-            .ok_or_else(|| bad("no partner count"))?;
-        let np = usize::try_from(np).map_err(|_| bad("a negative partner count"))?;
+            .ok_or_else(|| bad(BadContacts::NoCount))?;
+        let np = usize::try_from(np).map_err(|_| bad(BadContacts::NegativeCount))?;
         if np == 0 {
             continue;
         }
         let rest = v.len() - 1;
         if rest % np != 0 || rest / np < 2 {
-            return Err(bad(&format!("{rest} values for {np} partners")));
+            return Err(bad(BadContacts::Split {
+                values: rest,
+                partners: np,
+            }));
         }
         let w = rest / np - 1;
         if *width.get_or_insert(w) != w {
-            return Err(bad(&format!(
-                "{w} values per contact, other atoms {}",
-                width.unwrap_or(0)
-            )));
+            return Err(bad(BadContacts::Width {
+                width: w,
+                other: width.unwrap_or(0),
+            }));
         }
         for c in v[1..].chunks_exact(w + 1) {
             let j = ubuf(c[0]);
             if j <= 0 {
-                return Err(bad(&format!("partner tag {j}")));
+                return Err(bad(BadContacts::PartnerTag(j)));
             }
             entries.push(tag as f64);
             entries.push(j as f64);

@@ -24,7 +24,7 @@ pub fn euler_fix_id(sim: &Sim) -> Option<&str> {
 
 /// Checks a `dump euler/vtk` file name (must contain `*`; `%` and `.bin` are errors).
 pub fn check_euler_dump_name(name: &str) -> Result<(), Error> {
-    rdem_io::euler_vtk::check_euler_vtk_name(name).map_err(Error::Invalid)
+    rdem_io::euler_vtk::check_euler_vtk_name(name).map_err(|e| Error::Invalid(e.to_string()))
 }
 
 /// The text of a `dump euler/vtk` file: the last result of fix `fix_id` (`None`: the

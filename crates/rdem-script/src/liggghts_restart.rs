@@ -171,7 +171,7 @@ pub(crate) fn restore(
         .into());
     }
     if let Some(h) = f.contact_history() {
-        let h = h?;
+        let h = h.map_err(|e| Error::Decode(e.to_string()))?;
         match pair_history(&h) {
             Ok(state) => {
                 taken.contacts = state.entries.len() / (2 + SHEAR);

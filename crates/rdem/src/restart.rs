@@ -19,6 +19,23 @@ use crate::error::{Error, Result};
 use crate::particles::{NewParticle, Tag};
 use crate::world::World;
 
+/// Why a saved mesh state does not fit the mesh read again
+/// ([`crate::wall::MeshSurface::set_state`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum MeshStateError {
+    /// Another number of vertices.
+    #[error("it has {saved} vertices, the mesh read now {now}")]
+    Vertices {
+        /// In the saved state.
+        saved: usize,
+        /// In the mesh read now.
+        now: usize,
+    },
+    /// Stress tallies of another number of triangles.
+    #[error("its stress tallies have another number of triangles")]
+    StressTriangles,
+}
+
 /// One named per-particle property of the written particles.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PropertyState {
@@ -472,18 +489,17 @@ impl crate::wall::MeshSurface {
 
     /// Takes back the state [`crate::wall::MeshSurface::state`] gave (the mesh read
     /// again from its file, with the same triangles).
-    pub fn set_state(&mut self, s: &MeshState) -> std::result::Result<(), String> {
+    pub fn set_state(&mut self, s: &MeshState) -> std::result::Result<(), MeshStateError> {
         let ntri = self.mesh.tris.len();
         if s.verts.len() != self.mesh.verts.len() {
-            return Err(format!(
-                "it has {} vertices, the mesh read now {}",
-                s.verts.len(),
-                self.mesh.verts.len()
-            ));
+            return Err(MeshStateError::Vertices {
+                saved: s.verts.len(),
+                now: self.mesh.verts.len(),
+            });
         }
         if let (Some(st), Some(mine)) = (&s.stress, &mut self.stress) {
             if st.force.len() != ntri || st.wear.len() != ntri || st.pressing.len() != ntri {
-                return Err("its stress tallies have another number of triangles".into());
+                return Err(MeshStateError::StressTriangles);
             }
             mine.force = st.force.iter().map(|&v| DVec3::from_array(v)).collect();
             mine.pressing = st.pressing.clone();

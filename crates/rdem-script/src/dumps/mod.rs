@@ -406,7 +406,7 @@ fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str], regions: &[String]
         match kw {
             "sort" => {
                 let v = a.word("sort order (id, off, N or -N)")?;
-                let s = Sort::parse(v, ncols).map_err(|m| a.error_prev(m, None))?;
+                let s = Sort::parse(v, ncols).map_err(|m| a.error_prev(m.to_string(), None))?;
                 d.style.set_sort(s).map_err(|e| not_here(a, e))?;
             }
             "pad" => {

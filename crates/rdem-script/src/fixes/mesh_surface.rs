@@ -95,7 +95,9 @@ impl ScriptFix for Mesh {
         let st: rdem::restart::MeshState = super::decode_state(state)?;
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let k = w.mesh_index(&head.id).ok_or("the mesh is missing")?;
-        w.meshes[k].set_state(&st).map_err(Error::Invalid)
+        w.meshes[k]
+            .set_state(&st)
+            .map_err(|e| Error::Invalid(e.to_string()))
     }
 
     // The mesh stays in the world (LIGGGHTS keeps a mesh that walls may still use).
