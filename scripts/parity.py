@@ -3,14 +3,19 @@
 
   parity.py reseed FILE VARIANT [--count]
       Replaces the random seeds of a LIGGGHTS script in place with other primes (VARIANT
-      1 or 2 picks the set) and prints how many it replaced; with --count it only counts
+      1 to 8 picks the set) and prints how many it replaced; with --count it only counts
       and writes nothing. The seeds are the `seed N` of each `fix ... insert/*` and the
       first number after `particletemplate/*` and `particledistribution/*`.
 
   parity.py table SCRATCH --budget S --commit C --liggghts V --rdem R --nproc N [--pattern P]
       Reads the runs parity.sh left in SCRATCH (one folder per script, holding `name` and
-      the runs lig0, rdem, lig1, lig2, rdem1, rdem2, each with out, err, rc and secs) and prints the
-      markdown page: a header saying how agreement is judged, then the table.
+      the runs lig0, rdem, lig1, lig2, rdem1, rdem2, and for a second look lig3..lig8 and
+      rdem3..rdem8, each with out, err, rc and secs) and prints the markdown page: a header
+      saying how agreement is judged, then the table.
+
+  parity.py verdict DIR --budget S
+      Prints the verdict of one script's folder DIR from the runs it holds so far
+      (`agree`, or why not); parity.sh asks it whether a second look is due.
 """
 import argparse
 import datetime
@@ -23,7 +28,20 @@ import sys
 
 # LIGGGHTS 3.8 wants each seed to be a prime > 10000; the seeds of one script must differ
 # from each other. Variant k gives its i-th seed the i-th prime from BASES[k] on.
-BASES = {1: 49979687, 2: 86028121}
+BASES = {
+    1: 49979687,
+    2: 86028121,
+    # The sets of the second look (see SECOND_LOOK).
+    3: 15485867,
+    4: 32452843,
+    5: 67867967,
+    6: 23879519,
+    7: 57885161,
+    8: 73856093,
+}
+# Seed sets of the second look: a seeded script whose verdict on the first three
+# LIGGGHTS runs is not `agree` is run with these too, by both programs.
+SECOND_LOOK = (3, 4, 5, 6, 7, 8)
 
 
 def is_prime(n):
@@ -182,7 +200,7 @@ TIMING = ("CPU", "T/CPU", "S/CPU")  # thermo's cpu, tpcpu, spcpu: shown, not com
 REL_TOL = 1e-6  # one LIGGGHTS value (or three identical ones): this relative tolerance
 FLOOR = 1e-9  # the spread is at least [min, max] widened by FLOOR * max |value|
 # Student's t, two-sided 95 %, for n - 1 degrees of freedom (n LIGGGHTS runs).
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776}
+T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306}
 
 
 def spread(values):
@@ -292,28 +310,47 @@ def row_text(run):
     return " ".join(f"{k}={v}" for k, v in run.cols.items() if k != "Atoms")
 
 
+class Script:
+    """One script's runs in its scratch folder `d`: LIGGGHTS' (`ligs`, the ones that ran)
+    and rdem's (`rdems`), the first of each (`l0`, `r`), and the verdicts."""
+
+    def __init__(self, d, budget):
+        self.name = read(os.path.join(d, "name")).strip()
+        self.l0 = Run(os.path.join(d, "lig0"), budget)
+        self.r = Run(os.path.join(d, "rdem"), budget)
+        if self.l0.status.startswith("timeout"):
+            self.r.status = self.l0.status  # rdem is not run then: both are marked timeout
+        extra = ("1", "2") + tuple(str(k) for k in SECOND_LOOK)
+        self.seeds = [Run(os.path.join(d, "lig" + k), budget) for k in extra]
+        self.seeds = [s for s in self.seeds if s.present]
+        self.ligs = [self.l0] + [s for s in self.seeds if s.ok]
+        rseeds = [Run(os.path.join(d, "rdem" + k), budget) for k in extra]
+        rseeds = [s for s in rseeds if s.present]
+        self.rdems = [self.r] + [s for s in rseeds if s.ok]
+        # The second look ran: LIGGGHTS' runs beyond its first three.
+        self.second = os.path.isdir(os.path.join(d, f"lig{SECOND_LOOK[0]}"))
+        self.verdict = verdict(self.ligs, self.r)
+        both = len(self.ligs) > 1 and len(self.rdems) > 1 and self.l0.ok and self.r.ok
+        self.spreads = spread_verdict(self.ligs, self.rdems) if both else ""
+
+
+def cmd_verdict(a):
+    print(Script(a.dir, a.budget).verdict)
+
+
 def cmd_table(a):
-    rows, tally, tally2 = [], {}, {}
+    rows, tally, tally2, second = [], {}, {}, []
     for sub in sorted(os.listdir(a.scratch)):
         d = os.path.join(a.scratch, sub)
         if not os.path.isfile(os.path.join(d, "name")):
             continue
-        name = read(os.path.join(d, "name")).strip()
-        l0 = Run(os.path.join(d, "lig0"), a.budget)
-        r = Run(os.path.join(d, "rdem"), a.budget)
-        if l0.status.startswith("timeout"):
-            r.status = l0.status  # rdem is not run then: both are marked timeout
-        seeds = [Run(os.path.join(d, k), a.budget) for k in ("lig1", "lig2")]
-        seeds = [s for s in seeds if s.present]
-        ligs = [l0] + [s for s in seeds if s.ok]
-        v = verdict(ligs, r)
-        rseeds = [Run(os.path.join(d, k), a.budget) for k in ("rdem1", "rdem2")]
-        rseeds = [s for s in rseeds if s.present]
-        rdems = [r] + [s for s in rseeds if s.ok]
-        both = len(ligs) > 1 and len(rdems) > 1 and l0.ok and r.ok
-        v2 = spread_verdict(ligs, rdems) if both else ""
+        sc = Script(d, a.budget)
+        name, l0, r, seeds, ligs, rdems = sc.name, sc.l0, sc.r, sc.seeds, sc.ligs, sc.rdems
+        v, v2 = sc.verdict, sc.spreads
         if v2:
             tally2[v2 == "overlap"] = tally2.get(v2 == "overlap", 0) + 1
+        if sc.second:
+            second.append(name)
         notes = [f"LIGGGHTS run {k + 2}: {s.status}" for k, s in enumerate(seeds) if not s.ok]
         agrees = v == "agree"
         if notes:
@@ -358,6 +395,7 @@ Made by `scripts/parity.sh` (run it again to refresh this page).
 - Budget: {a.budget} s of wall time per run{f"; scripts matching `{a.pattern}` only" if a.pattern else ""}
 - Result: {summary}
 - Seed spreads (scripts with seeds that both ran): overlap {tally2.get(True, 0)}, apart {tally2.get(False, 0)}
+- Second look ({len(SECOND_LOOK)} more seed sets each): {", ".join(second) if second else "none was due"}
 
 Each `in.*` script of `Tutorials_public/*/` runs unmodified from a fresh copy of its
 folder (`-in SCRIPT -log none`). LIGGGHTS also runs it twice more with other seeds: every
@@ -395,6 +433,14 @@ rdem's [min, max] over its runs meets LIGGGHTS' spread (as above; atoms within m
 It says nothing finer than three draws of each can. (Without seeds rdem runs once: its
 results do not depend on the thread count.)
 
+The second look: three LIGGGHTS runs estimate their spread poorly (a column whose three
+values happen to lie close together gives a narrow interval), so a script with seeds whose
+verdict is not `agree` after the first three LIGGGHTS runs is run by both programs with
+{len(SECOND_LOOK)} more seed sets (from {", ".join(str(BASES[k]) for k in SECOND_LOOK)} on). Its verdict is then
+judged as above, on rdem's first run against the prediction interval of all of LIGGGHTS'
+runs (t for their number less one), and the spreads on all runs of each program. The
+rule is the same for every script, and the "LIG runs" column shows which had it.
+
 A script LIGGGHTS cannot run shows LIGGGHTS' error; one LIGGGHTS does not finish within
 the budget is marked timeout for both and rdem is not run. Otherwise the verdict says
 which column is off, rdem's value against LIGGGHTS' (range of) values, and by how much
@@ -421,6 +467,10 @@ def main():
     for opt in ("budget", "commit", "liggghts", "rdem", "nproc", "load", "pattern"):
         t.add_argument("--" + opt, default="")
     t.set_defaults(func=cmd_table)
+    v = sub.add_parser("verdict")
+    v.add_argument("dir")
+    v.add_argument("--budget", default="")
+    v.set_defaults(func=cmd_verdict)
     a = p.parse_args()
     a.func(a)
 

@@ -11,7 +11,7 @@
 #   PATTERN         extended regex on "folder/script" (e.g. packing, 'cohesion|conveyor')
 #   --write         (or PARITY_WRITE=1) also writes the output to docs/parity.md
 # Environment: TUTORIALS (default Debian's liggghts-doc folder), KEEP=1 keeps the scratch
-# folder (its path is printed on stderr).
+# folder (its path is printed on stderr), SECOND_LOOK=0 skips the second look (step 5).
 #
 # Each script is run
 #   1. by LIGGGHTS as it is;
@@ -19,7 +19,10 @@
 #   3. by LIGGGHTS twice more with its insertion seeds replaced by other primes, if it
 #      has any and run 1 ended well; without seeds, on 2 and 3 MPI processes instead:
 #      the three LIGGGHTS runs give LIGGGHTS' own spread;
-#   4. then by rdem with the same two seed sets, if its run 2 ended well: rdem's spread.
+#   4. then by rdem with the same two seed sets, if its run 2 ended well: rdem's spread;
+#   5. the second look: if the script has seeds, both ran it, and the verdict on these
+#      runs is not `agree`, by both programs with six more seed sets (3 to 8), so that
+#      LIGGGHTS' spread comes from nine runs (SECOND_LOOK=0 skips it).
 # Every run starts from a fresh copy of the folder, runs in it with `-in SCRIPT -log none`
 # and stdin from /dev/null, under `timeout BUDGET_SECONDS`. One run at a time. Nothing is
 # written outside the scratch folder except docs/parity.md (with --write).
@@ -32,7 +35,7 @@ args=()
 for a in "$@"; do
   case "$a" in
     --write) write=1 ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) args+=("$a") ;;
   esac
 done
@@ -114,6 +117,15 @@ while IFS= read -r path; do
     if [ "$(cat "$d/rdem/rc")" = 0 ]; then
       run_one rdem "$d/rdem1" "$folder" "$script" 1
       run_one rdem "$d/rdem2" "$folder" "$script" 2
+      # The second look (see parity.py's header text).
+      if [ "${SECOND_LOOK:-1}" = 1 ] &&
+        [ "$(python3 "$here/scripts/parity.py" verdict "$d" --budget "$budget")" != agree ]; then
+        echo "parity:   second look" >&2
+        for k in 3 4 5 6 7 8; do
+          run_one liggghts "$d/lig$k" "$folder" "$script" "$k"
+          run_one rdem "$d/rdem$k" "$folder" "$script" "$k"
+        done
+      fi
     fi
   elif [ "$(cat "$d/lig0/rc")" = 0 ]; then
     # No seeds: LIGGGHTS' spread from 2 and 3 MPI processes (only the order of its sums
