@@ -61,6 +61,10 @@ pub struct PairGran {
     whole_fraction: f64,
     /// With `surface multicontact`: the contacts' store ([`crate::multicontact`]).
     pub multicontact: Option<std::sync::Arc<MultiContact>>,
+    /// The group bit of `fix freeze` (0 without one; set by the world's set-up). A
+    /// contact with a frozen particle takes the other particle's mass as its effective
+    /// mass, as if the frozen one were infinitely heavy, as LIGGGHTS does.
+    pub(crate) freeze: u32,
 }
 
 impl PairGran {
@@ -80,6 +84,7 @@ impl PairGran {
             liquid: None,
             whole_fraction: WHOLE_FRACTION,
             multicontact: None,
+            freeze: 0,
         }
     }
 
@@ -287,6 +292,9 @@ struct Phase1<'a> {
     mc: Option<(&'a MultiContact, &'a MultiState)>,
     /// Tags of all particles.
     tag: &'a [crate::particles::Tag],
+    /// Group masks of all particles, and the frozen group's bit ([`PairGran::freeze`]).
+    mask: &'a [u32],
+    freeze: u32,
 }
 
 impl Phase1<'_> {
@@ -493,7 +501,17 @@ impl Phase1<'_> {
         // R* = r_i r_j/(r_i + r_j) and m* = m_i m_j/(m_i + m_j) with one division.
         let inv = 1.0 / (radsum * (mi + mj));
         let mut r_star = ri * rj * (mi + mj) * inv;
-        let m_star = mi * mj * radsum * inv;
+        let mut m_star = mi * mj * radsum * inv;
+        if self.freeze != 0 {
+            // A frozen particle counts as infinitely heavy: the other's mass (if both
+            // are frozen, i's, as in LIGGGHTS; their forces are zeroed anyway).
+            if self.mask[i] & self.freeze != 0 {
+                m_star = mj;
+            }
+            if self.mask[j] & self.freeze != 0 {
+                m_star = mi;
+            }
+        }
         let mut shape = None;
         let (mut ci, mut cj) = (ri - 0.5 * delta, rj - 0.5 * delta);
         if let Some((_, mc)) = self.mc {
@@ -807,6 +825,7 @@ impl PairPass<'_> {
             liquid,
             whole_fraction: _,
             multicontact,
+            freeze,
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
@@ -845,6 +864,8 @@ impl PairPass<'_> {
             breaks: liquid.as_ref().map(|l| &l.breaks),
             mc: multicontact.as_deref().zip(mc_state.as_deref()),
             tag: &p.tag,
+            mask: &p.mask,
+            freeze: *freeze,
         };
         if !threaded {
             let (f, torque) = (&mut p.f, &mut p.torque);

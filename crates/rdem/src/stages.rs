@@ -45,6 +45,11 @@ impl World {
             return Ok(());
         };
         pair.setup(&self.materials)?;
+        pair.freeze = self
+            .fixes
+            .iter()
+            .filter(|f| matches!(f.kind, crate::fix::FixKind::Freeze))
+            .fold(0, |bits, f| bits | f.groupbit);
         self.neighbor.contact_factor = pair.setup_liquid(&mut self.particles, &self.materials)?;
         let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
         self.neighbor.set_history_layout(w, odd);

@@ -39,9 +39,11 @@
 //! stored tangential spring as it is, adds rolling-spring increments without storing
 //! them, and records the hysteresis largest overlap.
 //!
-//! Known intentional difference (SPEC §3): rdem zeroes the tangential spring when a pair
-//! separates, LIGGGHTS keeps it until the next neighbor rebuild; every scenario here has a
-//! single contact, so it does not show.
+//! Two scenarios (`pair_recontact_*`) let a pair part and touch again before the next
+//! neighbor build, a falling sphere bouncing on a frozen one: LIGGGHTS keeps the contact's
+//! histories (tangential spring, epsd rolling torque, the hysteresis largest overlap)
+//! until that build, and so does rdem. They also check LIGGGHTS' effective mass with
+//! `fix freeze`: the other particle's mass, as if the frozen one were infinitely heavy.
 
 use std::collections::HashMap;
 
@@ -150,6 +152,8 @@ fn parse_dump(text: &str) -> Vec<Frame> {
 #[derive(Debug, Clone, Copy, Default)]
 struct ScriptAtom {
     ty: u32,
+    /// Group bits (`all` is bit 1; `group NAME id N` adds the next bit).
+    mask: u32,
     x: DVec3,
     v: DVec3,
     omega: DVec3,
@@ -174,7 +178,19 @@ struct Script {
     pair_style: Vec<String>,
     /// Words after `wall/gran`, if there is a wall.
     wall: Option<Vec<String>>,
+    /// `freeze` and `gravity` fixes in definition order: (group bit, gravity's
+    /// acceleration, or `None` for freeze).
+    body_fixes: Vec<(u32, Option<DVec3>)>,
+    /// Group names in definition order (`all` first): the bit of group k is 1 << k.
+    groups: Vec<String>,
     atoms: Vec<ScriptAtom>,
+}
+
+impl Script {
+    fn groupbit(&self, name: &str) -> u32 {
+        let k = self.groups.iter().position(|g| g == name);
+        1 << k.unwrap_or_else(|| panic!("no group {name}"))
+    }
 }
 
 fn num(s: &str) -> f64 {
@@ -183,7 +199,10 @@ fn num(s: &str) -> f64 {
 }
 
 fn parse_script(text: &str) -> Script {
-    let mut s = Script::default();
+    let mut s = Script {
+        groups: vec!["all".into()],
+        ..Script::default()
+    };
     for raw in text.lines() {
         let line = raw.split('#').next().unwrap();
         let w: Vec<&str> = line.split_whitespace().collect();
@@ -211,6 +230,7 @@ fn parse_script(text: &str) -> Script {
                 assert_eq!(w[2], "single");
                 s.atoms.push(ScriptAtom {
                     ty: w[1].parse().unwrap(),
+                    mask: 1,
                     x: DVec3::new(num(w[3]), num(w[4]), num(w[5])),
                     ..Default::default()
                 });
@@ -233,7 +253,22 @@ fn parse_script(text: &str) -> Script {
                     }
                 }
             }
+            "group" => {
+                assert_eq!(w[2], "id");
+                s.groups.push(w[1].to_string());
+                let bit = s.groupbit(w[1]);
+                for id in &w[3..] {
+                    s.atoms[id.parse::<usize>().unwrap() - 1].mask |= bit;
+                }
+            }
             "fix" => match w[3] {
+                "freeze" => s.body_fixes.push((s.groupbit(w[2]), None)),
+                "gravity" => {
+                    assert_eq!(w[5], "vector");
+                    let dir = DVec3::new(num(w[6]), num(w[7]), num(w[8]));
+                    let accel = num(w[4]) * dir.normalize();
+                    s.body_fixes.push((s.groupbit(w[2]), Some(accel)));
+                }
                 "property/global" => {
                     let vals = match w[5] {
                         "scalar" | "peratomtype" => &w[6..],
@@ -373,17 +408,24 @@ fn build_world(s: &Script) -> World {
         w.add_fix(Fix::new("wall", 1, FixKind::WallGran(Box::new(wall))).unwrap())
             .unwrap();
     }
+    for (k, &(bit, accel)) in s.body_fixes.iter().enumerate() {
+        let kind = match accel {
+            Some(accel) => FixKind::Gravity { accel },
+            None => FixKind::Freeze,
+        };
+        w.add_fix(Fix::new(&format!("body{k}"), bit, kind).unwrap())
+            .unwrap();
+    }
     w.add_fix(Fix::new("integr", 1, FixKind::NveSphere).unwrap())
         .unwrap();
     for (k, a) in s.atoms.iter().enumerate() {
-        w.add_particle(
-            &NewParticle::at(a.x, 0.5 * a.diameter, a.density)
-                .with_type(a.ty)
-                .with_tag(k as u64 + 1)
-                .with_v(a.v)
-                .with_omega(a.omega),
-        )
-        .unwrap();
+        let mut new = NewParticle::at(a.x, 0.5 * a.diameter, a.density)
+            .with_type(a.ty)
+            .with_tag(k as u64 + 1)
+            .with_v(a.v)
+            .with_omega(a.omega);
+        new.mask = a.mask;
+        w.add_particle(&new).unwrap();
     }
     w
 }
@@ -520,6 +562,8 @@ golden!(
     pair_hertz_history_epsd,
     pair_hertz_history_epsd2_torsion,
     pair_hertz_history_epsd_tworuns,
+    pair_recontact_hertz_history_epsd,
+    pair_recontact_hysteresis,
     pair_hooke_history_notdamp,
     pair_hooke_nohistory_epsd2,
     pair_hertz_nohistory_limitforce,
@@ -541,6 +585,33 @@ golden!(
     wall_plane_hertz_stiffness_history_epsd3_torsion,
     wall_plane_hooke_stiffness_absdamp_notdamp,
 );
+
+/// The `pair_recontact_*` scenarios test what they are meant to: between the two contacts
+/// (step 250: apart since 191 and 177) the pair is in the neighbor list that was built at
+/// the set-up, untouched, with its contact history kept (a nonzero tangential spring).
+/// LIGGGHTS goes on from that history when the pair touches again (steps 339 and 331), and
+/// so does rdem: the golden tests above match it through the second contact.
+#[test]
+fn recontact_scenarios_keep_the_history_of_the_parted_pair() {
+    for name in ["pair_recontact_hertz_history_epsd", "pair_recontact_hysteresis"] {
+        let script = std::fs::read_to_string(format!("{DATA}/in.{name}")).unwrap();
+        let mut w = build_world(&parse_script(&script));
+        w.setup().unwrap();
+        let builds = w.neighbor.nbuilds;
+        for _ in 0..250 {
+            w.advance().unwrap();
+        }
+        assert_eq!(w.neighbor.nbuilds, builds, "{name}: no build between the contacts");
+        let list = &w.neighbor.list;
+        assert_eq!(list.partner.len(), 1, "{name}: the pair is listed");
+        assert_eq!(list.touch[0], 0, "{name}: apart at step 250");
+        let spring = &list.hist[..list.width];
+        assert!(
+            spring.iter().any(|&h| h.abs() > 1e-9),
+            "{name}: the contact history is kept: {spring:?}"
+        );
+    }
+}
 
 #[test]
 fn every_scenario_is_tested() {

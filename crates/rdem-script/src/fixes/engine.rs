@@ -24,7 +24,7 @@ pub(super) const ROW_FREEZE: FixRow = style(
     "freeze",
     freeze,
     Stages::ENGINE,
-    "force, torque and velocity held at zero",
+    "force and torque held at zero; contacts take a frozen particle as infinitely heavy (one fix freeze only)",
 );
 /// The registry row of `viscous`.
 pub(super) const ROW_VISCOUS: FixRow = style(
@@ -128,8 +128,27 @@ fn nve_sphere(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scri
     engine_fix(sim, a, head, FixKind::NveSphere)
 }
 
+/// `fix ID group freeze`. One only, as in LIGGGHTS 3.8 ("More than one fix freeze"):
+/// contacts with a frozen particle take it as infinitely heavy, so they must know the
+/// one frozen group.
 fn freeze(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     a.done()?;
+    let other = sim
+        .defs
+        .fixes
+        .iter()
+        .find(|f| f.head.style == "freeze" && f.head.id != head.id);
+    if let Some(other) = other {
+        return Err(a.error_at(
+            super::STYLE_WORD,
+            format!("more than one fix freeze: fix {} is one already", other.head.id),
+            Some(
+                "contacts take a frozen particle as infinitely heavy and need the one frozen \
+                 group: put every frozen particle in one group, or unfix the other first"
+                    .into(),
+            ),
+        ));
+    }
     engine_fix(sim, a, head, FixKind::Freeze)
 }
 

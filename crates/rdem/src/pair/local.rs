@@ -126,6 +126,8 @@ impl Visitor for Records<'_> {
             omega: &p.omega,
             radius: &p.radius,
             rmass: p.contact_mass(),
+            mask: &p.mask,
+            freeze: pair.freeze,
             ty: &p.ty,
             dt,
             update: false,
