@@ -114,6 +114,30 @@ fn static_contacts_give_liggghts_forces_step_by_step() {
     assert!((f(6, 1, 6) / f(0, 1, 6)).abs() > 1e3);
 }
 
+/// A second `run`: its set-up force evaluation corrects the pair contacts with the records
+/// of the last step, and leaves the wall contacts uncorrected, as LIGGGHTS 3.8 does; the
+/// run's first step then reads the same records. The dump starts at that set-up (step 3).
+#[test]
+fn a_second_run_sets_up_as_liggghts() {
+    let (ours, theirs) = run("static_tworuns", |s| s);
+    assert_eq!(theirs[0].0, 3, "the first frame is the second run's set-up");
+    let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-3);
+    assert!(
+        e < 1e-12,
+        "force off by {e:.3e} (relative) at step {step}, column {col}"
+    );
+    // The set-up differs from the next step where the walls act: particle 1 (on the
+    // floor) and particle 3 (on the floor, with a side contact) in z.
+    let f = |s: usize, id: usize, c: usize| theirs[s].1[id - 1][c];
+    for id in [1, 3] {
+        let (set_up, next) = (f(0, id, 6), f(1, id, 6));
+        assert!(
+            ((set_up - next) / next).abs() > 1e-2,
+            "particle {id}: set-up {set_up} against step 4 {next}"
+        );
+    }
+}
+
 #[test]
 fn moving_contacts_give_liggghts_forces_and_torques() {
     for name in ["spinning_pair", "spinning_wall"] {

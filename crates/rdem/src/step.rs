@@ -278,6 +278,8 @@ impl World {
             if let Some(mc) = &self.multicontact {
                 mc.advance();
             }
+        } else if let Some(mc) = &self.multicontact {
+            mc.peek_latest();
         }
         let t1 = self.timers.lap(Stage::Other, t0);
         self.pair_forces(update);

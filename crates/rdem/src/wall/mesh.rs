@@ -907,7 +907,8 @@ impl MeshPass<'_> {
                 let mc_key = mc
                     .as_ref()
                     .map(|(_, _, w)| MultiContact::wall_key(*w, t.mesh, t.tri));
-                if let (Some((_, state, _)), Some(key)) = (&mc, mc_key) {
+                // No correction at a run's set-up, as LIGGGHTS 3.8 (rdem::multicontact).
+                if let (Some((_, state, _)), Some(key), true) = (&mc, mc_key, update) {
                     if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), key) {
                         continue;
                     }

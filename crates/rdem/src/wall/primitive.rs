@@ -470,7 +470,8 @@ impl WallPass<'_> {
                 dt,
                 update,
             );
-            if let Some((_, state, key)) = &mc {
+            // No correction at a run's set-up, as LIGGGHTS 3.8 (see rdem::multicontact).
+            if let (Some((_, state, key)), true) = (&mc, update) {
                 if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), *key) {
                     continue;
                 }
