@@ -593,7 +593,10 @@ golden!(
 /// so does rdem: the golden tests above match it through the second contact.
 #[test]
 fn recontact_scenarios_keep_the_history_of_the_parted_pair() {
-    for name in ["pair_recontact_hertz_history_epsd", "pair_recontact_hysteresis"] {
+    for name in [
+        "pair_recontact_hertz_history_epsd",
+        "pair_recontact_hysteresis",
+    ] {
         let script = std::fs::read_to_string(format!("{DATA}/in.{name}")).unwrap();
         let mut w = build_world(&parse_script(&script));
         w.setup().unwrap();
@@ -601,7 +604,10 @@ fn recontact_scenarios_keep_the_history_of_the_parted_pair() {
         for _ in 0..250 {
             w.advance().unwrap();
         }
-        assert_eq!(w.neighbor.nbuilds, builds, "{name}: no build between the contacts");
+        assert_eq!(
+            w.neighbor.nbuilds, builds,
+            "{name}: no build between the contacts"
+        );
         let list = &w.neighbor.list;
         assert_eq!(list.partner.len(), 1, "{name}: the pair is listed");
         assert_eq!(list.touch[0], 0, "{name}: apart at step 250");

@@ -141,7 +141,10 @@ fn freeze(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFi
     if let Some(other) = other {
         return Err(a.error_at(
             super::STYLE_WORD,
-            format!("more than one fix freeze: fix {} is one already", other.head.id),
+            format!(
+                "more than one fix freeze: fix {} is one already",
+                other.head.id
+            ),
             Some(
                 "contacts take a frozen particle as infinitely heavy and need the one frozen \
                  group: put every frozen particle in one group, or unfix the other first"
