@@ -37,10 +37,19 @@
 //! Not matched: with a wall overlap of 28–42 % of the radius, in one measured arrangement,
 //! LIGGGHTS' correction of a pair contact from the wall was 7–12 times smaller than the
 //! formula gives, and equal to it below and above that band; rdem applies the formula.
-//! In LIGGGHTS' `hydrogel_multicontact` tutorial (514 particles with 2 to 11 contacts
-//! each), the first corrected step's forces differ from LIGGGHTS' by up to 4e-4 of the
-//! largest force with the pair contacts alone (walls and piston removed), and by up to
-//! 8e-2 with the tutorial's five walls: the cause is not found yet.
+//! - A contact forms where the corrected radii overlap, even if the plain ones do not (a
+//!   pair within the neighbor list, a particle near a primitive wall); a mesh wall still
+//!   finds its contacts with the plain radius.
+//!
+//! Known differences, measured on LIGGGHTS' `hydrogel_multicontact` tutorial (see
+//! docs/parity.md):
+//! - LIGGGHTS' `j` is the particle of the higher *local index*, and LIGGGHTS sorts its
+//!   atoms spatially (`atom_modify sort`, every 1000 steps by default), so its `j` is not
+//!   always the higher tag. With LIGGGHTS' sort off the tutorial's pair forces agree to
+//!   6e-7 of the largest at the first corrected step (4e-4 with it on).
+//! - A particle that is a wall's candidate without touching it changes LIGGGHTS'
+//!   corrections of other particles at that wall (three spheres near an `xplane`: 2e-3).
+//!   Not understood.
 
 //! The records carry the contact points relative to the particle's centre, so periodic
 //! images of a particle see the same records. The store is filled by the force passes

@@ -476,7 +476,10 @@ impl Phase1<'_> {
         // Written as "not closer" so that a NaN distance counts as no contact and
         // a broken particle does not poison its neighbours (it is reported by tag).
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
-        if !(rsq < radsum * radsum) {
+        let apart = !(rsq < radsum * radsum);
+        // Under `surface multicontact` a pair just apart may touch once its radii are
+        // corrected (LIGGGHTS checks the corrected overlap): the shaping below decides.
+        if apart && (self.mc.is_none() || K::BRIDGE || !rsq.is_finite()) {
             if K::BRIDGE {
                 // The contact's history is cleared; a live bridge keeps the pair's.
                 let out = self.apart::<K>(i, j, k, coeff_row, hist, d, rsq);
@@ -521,11 +524,15 @@ impl Phase1<'_> {
             } else {
                 (j, i)
             };
-            let s = mc.pair(
+            let Some(s) = mc.pair(
                 (self.tag[a], ty[a], self.x[a], radius[a]),
                 (self.tag[b], ty[b], self.x[b], radius[b]),
                 dist,
-            )?;
+            ) else {
+                // Not touching once corrected: the history stays, as for any pair apart.
+                *touch = 0;
+                return None;
+            };
             delta = s.delta;
             r_star = s.r_star;
             (ci, cj) = if a == i {

@@ -456,7 +456,8 @@ impl WallPass<'_> {
                     torque[k] += b.t_i;
                 }
             }
-            if d >= r {
+            // Under `surface multicontact` the corrected radius decides (below).
+            if d >= r && (mc.is_none() || !update) {
                 clear_history(hist);
                 continue;
             }
@@ -473,6 +474,7 @@ impl WallPass<'_> {
             // No correction at a run's set-up, as LIGGGHTS 3.8 (see rdem::multicontact).
             if let (Some((_, state, key)), true) = (&mc, update) {
                 if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), *key) {
+                    clear_history(hist);
                     continue;
                 }
             }
