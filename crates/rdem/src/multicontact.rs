@@ -33,13 +33,13 @@
 //! - When the particle has moved since the records were made, its own contact moves with
 //!   it and the others stay where they were: with that, 400 steps of falling spheres
 //!   follow LIGGGHTS to 1e-9 m (relative positions alone: 3e-9 m).
+//! - A contact forms where the corrected radii overlap, even if the plain ones do not (a
+//!   pair within the neighbor list, a particle near a primitive wall); a mesh wall still
+//!   finds its contacts with the plain radius.
 //!
 //! Not matched: with a wall overlap of 28–42 % of the radius, in one measured arrangement,
 //! LIGGGHTS' correction of a pair contact from the wall was 7–12 times smaller than the
 //! formula gives, and equal to it below and above that band; rdem applies the formula.
-//! - A contact forms where the corrected radii overlap, even if the plain ones do not (a
-//!   pair within the neighbor list, a particle near a primitive wall); a mesh wall still
-//!   finds its contacts with the plain radius.
 //!
 //! Known differences, measured on LIGGGHTS' `hydrogel_multicontact` tutorial (see
 //! docs/parity.md):
@@ -48,7 +48,7 @@
 //!   always the higher tag. With LIGGGHTS' sort off the tutorial's pair forces agree to
 //!   6e-7 of the largest at the first corrected step (4e-4 with it on).
 //! - A particle that is a wall's candidate without touching it changes LIGGGHTS'
-//!   corrections of other particles at that wall (three spheres near an `xplane`: 2e-3).
+//!   corrections of other particles at that wall (three spheres near an `xplane`: 1.7e-3).
 //!   Not understood.
 
 //! The records carry the contact points relative to the particle's centre, so periodic
