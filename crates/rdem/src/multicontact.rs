@@ -50,7 +50,7 @@
 //! - A particle that is a wall's candidate without touching it changes LIGGGHTS'
 //!   corrections of other particles at that wall (three spheres near an `xplane`: 1.7e-3).
 //!   Not understood.
-
+//!
 //! The records carry the contact points relative to the particle's centre, so periodic
 //! images of a particle see the same records. The store is filled by the force passes
 //! (several threads push at once) and sorted by particle and partner before it is read,
