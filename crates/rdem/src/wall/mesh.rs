@@ -838,9 +838,12 @@ impl MeshPass<'_> {
             n: DVec3::ZERO,
             dist: 0.0,
         };
+        // `surface multicontact`: the wall neither corrects nor records its contacts at a
+        // run's set-up, as LIGGGHTS 3.8 (see rdem::multicontact).
         let mc = wall
             .multicontact
             .as_ref()
+            .filter(|_| update)
             .map(|(m, w)| (&**m, m.read(), *w));
         let mut found = [none; MAX_TOUCH];
         let mut old = [0.0f64; MAX_WIDTH];
@@ -907,8 +910,7 @@ impl MeshPass<'_> {
                 let mc_key = mc
                     .as_ref()
                     .map(|(_, _, w)| MultiContact::wall_key(*w, t.mesh, t.tri));
-                // No correction at a run's set-up, as LIGGGHTS 3.8 (rdem::multicontact).
-                if let (Some((_, state, _)), Some(key), true) = (&mc, mc_key, update) {
+                if let (Some((_, state, _)), Some(key)) = (&mc, mc_key) {
                     if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), key) {
                         continue;
                     }
@@ -919,7 +921,7 @@ impl MeshPass<'_> {
                     k,
                     super::touch::pack_triangle(wall.meshes[t.mesh as usize], t.tri),
                 );
-                if let (Some((store, _, _)), Some(key), true) = (&mc, mc_key, update) {
+                if let (Some((store, _, _)), Some(key)) = (&mc, mc_key) {
                     store.record_wall((p.tag[i], p.x[i]), key, t.n, t.dist, out.fn_total);
                 }
                 f[k] += out.f_i;

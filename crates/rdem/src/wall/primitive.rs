@@ -403,9 +403,12 @@ impl WallPass<'_> {
             K::HIST
         };
         let create_now = update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
+        // `surface multicontact`: the wall neither corrects nor records its contacts at a
+        // run's set-up, as LIGGGHTS 3.8 (see rdem::multicontact).
         let mc = wall
             .multicontact
             .as_ref()
+            .filter(|_| update)
             .map(|(m, w)| (&**m, m.read(), MultiContact::wall_key(*w, 0, 0)));
         for (c, &i) in cand.iter().enumerate() {
             let i = i as usize;
@@ -457,7 +460,7 @@ impl WallPass<'_> {
                 }
             }
             // Under `surface multicontact` the corrected radius decides (below).
-            if d >= r && (mc.is_none() || !update) {
+            if d >= r && mc.is_none() {
                 clear_history(hist);
                 continue;
             }
@@ -471,8 +474,7 @@ impl WallPass<'_> {
                 dt,
                 update,
             );
-            // No correction at a run's set-up, as LIGGGHTS 3.8 (see rdem::multicontact).
-            if let (Some((_, state, key)), true) = (&mc, update) {
+            if let Some((_, state, key)) = &mc {
                 if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), *key) {
                     clear_history(hist);
                     continue;
@@ -481,7 +483,7 @@ impl WallPass<'_> {
             let c = wall.table.get(p.ty[i], wall.wall_type);
             let out = K::contact(&g, c, flags, hist);
             touches.note(k, -1.0);
-            if let (Some((store, _, key)), true) = (&mc, update) {
+            if let Some((store, _, key)) = &mc {
                 store.record_wall((p.tag[i], p.x[i]), *key, n, d, out.fn_total);
             }
             f[k] += out.f_i;
