@@ -4,10 +4,6 @@
 
 mod common;
 
-use std::path::Path;
-
-const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
-
 /// The tutorial hydrogel_default, unmodified, on 1 thread. Its soft spheres part and
 /// touch again between builds (atoms 324 and 135: apart from step 236, touching again at
 /// 436). LIGGGHTS 3.8 on 1 process prints these kinetic energies; rdem equals them to
@@ -17,16 +13,11 @@ const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_pub
 /// must end there too.
 #[test]
 fn hydrogel_default_follows_liggghts_through_contacts_that_form_again() {
-    let src = Path::new(TUTORIALS).join("hydrogel_multicontact");
-    assert!(
-        src.join("in.hydrogel_default").exists(),
-        "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
-        src.display()
+    let (_, dir) = common::tutorial_copy(
+        "hydrogel_multicontact",
+        "in.hydrogel_default",
+        "hydrogel-default",
     );
-    let dir = common::scratch_dir("hydrogel-default");
-    common::copy_dir(&src, &dir);
-    let _ = std::fs::remove_dir_all(dir.join("post"));
-    std::fs::create_dir_all(dir.join("post")).unwrap();
     let out = common::rdem_in(&dir, "in.hydrogel_default", None)
         .env("RDEM_THREADS", "1")
         .output()

@@ -11,9 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 mod common;
-use common::{copy_dir, run_kept, scratch_dir};
-
-const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
+use common::{run_kept, tutorial_copy, TUTORIALS};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/mesh_tet")
@@ -48,14 +46,7 @@ fn last_loop(out: &str) -> (u64, u64) {
 
 #[test]
 fn tutorial_creates_the_atoms_liggghts_creates() {
-    let src = Path::new(TUTORIALS).join("mesh_tet");
-    assert!(
-        src.join("in.mesh_tet").exists(),
-        "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
-        src.display()
-    );
-    let dir = scratch_dir("mesh-tet-tutorial");
-    copy_dir(&src, &dir);
+    let (_, dir) = tutorial_copy("mesh_tet", "in.mesh_tet", "mesh-tet-tutorial");
     let out = Command::new(env!("CARGO_BIN_EXE_rdem"))
         .args(["-in", "in.mesh_tet", "-log", "none"])
         .current_dir(&dir)

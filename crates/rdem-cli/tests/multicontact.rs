@@ -100,15 +100,28 @@ fn worst(
     w
 }
 
+/// Asserts that [`worst`] over `cols` (floor `floor`) stays below `tol`; `what` names the
+/// quantity in the message.
+fn assert_within(
+    ours: &[(u64, Vec<Vec<f64>>)],
+    theirs: &[(u64, Vec<Vec<f64>>)],
+    cols: std::ops::Range<usize>,
+    floor: f64,
+    tol: f64,
+    what: &str,
+) {
+    let (e, step, col) = worst(ours, theirs, cols, floor);
+    assert!(
+        e < tol,
+        "{what} off by {e:.3e} at step {step}, column {col} (tolerance {tol:e})"
+    );
+}
+
 #[test]
 fn static_contacts_give_liggghts_forces_step_by_step() {
     let (ours, theirs) = run("static", |s| s);
     // Forces ~1e-3..1 N; particle 1's z force is a difference of two (~1e-6 N at step 0).
-    let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-3);
-    assert!(
-        e < 1e-12,
-        "force off by {e:.3e} (relative) at step {step}, column {col}"
-    );
+    assert_within(&ours, &theirs, 4..7, 1e-3, 1e-12, "force (relative)");
     // The model changes the forces: particle 1's and 2's contact force grows 14-fold.
     let f = |s: usize, id: usize, c: usize| theirs[s].1[id - 1][c];
     assert!((f(6, 1, 6) / f(0, 1, 6)).abs() > 1e3);
@@ -121,11 +134,7 @@ fn static_contacts_give_liggghts_forces_step_by_step() {
 fn a_second_run_sets_up_as_liggghts() {
     let (ours, theirs) = run("static_tworuns", |s| s);
     assert_eq!(theirs[0].0, 3, "the first frame is the second run's set-up");
-    let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-3);
-    assert!(
-        e < 1e-12,
-        "force off by {e:.3e} (relative) at step {step}, column {col}"
-    );
+    assert_within(&ours, &theirs, 4..7, 1e-3, 1e-12, "force (relative)");
     // The set-up differs from the next step where the walls act: particle 1 (on the
     // floor) and particle 3 (on the floor, with a side contact) in z.
     let f = |s: usize, id: usize, c: usize| theirs[s].1[id - 1][c];
@@ -147,11 +156,7 @@ fn a_second_run_sets_up_as_liggghts() {
 #[test]
 fn contacts_that_the_corrections_close_form_as_in_liggghts() {
     let (ours, theirs) = run("reach", |s| s);
-    let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-3);
-    assert!(
-        e < 2e-6,
-        "force off by {e:.3e} (relative) at step {step}, column {col}"
-    );
+    assert_within(&ours, &theirs, 4..7, 1e-3, 2e-6, "force (relative)");
     let f = |d: &[(u64, Vec<Vec<f64>>)], s: usize, id: usize| d[s].1[id - 1][4];
     // Particle 5 touches nothing before the corrections, and 1 feels only 2 before them.
     assert_eq!(f(&theirs, 1, 5), 0.0);
@@ -163,16 +168,15 @@ fn contacts_that_the_corrections_close_form_as_in_liggghts() {
 fn moving_contacts_give_liggghts_forces_and_torques() {
     for name in ["spinning_pair", "spinning_wall"] {
         let (ours, theirs) = run(name, |s| s);
-        let (e, step, col) = worst(&ours, &theirs, 1..4, 1e-3);
-        assert!(
-            e < 1e-12,
-            "{name}: force off by {e:.3e} at step {step}, column {col}"
-        );
+        assert_within(&ours, &theirs, 1..4, 1e-3, 1e-12, &format!("{name}: force"));
         // Torques ~1e-6..1e-5 N m.
-        let (e, step, col) = worst(&ours, &theirs, 4..7, 1e-6);
-        assert!(
-            e < 1e-12,
-            "{name}: torque off by {e:.3e} at step {step}, column {col}"
+        assert_within(
+            &ours,
+            &theirs,
+            4..7,
+            1e-6,
+            1e-12,
+            &format!("{name}: torque"),
         );
     }
 }
@@ -181,11 +185,7 @@ fn moving_contacts_give_liggghts_forces_and_torques() {
 fn falling_spheres_follow_liggghts() {
     let (ours, theirs) = run("falling", |s| s);
     // Positions (m) absolute.
-    let (e, step, col) = worst(&ours, &theirs, 1..4, 1.0);
-    assert!(
-        e < 1e-9,
-        "position off by {e:.3e} m at step {step}, column {col}"
-    );
+    assert_within(&ours, &theirs, 1..4, 1.0, 1e-9, "position (m)");
     // Without the model the run is far off: the bound above tests the model.
     let (plain, _) = run("falling", |s| {
         s.replace(" surface multicontact", "")

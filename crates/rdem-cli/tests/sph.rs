@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{copy_dir, rdem_command, scratch_dir, thermo_rows};
+use common::{rdem_command, scratch_dir, thermo_rows, tutorial_copy, TUTORIALS};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sph")
@@ -181,8 +181,6 @@ fn wall_region_matches_liggghts() {
     }
 }
 
-const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
-
 /// The tutorial sph_2 (2d dam break, 754 particles: 295 fluid, 459 boundary particles
 /// with a wall/sph gate) run unmodified up to its `unfix wall`, i.e. `run 1` and
 /// `run 5000`, with its VTK dumps: the atom count and the kinetic energy of every thermo
@@ -193,16 +191,7 @@ const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_pub
 /// starting to move (measured: below 1e-8).
 #[test]
 fn sph_2_first_5001_steps_match_liggghts() {
-    let src = Path::new(TUTORIALS).join("sph_2");
-    assert!(
-        src.join("in.sph_2").exists(),
-        "{} is missing: install the liggghts-doc package",
-        src.display()
-    );
-    let dir = scratch_dir("sph2");
-    copy_dir(&src, &dir);
-    let _ = std::fs::remove_dir_all(dir.join("post"));
-    std::fs::create_dir_all(dir.join("post")).unwrap();
+    let (src, dir) = tutorial_copy("sph_2", "in.sph_2", "sph2");
     let script = std::fs::read_to_string(src.join("in.sph_2")).unwrap();
     let part: String = script
         .lines()

@@ -76,6 +76,30 @@ pub fn rdem_in(dir: &Path, input: &str, ranks: Option<usize>) -> std::process::C
     c
 }
 
+/// Where Debian's liggghts-doc package puts LIGGGHTS 3.8's tutorials (scripts/test.sh
+/// installs it).
+pub const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
+
+/// The tutorial folder `folder`, checked to hold `script`, and a scratch copy of it (named
+/// after `prefix`) whose `post/` is empty, as the tutorial scripts expect.
+pub fn tutorial_copy(
+    folder: &str,
+    script: &str,
+    prefix: &str,
+) -> (std::path::PathBuf, std::path::PathBuf) {
+    let src = Path::new(TUTORIALS).join(folder);
+    assert!(
+        src.join(script).exists(),
+        "{} is missing: install the liggghts-doc package (scripts/test.sh does)",
+        src.join(script).display()
+    );
+    let dir = scratch_dir(prefix);
+    copy_dir(&src, &dir);
+    let _ = std::fs::remove_dir_all(dir.join("post"));
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    (src, dir)
+}
+
 /// A fresh, empty directory under the system temp directory, named after `prefix`, the
 /// process and a counter.
 pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {
