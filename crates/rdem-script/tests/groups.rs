@@ -1,0 +1,93 @@
+//! `group ID type|id|variable`: the value lists, sequences and logicals of LIGGGHTS'
+//! group command. The counts are LIGGGHTS 3.8's for the same script (200 atoms on a
+//! simple cubic lattice, IDs 1–200, atoms 5–20 of type 2).
+
+mod common;
+
+const HEAD: &str = "units si\n\
+    atom_style granular\n\
+    atom_modify map array\n\
+    boundary f f f\n\
+    region box block 0 1 0 1 0 1 units box\n\
+    create_box 2 box\n\
+    lattice sc 0.1\n\
+    region r block 0 1 0 1 0 0.1 units box\n\
+    create_atoms 1 region r\n\
+    set atom 5*20 type 2\n";
+
+/// The count that the screen gives for `group`.
+fn count(screen: &str, group: &str) -> usize {
+    let tail = format!(" atoms in group {group}");
+    let line = screen
+        .lines()
+        .find(|l| l.ends_with(&tail))
+        .unwrap_or_else(|| panic!("no count for {group}:\n{screen}"));
+    line.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn value_lists_sequences_and_logicals_select_as_liggghts() {
+    let cases = [
+        ("a", "id <= 15", 15),
+        ("b", "id > 95", 105),
+        ("c", "id <> 10 20", 11),
+        ("e", "id == 7", 1),
+        ("f", "id >= 100", 101),
+        ("g", "id < 2", 1),
+        ("h", "id 100:10000:10", 11),
+        ("i", "id 10 25 50 500:1000", 3),
+        ("j", "type == 2", 16),
+        ("k", "type 1:2:1", 200),
+        ("m", "id 1:20:7", 3),
+    ];
+    let mut src = HEAD.to_string();
+    for (g, args, _) in cases {
+        src += &format!("group {g} {args}\n");
+    }
+    src += "variable v atom \"x < 0.35 && type == 1\"\ngroup l variable v\n";
+    let s = common::run_screen("in.groups", &src);
+    for (g, args, n) in cases {
+        assert_eq!(count(&s, g), n, "group {g} {args}");
+    }
+    assert_eq!(count(&s, "l"), 76, "group l variable v");
+}
+
+/// LIGGGHTS 3.8 printed "1 atoms in group d" for `group d id != 3` and 0 for `type != 2`
+/// with every atom of type 1: its `!=` selects the equal values. rdem does what the
+/// manual says, and warns.
+#[test]
+fn not_equal_selects_the_other_values_with_a_warning() {
+    let s = common::run_screen(
+        "in.ne",
+        &format!("{HEAD}group d id != 3\ngroup t type != 2\n"),
+    );
+    assert_eq!(count(&s, "d"), 199);
+    assert_eq!(count(&s, "t"), 184);
+    assert_eq!(
+        s.matches("LIGGGHTS 3.8 selects the equal ones instead")
+            .count(),
+        2,
+        "{s}"
+    );
+}
+
+#[test]
+fn bad_group_values_are_located_errors() {
+    let line = HEAD.lines().count() + 1;
+    // (arguments, column of the caret, message)
+    for (args, col, msg) in [
+        (
+            "id <> 20 10",
+            18,
+            "the upper value 10 is below the lower 20",
+        ),
+        ("id 1:9:0", 12, "'1:9:0' is not a number or range a:b"),
+        ("id <= 3 4", 17, "4"),
+        ("id >", 13, "missing"),
+        ("variable nov", 18, "no variable 'nov'"),
+    ] {
+        let e = common::error("in.bad", &format!("{HEAD}group x {args}\n"));
+        assert!(e.contains(msg), "{args}: {e}");
+        assert!(e.contains(&format!("in.bad:{line}:{col}")), "{args}: {e}");
+    }
+}
