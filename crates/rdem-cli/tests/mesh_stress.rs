@@ -95,7 +95,7 @@ fn vtk_cells(file: &Path) -> (usize, usize, Vec<(String, Vec<f64>)>) {
 /// its weight m g (f_cad[3] = −m g within 1e-6), the torque about the origin is
 /// q × F = (−0.01 m g, 0.03 m g, 0), that triangle's normal stress is m g / 0.01 m² and
 /// the others' zero (read by VTK from dump mesh/vtk), and dump mesh/stl gives back the
-/// floor's triangles.
+/// floor's triangles (and its old name `dump stl` the same file).
 #[test]
 fn resting_sphere_presses_with_its_weight() {
     let dir = scratch_dir("mesh-stress");
@@ -113,6 +113,7 @@ thermo 10000
 run 30000
 dump d all mesh/vtk 1 post/floor_*.vtk stress wear area cad
 dump s all mesh/stl 1 post/floor_*.stl
+dump o all stl 1 post/old_*.stl
 run 0
 "
     );
@@ -158,6 +159,11 @@ run 0
     assert!(dir.join("post/floor.pvd").exists());
     let stl = rdem_io_read(&dir.join("post/floor_30000.stl"));
     assert_eq!(stl, 4);
+    // `dump stl`, the old name that LIGGGHTS 3.8 still takes, writes the same bytes.
+    assert_eq!(
+        std::fs::read(dir.join("post/old_30000.stl")).unwrap(),
+        std::fs::read(dir.join("post/floor_30000.stl")).unwrap()
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

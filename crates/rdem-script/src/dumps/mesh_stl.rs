@@ -14,6 +14,10 @@ use crate::sim::Sim;
 pub(super) const ROW: DumpRow = DumpRow::runs("mesh/stl", parse, "mesh IDs (none: all meshes)")
     .notes("one ASCII STL solid of the current triangles per snapshot, as LIGGGHTS writes it");
 
+/// The registry row of the old name, which LIGGGHTS 3.8 still takes (measured: the same
+/// files as `mesh/stl`).
+pub(super) const ROW_OLD_NAME: DumpRow = DumpRow::runs("stl", parse, "the old name of `mesh/stl`");
+
 fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, Vec<String>)> {
     // Mesh IDs (none: every mesh); LIGGGHTS' parallel selectors mean the whole mesh with
     // one process, which is what rdem writes.

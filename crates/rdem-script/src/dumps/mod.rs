@@ -141,6 +141,7 @@ pub static REGISTRY: Registry<DumpParse> = Registry {
         atom_vtk::ROW,
         euler_vtk::ROW,
         mesh_stl::ROW,
+        mesh_stl::ROW_OLD_NAME,
         mesh_vtk::ROW,
         mesh_vtk::ROW_OLD_NAME,
         Row::not_yet("mesh/vtm", ""),
