@@ -349,3 +349,38 @@ fn settings_have_one_owner_before_and_after_the_box() {
     assert_eq!(w.lost_policy, rdem::LostPolicy::Ignore);
     assert_eq!(w.sort.every, 0);
 }
+
+/// A template of weight 0 in `particledistribution/discrete`: LIGGGHTS 3.8 takes it
+/// (mass% 0) and inserted all 50 particles of this script from the other template (0
+/// atoms of type 1, 50 of type 2). Weights that sum to 0 gave LIGGGHTS NaN fractions;
+/// rdem stops there.
+#[test]
+fn a_template_of_weight_zero_is_never_inserted() {
+    let head = "units si\natom_style granular\nboundary f f f\n\
+        region box block 0 0.1 0 0.1 0 0.1 units box\ncreate_box 2 box\n\
+        neighbor 0.002 bin\n\
+        fix m1 all property/global youngsModulus peratomtype 5e6 5e6\n\
+        fix m2 all property/global poissonsRatio peratomtype 0.3 0.3\n\
+        fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5\n\
+        fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5\n\
+        pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 1e-5\n\
+        fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2000 radius constant 0.0025\n\
+        fix pts2 all particletemplate/sphere 32452867 atom_type 2 density constant 2000 radius constant 0.002\n";
+    let rest = "fix integr all nve/sphere\n\
+        region ins block 0.01 0.09 0.01 0.09 0.01 0.09 units box\n\
+        fix ins all insert/pack seed 67867967 distributiontemplate pdd1 insert_every once \
+        overlapcheck yes all_in yes particles_in_region 50 region ins\n\
+        run 1\ngroup t1 type 1\ngroup t2 type 2\n";
+    let (_, r, out) = run(&format!(
+        "{head}fix pdd1 all particledistribution/discrete 49979687 2 pts1 0 pts2 1\n{rest}"
+    ));
+    r.unwrap();
+    assert!(out.contains("\n0 atoms in group t1\n"), "{out}");
+    assert!(out.contains("\n50 atoms in group t2\n"), "{out}");
+    assert!(!out.contains("WARNING"), "{out}");
+    let (_, r, _) = run(&format!(
+        "{head}fix pdd1 all particledistribution/discrete 49979687 2 pts1 0 pts2 0\n"
+    ));
+    let e = r.unwrap_err();
+    assert!(e.contains("sum of the template weights"), "{e}");
+}

@@ -68,7 +68,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 Some(suggest(tid, &names)),
             )
         })?;
-        let w = a.positive("template weight")?;
+        let w = a.non_negative("template weight")?;
         parts.push((t, w));
     }
     a.done()?;

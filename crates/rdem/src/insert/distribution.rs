@@ -68,10 +68,17 @@ impl Distribution {
                 reason: "needs at least one template".into(),
             });
         }
+        // A weight of 0 is allowed (LIGGGHTS 3.8 takes it: that template is never drawn).
         for (_, w) in &parts {
-            check("template weight", *w, *w > 0.0, "must be > 0")?;
+            check("template weight", *w, *w >= 0.0, "must be >= 0")?;
         }
         let sum: f64 = parts.iter().map(|p| p.1).sum();
+        check(
+            "sum of the template weights",
+            sum,
+            sum > 0.0,
+            "must be > 0 (LIGGGHTS 3.8 goes on with NaN fractions)",
+        )?;
         let warning = ((sum - 1.0).abs() > 1e-10).then(|| {
             format!("particle distribution {id}: weights sum to {sum}, not 1; normalised")
         });
@@ -134,7 +141,10 @@ impl Distribution {
         let exact: Vec<f64> = self.number_fraction.iter().map(|f| f * n as f64).collect();
         let mut counts: Vec<usize> = exact.iter().map(|x| x.floor() as usize).collect();
         let mut left = n.saturating_sub(counts.iter().sum());
-        let mut order: Vec<usize> = (0..counts.len()).collect();
+        // Templates of weight 0 get none.
+        let mut order: Vec<usize> = (0..counts.len())
+            .filter(|&k| self.number_fraction[k] > 0.0)
+            .collect();
         order.sort_by(|&a, &b| {
             (exact[b] - exact[b].floor())
                 .total_cmp(&(exact[a] - exact[a].floor()))
@@ -160,7 +170,11 @@ impl Distribution {
                 return k;
             }
         }
-        self.number_fraction.len() - 1
+        // Rounding left u above the sum: the last template that can be drawn.
+        self.number_fraction
+            .iter()
+            .rposition(|&f| f > 0.0)
+            .expect("the weights sum to > 0")
     }
 }
 
@@ -227,5 +241,32 @@ mod tests {
         assert!(
             Distribution::new("d", 1, Weighting::Mass, vec![(t("a", 0.001), f64::NAN)]).is_err()
         );
+        assert!(Distribution::new("d", 1, Weighting::Mass, vec![(t("a", 0.001), -1.0)]).is_err());
+        let zeros = vec![(t("a", 0.001), 0.0), (t("b", 0.002), 0.0)];
+        assert!(Distribution::new("d", 1, Weighting::Mass, zeros).is_err());
+    }
+
+    /// A template of weight 0 (LIGGGHTS 3.8 takes it and prints mass% = 0) is never drawn
+    /// and gets no share of a count, but its radius still bounds the mix.
+    #[test]
+    fn a_template_of_weight_zero_is_never_drawn() {
+        for weighting in [Weighting::Mass, Weighting::Number] {
+            let mut d = Distribution::new(
+                "d",
+                7,
+                weighting,
+                vec![(t("a", 0.0025), 0.0), (t("b", 0.002), 1.0)],
+            )
+            .unwrap();
+            assert!(d.warning.is_none());
+            assert_eq!(d.templates[0].id, "a");
+            assert_eq!(d.number_fraction, vec![0.0, 1.0]);
+            assert_eq!(d.mass_fraction, vec![0.0, 1.0]);
+            assert_eq!(d.max_radius(), 0.0025);
+            for n in [0, 1, 7, 1000] {
+                assert_eq!(d.counts_for(n), vec![0, n]);
+            }
+            assert!((0..10_000).all(|_| d.pick() == 1));
+        }
     }
 }
