@@ -141,6 +141,19 @@ pub(crate) fn equal_variable(sim: &Sim, name: &str, depth: usize) -> Result<f64,
     }
 }
 
+/// The value of one name as an equal-style formula would give it (a thermo keyword,
+/// `PI`, an equal-style variable rounded as LIGGGHTS passes it, a global value of a
+/// compute or fix, `x[ID]`).
+pub fn eval_name_equal(sim: &Sim, name: &expr::Name) -> Result<f64, Error> {
+    let e = expr::Expr::Name(name.clone(), 0..0);
+    let mut ctx = Ctx {
+        sim,
+        depth: 0,
+        atom: None,
+    };
+    expr::eval(&e, &mut ctx).map_err(|e| Error::from(e.message))
+}
+
 /// Text of `${name}` / `$x`.
 pub fn variable_text(sim: &Sim, name: &str) -> Result<String, Error> {
     sim.script.vars.text(

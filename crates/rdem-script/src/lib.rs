@@ -9,6 +9,7 @@
 
 pub mod args;
 pub mod atom_fields;
+pub mod atom_formula;
 pub mod check;
 pub mod commands;
 pub mod computes;

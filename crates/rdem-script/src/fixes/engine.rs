@@ -1,6 +1,6 @@
 //! The fixes the engine runs every step, which the script only parses: `nve/sphere`
-//! (integration), `freeze`, `viscous`, `addforce`, `setforce`, `aveforce`, `enforce2d`
-//! (post-force).
+//! (integration), `freeze`, `viscous`, `setforce`, `aveforce`, `enforce2d` (post-force);
+//! `addforce` with numbers (its file: [`super::addforce`]).
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
 
@@ -8,7 +8,7 @@ use crate::error::Error;
 use glam::DVec3;
 use rdem::{Fix, FixKind};
 
-use super::{style, FixHead, FixRow, ScriptFix, Stages};
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Accept, Args, CmdResult, NumOrVar};
 use crate::sim::Sim;
 
@@ -33,9 +33,6 @@ pub(super) const ROW_VISCOUS: FixRow = style(
     Stages::ENGINE,
     "`gamma [scale type ratio ...]`: a drag force −γ v, γ scaled per atom type",
 );
-/// The registry row of `addforce`.
-pub(super) const ROW_ADDFORCE: FixRow =
-    style("addforce", addforce, Stages::ENGINE, "`fx fy fz` (numbers)");
 /// The registry row of `setforce`.
 pub(super) const ROW_SETFORCE: FixRow = style(
     "setforce",
@@ -57,10 +54,10 @@ pub(super) const ROW_ENFORCE2D: FixRow = style(
 pub(super) const ROW_AVEFORCE: FixRow = style(
     "aveforce",
     aveforce,
-    Stages::ENGINE.and(Stages::VALUES),
-    "`fx fy fz` (numbers or NULL): the group's mean force plus these; `f_ID[1..3]` the total before",
+    Stages::ENGINE.and(Stages::VALUES).and(Stages::PRE_STEP),
+    "`fx fy fz` (numbers, NULL or v_name of an equal-style variable, evaluated before each step): the group's mean force plus these; `f_ID[1..3]` the total before",
 )
-.notes("`v_name` components and the `region` keyword are not supported yet (located errors)");
+.notes("the `region` keyword is not supported yet (a located error)");
 
 /// A fix the engine runs: parsed into an engine [`Fix`], which [`ScriptFix::install`]
 /// hands to `World::fixes` (the one owner of its state from then on; the script's entry
@@ -194,46 +191,80 @@ fn viscous(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptF
 }
 
 fn aveforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let mut v = [None; 3];
-    for (k, c) in v.iter_mut().enumerate() {
+    let mut given = [NumOrVar::Null, NumOrVar::Null, NumOrVar::Null];
+    for (k, c) in given.iter_mut().enumerate() {
         let what = ["fx", "fy", "fz"][k];
-        match a.num_or_var(&format!("{what} (a number or NULL)"), Accept::NullOrVar)? {
-            NumOrVar::Var(_) => {
+        *c = a.num_or_var(
+            &format!("{what} (a number, NULL or v_name)"),
+            Accept::NullOrVar,
+        )?;
+        if let NumOrVar::Var(name) = c {
+            if let Some(crate::variables::Variable::Atom(_)) = sim.script.vars.get(name) {
                 return Err(a.error_prev(
-                    "aveforce with variables is not supported yet; give numbers or NULL",
-                    None,
-                ))
+                    format!("aveforce takes equal-style variables; '{name}' is atom-style"),
+                    Some("fix addforce takes atom-style variables".into()),
+                ));
             }
-            value => *c = value.num(),
         }
     }
     if !a.is_done() {
         a.keyword("aveforce keyword", &["region"])?;
         return Err(a.error_prev("aveforce region is not supported yet", None));
     }
+    // Variables are evaluated before each step (and the set-up); until then they are 0.
     let kind = FixKind::AveForce {
-        force: v,
+        force: given.clone().map(|c| match c {
+            NumOrVar::Null => None,
+            c => Some(c.num().unwrap_or(0.0)),
+        }),
         total: DVec3::ZERO,
     };
-    engine_fix(sim, a, head, kind)
+    sim.world_ref(a)?;
+    let fix =
+        Fix::new(&head.id, head.groupbit, kind).map_err(|e| a.error_cmd(e.to_string(), None))?;
+    let inner = InEngine::new(fix);
+    if given.iter().all(|c| c.var().is_none()) {
+        return Ok(Box::new(inner));
+    }
+    Ok(Box::new(AveForceVars { inner, given }))
 }
 
-fn addforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let mut v = [0.0; 3];
-    for (k, c) in v.iter_mut().enumerate() {
-        match a.num_or_var(["fx", "fy", "fz"][k], Accept::Var)? {
-            NumOrVar::Num(v) => *c = v,
-            _ => {
-                return Err(a.error_prev(
-                    "addforce with variables is not supported yet; give numbers",
-                    None,
-                ))
-            }
-        }
+/// `fix aveforce` with equal-style variables: the engine fix, and its components
+/// evaluated before each step, at that step.
+struct AveForceVars {
+    inner: InEngine,
+    given: [NumOrVar; 3],
+}
+
+impl ScriptFix for AveForceVars {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        self.inner.install(sim, a, head)
     }
-    a.done()?;
-    let force = DVec3::from_array(v);
-    engine_fix(sim, a, head, FixKind::AddForce { force })
+
+    fn values(&self, sim: &Sim, head: &FixHead) -> Result<Vec<f64>, Error> {
+        self.inner.values(sim, head)
+    }
+
+    fn pre_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
+        let who = "fix aveforce";
+        let given = [&self.given[0], &self.given[1], &self.given[2]];
+        let now = ctx.values_at(&given, who, " (aveforce takes equal-style variables)")?;
+        if now.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(format!("{who}: a variable gives {now:?}, not a finite force").into());
+        }
+        let fix = ctx
+            .world()
+            .fix_mut(&head.id)
+            .ok_or("fix aveforce is not in the engine")?;
+        if let FixKind::AveForce { force, .. } = &mut fix.kind {
+            *force = [now[0], now[1], now[2]];
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        self.inner.unfix(sim, head);
+    }
 }
 
 fn setforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {

@@ -12,6 +12,7 @@
 //! and group so that `unfix`, `f_ID` and redefinitions find them.
 
 mod adapt;
+mod addforce;
 mod ave_atom;
 pub mod ave_euler;
 mod ave_histo;
@@ -353,7 +354,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         gravity::ROW,
         engine::ROW_FREEZE,
         engine::ROW_VISCOUS,
-        engine::ROW_ADDFORCE,
+        addforce::ROW,
         engine::ROW_SETFORCE,
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
