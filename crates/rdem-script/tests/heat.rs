@@ -347,6 +347,31 @@ fn group_outside_keeps_its_temperature() {
     );
 }
 
+/// LIGGGHTS 1.x's syntax, `fix ID group heat/gran T0` with `set ... property/peratom`
+/// (LIGGGHTS 3.8 refuses both: "Fix heat/gran (id h): not enough arguments" and "Illegal set
+/// command"): rdem reads them as 3.x's `initial_temperature T0` and `property/atom`, with
+/// a warning for the fix, and conducts exactly as the 3.x spelling does.
+#[test]
+fn liggghts_1x_syntax_conducts_as_the_3x_syntax() {
+    let run = |fix: &str, set: &str| {
+        let src =
+            format!("{HEAD}{PAIR}group one id 1\n{fix}\nset atom 1 {set} Temp 400.\nrun 100\n");
+        let i = interp(&src);
+        (prop(&i, "Temp"), common::screen(&i))
+    };
+    let (new, _) = run(
+        "fix ht one heat/gran initial_temperature 300.",
+        "property/atom",
+    );
+    let (old, screen) = run("fix ht one heat/gran 300.", "property/peratom");
+    assert_eq!(old, new);
+    assert!(new[0] > 300.0 && new[0] < 400.0, "{new:?}");
+    assert!(
+        screen.contains("fix heat/gran T0 is LIGGGHTS 1.x syntax"),
+        "{screen}"
+    );
+}
+
 /// A `fix Temp all property/atom Temp ...` defined before heat/gran is replaced and its
 /// values reset to T0 (LIGGGHTS 3.8: 350 and a `set` to 450 both become 300); `f_Temp[0]`
 /// (LIGGGHTS' old spelling) reads the temperatures as `f_Temp`; the same name under
@@ -377,7 +402,11 @@ fn temp_property_defined_before() {
 #[test]
 fn errors() {
     for (tail, want) in [
-        ("fix h all heat/gran 300.", "unknown heat/gran keyword '300.'"),
+        // (`heat/gran 300.` is LIGGGHTS 1.x syntax, which rdem reads; see above.)
+        (
+            "fix h all heat/gran/conduction 300.",
+            "unknown heat/gran keyword '300.'",
+        ),
         (
             "fix h all heat/gran/conduction initial_temperature 300. bogus 3",
             "unknown heat/gran keyword 'bogus'",

@@ -118,7 +118,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             a.pos(),
             "set: missing keyword",
             Some(
-                "type, diameter, density, mass, x, y, z, vx, vy, vz, omegax, omegay, omegaz, omega, property/atom, meso_rho, sphkernel"
+                "type, diameter, density, mass, x, y, z, vx, vy, vz, omegax, omegay, omegaz, omega, property/atom (1.x: property/peratom), meso_rho, sphkernel"
                     .into(),
             ),
         ));
@@ -143,6 +143,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 "omegaz",
                 "omega",
                 "property/atom",
+                "property/peratom",
                 "meso_rho",
                 "sphkernel",
             ],

@@ -1,6 +1,7 @@
 //! `fix ID group heat/gran/conduction initial_temperature T0 [contact_area overlap|
 //! projection|constant A] [area_correction yes|no] [store_contact_data no]` (and its alias
-//! `heat/gran`): heat conduction through the contacts, and from walls with a
+//! `heat/gran`, which also takes LIGGGHTS 1.x's `heat/gran T0`, with a warning): heat
+//! conduction through the contacts, and from walls with a
 //! `temperature`, computed by the engine ([`rdem::heat`], which states the model).
 //!
 //! What the definition brings, as in LIGGGHTS 3.8: the per-particle properties `Temp`
@@ -69,7 +70,16 @@ pub struct HeatGran {
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let w = sim.world_ref(a)?;
-    a.keyword("heat/gran keyword", &["initial_temperature"])?;
+    // LIGGGHTS 1.x: `fix ID group heat/gran T0`, the temperature without its keyword.
+    let old = head.style == "heat/gran" && a.peek().and_then(crate::args::parse_f64).is_some();
+    if old {
+        a.warn_at(
+            a.pos(),
+            "fix heat/gran T0 is LIGGGHTS 1.x syntax, which LIGGGHTS 3.8 refuses; rdem reads it as 'initial_temperature T0'",
+        );
+    } else {
+        a.keyword("heat/gran keyword", &["initial_temperature"])?;
+    }
     let t0 = a.f64("initial temperature T0")?;
     // LIGGGHTS hands T0 on as the text of "%f": six decimals.
     let t0 = format!("{t0:.6}").parse::<f64>().unwrap_or(t0);
