@@ -45,7 +45,7 @@ pub(super) const ROW_ALIAS: FixRow = style(
     "heat/gran",
     parse,
     Stages::PRE_STEP.and(Stages::VALUES),
-    "as `heat/gran/conduction`",
+    "as `heat/gran/conduction`; also LIGGGHTS 1.x's `heat/gran T0` (with a warning)",
 )
 .notes("as LIGGGHTS 3.8, the first word after `initial_temperature T0` that is not a keyword ends the line: it and the words after it are ignored, with a warning naming them (`heat/gran/conduction` stops with an error)");
 
