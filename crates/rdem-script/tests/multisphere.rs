@@ -879,3 +879,57 @@ run 40000
     let z = rows.last().unwrap()[3];
     assert!((3.423e-3..=3.695e-3).contains(&z), "mean height {z}");
 }
+
+/// `particletemplate/multiplespheres` without bonds (stock LIGGGHTS 3.8): each template's
+/// spheres go in as separate particles, placed as the clump would be. LIGGGHTS 3.8, for
+/// 5 templates of three touching 2 mm spheres 4 mm apart on x inserted by insert/pack,
+/// made 15 atoms of mass 8.37758e-05 each (ρ·4/3·π·r³), three in a row on x 4 mm apart
+/// with the default orientation and turned about the middle one with `orientation
+/// random`; no `fix multisphere` is needed. rdem does the same; `bonded yes` and the
+/// rigid-body keywords are located errors.
+#[test]
+fn multiplespheres_insert_separate_spheres() {
+    let template = "fix pts1 all particletemplate/multiplespheres 15485863 atom_type 1 \
+        density constant 2500 nspheres 3 ntry 100000 spheres 0 0 0 0.002 0.004 0 0 0.002 0.008 0 0 0.002";
+    let tail = |orientation: &str| {
+        format!(
+            "{template}\nfix pdd1 all particledistribution/discrete 49979687 1 pts1 1.0\n\
+             fix integr all nve/sphere\n\
+             region ins block -0.015 0.015 -0.015 0.015 0.005 0.035 units box\n\
+             fix ins all insert/pack seed 67867967 distributiontemplate pdd1 insert_every once \
+             {orientation} overlapcheck yes all_in yes particles_in_region 5 region ins\nrun 1\n"
+        )
+    };
+    let mass = 2500.0 * 4.0 / 3.0 * PI * 0.002f64.powi(3);
+    for orientation in ["", "orientation random"] {
+        let (i, out) = run(&tail(orientation)).unwrap_or_else(|e| panic!("{e}"));
+        let p = &i.sim.world.as_ref().unwrap().particles;
+        assert_eq!(p.nlocal(), 15, "{out}");
+        assert!(bodies(&i).is_empty());
+        for k in 0..15 {
+            assert!((p.rmass[k] - mass).abs() < 1e-12 * mass);
+            assert_eq!(p.radius[k], 0.002);
+        }
+        for t in 0..5 {
+            let (a, b, c) = (p.x[3 * t], p.x[3 * t + 1], p.x[3 * t + 2]);
+            // One step of the touching spheres moves them by far less than 1e-12 m.
+            assert!(((b - a).length() - 0.004).abs() < 1e-12, "{a} {b}");
+            assert!(((c - a).length() - 0.008).abs() < 1e-12, "{a} {c}");
+            if orientation.is_empty() {
+                assert!((b - a - glam::DVec3::new(0.004, 0.0, 0.0)).length() < 1e-12);
+            }
+        }
+    }
+    for (extra, msg) in [
+        ("bonded yes", "bonded templates need the bond/gran package"),
+        (
+            "type 1",
+            "unknown particletemplate/multiplespheres keyword 'type'",
+        ),
+    ] {
+        let Err(e) = run(&format!("{template} {extra}\n")) else {
+            panic!("{extra} ran")
+        };
+        assert!(e.contains(msg), "{e}");
+    }
+}

@@ -340,6 +340,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         wall_gran_old::ROW_HOOKE,
         particletemplate_sphere::ROW,
         particletemplate_multisphere::ROW,
+        particletemplate_multisphere::ROW_MULTIPLE,
         multisphere::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,

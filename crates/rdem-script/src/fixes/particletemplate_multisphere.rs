@@ -30,6 +30,17 @@ pub(super) const ROW: FixRow = style(
 .notes("the Monte Carlo mass properties use rdem's own generator: they differ from LIGGGHTS' within the stated standard errors, which the verbose output prints")
 .atoi();
 
+/// The registry row of `particletemplate/multiplespheres` (stock LIGGGHTS 3.8, without
+/// bonds): the same sphere list, inserted as separate spheres.
+pub(super) const ROW_MULTIPLE: FixRow = style(
+    "particletemplate/multiplespheres",
+    parse,
+    Stages::NONE,
+    "`atom_type`, `density constant`, `nspheres`, `ntry`, `spheres x y z r ...\\|file F`, `scale`, `bonded no`: the spheres are placed as a clump would be (about the Monte Carlo centre of mass, turned by the insertion's `orientation`) and inserted as separate particles, as LIGGGHTS 3.8 does",
+)
+.notes("`bonded yes\\|yes/explicit` (the forks' bonded templates) is not supported yet (a located error)")
+.atoi();
+
 /// A defined clump template: it lives in `Sim::templates` under the fix ID.
 pub struct MultisphereTemplate {
     parsed: Option<ParticleTemplate>,
@@ -58,10 +69,12 @@ enum Source {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let rigid = head.style == "particletemplate/multisphere";
+    let style_name = head.style;
     if sim.setup.dimension == 2 {
         return Err(a.error_at(
             STYLE_WORD,
-            "particletemplate/multisphere is for 3d simulations only",
+            format!("{style_name} is for 3d simulations only"),
             None,
         ));
     }
@@ -88,8 +101,28 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         "tflag",
         "relative",
     ];
+    const KEYS_MULTIPLE: [&str; 9] = [
+        "atom_type",
+        "density",
+        "volume_limit",
+        "nspheres",
+        "ntry",
+        "spheres",
+        "scale",
+        "relative",
+        "bonded",
+    ];
+    let keys: &[&'static str] = if rigid { &KEYS } else { &KEYS_MULTIPLE };
     while !a.is_done() {
-        match a.keyword("particletemplate/multisphere keyword", &KEYS)? {
+        match a.keyword(&format!("{style_name} keyword"), keys)? {
+            "bonded" => {
+                if a.keyword("bonded", &["no", "yes", "yes/implicit", "yes/explicit"])? != "no" {
+                    return Err(a.error_prev(
+                        "bonded templates need the bond/gran package, which rdem does not have yet",
+                        Some("leave 'bonded' out (or 'bonded no') for separate spheres".into()),
+                    ));
+                }
+            }
             "atom_type" => ty = super::particletemplate_sphere::atom_type(sim, a)?,
             "density" => {
                 a.keyword("density distribution", &["constant"])?;
@@ -159,7 +192,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let need = |what: &str, help: &str| {
         a.error_at(
             STYLE_WORD,
-            format!("particletemplate/multisphere needs {what}"),
+            format!("{style_name} needs {what}"),
             Some(help.into()),
         )
     };
@@ -176,11 +209,15 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             "'spheres x1 y1 z1 r1 ...' or 'spheres file F [scale s]'",
         )
     })?;
-    let Some(clump_type) = ms_type else {
-        return Err(need(
-            "'type MT'",
-            "the multisphere type of the template, from 1",
-        ));
+    let clump_type = match ms_type {
+        Some(t) => t,
+        None if !rigid => 0,
+        None => {
+            return Err(need(
+                "'type MT'",
+                "the multisphere type of the template, from 1",
+            ))
+        }
     };
     let mut spheres = match source {
         Source::Inline(v) => v,
@@ -229,8 +266,13 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         MassSource::Density(rho) => rho,
     };
     let m = template.moments;
+    let what = if rigid {
+        "Multisphere"
+    } else {
+        "Multiplespheres"
+    };
     let report = format!(
-        "Multisphere template {id}: {nspheres} spheres, Monte Carlo volume {:e} (± {:e}), mass {:e}, \
+        "{what} template {id}: {nspheres} spheres, Monte Carlo volume {:e} (± {:e}), mass {:e}, \
          centre of mass ({:e}, {:e}, {:e}) (± {:e}), principal moments of inertia ({:e}, {:e}, {:e}), \
          bounding radius {:e}",
         p.volume,
@@ -250,6 +292,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         fflag,
         tflag,
         clump_type: u32::try_from(clump_type).unwrap_or(u32::MAX),
+        rigid,
     };
     let t = ParticleTemplate::clump(id, seed, ty, density, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;

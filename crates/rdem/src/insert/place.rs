@@ -261,6 +261,24 @@ pub(crate) fn add_placed(
     groupbit: u32,
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     let t = &dist.templates[pl.template];
+    if let Some(c) = t.clump.as_ref().filter(|c| !c.rigid) {
+        // Separate spheres: each goes to the rank that owns its centre.
+        let first = world.particles.nlocal();
+        for s in &c.template.spheres {
+            let x = pl.x + pl.q * s.x;
+            if !world.owns_inserted(x) {
+                continue;
+            }
+            let mut np = NewParticle::at(x, s.r, t.density)
+                .with_type(t.ty)
+                .with_omega(omega);
+            np.v = pl.v;
+            np.mask = 1 | groupbit;
+            world.add_particle(&np)?;
+        }
+        let last = world.particles.nlocal();
+        return Ok((c.template.props.mass, (last > first).then_some(first..last)));
+    }
     if let Some(c) = &t.clump {
         if world.multisphere.is_none() {
             return Err(crate::error::Error::Invalid {

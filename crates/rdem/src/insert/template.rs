@@ -32,6 +32,10 @@ pub struct ClumpShape {
     pub tflag: [bool; 3],
     /// The template's multisphere type (`type MT`, from 1).
     pub clump_type: u32,
+    /// True for a rigid body (`particletemplate/multisphere`); false for
+    /// `particletemplate/multiplespheres`, whose spheres are inserted as separate
+    /// particles (placed as the clump would be; each sphere's mass from the density).
+    pub rigid: bool,
 }
 
 impl ClumpShape {
