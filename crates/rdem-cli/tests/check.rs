@@ -88,21 +88,20 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 /// Left out as a follow-on: 93 `pair_coeff * *` (the pair style failed). (131 `compute
 /// pair/gran/local`, 134 `dump local` and 135 its `dump_modify pad` run.)
 ///
-/// `24_fibers_cantilever_beam/in.liggghts` — 9 lines:
+/// `24_fibers_cantilever_beam/in.liggghts` — 7 lines:
 /// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
 /// - 74 `pair_style gran ...` comes before `create_box` (line 82): LIGGGHTS refuses that too;
 /// - 76 `bond_style gran` and 97 `bond_coeff ...`: the fibre bond package's bonds;
 /// - 106 `compute bc all property/local batom1x ...`: no `compute property/local`;
-/// - 110 `group bonded id >= 1` and 114 `group freezed id == 1`: no comparison forms of
-///   `group id`;
 /// - 118 `fix bondcr all bond/create/gran ...`: bonds made during the run;
 /// - 135 `thermo_style custom step atoms numbonds ...`: no `numbonds` keyword.
 ///
-/// Left out as follow-ons: 94 `pair_coeff * *`, 111 `set group bonded` and 176
-/// `fix f1 freezed freeze` (groups whose lines failed), 159 `dump bondforcechain all
-/// local ... c_bc[1] ...` (its compute's line failed), 170 `fix_modify bondcr every 0`
-/// (the fix whose line failed). Line 70 `shell mkdir post` and line 164 `fix outfile all
-/// print ... file beam.csv` run (under `-check` nothing is made or written).
+/// Left out as follow-ons: 94 `pair_coeff * *`, 159 `dump bondforcechain all local ...
+/// c_bc[1] ...` (its compute's line failed), 170 `fix_modify bondcr every 0` (the fix
+/// whose line failed). Line 70 `shell mkdir post`, line 164 `fix outfile all print ...
+/// file beam.csv` (under `-check` nothing is made or written), and the comparison forms
+/// of `group id` (110 `group bonded id >= 1`, 114 `group freezed id == 1`), with the lines
+/// that use those groups (111, 176), run.
 ///
 /// `34_scm_calibration_read_dump/in.cal_prim_30X` — 2 lines:
 /// - 25 `pair_style gran ...` comes before `create_box` (line 28);
@@ -125,10 +124,10 @@ fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
         (
             "24_fibers_cantilever_beam",
             "in.liggghts",
-            "in.liggghts: 9 lines rdem cannot run: atom_style hybrid (line 53), \
+            "in.liggghts: 7 lines rdem cannot run: atom_style hybrid (line 53), \
              pair_style gran (74), bond_style gran (76), bond_coeff (97), compute property/local (106), \
-             group (110), group (114), fix bond/create/gran (118), thermo_style custom (135)",
-            &[94, 111, 159, 170, 176][..],
+             fix bond/create/gran (118), thermo_style custom (135)",
+            &[94, 159, 170][..],
         ),
         (
             "34_scm_calibration_read_dump",
