@@ -295,3 +295,63 @@ fn the_tutorial_gives_the_same_bits_on_one_and_two_threads() {
     assert!(dumps[0].lines().count() > 514);
     assert!(dumps[0] == dumps[1], "1 and 2 threads differ");
 }
+
+/// The neighbor reach, `neigh_modify contact_distance_factor f` (pairs listed up to
+/// f (r_i + r_j) + skin): LIGGGHTS 3.8's "Total # of neighbors" after `run 0` of the
+/// hydrogel tutorials (514 spheres read from their data file; the scripts cut at their
+/// first `run`), with the factor added to their `neigh_modify delay 0` line. The default
+/// tutorial lists 2163 pairs, 4175 with f = 1.5, 9680 with 2 and 24551 with 3. The reach
+/// also sets the atom sort's bins (half of it, as LIGGGHTS).
+///
+/// Not yet as LIGGGHTS: its `surface multicontact` asks for f = 2 itself (the
+/// multicontact tutorial lists 9680 pairs, 24551 with f = 3); rdem lists 2163 there, and
+/// stops with an error for f > 1 under multicontact (its shaping of pairs far apart gave
+/// NaN forces: not known yet).
+#[test]
+fn contact_distance_factor_lists_pairs_as_liggghts() {
+    let cases = [
+        ("in.hydrogel_default", None, 2163),
+        ("in.hydrogel_default", Some(1.5), 4175),
+        ("in.hydrogel_default", Some(2.0), 9680),
+        ("in.hydrogel_default", Some(3.0), 24551),
+        ("in.hydrogel_multicontact", None, 2163),
+        ("in.hydrogel_multicontact", Some(3.0), 0),
+    ];
+    let (_, dir) = common::tutorial_copy("hydrogel_multicontact", "in.hydrogel_default", "cdf");
+    for (script, factor, want) in cases {
+        let text = std::fs::read_to_string(dir.join(script)).unwrap();
+        let mut cut = String::new();
+        for l in text.lines() {
+            if l.starts_with("run") {
+                cut.push_str("run 0\n");
+                break;
+            }
+            match (l.starts_with("neigh_modify"), factor) {
+                (true, Some(f)) => cut.push_str(&format!("{l} contact_distance_factor {f}\n")),
+                _ => cut.push_str(&format!("{l}\n")),
+            }
+        }
+        std::fs::write(dir.join("in.cut"), &cut).unwrap();
+        let out = common::rdem_in(&dir, "in.cut", None).output().unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        if want == 0 {
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert!(
+                stderr.contains("contact_distance_factor: 3 with surface multicontact"),
+                "{script} {factor:?}: {stderr}"
+            );
+            continue;
+        }
+        assert!(out.status.success(), "{script} {factor:?}: {stdout}");
+        let total = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix("Total # of neighbors = "))
+            .unwrap_or_else(|| panic!("{script} {factor:?}: no neighbor total:\n{stdout}"));
+        assert_eq!(
+            total.trim().parse::<u64>().unwrap(),
+            want,
+            "{script} {factor:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

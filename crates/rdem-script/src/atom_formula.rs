@@ -171,7 +171,7 @@ impl AtomFormula {
         prepare_variable(sim, name, 0).map(AtomFormula)
     }
 
-    /// True if the formula reads no per-particle field (the same value for every particle).
+    /// The value, if the formula reads no per-particle field (the same for every particle).
     pub fn value_if_constant(&self) -> Option<f64> {
         match self.0 {
             Node::Num(v) => Some(v),

@@ -30,6 +30,7 @@ fn main() -> rdem::Result<()> {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     world.set_timestep(1e-5)?;
     world.lost_policy = LostPolicy::Warn;

@@ -29,6 +29,7 @@ fn world(bc: Boundary) -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     w.set_timestep(1e-5).unwrap();
     w
@@ -425,6 +426,7 @@ fn bad_boxes_timesteps_fixes_walls_and_neighbor_settings() {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     assert!(ok.validate().is_ok());
     assert!(NeighborSettings::default().validate().is_ok());

@@ -52,6 +52,7 @@ fn world_in(lo: DVec3, hi: DVec3, e: f64, stiff: f64) -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     w
 }

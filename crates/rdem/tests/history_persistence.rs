@@ -160,6 +160,7 @@ fn sheared_pair_across_periodic_face_is_bit_identical_with_sorting_and_rebuilds(
             delay: 0,
             every: 1,
             check: false,
+            contact_distance_factor: 1.0,
         },
         1,
     );
@@ -169,6 +170,7 @@ fn sheared_pair_across_periodic_face_is_bit_identical_with_sorting_and_rebuilds(
             delay: 0,
             every: 1,
             check: true,
+            contact_distance_factor: 1.0,
         },
         0,
     );
@@ -263,6 +265,7 @@ fn loaded_pair(periodic: bool, with_wall: bool, steps: u64) -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     // Across the x face when periodic, in the middle otherwise.
     let xc = if periodic { 0.1 } else { 0.0 };
@@ -373,6 +376,7 @@ fn falling_bed() -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     w.sort.every = 50;
     let mut k = 0u64;

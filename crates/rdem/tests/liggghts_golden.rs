@@ -394,6 +394,7 @@ fn build_world(s: &Script) -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     // `atom_modify sort 0 0`.
     w.sort.every = 0;

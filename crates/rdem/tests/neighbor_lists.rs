@@ -100,6 +100,7 @@ impl Config {
             delay: 0,
             every: 1,
             check: true,
+            contact_distance_factor: 1.0,
         };
         w.sort.every = if self.sort { 1 } else { 0 };
         w.lost_policy = LostPolicy::Ignore;
@@ -303,6 +304,7 @@ fn list_on_a_lattice_across_periodic_faces() {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     for k in 0..64 {
         let x = DVec3::new((k % 4) as f64, ((k / 4) % 4) as f64, (k / 16) as f64);
@@ -334,6 +336,7 @@ fn settings(delay: u64, every: u64, check: bool) -> NeighborSettings {
         delay,
         every,
         check,
+        contact_distance_factor: 1.0,
     }
 }
 
@@ -473,6 +476,7 @@ fn ballistic_builds(delay: u64, every: u64, check: bool, vx: f64) -> (u64, u64) 
         delay,
         every,
         check,
+        contact_distance_factor: 1.0,
     };
     assert!(w.neighbor.settings.validate().is_ok());
     let moving = NewParticle::at(DVec3::splat(0.5), 0.005, 2500.0).with_v(DVec3::new(vx, 0.0, 0.0));
@@ -529,6 +533,7 @@ fn ghosts_mirror_their_owners_between_rebuilds() {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     for k in 0..27 {
         let x = DVec3::new((k % 3) as f64, ((k / 3) % 3) as f64, (k / 9) as f64) * 0.33

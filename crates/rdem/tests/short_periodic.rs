@@ -122,6 +122,7 @@ fn collision_across_short_face(skin: f64, threads: usize) {
         delay: 0,
         every: 1,
         check: false,
+        contact_distance_factor: 1.0,
     };
     let (short_hist, long_hist, listed_twice, three_images) = on_pool(threads, || {
         let mut short = world(-0.025, 0.025, every);
@@ -220,6 +221,7 @@ fn collision_across_a_short_face_matches_the_middle_of_a_long_box() {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     let mut short = world(-0.025, 0.025, neigh);
     let mut long = world(-0.1, 0.1, neigh);
@@ -267,6 +269,7 @@ fn free_fall(lz: f64, skin: f64, expect_self_images: bool) {
             every: 1,
             // Rebuilt (remapped, ghosts made again) every step.
             check: false,
+            contact_distance_factor: 1.0,
         },
     );
     let g = 9.81;
@@ -333,6 +336,7 @@ fn packing(copies: usize) -> World {
         delay: 0,
         every: 1,
         check: false,
+        contact_distance_factor: 1.0,
     };
     w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
         .unwrap();

@@ -243,6 +243,7 @@ fn ballistic(s: &Swarm, sort_every: u64) -> World {
         delay: 0,
         every: 1,
         check: false,
+        contact_distance_factor: 1.0,
     };
     w.sort.every = sort_every;
     w.lost_policy = LostPolicy::Ignore;
@@ -309,6 +310,7 @@ fn sorting_a_packing_changes_nothing_but_summation_order() {
             delay: 0,
             every: 1,
             check: false,
+            contact_distance_factor: 1.0,
         };
         w.sort.every = sort_every;
         let hist = w.particles.add_property("tagcopy", 2, &[0.0, 0.0]).unwrap();
@@ -391,6 +393,7 @@ fn world_orders_particles_by_seed_bins() {
             delay: 0,
             every: 1,
             check: true,
+            contact_distance_factor: 1.0,
         };
         w.sort.every = 1000;
         w.sort.binsize = binsize;

@@ -412,8 +412,18 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "one" | "page" => {
                 a.count("size")?;
             }
-            "binsize" | "contact_distance_factor" => {
+            "binsize" => {
                 a.non_negative("value")?;
+            }
+            "contact_distance_factor" => {
+                let f = a.f64("contact distance factor")?;
+                if f.is_nan() || f < 1.0 {
+                    return Err(a.error_prev(
+                        format!("contact_distance_factor must be >= 1, not {f}"),
+                        Some("LIGGGHTS 3.8 refuses a factor below 1 too".into()),
+                    ));
+                }
+                s.contact_distance_factor = f;
             }
             "exclude" => exclude_pairs(sim, a, &mut exclude)?,
             k => return Err(a.error_prev(format!("neigh_modify {k} is not supported yet"), None)),

@@ -55,6 +55,7 @@ pub fn empty_world(top: f64) -> World {
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     world.set_timestep(DT).expect("dt");
     world.lost_policy = LostPolicy::Ignore;

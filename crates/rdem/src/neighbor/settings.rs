@@ -15,6 +15,10 @@ pub struct NeighborSettings {
     pub every: u64,
     /// Rebuild only if some particle moved more than skin/2 (`check yes`).
     pub check: bool,
+    /// `neigh_modify contact_distance_factor f` (>= 1): pairs are listed up to
+    /// f·(r_i + r_j) + skin, as LIGGGHTS lists them. The models may ask for more
+    /// ([`crate::Neighbor::contact_factor`]: the larger one counts).
+    pub contact_distance_factor: f64,
 }
 
 impl Default for NeighborSettings {
@@ -26,6 +30,7 @@ impl Default for NeighborSettings {
             delay: 10,
             every: 1,
             check: true,
+            contact_distance_factor: 1.0,
         }
     }
 }
@@ -37,6 +42,12 @@ impl NeighborSettings {
     /// `every`.
     pub fn validate(&self) -> Result<()> {
         check("neighbor skin", self.skin, self.skin >= 0.0, "must be >= 0")?;
+        check(
+            "neigh_modify contact_distance_factor",
+            self.contact_distance_factor,
+            self.contact_distance_factor >= 1.0,
+            "must be >= 1",
+        )?;
         if self.every == 0 {
             return Err(Error::InvalidParameter {
                 what: "neigh_modify every",

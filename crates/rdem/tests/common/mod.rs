@@ -50,6 +50,7 @@ pub fn world(
         delay: 0,
         every: 1,
         check: true,
+        contact_distance_factor: 1.0,
     };
     w.add_fix(Fix::new("nve", 1, FixKind::NveSphere).unwrap())
         .unwrap();
