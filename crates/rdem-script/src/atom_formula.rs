@@ -322,25 +322,7 @@ fn eval<F: Fn(Field) -> f64>(n: &Node, field: &F) -> f64 {
         Node::Neg(x) => -eval(x, field),
         Node::Not(x) => truth(eval(x, field) == 0.0),
         Node::Bin(op, a, b) => {
-            let (x, y) = (eval(a, field), eval(b, field));
-            match op {
-                BinOp::Or => truth(x != 0.0 || y != 0.0),
-                BinOp::And => truth(x != 0.0 && y != 0.0),
-                BinOp::Eq => truth(x == y),
-                BinOp::Ne => truth(x != y),
-                BinOp::Lt => truth(x < y),
-                BinOp::Le => truth(x <= y),
-                BinOp::Gt => truth(x > y),
-                BinOp::Ge => truth(x >= y),
-                BinOp::Add => x + y,
-                BinOp::Sub => x - y,
-                BinOp::Mul => x * y,
-                BinOp::Div | BinOp::Mod if y == 0.0 => f64::NAN,
-                BinOp::Div => x / y,
-                BinOp::Mod => x % y,
-                BinOp::Pow if x == 0.0 && y < 0.0 => f64::NAN,
-                BinOp::Pow => x.powf(y),
-            }
+            expr::binary(*op, eval(a, field), eval(b, field)).unwrap_or(f64::NAN)
         }
         Node::Call(f, x) => f.apply(eval(x, field)),
         Node::Atan2(a, b) => eval(a, field).atan2(eval(b, field)),

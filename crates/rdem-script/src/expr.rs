@@ -358,6 +358,28 @@ fn truth(b: bool) -> f64 {
     }
 }
 
+/// `x op y`; the message where LIGGGHTS stops (a division by 0, 0 to a negative power).
+pub fn binary(op: BinOp, x: f64, y: f64) -> Result<f64, &'static str> {
+    Ok(match op {
+        BinOp::Or => truth(x != 0.0 || y != 0.0),
+        BinOp::And => truth(x != 0.0 && y != 0.0),
+        BinOp::Eq => truth(x == y),
+        BinOp::Ne => truth(x != y),
+        BinOp::Lt => truth(x < y),
+        BinOp::Le => truth(x <= y),
+        BinOp::Gt => truth(x > y),
+        BinOp::Ge => truth(x >= y),
+        BinOp::Add => x + y,
+        BinOp::Sub => x - y,
+        BinOp::Mul => x * y,
+        BinOp::Div | BinOp::Mod if y == 0.0 => return Err("divide by 0 in formula"),
+        BinOp::Div => x / y,
+        BinOp::Mod => x % y,
+        BinOp::Pow if x == 0.0 && y < 0.0 => return Err("0 raised to a negative power in formula"),
+        BinOp::Pow => x.powf(y),
+    })
+}
+
 /// Evaluates `e` with `ctx` resolving names and non-math functions.
 pub fn eval(e: &Expr, ctx: &mut dyn Context) -> Result<f64, ExprError> {
     Ok(match e {
@@ -368,28 +390,7 @@ pub fn eval(e: &Expr, ctx: &mut dyn Context) -> Result<f64, ExprError> {
         Expr::Not(x) => truth(eval(x, ctx)? == 0.0),
         Expr::Bin(op, a, b, span) => {
             let (x, y) = (eval(a, ctx)?, eval(b, ctx)?);
-            match op {
-                BinOp::Or => truth(x != 0.0 || y != 0.0),
-                BinOp::And => truth(x != 0.0 && y != 0.0),
-                BinOp::Eq => truth(x == y),
-                BinOp::Ne => truth(x != y),
-                BinOp::Lt => truth(x < y),
-                BinOp::Le => truth(x <= y),
-                BinOp::Gt => truth(x > y),
-                BinOp::Ge => truth(x >= y),
-                BinOp::Add => x + y,
-                BinOp::Sub => x - y,
-                BinOp::Mul => x * y,
-                BinOp::Div | BinOp::Mod if y == 0.0 => {
-                    return err("divide by 0 in formula", span.clone())
-                }
-                BinOp::Div => x / y,
-                BinOp::Mod => x % y,
-                BinOp::Pow if x == 0.0 && y < 0.0 => {
-                    return err("0 raised to a negative power in formula", span.clone())
-                }
-                BinOp::Pow => x.powf(y),
-            }
+            binary(*op, x, y).or_else(|m| err(m, span.clone()))?
         }
         Expr::Call {
             name,

@@ -41,6 +41,18 @@ impl RegionDef {
     }
 }
 
+/// A fix's `region ID` argument (the next word): the region where it is now, and its ID
+/// when it moves (the fix places it again before each step).
+pub fn fix_region(
+    sim: &Sim,
+    a: &mut crate::args::Args,
+) -> crate::args::CmdResult<(Region, Option<String>)> {
+    let id = sim.region_id(a)?;
+    let moving = is_dynamic(sim, &id).then(|| id.clone());
+    let region = region_now(sim, &id).map_err(|e| a.error_prev(e, None))?;
+    Ok((region, moving))
+}
+
 /// True if region `id` or any of its parts moves (LIGGGHTS: "dynamic").
 pub fn is_dynamic(sim: &Sim, id: &str) -> bool {
     sim.defs

@@ -110,12 +110,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     while !a.is_done() {
         match a.keyword("speedcontrol keyword", &["region", "gain"])? {
             "region" => {
-                let id = sim.region_id(a)?;
-                if crate::regions::is_dynamic(sim, &id) {
-                    moving_region = Some(id.clone());
-                }
-                region =
-                    Some(crate::regions::region_now(sim, &id).map_err(|e| a.error_prev(e, None))?);
+                let (r, moving) = crate::regions::fix_region(sim, a)?;
+                (region, moving_region) = (Some(r), moving);
             }
             _ => gain = a.num_or_var("gain", Accept::Var)?,
         }
