@@ -79,14 +79,7 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
     out
 }
 
-/// Five real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
-///
-/// `12_pfm_chung_normal_impact/in.elastic_normal_impact_2_spheres` — 1 line:
-/// - 92 `pair_style gran model hertz tangential incremental_history ...`: the tangential
-///   model `incremental_history` is LIGGGHTS-PFM's.
-///
-/// Left out as a follow-on: 93 `pair_coeff * *` (the pair style failed). (131 `compute
-/// pair/gran/local`, 134 `dump local` and 135 its `dump_modify pad` run.)
+/// Real scripts from `../shared/wild`, each line rdem cannot run counted by hand.
 ///
 /// `24_fibers_cantilever_beam/in.liggghts` — 7 lines:
 /// - 53 `atom_style hybrid granular bond/gran ...`: no hybrid atom style;
@@ -115,12 +108,6 @@ fn check_wild(root: &Path, case_dir: &str, main: &str) -> Output {
 fn wild_scripts_list_exactly_the_lines_rdem_cannot_run() {
     let Some(root) = wild() else { return };
     let cases = [
-        (
-            "12_pfm_chung_normal_impact",
-            "in.elastic_normal_impact_2_spheres",
-            "in.elastic_normal_impact_2_spheres: 1 line rdem cannot run: pair_style gran (line 92)",
-            &[93][..],
-        ),
         (
             "24_fibers_cantilever_beam",
             "in.liggghts",
@@ -353,6 +340,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "04_cfdem_fillcylinder_init/DEM",
     "08_cfdem_hopper_tracer_init/DEM",
     "10_pfm_servo_wall",
+    "12_pfm_chung_normal_impact",
     "14_pfm_stress_box_euler",
     "16_pfm_rotary_kiln_init",
     "18_inl_chain_bending_bond_counter",

@@ -153,18 +153,31 @@ run 40000
             HEAD.replace("tangential history", tangential)
         )
     };
-    let serial = last_row(&run(&script("tangential history"), 0));
-    // Both crossed x = 0.05 (each spends steps with its partner on the other rank).
-    assert!(serial[2] > 0.0505 && serial[3] > 0.0505, "{serial:?}");
     let no_history = last_row(&run(&script("tangential no_history"), 0));
-    let gap = (no_history[4] - serial[4]).abs() / serial[4].abs();
-    assert!(
-        gap > 1e-3,
-        "history must matter here: {no_history:?} vs {serial:?}"
-    );
-    for ranks in [2, 4] {
-        let out = run(&script("tangential history"), ranks);
-        assert_close(&last_row(&out), &serial, 1e-10, &format!("{ranks} ranks"));
+    // `incremental_history` (LIGGGHTS-PFM) keeps the force and two scalars (k_t and the
+    // normal force of the step before), which must not change sign when the pair's
+    // listing flips.
+    for model in ["tangential history", "tangential incremental_history"] {
+        let serial = last_row(&run(&script(model), 0));
+        // Both crossed x = 0.05 (each spends steps with its partner on the other rank).
+        assert!(
+            serial[2] > 0.0505 && serial[3] > 0.0505,
+            "{model}: {serial:?}"
+        );
+        let gap = (no_history[4] - serial[4]).abs() / serial[4].abs();
+        assert!(
+            gap > 1e-3,
+            "{model} must matter here: {no_history:?} vs {serial:?}"
+        );
+        for ranks in [2, 4] {
+            let out = run(&script(model), ranks);
+            assert_close(
+                &last_row(&out),
+                &serial,
+                1e-10,
+                &format!("{model}, {ranks} ranks"),
+            );
+        }
     }
 }
 
@@ -268,20 +281,29 @@ run 7000
             HEAD.replace("tangential history", tangential)
         )
     };
-    let serial = last_row(&run(&script("tangential history"), 0));
-    assert!(
-        serial[2] < 0.0100 - 5e-4,
-        "passed below sphere 1: {serial:?}"
-    );
-    assert!(serial[3].abs() > 1e-3, "spun by the spring: {serial:?}");
     let no_history = last_row(&run(&script("tangential no_history"), 0));
-    assert!(
-        (no_history[3] - serial[3]).abs() > 1e-4 * serial[3].abs(),
-        "history must matter: {no_history:?} vs {serial:?}"
-    );
-    let out = run(&script("tangential history"), 2);
-    assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
-    assert_close(&last_row(&out), &serial, 1e-10, "2 ranks");
+    // Both stored-tangential models: `incremental_history`'s scalars (k_t, the normal
+    // force) cross with the mirrored entry unnegated.
+    for model in ["tangential history", "tangential incremental_history"] {
+        let serial = last_row(&run(&script(model), 0));
+        assert!(
+            serial[2] < 0.0100 - 5e-4,
+            "{model}: passed below sphere 1: {serial:?}"
+        );
+        assert!(serial[3].abs() > 1e-3, "{model}: spun: {serial:?}");
+        assert!(
+            (no_history[3] - serial[3]).abs() > 1e-4 * serial[3].abs(),
+            "{model} must matter: {no_history:?} vs {serial:?}"
+        );
+        let out = run(&script(model), 2);
+        assert!(grid(&out).starts_with("2 by 1 by 1"), "{}", grid(&out));
+        assert_close(
+            &last_row(&out),
+            &serial,
+            1e-10,
+            &format!("{model}, 2 ranks"),
+        );
+    }
 }
 
 /// A particle of rank 1 leaves a fixed face: every rank stops with the same error, which

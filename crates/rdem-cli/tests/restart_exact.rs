@@ -154,6 +154,45 @@ fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once
     assert_eq!(atoms(&end), 250);
 }
 
+/// The same bed with LIGGGHTS-PFM's `tangential incremental_history` (pair and walls):
+/// its stored force, k_t and normal force of the step before carry over.
+#[test]
+fn incremental_history_bed_continues_bit_for_bit() {
+    let defs = concat!("neighbor 0.002 bin
+neigh_modify delay 0
+", common::materials!(), "\
+pair_style gran model hertz tangential incremental_history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential incremental_history primitive type 1 zplane 0
+fix cyl all wall/gran model hertz tangential incremental_history primitive type 1 zcylinder 0.045 0 0
+fix integr all nve/sphere
+thermo_style custom step atoms ke
+thermo 1000
+thermo_modify format float %.17g
+");
+    let c = Case {
+        head: HEAD,
+        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        defs,
+        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+",
+        after: "",
+        n1: 8000,
+        n2: 4000,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, rows) = check_split("bed-incremental", &c);
+    assert_eq!(atoms(&end), 250);
+    // Still moving at the split: the contacts' history matters to the continued run.
+    assert!(rows.iter().any(|r| r[2] > 1e-6), "{rows:?}");
+}
+
 /// A square of half-width `h` at height `z` (two triangles, normal +z), ASCII STL.
 fn square_stl(h: f64, z: f64) -> String {
     let v = |x: f64, y: f64| format!("vertex {x} {y} {z}\n");

@@ -1,5 +1,6 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
-//! hooke/hysteresis, hertz/stiffness, hooke/stiffness), tangential (history, no_history),
+//! hooke/hysteresis, hertz/stiffness, hooke/stiffness), tangential (history, no_history,
+//! incremental_history),
 //! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
 //! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
 //! [`ContactModel`] value picks one of each and [`ContactModel::dispatch`] turns that
@@ -100,6 +101,9 @@ model_kinds! {
         History = "history",
         /// `no_history`: damping only, with Coulomb cap.
         NoHistory = "no_history",
+        /// `incremental_history` (LIGGGHTS-PFM): the stored tangential force gains
+        /// increments ([`tangential::IncrementalHistory`]).
+        IncrementalHistory = "incremental_history",
     }
 }
 
@@ -285,6 +289,9 @@ impl ContactModel {
         match self.tangential {
             TangentialKind::History => self.d_roll::<N, tangential::History, V>(v),
             TangentialKind::NoHistory => self.d_roll::<N, tangential::NoHistory, V>(v),
+            TangentialKind::IncrementalHistory => {
+                self.d_roll::<N, tangential::IncrementalHistory, V>(v)
+            }
         }
     }
     fn d_roll<N: normal::Normal, T: tangential::Tangential, V: Visitor>(&self, v: V) -> V::Output {
@@ -479,10 +486,10 @@ pub struct Kernel<N, T, R, C>(std::marker::PhantomData<(N, T, R, C)>);
 impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohesion::Cohesion>
     ContactKernel for Kernel<N, T, R, C>
 {
-    // Layout: [tangential | rolling | normal | cohesion]; the first two are vectors tied
-    // to i→j.
+    // Layout: [tangential vector | rolling | tangential scalars | normal | cohesion]; the
+    // first two are vectors tied to i→j.
     const HIST: usize = T::HIST + R::HIST + N::HIST + C::HIST;
-    const HIST_ODD: usize = T::HIST + R::HIST;
+    const HIST_ODD: usize = T::ODD + R::HIST;
     const BRIDGE: bool = C::BRIDGE;
     const BRIDGE_HIST: usize = C::HIST;
     const BONDS: bool = C::BONDS;
@@ -522,8 +529,9 @@ pub fn contact<
     flags: Flags,
     hist: &mut [f64],
 ) -> ContactForce {
-    let (h_tan, rest) = hist.split_at_mut(T::HIST);
+    let (h_tan, rest) = hist.split_at_mut(T::ODD);
     let (h_roll, rest) = rest.split_at_mut(R::HIST);
+    let (h_tan_even, rest) = rest.split_at_mut(T::HIST - T::ODD);
     let (h_norm, h_coh) = rest.split_at_mut(N::HIST);
     let vn = g.vr.dot(g.n);
     let vt = g.vr - vn * g.n;
@@ -545,7 +553,7 @@ pub fn contact<
     } else {
         no.fn_contact.abs()
     };
-    let mut ft = T::force(g, c, &no, load, vt_rel, flags, h_tan);
+    let mut ft = T::force(g, c, &no, load, vt_rel, flags, h_tan, h_tan_even);
     if C::BRIDGE {
         ft += ft_coh;
     }

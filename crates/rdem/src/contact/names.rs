@@ -54,7 +54,10 @@ mod tests {
             names(NORMAL_MODELS),
             "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness"
         );
-        assert_eq!(names(TANGENTIAL_MODELS), "history no_history");
+        assert_eq!(
+            names(TANGENTIAL_MODELS),
+            "history no_history incremental_history"
+        );
         assert_eq!(
             names(COHESION_MODELS),
             "off sjkr sjkr2 bond easo/capillary/viscous"

@@ -353,3 +353,35 @@ fn swapping_the_pair_mirrors_the_contact() {
         assert!((hi[k] + hj[k]).abs() < 1e-20);
     }
 }
+
+/// `incremental_history`'s history is the force (3 values that change sign when i and j
+/// swap) and two scalars (k_t and the normal force of the step before) that do not: the
+/// scalars sit after the rolling vector, outside the odd part that a mirrored entry
+/// negates.
+#[test]
+fn incremental_history_keeps_its_scalars_out_of_the_odd_part() {
+    let mut m = ContactModel::hertz_history();
+    m.tangential = TangentialKind::IncrementalHistory;
+    assert_eq!((m.history_width(), m.history_odd()), (5, 3));
+    m.rolling = RollingKind::Epsd2;
+    assert_eq!((m.history_width(), m.history_odd()), (8, 6));
+    // With the rolling spring between them, the scalars are read where they were
+    // written: the tangential force of a loading-then-unloading sequence is the same with
+    // and without rolling friction.
+    type Inc = Kernel<normal::Hertz, tangential::IncrementalHistory, rolling::Off, cohesion::Off>;
+    type IncRoll =
+        Kernel<normal::Hertz, tangential::IncrementalHistory, rolling::Epsd2, cohesion::Off>;
+    let c = coeff(0.5, 0.5);
+    let (mut h, mut hr) = ([0.0; 5], [0.0; 8]);
+    for (k, d) in [1e-5, 2e-5, 3e-5, 2.5e-5, 1.5e-5].into_iter().enumerate() {
+        let mut g = geom(d);
+        g.vr = DVec3::new(if k < 3 { -0.01 } else { 0.01 }, 0.02, 0.0);
+        g.wi = DVec3::new(0.0, 0.0, 1.0);
+        let a = Inc::contact(&g, &c, Flags::default(), &mut h);
+        let b = IncRoll::contact(&g, &c, Flags::default(), &mut hr);
+        assert_eq!(a.f_i, b.f_i, "step {k}");
+    }
+    // The unloading steps scaled the stored force by k_t/k_t,old (k_t ∝ √δ).
+    assert!(h[3] > 0.0 && h[4] > 0.0, "{h:?}");
+    assert_eq!((hr[6], hr[7]), (h[3], h[4]));
+}
