@@ -8,6 +8,7 @@
 //! dispatch. Particle–particle and particle–wall contacts share [`contact`].
 
 pub mod cohesion;
+pub mod jkr;
 pub mod liquid;
 pub mod materials;
 pub mod names;

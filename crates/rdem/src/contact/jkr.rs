@@ -1,0 +1,200 @@
+//! The JKR adhesive contact (Johnson, Kendall & Roberts 1971), in the dimensionless form of
+//! Eidevåg et al. 2020 (Powder Technol. 361:1081), which LIGGGHTS_Flexible_Fibers' and
+//! PICI's `model jkr` use:
+//!
+//! - a₀ = (9πW R*²/(2E*))^⅓, the contact radius at zero load (W the work of adhesion);
+//! - δ_c = a₀²/(2·6^⅓ R*), the overlap scale: the neck breaks at δ = −δ_c;
+//! - F_c = 1.5πW R*, the pull-off force under a fixed load;
+//! - with â = a/a₀: δ/δ_c = 6^⅓(2â² − (4/3)â^½) and F/F_c = 4(â³ − â^{3/2}).
+//!
+//! Given δ, â is the largest root of the overlap equation. The fork reads it from a table
+//! of 3·10⁵ points; rdem solves it exactly, by Newton's method on x = √â (see
+//! [`contact_radius`]). This module is the law's mathematics; the normal law built on it
+//! (its material property `workOfAdhesion`, and the contact that holds while the spheres
+//! are apart down to δ = −δ_c) comes next.
+
+/// 6^⅓.
+const CBRT6: f64 = 1.817_120_592_832_139_6;
+
+/// The scales of one JKR contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// a₀: the contact radius at zero load.
+    pub a0: f64,
+    /// δ_c: the neck breaks at δ = −δ_c.
+    pub delta_c: f64,
+    /// F_c = 1.5πW R*: the pull-off force under a fixed load.
+    pub f_c: f64,
+}
+
+impl Scales {
+    /// The scales for work of adhesion `w`, effective radius `r_star` and effective
+    /// Young's modulus `e_star`.
+    pub fn new(w: f64, r_star: f64, e_star: f64) -> Self {
+        let a0 = (9.0 * std::f64::consts::PI * w * r_star * r_star / (2.0 * e_star)).cbrt();
+        Self {
+            a0,
+            delta_c: a0 * a0 / (2.0 * CBRT6 * r_star),
+            f_c: 1.5 * std::f64::consts::PI * w * r_star,
+        }
+    }
+}
+
+/// The smallest â on the stable branch, 6^(−2/3), where the neck breaks (δ = −δ_c).
+pub const A_HAT_MIN: f64 = 0.302_853_432_138_689_9;
+
+/// δ/δ_c for a contact radius â.
+#[inline(always)]
+pub fn overlap(a_hat: f64) -> f64 {
+    CBRT6 * (2.0 * a_hat * a_hat - 4.0 / 3.0 * a_hat.sqrt())
+}
+
+/// F/F_c for a contact radius â (positive = repulsive).
+#[inline(always)]
+pub fn force(a_hat: f64) -> f64 {
+    4.0 * (a_hat * a_hat * a_hat - a_hat * a_hat.sqrt())
+}
+
+/// â for an overlap `d` = δ/δ_c ≥ −1: the largest root of [`overlap`]`(â) = d`. Below −1
+/// the neck has broken and there is no root; `None`.
+///
+/// With x = √â the equation is h(x) = 2x⁴ − (4/3)x − d/6^⅓ = 0. h is convex, with its
+/// minimum at x³ = 1/6 (â = [`A_HAT_MIN`], d = −1), so Newton's method started right of
+/// the root descends to it monotonically. The start x₀ = max(1, (1.5 d/6^⅓)^¼) is right
+/// of the root: for x ≥ 1, h(x) ≥ (2/3)x⁴ − d/6^⅓. Each step costs a few multiplications;
+/// it stops when a step changes x by less than 4 ulp or h is no longer positive (at
+/// most [`MAX_STEPS`]; over δ/δ_c from −1 + 10⁻⁹ to 10⁸ it took at most 21, the most
+/// next to −1, where the root is double).
+pub fn contact_radius(d: f64) -> Option<f64> {
+    solve(d).map(|(a, _)| a)
+}
+
+/// The most Newton steps [`contact_radius`] takes before it stops.
+pub const MAX_STEPS: u32 = 60;
+
+/// [`contact_radius`] and the number of Newton steps it took.
+fn solve(d: f64) -> Option<(f64, u32)> {
+    if d.is_nan() || d < -1.0 {
+        return None;
+    }
+    let x_min = A_HAT_MIN.sqrt();
+    let q = d / CBRT6;
+    let mut x = (1.5 * q).max(1.0).sqrt().sqrt();
+    let mut steps = 0;
+    while steps < MAX_STEPS {
+        steps += 1;
+        let x3 = x * x * x;
+        let h = 2.0 * x3 * x - 4.0 / 3.0 * x - q;
+        let dh = 8.0 * x3 - 4.0 / 3.0;
+        if h <= 0.0 || dh <= 0.0 {
+            // At the root (to rounding), or at the neck's end.
+            break;
+        }
+        let next = (x - h / dh).max(x_min);
+        let done = x - next <= 4.0 * f64::EPSILON * x;
+        x = next;
+        if done {
+            break;
+        }
+    }
+    Some((x * x, steps))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The classic JKR points: zero load at â = 1 (δ/δ_c = (2/3)6^⅓); pull-off under a
+    /// fixed load, F = −F_c, at â = (1/2)^(2/3); the neck's end, δ = −δ_c, at â = 6^(−2/3)
+    /// with F = −(5/9)F_c.
+    #[test]
+    fn the_classic_points() {
+        assert!((CBRT6 - 6f64.cbrt()).abs() < 1e-15);
+        assert!((A_HAT_MIN - 6f64.powf(-2.0 / 3.0)).abs() < 1e-15);
+        assert_eq!(force(1.0), 0.0);
+        assert!((overlap(1.0) - 2.0 / 3.0 * CBRT6).abs() < 1e-15);
+        let a_pull = 0.5f64.powf(2.0 / 3.0);
+        assert!((force(a_pull) + 1.0).abs() < 1e-15);
+        assert!((overlap(A_HAT_MIN) + 1.0).abs() < 1e-15);
+        assert!((force(A_HAT_MIN) + 5.0 / 9.0).abs() < 1e-15);
+        // The solve returns these radii.
+        let a = contact_radius(overlap(1.0)).unwrap();
+        assert!((a - 1.0).abs() < 1e-15, "{a}");
+        let a = contact_radius(overlap(a_pull)).unwrap();
+        assert!((a - a_pull).abs() < 1e-14, "{a}");
+        let a = contact_radius(-1.0).unwrap();
+        assert!((a - A_HAT_MIN).abs() < 1e-7, "{a}");
+        assert_eq!(contact_radius(-1.0 - 1e-12), None);
+        assert_eq!(contact_radius(f64::NAN), None);
+    }
+
+    /// The root is the largest one, exact to rounding, over twelve decades of overlap:
+    /// the overlap equation gives back d, and the branch is the stable one (â ≥ 6^(−2/3)).
+    #[test]
+    fn the_root_is_exact_and_on_the_stable_branch() {
+        // d from −1 + 1e-9 up through 0 to 1e8: 1e-9…1 below −1's neighbourhood in
+        // geometric steps, then 1e-9…1e8.
+        let mut ds = Vec::new();
+        let mut e = 1e-9;
+        while e < 1.0 {
+            ds.push(-1.0 + e);
+            ds.push(-e);
+            ds.push(e);
+            e *= 1.3;
+        }
+        while e < 1e8 {
+            ds.push(e);
+            e *= 1.3;
+        }
+        let mut most = 0;
+        for d in ds {
+            let (a, steps) = solve(d).unwrap();
+            most = most.max(steps);
+            assert!(a >= A_HAT_MIN, "{d}: {a}");
+            let back = overlap(a);
+            assert!(
+                (back - d).abs() <= 1e-13 * d.abs().max(1.0),
+                "{d}: â {a} gives {back}"
+            );
+        }
+        // The cost: the most Newton steps any overlap took from the cold start (21 when
+        // measured, next to −1, where the root is double and Newton only halves the gap).
+        assert!(most <= 25, "{most} steps");
+        eprintln!("most Newton steps: {most}");
+    }
+
+    /// For deep overlaps JKR tends to Hertz: F → (4/3)E*√R* δ^{3/2}. With W small against
+    /// E*, at δ = 1000 δ_c the force is Hertz's within 5 %, and the difference shrinks
+    /// with δ.
+    #[test]
+    fn deep_overlaps_tend_to_hertz() {
+        let (w, r, e) = (0.05, 0.005, 1e8);
+        let s = Scales::new(w, r, e);
+        let mut last = f64::INFINITY;
+        for k in [1e3, 1e4, 1e5] {
+            let delta = k * s.delta_c;
+            let f = s.f_c * force(contact_radius(delta / s.delta_c).unwrap());
+            let hertz = 4.0 / 3.0 * e * r.sqrt() * delta.powf(1.5);
+            let gap = (f - hertz).abs() / hertz;
+            assert!(gap < last, "{k}: {gap}");
+            last = gap;
+        }
+        assert!(last < 0.05 * 0.1, "{last}");
+    }
+
+    /// The scales: a₀³ = 9πWR*²/(2E*), δ_c = a₀²/(2·6^⅓R*), F_c = 1.5πWR*; and the force
+    /// at δ = 0 is that of â where the overlap equation vanishes (â^{3/2} = 2/3).
+    #[test]
+    fn scales_and_the_force_at_first_touch() {
+        let (w, r, e) = (0.2, 0.002, 5e7);
+        let s = Scales::new(w, r, e);
+        let pi = std::f64::consts::PI;
+        assert!((s.a0.powi(3) - 9.0 * pi * w * r * r / (2.0 * e)).abs() < 1e-12 * s.a0.powi(3));
+        assert!((s.delta_c - s.a0 * s.a0 / (2.0 * 6f64.cbrt() * r)).abs() < 1e-15 * s.delta_c);
+        assert!((s.f_c - 1.5 * pi * w * r).abs() < 1e-15);
+        let a = contact_radius(0.0).unwrap();
+        assert!((a.powf(1.5) - 2.0 / 3.0).abs() < 1e-15, "{a}");
+        // F(δ = 0) = 4F_c(â³ − â^{3/2}) = 4F_c(4/9 − 2/3) = −(8/9)F_c.
+        assert!((force(a) + 8.0 / 9.0).abs() < 1e-14);
+    }
+}
