@@ -117,13 +117,23 @@ communicate single vel yes
 units si
 ";
 
+/// The settling beds' box: 0.1 × 0.1 × 0.12 m.
+const BED_BOX: &str = "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n";
+
+/// The settling beds' particles: 250 spheres of radius 4 mm packed in a cylinder.
+const BED_INIT: &str = "region ins cylinder z 0 0 0.04 0.005 0.11 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
+";
+
 /// A bed settling in a cylinder on a floor, rolling friction on: pair, wall and
 /// rolling histories all carry over.
 #[test]
 fn settling_bed_with_walls_and_rolling_friction_continues_bit_for_bit() {
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        make_box: BED_BOX,
         defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
 ", common::materials!(), "\
@@ -139,11 +149,7 @@ thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
 "),
-        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
-fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
-fix pdd all particledistribution/discrete 32452843 1 pts 1.0
-fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
-",
+        init: BED_INIT,
         after: "",
         n1: 8000,
         n2: 4000,
@@ -174,13 +180,9 @@ thermo_modify format float %.17g
 ");
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        make_box: BED_BOX,
         defs,
-        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
-fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
-fix pdd all particledistribution/discrete 32452843 1 pts 1.0
-fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
-",
+        init: BED_INIT,
         after: "",
         n1: 8000,
         n2: 4000,
@@ -335,7 +337,7 @@ velocity all set 0.3 0 -4
 fn growing_particles_with_a_running_average_continue_bit_for_bit() {
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        make_box: BED_BOX,
         defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
 ", common::materials!(), "\
@@ -390,10 +392,13 @@ fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once
 fn ave_euler_of_a_settling_bed_continues_bit_for_bit() {
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
-        defs: concat!("neighbor 0.002 bin
+        make_box: BED_BOX,
+        defs: concat!(
+            "neighbor 0.002 bin
 neigh_modify delay 0
-", common::materials!(), "\
+",
+            common::materials!(),
+            "\
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 2e-5
@@ -406,12 +411,9 @@ dump e all euler/vtk 2000 euler_*.vtk
 thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
-"),
-        init: "region ins cylinder z 0 0 0.04 0.005 0.11 units box
-fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.004
-fix pdd all particledistribution/discrete 32452843 1 pts 1.0
-fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
-",
+"
+        ),
+        init: BED_INIT,
         after: "",
         n1: 6000,
         n2: 4000,
@@ -430,7 +432,7 @@ fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once
 fn particles_moved_by_fix_move_continue_bit_for_bit() {
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        make_box: BED_BOX,
         defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
 ", common::materials!(), "\
@@ -474,7 +476,7 @@ fix integr free nve/sphere
 fn a_dense_packing_is_not_inserted_again_after_a_restart() {
     let c = Case {
         head: HEAD,
-        make_box: "region box block -0.05 0.05 -0.05 0.05 0 0.12 units box\ncreate_box 1 box\n",
+        make_box: BED_BOX,
         defs: concat!("neighbor 0.002 bin
 neigh_modify delay 0
 ", common::materials!(), "\

@@ -27,6 +27,17 @@ pub trait Tangential {
     ) -> DVec3;
 }
 
+/// `ft` scaled to the magnitude `ft_max` if it is longer (the Coulomb limit).
+#[inline(always)]
+fn coulomb_cap(ft: DVec3, ft_max: f64) -> DVec3 {
+    let mag2 = ft.length_squared();
+    if mag2 > ft_max * ft_max {
+        ft * (ft_max / mag2.sqrt())
+    } else {
+        ft
+    }
+}
+
 /// `tangential history`: the spring ξ gains v_t dt, is projected onto the current tangent
 /// plane, and F_t = −k_t ξ (the current k_t on the whole spring). If |F_t| > μ·load the force
 /// is scaled to μ·load, ξ is reset to −F_t/k_t and no damping acts; otherwise
@@ -98,14 +109,7 @@ impl Tangential for NoHistory {
         if !flags.tangential_damping {
             return DVec3::ZERO;
         }
-        let ft = -no.gamma_t * vt;
-        let ft_max = c.mu * load;
-        let mag2 = ft.length_squared();
-        if mag2 > ft_max * ft_max {
-            ft * (ft_max / mag2.sqrt())
-        } else {
-            ft
-        }
+        coulomb_cap(-no.gamma_t * vt, c.mu * load)
     }
 }
 
@@ -150,11 +154,7 @@ impl Tangential for IncrementalHistory {
         if flags.tangential_damping {
             ft -= no.gamma_t * vt;
         }
-        let ft_max = c.mu * load;
-        let mag2 = ft.length_squared();
-        if mag2 > ft_max * ft_max {
-            ft *= ft_max / mag2.sqrt();
-        }
+        let ft = coulomb_cap(ft, c.mu * load);
         hist[0] = ft.x;
         hist[1] = ft.y;
         hist[2] = ft.z;
