@@ -195,6 +195,46 @@ thermo_modify format float %.17g
     assert!(rows.iter().any(|r| r[2] > 1e-6), "{rows:?}");
 }
 
+/// The same bed with `model jkr` (LIGGGHTS_Flexible_Fibers): the contact radius of each
+/// contact (the solve's warm start and the sign of a neck, which holds apart) carries over.
+#[test]
+fn jkr_bed_continues_bit_for_bit() {
+    let defs = concat!(
+        "neighbor 0.002 bin
+neigh_modify delay 0
+",
+        common::materials!(),
+        "\
+fix m5 all property/global workOfAdhesion peratomtypepair 1 2.0
+fix m6 all property/global resolutionJKR scalar 1e-4
+pair_style gran model jkr tangential history
+pair_coeff * *
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model jkr tangential history primitive type 1 zplane 0
+fix cyl all wall/gran model jkr tangential history primitive type 1 zcylinder 0.045 0 0
+fix integr all nve/sphere
+thermo_style custom step atoms ke
+thermo 1000
+thermo_modify format float %.17g
+"
+    );
+    let c = Case {
+        head: HEAD,
+        make_box: BED_BOX,
+        defs,
+        init: BED_INIT,
+        after: "",
+        n1: 8000,
+        n2: 4000,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, rows) = check_split("bed-jkr", &c);
+    assert_eq!(atoms(&end), 250);
+    assert!(rows.iter().any(|r| r[2] > 1e-6), "{rows:?}");
+}
+
 /// A square of half-width `h` at height `z` (two triangles, normal +z), ASCII STL.
 fn square_stl(h: f64, z: f64) -> String {
     let v = |x: f64, y: f64| format!("vertex {x} {y} {z}\n");

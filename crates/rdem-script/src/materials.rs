@@ -100,6 +100,11 @@ pub fn materials(sim: &Sim) -> Result<Materials, Error> {
                 m.rolling_stiffness = p.values.first().copied();
                 continue;
             }
+            "workOfAdhesion" => &mut m.work_of_adhesion,
+            "resolutionJKR" => {
+                m.resolution_jkr = p.values.first().copied();
+                continue;
+            }
             _ => continue,
         };
         let want = match p.style.as_str() {

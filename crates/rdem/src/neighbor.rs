@@ -4,7 +4,8 @@
 //!
 //! The list holds every pair closer than max((r_i + r_j)·f, reach) + skin once (the reach
 //! is the longest bond with `cohesion bond`, else 0; f is the contact distance factor,
-//! 1.1·maxSeparationDistanceRatio with liquid bridges, else 1): a local pair (i, j) with
+//! 1.1·maxSeparationDistanceRatio with liquid bridges, else 1; with `model jkr` the
+//! longest neck is added to the skin, see [`Neighbor::neck`]): a local pair (i, j) with
 //! j > i, and a pair of a local i with a ghost g when g lies "above" i (larger z, then y,
 //! then x), which picks exactly one of the two periodic images of a pair across a
 //! periodic face. The order of the partners within a row follows the bin traversal; it is
@@ -104,6 +105,12 @@ pub struct Neighbor {
     /// (liquid bridges reach beyond contact; values below 1, the default 0 included,
     /// count as 1).
     pub contact_factor: f64,
+    /// `model jkr`: a contact holds apart down to δ = −δ_c, and δ_c ≤ `neck`·R*^⅓
+    /// ([`crate::contact::CoeffTable::neck_reach`]); pairs are listed that much farther,
+    /// for the largest radius (0 without it).
+    pub neck: f64,
+    /// The neck's length added at the last build (`neck`·rmax^⅓).
+    pub neck_len: f64,
     /// Pairs left out of the list (`neigh_modify exclude`); takes effect at the next build.
     pub exclude: Exclusions,
     /// Half the shortest periodic length that is below twice the cutoff, when there is
@@ -282,6 +289,7 @@ impl Neighbor {
         let skin = self.settings.skin;
         let rmax = p.radius.iter().copied().fold(0.0, f64::max);
         let cut = self.cutoff_for(rmax);
+        self.neck_len = self.neck_for(rmax);
         self.cutoff = cut;
         self.last_build = step;
         self.nbuilds += 1;
@@ -301,8 +309,14 @@ impl Neighbor {
         }
         let factor = self.factor();
         // The search gives its scratch back (see its end).
-        self.bins
-            .search(p, cut, skin, self.reach, factor, &mut self.list);
+        self.bins.search(
+            p,
+            cut,
+            skin + self.neck_len,
+            self.reach,
+            factor,
+            &mut self.list,
+        );
         if !self.exclude.is_empty() {
             self.drop_excluded(p);
         }
@@ -347,7 +361,16 @@ impl Neighbor {
     /// Largest distance at which two particles of largest radius `rmax` interact: the
     /// cutoff without the skin, max(2·rmax·f, reach).
     pub fn contact_for(&self, rmax: f64) -> f64 {
-        (2.0 * rmax * self.factor()).max(self.reach)
+        (2.0 * rmax * self.factor()).max(self.reach) + self.neck_for(rmax)
+    }
+
+    /// The longest JKR neck of particles of largest radius `rmax` (see [`Neighbor::neck`]).
+    pub fn neck_for(&self, rmax: f64) -> f64 {
+        if self.neck > 0.0 {
+            self.neck * rmax.cbrt()
+        } else {
+            0.0
+        }
     }
 
     /// Removes the excluded pairs from the freshly searched list (before histories are

@@ -487,10 +487,19 @@ impl Phase1<'_> {
                 *touch = bridge.iter().any(|&h| h != 0.0) as u8;
                 return out;
             }
-            *touch = 0;
-            // The history stays, as in LIGGGHTS 3.8: a pair that touches again before
-            // the next neighbor build goes on from it (see `NeighborList::touch`).
-            return None;
+            // A JKR neck holds apart down to δ = −δ_c: the contact goes on below.
+            let neck = K::NECK && rsq.is_finite() && {
+                let r_star = ri * rj / radsum;
+                let c = &coeff_row[ty[j] as usize - 1];
+                K::holds(radsum - rsq.sqrt(), r_star, c, hist, update)
+            };
+            if !neck {
+                *touch = 0;
+                // The history stays, as in LIGGGHTS 3.8: a pair that touches again
+                // before the next neighbor build goes on from it (see
+                // `NeighborList::touch`).
+                return None;
+            }
         }
         *touch = 1;
         let dist = rsq.sqrt();

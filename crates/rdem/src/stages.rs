@@ -41,6 +41,7 @@ impl World {
         let Some(pair) = &mut self.pair else {
             self.neighbor.set_history_layout(0, 0);
             self.neighbor.reach = 0.0;
+            self.neighbor.neck = 0.0;
             self.neighbor.contact_factor = self.neighbor.settings.contact_distance_factor;
             return Ok(());
         };
@@ -69,6 +70,7 @@ impl World {
         let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
         self.neighbor.set_history_layout(w, odd);
         self.neighbor.reach = pair.reach();
+        self.neighbor.neck = pair.table().neck_reach(1.0);
         if pair.reach() > 0.0 {
             // As LIGGGHTS-INL: a bond longer than 10 diameters of the smallest particle
             // would make the neighbor lists explode.
@@ -148,6 +150,19 @@ impl World {
     /// LIGGGHTS.
     pub(crate) fn setup_multicontact(&mut self) -> Result<()> {
         let wants = |m: &crate::ContactModel| m.surface == crate::SurfaceKind::Multicontact;
+        let neck = |m: &crate::ContactModel| wants(m) && m.normal == crate::NormalKind::Jkr;
+        let pair_neck = self.pair.as_ref().is_some_and(|p| neck(&p.model));
+        let wall_neck = self
+            .fixes
+            .iter()
+            .any(|f| f.kind.as_wall().is_some_and(|w| neck(w.model())));
+        if pair_neck || wall_neck {
+            // The shaping of a pair apart (a JKR neck) is not defined by either model.
+            return Err(Error::Invalid {
+                what: "surface multicontact",
+                reason: "cannot be combined with model jkr (neither the fork nor LIGGGHTS 3.8 defines a neck between corrected radii)".into(),
+            });
+        }
         let Some(mc) = &self.multicontact else {
             let user = self
                 .pair

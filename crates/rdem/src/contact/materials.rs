@@ -44,6 +44,12 @@ pub struct Materials {
     pub gamman_abs: Vec<f64>,
     /// `gammat_abs` per type pair (`hooke/stiffness` with `absolute_damping on`).
     pub gammat_abs: Vec<f64>,
+    /// `workOfAdhesion` per type pair (`model jkr`), in J/m².
+    pub work_of_adhesion: Vec<f64>,
+    /// `resolutionJKR` scalar (`model jkr`): the step of the fork's table of contact
+    /// radii. rdem solves the contact radius exactly ([`super::jkr`]), so the value is
+    /// checked (> 0) and not otherwise used.
+    pub resolution_jkr: Option<f64>,
     /// `rollingStiffness` scalar: the prefactor of the epsd3 rolling stiffness (the
     /// LIGGGHTS 3.8 manual calls it `coeffRollingStiffness`, its code reads this name).
     pub rolling_stiffness: Option<f64>,
@@ -210,6 +216,10 @@ pub struct PairCoeff {
     pub hertz_damp_t: f64,
     /// Liquid-bridge coefficients (`cohesion easo/capillary/viscous`).
     pub liquid: super::liquid::LiquidCoeff,
+    /// `model jkr`: the work of adhesion W.
+    pub jkr_w: f64,
+    /// `model jkr`: 9πW/(2E*), so that a₀³ = this × R*² ([`super::jkr::Scales`]).
+    pub jkr_k: f64,
 }
 
 /// Which optional properties a contact model needs.
@@ -229,6 +239,8 @@ pub struct Needs {
     pub hysteresis: bool,
     /// The epsd3 rolling stiffness prefactor.
     pub rolling_stiffness: bool,
+    /// `workOfAdhesion` and `resolutionJKR` (`model jkr`).
+    pub work_of_adhesion: bool,
     /// A stiffness model (`hertz/stiffness`, `hooke/stiffness`): `Some(absolute_damping)`.
     /// It needs `kn`, `kt` and the damping tables (`gamman_abs`, `gammat_abs` with
     /// absolute damping, else `gamman`, `gammat`), and not Young's modulus, Poisson's
@@ -241,6 +253,8 @@ pub struct Needs {
 pub struct CoeffTable {
     ntypes: usize,
     coeffs: Vec<PairCoeff>,
+    /// `model jkr`: the largest δ_c/R*^⅓ of the type pairs (0 without it).
+    neck: f64,
 }
 
 /// A per-type-pair table `table` for `n` types, checked (length, `ok`, symmetry); zeros
@@ -366,6 +380,23 @@ impl CoeffTable {
             |v| v > 1.0,
             "must be > 1",
         )?;
+        let wa = pair_table(
+            "workOfAdhesion",
+            &m.work_of_adhesion,
+            n,
+            needs.work_of_adhesion,
+            |v| v > 0.0,
+            "must be > 0 (model jkr divides by the neck's length, which vanishes with it)",
+        )?;
+        if needs.work_of_adhesion {
+            let v = m.resolution_jkr.ok_or_else(|| Error::Invalid {
+                what: "resolutionJKR",
+                reason: "model jkr needs fix property/global resolutionJKR scalar (the fork's \
+                         table step; rdem solves the contact radius exactly and only checks it)"
+                    .into(),
+            })?;
+            check("resolutionJKR", v, v > 0.0, "must be > 0")?;
+        }
         let stiff = needs.stiffness.is_some();
         let abs = needs.stiffness == Some(true);
         // A zero kn is LIGGGHTS 3.8's "no normal spring" for type pairs that never touch
@@ -447,10 +478,23 @@ impl CoeffTable {
                     hertz_damp_n: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * e_star).sqrt(),
                     hertz_damp_t: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * g_star).sqrt(),
                     liquid,
+                    jkr_w: wa[k],
+                    jkr_k: 4.5 * std::f64::consts::PI * wa[k] / e_star,
                 });
             }
         }
-        Ok(Self { ntypes: n, coeffs })
+        // δ_c = a₀²/(2·6^⅓R*) with a₀³ = kR*², so δ_c/R*^⅓ = k^⅔/(2·6^⅓), largest for
+        // the largest k (a slight overestimate, rounding aside, is harmless: a reach).
+        let neck = coeffs
+            .iter()
+            .filter(|c| c.jkr_w > 0.0)
+            .map(|c| super::jkr::Scales::of(c, 1.0).delta_c * (1.0 + 1e-12))
+            .fold(0.0, f64::max);
+        Ok(Self {
+            ntypes: n,
+            coeffs,
+            neck,
+        })
     }
 
     /// Checks the per-type Young's modulus and Poisson's ratio.
@@ -499,6 +543,17 @@ impl CoeffTable {
     /// Every type pair's coefficients (row-major).
     pub fn all(&self) -> &[PairCoeff] {
         &self.coeffs
+    }
+
+    /// The longest JKR neck for contacts of effective radius up to `r_star`: the largest
+    /// δ_c over the type pairs (δ_c grows as R*^⅓; 0 without `model jkr`).
+    #[inline]
+    pub fn neck_reach(&self, r_star: f64) -> f64 {
+        if self.neck == 0.0 {
+            0.0
+        } else {
+            self.neck * r_star.cbrt()
+        }
     }
 
     /// Coefficients of the 1-based type pair `(ti, tj)`.

@@ -1,5 +1,5 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
-//! hooke/hysteresis, hertz/stiffness, hooke/stiffness), tangential (history, no_history,
+//! hooke/hysteresis, hertz/stiffness, hooke/stiffness, jkr), tangential (history, no_history,
 //! incremental_history),
 //! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
 //! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
@@ -67,6 +67,9 @@ normal_laws! {
     /// `hooke/stiffness`: the per-type-pair `kn`, `kt` and damping given directly
     /// (`gamman`, `gammat` times m*, or with `absolute_damping on` `gamman_abs`, `gammat_abs`).
     HookeStiffness => normal::HookeStiffness, "hooke/stiffness";
+    /// `jkr` (LIGGGHTS_Flexible_Fibers, PICI): the JKR adhesive contact, which holds
+    /// while the spheres are apart down to δ = −δ_c ([`jkr::Jkr`]).
+    Jkr => jkr::Jkr, "jkr";
 }
 
 impl NormalKind {
@@ -226,6 +229,7 @@ impl ContactModel {
             rolling_friction: self.rolling != RollingKind::Off,
             rolling_damping: matches!(self.rolling, RollingKind::Epsd | RollingKind::Epsd3),
             rolling_stiffness: self.rolling == RollingKind::Epsd3,
+            work_of_adhesion: self.normal.traits().adhesion,
             cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
             liquid: self.cohesion == CohesionKind::Easo,
             characteristic_velocity: self.normal.traits().characteristic_velocity,
@@ -299,9 +303,9 @@ impl ContactModel {
         match self.rolling {
             RollingKind::Off => self.d_coh::<N, T, rolling::Off, V>(v),
             RollingKind::Cdt => self.d_coh::<N, T, rolling::Cdt, V>(v),
-            RollingKind::Epsd => self.d_coh::<N, T, rolling::Epsd, V>(v),
+            // epsd3 is epsd with the user's prefactor in the table: one kernel for both.
+            RollingKind::Epsd | RollingKind::Epsd3 => self.d_coh::<N, T, rolling::Epsd, V>(v),
             RollingKind::Epsd2 => self.d_coh::<N, T, rolling::Epsd2, V>(v),
-            RollingKind::Epsd3 => self.d_coh::<N, T, rolling::Epsd3, V>(v),
         }
     }
     fn d_coh<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, V: Visitor>(
@@ -474,8 +478,14 @@ pub trait ContactKernel {
     /// True for the kernels of `cohesion bond` ([`cohesion::Bonded`]): the passes compile
     /// their bond code only for these.
     const BONDS: bool;
+    /// True when the normal law's contact holds while the particles are apart
+    /// ([`normal::Normal::NECK`]): the passes then ask [`ContactKernel::holds`].
+    const NECK: bool;
     /// Force and torques of one contact; `hist` has `HIST` values.
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce;
+    /// Whether the contact of a pair apart by −`delta` still holds (only for `NECK`
+    /// kernels; `hist` is the whole contact history): see [`normal::Normal::holds`].
+    fn holds(delta: f64, r_star: f64, c: &PairCoeff, hist: &mut [f64], update: bool) -> bool;
     /// A listed pair that does not touch (only for `BRIDGE` kernels): `hist` is the
     /// bridge's history.
     fn separated(s: &liquid::Separated, c: &PairCoeff, hist: &mut [f64]) -> cohesion::Bridge;
@@ -494,10 +504,17 @@ impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohes
     const BRIDGE: bool = C::BRIDGE;
     const BRIDGE_HIST: usize = C::HIST;
     const BONDS: bool = C::BONDS;
+    const NECK: bool = N::NECK;
 
     #[inline(always)]
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce {
         contact::<N, T, R, C>(g, c, flags, hist)
+    }
+
+    #[inline(always)]
+    fn holds(delta: f64, r_star: f64, c: &PairCoeff, hist: &mut [f64], update: bool) -> bool {
+        let at = T::HIST + R::HIST;
+        N::holds(delta, r_star, c, &mut hist[at..at + N::HIST], update)
     }
 
     #[inline(always)]
@@ -535,6 +552,21 @@ pub fn contact<
     let (h_tan_even, rest) = rest.split_at_mut(T::HIST - T::ODD);
     let (h_norm, h_coh) = rest.split_at_mut(N::HIST);
     let vn = g.vr.dot(g.n);
+    if N::NECK && g.delta <= 0.0 {
+        // A JKR neck, apart: the normal law alone; the springs start anew at the next touch.
+        let no = N::normal(g, c, vn, flags, h_norm);
+        if g.update {
+            h_tan.fill(0.0);
+            h_roll.fill(0.0);
+            h_tan_even.fill(0.0);
+        }
+        return ContactForce {
+            f_i: no.fn_contact * g.n,
+            t_i: DVec3::ZERO,
+            t_j: DVec3::ZERO,
+            fn_total: no.fn_contact,
+        };
+    }
     let vt = g.vr - vn * g.n;
     // Relative tangential velocity of the contact points.
     let vt_rel = vt - (g.ci * g.wi + g.cj * g.wj).cross(g.n);

@@ -52,7 +52,7 @@ mod tests {
         // The names scripts use, in the order the help lists them.
         assert_eq!(
             names(NORMAL_MODELS),
-            "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness"
+            "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness jkr"
         );
         assert_eq!(
             names(TANGENTIAL_MODELS),

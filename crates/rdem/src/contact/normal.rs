@@ -15,6 +15,8 @@ pub struct LawTraits {
     pub characteristic_velocity: bool,
     /// It reads the hysteresis properties (`loadingStiffness`, ...).
     pub hysteresis: bool,
+    /// It reads `workOfAdhesion` and `resolutionJKR`.
+    pub adhesion: bool,
     /// The exponent p of its elastic force, F ~ δ^p (heat/gran's area correction).
     pub force_exponent: f64,
 }
@@ -26,12 +28,24 @@ pub trait Normal {
     const HIST: usize;
     /// What the rest of rdem needs to know of it.
     const TRAITS: LawTraits;
-    /// Normal force for normal relative velocity `vn` (negative while approaching).
+    /// True for a law whose contact holds while the particles are apart (a JKR neck):
+    /// the passes then ask [`Normal::holds`] of a listed pair that does not touch.
+    const NECK: bool = false;
+    /// Normal force for normal relative velocity `vn` (negative while approaching). With
+    /// [`Normal::NECK`], `g.delta` may be negative (the contact holds apart).
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut;
+    /// For a pair apart by −`delta` (> 0) with effective radius `r_star`: whether its
+    /// contact still holds (then the passes evaluate it with the negative overlap). With
+    /// `update`, a contact that no longer holds is ended in `hist` (the law's history).
+    #[inline(always)]
+    fn holds(_delta: f64, _r_star: f64, _c: &PairCoeff, _hist: &mut [f64], _update: bool) -> bool {
+        false
+    }
 }
 
+/// The normal contact force from its elastic and damping parts, after `limitForce`.
 #[inline(always)]
-fn finish(fn_elastic: f64, fn_damp: f64, flags: Flags) -> f64 {
+pub(super) fn finish(fn_elastic: f64, fn_damp: f64, flags: Flags) -> f64 {
     let f = fn_elastic + fn_damp;
     if flags.limit_force && f < 0.0 {
         0.0
@@ -50,6 +64,7 @@ impl Normal for Hertz {
         stiffness: false,
         characteristic_velocity: false,
         hysteresis: false,
+        adhesion: false,
         force_exponent: 1.5,
     };
     #[inline(always)]
@@ -96,6 +111,7 @@ impl Normal for Hooke {
         stiffness: false,
         characteristic_velocity: true,
         hysteresis: false,
+        adhesion: false,
         force_exponent: 1.0,
     };
     #[inline(always)]
@@ -127,6 +143,7 @@ impl Normal for HookeHysteresis {
         stiffness: false,
         characteristic_velocity: true,
         hysteresis: true,
+        adhesion: false,
         force_exponent: 1.0,
     };
     #[inline(always)]
@@ -182,6 +199,7 @@ impl Normal for HertzStiffness {
         stiffness: true,
         characteristic_velocity: false,
         hysteresis: false,
+        adhesion: false,
         force_exponent: 1.5,
     };
     #[inline(always)]
@@ -211,6 +229,7 @@ impl Normal for HookeStiffness {
         stiffness: true,
         characteristic_velocity: false,
         hysteresis: false,
+        adhesion: false,
         force_exponent: 1.0,
     };
     #[inline(always)]

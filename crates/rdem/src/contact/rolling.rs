@@ -126,29 +126,12 @@ fn epsd_torque(
     }
 }
 
-/// `rolling_friction epsd` (Ai et al. 2011): [`epsd_torque`] with the prefactor 2.25.
+/// `rolling_friction epsd` (Ai et al. 2011) and `epsd3`: [`epsd_torque`] with the
+/// prefactor of the table, [`PairCoeff::roll_stiffness`]: 2.25 for epsd, `rollingStiffness`
+/// for epsd3. One type serves both, so that each kernel is compiled once for the two.
 pub struct Epsd;
 
 impl Rolling for Epsd {
-    const HIST: usize = 3;
-    #[inline(always)]
-    fn torque(
-        g: &Geom,
-        c: &PairCoeff,
-        no: &NormalOut,
-        load: f64,
-        flags: Flags,
-        hist: &mut [f64],
-    ) -> DVec3 {
-        epsd_torque(g, c, 2.25, no, load, flags, hist)
-    }
-}
-
-/// `rolling_friction epsd3`: [`epsd_torque`] with the prefactor `rollingStiffness`
-/// ([`PairCoeff::roll_stiffness`]).
-pub struct Epsd3;
-
-impl Rolling for Epsd3 {
     const HIST: usize = 3;
     #[inline(always)]
     fn torque(

@@ -179,10 +179,12 @@ impl NearList {
         near.factor = neighbor.factor();
         let reach = near.reach;
         let factor = near.factor;
+        // A JKR neck holds beyond contact (see `Neighbor::neck`).
+        let neck = neighbor.neck_len;
         let nlocal = p.nlocal();
         let margin = near.margin;
         let is_near = |i: usize, j: usize| {
-            let rc = ((p.radius[i] + p.radius[j]) * factor).max(reach) + margin;
+            let rc = ((p.radius[i] + p.radius[j]) * factor).max(reach) + margin + neck;
             (p.x[j] - p.x[i]).length_squared() < rc * rc
         };
         // The first build for this neighbor list decides whether the near list is the

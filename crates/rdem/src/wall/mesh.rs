@@ -364,6 +364,8 @@ impl MeshWall {
         let n = p.nlocal();
         let bond_reach = self.bond.as_ref().map_or(0.0, |b| b.wall_reach);
         let rmax = p.radius[..n].iter().copied().fold(0.0, f64::max);
+        // A JKR neck holds beyond contact: the longest, for the largest sphere.
+        let skin = skin + self.table.neck_reach(rmax);
         let reach = rmax.max(bond_reach) + skin;
         // One grid per mesh over its bounds grown by the reach; cells of about the reach
         // (at least the mean triangle size, so a triangle spans few cells).
@@ -701,13 +703,16 @@ fn wall_bond(
 /// The contacts of a sphere at `x` of radius `r` with its candidate triangles `cands`,
 /// written to the front of `found` (their number is returned): one per feature (edges
 /// and corners of touched faces, and corners of touched edges, do not count again), one
-/// per flat surface (the deeper one), at most [`SLOTS`]. Not generic over the contact
-/// law, so that it is compiled once, not once per kernel.
+/// per flat surface (the deeper one), at most [`SLOTS`]. A feature within r + `neck` (a
+/// JKR neck's reach; 0 for other laws) counts: the caller keeps those beyond r only
+/// where a neck holds. Not generic over the contact law, so that it is compiled once,
+/// not once per kernel.
 fn touches_of(
     wall: &MeshWall,
     surfaces: &[MeshSurface],
     x: DVec3,
     r: f64,
+    neck: f64,
     cands: &[(u32, u32)],
     found: &mut [Touch; MAX_TOUCH],
 ) -> usize {
@@ -727,7 +732,7 @@ fn touches_of(
             (d / dist, dist)
         };
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
-        if !(dist < r) || dist == 0.0 {
+        if !(dist < r + neck) || dist == 0.0 {
             continue;
         }
         if nt < MAX_TOUCH {
@@ -861,7 +866,12 @@ impl MeshPass<'_> {
                 torque[k] += bt;
             }
             let (x, r) = (p.x[i], p.radius[i]);
-            let nk = touches_of(wall, surfaces, x, r, cands, &mut found);
+            let neck = if K::NECK {
+                wall.table.neck_reach(r)
+            } else {
+                0.0
+            };
+            let nk = touches_of(wall, surfaces, x, r, neck, cands, &mut found);
             let touches = &found[..nk];
             // Match the contacts with the slots: same feature, else an ended neighbour.
             old[..width].copy_from_slice(h);
@@ -894,16 +904,30 @@ impl MeshPass<'_> {
                     slot_of[c] = s;
                 }
             }
-            // Lay the slots out anew: contact c in slot c.
+            // Lay the slots out anew, in the order of the contacts.
             h.fill(0.0);
+            let mut ns = 0;
             for (c, t) in touches.iter().enumerate() {
-                let hs = &mut h[c * stride..(c + 1) * stride];
+                let surface = &surfaces[wall.meshes[t.mesh as usize]];
+                if K::NECK && t.dist >= r {
+                    // Apart: only a JKR neck that holds goes on.
+                    let s = slot_of[c];
+                    let coeff = wall.table.get(p.ty[i], surface.wall_type);
+                    let held = s != usize::MAX && {
+                        let hn = &mut old[s * stride + 1..s * stride + 1 + hw];
+                        K::holds(r - t.dist, r, coeff, hn, update)
+                    };
+                    if !held {
+                        continue;
+                    }
+                }
+                let hs = &mut h[ns * stride..(ns + 1) * stride];
+                ns += 1;
                 hs[0] = key(t.mesh, t.feature);
                 if slot_of[c] != usize::MAX {
                     let s = slot_of[c];
                     hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
                 }
-                let surface = &surfaces[wall.meshes[t.mesh as usize]];
                 let v_wall = surface.wall_velocity(t.tri, t.q);
                 let vr = p.v[i] - v_wall;
                 let mut g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);

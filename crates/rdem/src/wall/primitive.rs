@@ -216,6 +216,9 @@ impl PrimitiveWall {
         self.candidates.clear();
         let n = p.nlocal();
         let (x, radius, mask) = (&p.x[..n], &p.radius[..n], &p.mask[..n]);
+        // A JKR neck holds beyond contact: the longest, for the largest sphere.
+        let rmax = radius.iter().copied().fold(0.0, f64::max);
+        let skin = skin + self.table.neck_reach(rmax);
         let shape = self.shape;
         // Appends the candidates among particles lo..lo + len to `out`.
         let scan = |lo: usize, len: usize, out: &mut Vec<u32>| {
@@ -459,10 +462,14 @@ impl WallPass<'_> {
                     torque[k] += b.t_i;
                 }
             }
-            // Under `surface multicontact` the corrected radius decides (below).
+            // Under `surface multicontact` the corrected radius decides (below); a JKR
+            // neck holds apart down to δ = −δ_c.
             if d >= r && mc.is_none() {
-                clear_history(hist);
-                continue;
+                let c = wall.table.get(p.ty[i], wall.wall_type);
+                if !(K::NECK && K::holds(r - d, r, c, hist, update)) {
+                    clear_history(hist);
+                    continue;
+                }
             }
             let mut g = Geom::wall(
                 n,
