@@ -294,3 +294,32 @@ fn wild_case_54_fills_its_drum_as_the_fork_does() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The sphere of `in.plane` on a hot STL floor (`fix heat/gran`): heat flows while it
+/// touches and not while its neck holds it apart, where the overlap is negative (a
+/// conductance from it would be the square root of a negative area). Its temperature
+/// stays finite and rises from 300 K toward the floor's 400 K.
+#[test]
+fn a_neck_apart_conducts_no_heat() {
+    let s = read("in.plane")
+        .replace(
+            "fix wall all wall/gran model jkr tangential history primitive type 1 zplane -0.015",
+            "fix floor all mesh/surface file floor.stl type 1 temperature 400\n\
+             fix wall all wall/gran model jkr tangential history mesh n_meshes 1 meshes floor\n\
+             fix ftco all property/global thermalConductivity peratomtype 10\n\
+             fix ftca all property/global thermalCapacity peratomtype 1000\n\
+             fix heat all heat/gran initial_temperature 300\n\
+             compute tmax all reduce max f_Temp",
+        )
+        .replace(
+            "thermo_style custom step v_c1 v_c3 v_c4 v_c6 v_c8 v_fx1 v_fz1",
+            "thermo_style custom step v_c3 c_tmax",
+        );
+    let stl = read("floor.stl");
+    let rows = common::thermo_rows(&common::run_with_files(&s, &[("floor.stl", &stl)], None));
+    assert!(rows.iter().all(|r| r[2].is_finite()), "{rows:?}");
+    let last = rows.last().unwrap()[2];
+    assert!(last > 300.0 && last < 400.0, "{last}");
+    // Apart at some rows (the centre above z = −0.014) after it first touched.
+    assert!(rows.iter().skip(20).any(|r| r[1] > -0.014));
+}

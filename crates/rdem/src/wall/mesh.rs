@@ -418,7 +418,8 @@ impl MeshWall {
 
     /// Calls `f(surface, distance)` for each contact of owned particle `i` that the last
     /// force pass with history update recorded in its slots (the feature touched and the
-    /// distance from its centre to that feature now).
+    /// distance from its centre to that feature now) and that touches (distance below
+    /// the radius: a JKR neck held apart is a contact but conducts no heat).
     pub(crate) fn for_each_contact(
         &self,
         all: &[MeshSurface],
@@ -448,7 +449,9 @@ impl MeshWall {
                 }
                 Feature::Vertex(v) => (x - m.verts[v as usize]).length(),
             };
-            f(surface, dist);
+            if dist < p.radius[i] {
+                f(surface, dist);
+            }
         }
     }
 
