@@ -56,16 +56,7 @@ fn summary(out: &Output) -> String {
 
 /// The real users' scripts, `<repo>/../shared/wild`.
 fn wild() -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/wild");
-    if d.join("MANIFEST.tsv").exists() {
-        Some(d)
-    } else {
-        eprintln!(
-            "note: {} is absent; the wild-script check is skipped",
-            d.display()
-        );
-        None
-    }
+    common::wild_case("", "MANIFEST.tsv")
 }
 
 /// Copies the wild case `case_dir` (its top folder) to a scratch directory, runs

@@ -150,13 +150,10 @@ fn a_mesh_floor_gives_the_primitive_planes_impact() {
 /// 400 steps (dt = 0.1 µs) against Hertz's duration 2.868 (m*²/(R* E*² v))^(1/5) = 40.34 µs.
 #[test]
 fn wild_case_12_matches_hertz_and_the_fork() {
-    let case = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/wild/12_pfm_chung_normal_impact");
     let script = "in.elastic_normal_impact_2_spheres";
-    if !case.join(script).exists() {
-        eprintln!("note: {} is absent; skipped", case.display());
+    let Some(case) = common::wild_case("12_pfm_chung_normal_impact", script) else {
         return;
-    }
+    };
     let (dir, _) = common::run_data_script("wild12", &case, script, &[]);
     let mut names: Vec<String> = std::fs::read_dir(dir.join("post"))
         .unwrap()

@@ -262,13 +262,10 @@ fn ranks_give_the_serial_impacts() {
 /// 3.5 %, 3.7 %; the insertion draws differ, so the two runs differ in detail).
 #[test]
 fn wild_case_54_fills_its_drum_as_the_fork_does() {
-    let case = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/wild/54_pici_jkr_rotating_drum");
     let script = "jkr_test.sim";
-    if !case.join(script).exists() {
-        eprintln!("note: {} is absent; skipped", case.display());
+    let Some(case) = common::wild_case("54_pici_jkr_rotating_drum", script) else {
         return;
-    }
+    };
     let d = common::scratch_dir("jkr-wild54");
     common::copy_dir(&case, &d);
     std::fs::create_dir_all(d.join("post")).unwrap();
@@ -322,4 +319,21 @@ fn a_neck_apart_conducts_no_heat() {
     assert!(last > 300.0 && last < 400.0, "{last}");
     // Apart at some rows (the centre above z = −0.014) after it first touched.
     assert!(rows.iter().skip(20).any(|r| r[1] > -0.014));
+}
+
+/// `surface multicontact` cannot shape a neck held apart: with `model jkr` the run stops
+/// with a located error that says so.
+#[test]
+fn multicontact_with_jkr_is_refused() {
+    let s = with_vars("in.impacts", &[("E", "0.5"), ("MU", "0.5")]).replace(
+        "pair_style gran model jkr tangential history",
+        "pair_style gran model jkr tangential history surface multicontact",
+    );
+    let out = common::run_script_raw(&s, None);
+    assert!(!out.status.success());
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    assert!(text.contains("surface multicontact"), "{text}");
+    assert!(text.contains("cannot be combined with model jkr"), "{text}");
+    assert!(text.contains("run 2000"), "{text}");
 }

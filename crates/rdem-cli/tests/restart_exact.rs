@@ -127,57 +127,38 @@ fix pdd all particledistribution/discrete 32452843 1 pts 1.0
 fix ins all insert/pack seed 49979687 distributiontemplate pdd insert_every once overlapcheck yes all_in yes particles_in_region 250 region ins
 ";
 
-/// A bed settling in a cylinder on a floor, rolling friction on: pair, wall and
-/// rolling histories all carry over.
-#[test]
-fn settling_bed_with_walls_and_rolling_friction_continues_bit_for_bit() {
-    let c = Case {
-        head: HEAD,
-        make_box: BED_BOX,
-        defs: concat!("neighbor 0.002 bin
-neigh_modify delay 0
-", common::materials!(), "\
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1
-pair_style gran model hertz tangential history rolling_friction cdt
+/// The settling beds' definitions for the extra properties `$props` and the contact
+/// model `$model` (pair style, floor and cylinder wall alike).
+macro_rules! bed_defs {
+    ($props:literal, $model:literal) => {
+        concat!(
+            "neighbor 0.002 bin\nneigh_modify delay 0\n",
+            common::materials!(),
+            $props,
+            "pair_style gran model ",
+            $model,
+            "
 pair_coeff * *
 timestep 2e-5
 fix gravi all gravity 9.81 vector 0 0 -1
-fix floor all wall/gran model hertz tangential history rolling_friction cdt primitive type 1 zplane 0
-fix cyl all wall/gran model hertz tangential history rolling_friction cdt primitive type 1 zcylinder 0.045 0 0
+fix floor all wall/gran model ",
+            $model,
+            " primitive type 1 zplane 0
+fix cyl all wall/gran model ",
+            $model,
+            " primitive type 1 zcylinder 0.045 0 0
 fix integr all nve/sphere
 thermo_style custom step atoms ke
 thermo 1000
 thermo_modify format float %.17g
-"),
-        init: BED_INIT,
-        after: "",
-        n1: 8000,
-        n2: 4000,
-        files: Vec::new(),
-        compare: &[],
+"
+        )
     };
-    let (end, _) = check_split("bed", &c);
-    assert_eq!(atoms(&end), 250);
 }
 
-/// The same bed with LIGGGHTS-PFM's `tangential incremental_history` (pair and walls):
-/// its stored force, k_t and normal force of the step before carry over.
-#[test]
-fn incremental_history_bed_continues_bit_for_bit() {
-    let defs = concat!("neighbor 0.002 bin
-neigh_modify delay 0
-", common::materials!(), "\
-pair_style gran model hertz tangential incremental_history
-pair_coeff * *
-timestep 2e-5
-fix gravi all gravity 9.81 vector 0 0 -1
-fix floor all wall/gran model hertz tangential incremental_history primitive type 1 zplane 0
-fix cyl all wall/gran model hertz tangential incremental_history primitive type 1 zcylinder 0.045 0 0
-fix integr all nve/sphere
-thermo_style custom step atoms ke
-thermo 1000
-thermo_modify format float %.17g
-");
+/// A settling bed with definitions `defs`, split after 8000 of 12000 steps: the 250
+/// spheres all stay; returns the thermo rows.
+fn bed(name: &str, defs: &'static str) -> Vec<Vec<f64>> {
     let c = Case {
         head: HEAD,
         make_box: BED_BOX,
@@ -189,8 +170,32 @@ thermo_modify format float %.17g
         files: Vec::new(),
         compare: &[],
     };
-    let (end, rows) = check_split("bed-incremental", &c);
+    let (end, rows) = check_split(name, &c);
     assert_eq!(atoms(&end), 250);
+    rows
+}
+
+/// A bed settling in a cylinder on a floor, rolling friction on: pair, wall and
+/// rolling histories all carry over.
+#[test]
+fn settling_bed_with_walls_and_rolling_friction_continues_bit_for_bit() {
+    bed(
+        "bed",
+        bed_defs!(
+            "fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1\n",
+            "hertz tangential history rolling_friction cdt"
+        ),
+    );
+}
+
+/// The same bed with LIGGGHTS-PFM's `tangential incremental_history` (pair and walls):
+/// its stored force, k_t and normal force of the step before carry over.
+#[test]
+fn incremental_history_bed_continues_bit_for_bit() {
+    let rows = bed(
+        "bed-incremental",
+        bed_defs!("", "hertz tangential incremental_history"),
+    );
     // Still moving at the split: the contacts' history matters to the continued run.
     assert!(rows.iter().any(|r| r[2] > 1e-6), "{rows:?}");
 }
@@ -199,39 +204,15 @@ thermo_modify format float %.17g
 /// contact (the solve's warm start and the sign of a neck, which holds apart) carries over.
 #[test]
 fn jkr_bed_continues_bit_for_bit() {
-    let defs = concat!(
-        "neighbor 0.002 bin
-neigh_modify delay 0
-",
-        common::materials!(),
-        "\
-fix m5 all property/global workOfAdhesion peratomtypepair 1 2.0
+    let rows = bed(
+        "bed-jkr",
+        bed_defs!(
+            "fix m5 all property/global workOfAdhesion peratomtypepair 1 2.0
 fix m6 all property/global resolutionJKR scalar 1e-4
-pair_style gran model jkr tangential history
-pair_coeff * *
-timestep 2e-5
-fix gravi all gravity 9.81 vector 0 0 -1
-fix floor all wall/gran model jkr tangential history primitive type 1 zplane 0
-fix cyl all wall/gran model jkr tangential history primitive type 1 zcylinder 0.045 0 0
-fix integr all nve/sphere
-thermo_style custom step atoms ke
-thermo 1000
-thermo_modify format float %.17g
-"
+",
+            "jkr tangential history"
+        ),
     );
-    let c = Case {
-        head: HEAD,
-        make_box: BED_BOX,
-        defs,
-        init: BED_INIT,
-        after: "",
-        n1: 8000,
-        n2: 4000,
-        files: Vec::new(),
-        compare: &[],
-    };
-    let (end, rows) = check_split("bed-jkr", &c);
-    assert_eq!(atoms(&end), 250);
     assert!(rows.iter().any(|r| r[2] > 1e-6), "{rows:?}");
 }
 

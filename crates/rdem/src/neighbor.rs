@@ -366,11 +366,7 @@ impl Neighbor {
 
     /// The longest JKR neck of particles of largest radius `rmax` (see [`Neighbor::neck`]).
     pub fn neck_for(&self, rmax: f64) -> f64 {
-        if self.neck > 0.0 {
-            self.neck * rmax.cbrt()
-        } else {
-            0.0
-        }
+        self.neck * rmax.cbrt()
     }
 
     /// Removes the excluded pairs from the freshly searched list (before histories are

@@ -150,7 +150,7 @@ impl World {
     /// LIGGGHTS.
     pub(crate) fn setup_multicontact(&mut self) -> Result<()> {
         let wants = |m: &crate::ContactModel| m.surface == crate::SurfaceKind::Multicontact;
-        let neck = |m: &crate::ContactModel| wants(m) && m.normal == crate::NormalKind::Jkr;
+        let neck = |m: &crate::ContactModel| wants(m) && m.holds_apart();
         let pair_neck = self.pair.as_ref().is_some_and(|p| neck(&p.model));
         let wall_neck = self
             .fixes

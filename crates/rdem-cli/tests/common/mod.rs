@@ -100,6 +100,20 @@ pub fn tutorial_copy(
     (src, dir)
 }
 
+/// The case `case` of the real users' scripts, `<repo>/../shared/wild/`, if its file
+/// `script` is there; else `None`, with a note that the test is skipped.
+pub fn wild_case(case: &str, script: &str) -> Option<std::path::PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/wild")
+        .join(case);
+    if dir.join(script).exists() {
+        Some(dir)
+    } else {
+        eprintln!("note: {} is absent; skipped", dir.join(script).display());
+        None
+    }
+}
+
 /// A fresh, empty directory under the system temp directory, named after `prefix`, the
 /// process and a counter.
 pub fn scratch_dir(prefix: &str) -> std::path::PathBuf {

@@ -9,9 +9,8 @@
 //!
 //! Given δ, â is the largest root of the overlap equation. The fork reads it from a table
 //! of 3·10⁵ points; rdem solves it exactly, by Newton's method on x = √â (see
-//! [`contact_radius`]). This module is the law's mathematics; the normal law built on it
-//! (its material property `workOfAdhesion`, and the contact that holds while the spheres
-//! are apart down to δ = −δ_c) comes next.
+//! [`contact_radius`]), warm-started from the contact's last â. [`Jkr`] is the normal law
+//! built on it: its contact holds while the spheres are apart, down to δ = −δ_c.
 
 use super::normal::{finish, LawTraits, Normal};
 use super::{Flags, Geom, NormalOut, PairCoeff};

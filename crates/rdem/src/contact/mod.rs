@@ -258,6 +258,12 @@ impl ContactModel {
         }
     }
 
+    /// True when the normal law's contact holds while the particles are apart (a JKR
+    /// neck, [`normal::Normal::NECK`]).
+    pub fn holds_apart(&self) -> bool {
+        self.dispatch(Neck)
+    }
+
     /// Number of f64 history values of the contact law alone (no bond).
     pub fn contact_history_width(&self) -> usize {
         self.dispatch(HistoryWidth)
@@ -335,6 +341,13 @@ impl Visitor for HistoryWidth {
     type Output = usize;
     fn visit<K: ContactKernel>(self) -> usize {
         K::HIST
+    }
+}
+struct Neck;
+impl Visitor for Neck {
+    type Output = bool;
+    fn visit<K: ContactKernel>(self) -> bool {
+        K::NECK
     }
 }
 struct HistoryOdd;

@@ -207,8 +207,8 @@ impl PrimitiveWall {
         Ok(())
     }
 
-    /// Lists the owned particles of group `groupbit` within max(r, bond reach) + `skin` of
-    /// the wall (call at every re-neighboring) and gives history rows to them alone (the
+    /// Lists the owned particles of group `groupbit` within max(r, bond reach) + `skin` (+
+    /// the JKR neck's reach) of the wall (call at every re-neighboring) and gives history rows to them alone (the
     /// others' history is dropped). In parallel over chunks of particles, the lists
     /// joined in chunk order.
     pub fn build_candidates(&mut self, p: &mut Particles, groupbit: u32, skin: f64) {
@@ -216,15 +216,14 @@ impl PrimitiveWall {
         self.candidates.clear();
         let n = p.nlocal();
         let (x, radius, mask) = (&p.x[..n], &p.radius[..n], &p.mask[..n]);
-        // A JKR neck holds beyond contact: the longest, for the largest sphere.
-        let rmax = radius.iter().copied().fold(0.0, f64::max);
-        let skin = skin + self.table.neck_reach(rmax);
-        let shape = self.shape;
-        // Appends the candidates among particles lo..lo + len to `out`.
+        let (shape, table) = (self.shape, &self.table);
+        // Appends the candidates among particles lo..lo + len to `out`. A JKR neck holds
+        // beyond contact, by up to its δ_c for R* = r (0 for other laws).
         let scan = |lo: usize, len: usize, out: &mut Vec<u32>| {
             for i in lo..lo + len {
-                let near =
-                    mask[i] & groupbit != 0 && shape.distance(x[i]).0 < radius[i].max(reach) + skin;
+                let r = radius[i];
+                let lim = r.max(reach) + skin + table.neck_reach(r);
+                let near = mask[i] & groupbit != 0 && shape.distance(x[i]).0 < lim;
                 if near {
                     out.push(i as u32);
                 }
