@@ -119,6 +119,8 @@ pub struct Setup {
     pub dimension: u8,
     /// `atom_style sph`: per-type masses (`mass`), density and pressure per particle.
     pub sph: bool,
+    /// `atom_style ... bond/gran n_bondtypes N bonds_per_atom M`: (N, M).
+    pub bond_gran: Option<(usize, usize)>,
 }
 
 impl Default for Setup {
@@ -135,6 +137,7 @@ impl Default for Setup {
             units: crate::units::Units::Si,
             dimension: 3,
             sph: false,
+            bond_gran: None,
         }
     }
 }
@@ -389,6 +392,17 @@ impl Sim {
         w.neighbor.exclude.clone_from(&self.setup.exclude);
         w.sort = self.setup.sort;
         w.lost_policy = self.setup.lost;
+        if let Some((ntypes, per_atom)) = self.setup.bond_gran {
+            if w.bonds.is_none() {
+                // Checked by the atom style.
+                let mut b = rdem::bond_gran::GranBonds::new(ntypes, per_atom)
+                    .expect("bond/gran settings checked by atom_style");
+                // A restart file's property of another width fails here and again,
+                // with its message, at the run's set-up.
+                let _ = b.attach(&mut w.particles);
+                w.bonds = Some(b);
+            }
+        }
         self.world = Some(w);
     }
 

@@ -15,7 +15,7 @@ use crate::sim::Sim;
 use crate::variables::format_g;
 
 /// Keywords with a value of their own (besides `c_`, `f_`, `v_` references).
-pub const KEYWORDS: [&str; 23] = [
+pub const KEYWORDS: [&str; 25] = [
     "step",
     "elapsed",
     "elaplong",
@@ -39,10 +39,14 @@ pub const KEYWORDS: [&str; 23] = [
     "zhi",
     "cpuremain",
     "spcpu",
+    "numbonds",
+    "numbond",
 ];
 
 /// Integer-valued keywords.
-const INT_KEYWORDS: [&str; 4] = ["step", "elapsed", "elaplong", "atoms"];
+const INT_KEYWORDS: [&str; 6] = [
+    "step", "elapsed", "elaplong", "atoms", "numbonds", "numbond",
+];
 
 /// Extensive keywords (divided by the atom count with `thermo_modify norm yes`).
 const EXTENSIVE: [&str; 3] = ["ke", "pe", "etotal"];
@@ -149,6 +153,13 @@ fn raw_keyword(sim: &Sim, kw: &str) -> Result<f64, Error> {
         }
         "cpuremain" | "spcpu" => 0.0,
         "atoms" => natoms as f64,
+        // The bonds of `bond_style gran` (LIGGGHTS_Flexible_Fibers `numbonds`,
+        // LIGGGHTS-PFM `numbond`), a broken one counted until the next re-neighboring.
+        "numbonds" | "numbond" => {
+            let w = w.ok_or_else(need_box)?;
+            let n = w.bonds.as_ref().map_or(0, |b| b.count_local(&w.particles));
+            w.comm.sum_count(n) as f64
+        }
         // Σ ½ m v² over all particles, whatever the degrees of freedom of `thermo_temp`:
         // LIGGGHTS 3.8 prints 9.16297857297023e-05 for one particle (d = 0.01, ρ = 2500,
         // v = (0.1, 0.2, 0.3)) and the same `ke` for any `compute_modify thermo_temp

@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub mod bond;
+pub mod bond_gran;
 pub mod comm;
 pub mod contact;
 pub mod domain;

@@ -107,6 +107,47 @@ impl World {
         Ok(())
     }
 
+    /// Set-up 3b: the bonds of `bond_style gran`: their per-particle property, their
+    /// coefficients, and the neighbor reach of the active creators (a pair closer than
+    /// a creator's cutoff must be listed to be bonded).
+    pub(crate) fn setup_bonds(&mut self) -> Result<()> {
+        let Some(bonds) = &mut self.bonds else {
+            return Ok(());
+        };
+        bonds.attach(&mut self.particles)?;
+        let cut = bonds
+            .creators
+            .iter()
+            .filter(|c| c.every > 0)
+            .map(|c| c.cutoff)
+            .fold(0.0, f64::max);
+        self.neighbor.reach = self.neighbor.reach.max(cut);
+        let n = self.particles.nlocal();
+        let rmax = self.comm.max(
+            self.particles.radius[..n]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max),
+        );
+        bonds.check(self.neighbor.cutoff_for(rmax))
+    }
+
+    /// Bond creation of the creators due at this step (`fix bond/create/gran`), from the
+    /// current neighbor list.
+    pub(crate) fn create_bonds(&mut self) -> Result<()> {
+        if let Some(bonds) = &mut self.bonds {
+            bonds.create(&mut self.particles, &self.neighbor.list, self.step)?;
+        }
+        Ok(())
+    }
+
+    /// The bond forces (`bond_style gran`), after the pair forces.
+    pub(crate) fn bond_forces(&mut self) {
+        if let Some(bonds) = &mut self.bonds {
+            bonds.forces(&mut self.particles, self.dt);
+        }
+    }
+
     /// Set-up 3: each wall's coefficient table and history property, in definition order.
     pub(crate) fn setup_walls(&mut self) -> Result<()> {
         for fix in &mut self.fixes {

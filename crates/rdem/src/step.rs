@@ -256,6 +256,7 @@ impl World {
             self.comm.forward(&mut self.particles);
             self.timers.lap(Stage::Comm, t1);
         }
+        self.create_bonds()?;
         self.compute_forces(true)?;
         let t2 = Instant::now();
         self.final_integrate();
@@ -283,6 +284,7 @@ impl World {
         }
         let t1 = self.timers.lap(Stage::Other, t0);
         self.pair_forces(update);
+        self.bond_forces();
         let t2 = self.timers.lap(Stage::Pair, t1);
         self.reverse_comm();
         let t3 = self.timers.lap(Stage::Comm, t2);
@@ -319,6 +321,7 @@ impl World {
         self.setup_walls()?;
         self.setup_multicontact()?;
         self.setup_multisphere()?;
+        self.setup_bonds()?;
         self.move_meshes_at_setup();
         self.reneighbor_then(Particles::shrink_to_fit)?;
         // As in LIGGGHTS, the set-up force evaluation does not advance contact history.
@@ -362,6 +365,9 @@ impl World {
         let t4 = self.timers.lap(Stage::Comm, t3);
         before_build(&mut self.particles);
         self.neighbor.build(&self.particles, self.step);
+        if let Some(b) = &mut self.bonds {
+            b.link(&mut self.particles)?;
+        }
         self.build_wall_candidates();
         self.timers.lap(Stage::Neigh, t4);
         Ok(())

@@ -113,6 +113,8 @@ pub struct World {
     /// `fix multicontact/halfspace`, if any: the store that the pair style and the walls
     /// with `surface multicontact` share ([`crate::multicontact`]).
     pub multicontact: Option<std::sync::Arc<crate::multicontact::MultiContact>>,
+    /// Bonds between spheres (`bond_style gran`), if the atom style has them.
+    pub bonds: Option<crate::bond_gran::GranBonds>,
     pub(crate) next_sort: u64,
     /// Contact histories read from a restart file, for the next set-up.
     pub(crate) restored_history: Option<crate::restart::HistoryState>,
@@ -148,6 +150,7 @@ impl World {
             heat: None,
             multisphere: None,
             multicontact: None,
+            bonds: None,
             next_sort: 0,
             restored_history: None,
             needs_reneighbor: true,

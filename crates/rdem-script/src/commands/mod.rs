@@ -5,6 +5,7 @@
 //! `quit`, and `run`, whose `every` runs commands) are rows too; [`crate::input`], which owns the file stack, runs them.
 
 mod atoms;
+mod bonds;
 mod compute;
 mod create;
 mod data_files;
@@ -74,7 +75,7 @@ pub static REGISTRY: Registry<Command> = Registry {
     family: "command",
     readme_prefix: "",
     rows: &[
-        sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same), `sph` (see [SPH](#sph))"),
+        sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same), `sph` (see [SPH](#sph)), `bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact 0]` alone or in `hybrid granular bond/gran ...` (see `bond_style`)"),
         sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
         sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box. A periodic length may be shorter than twice the neighbor cutoff, or than the cutoff (as in LIGGGHTS 3.8, the ghosts then hold several images of a particle); it must be at least twice the largest contact distance (twice the largest radius, times the contact distance factor, or the longest bond), else `run` stops with an error: rdem does not support a particle touching two images of one partner"),
         sim("dimension", settings::dimension, "`3`, `2` (with `fix enforce2d`)").notes("before the box; in 2d, as in LIGGGHTS 3.8: the box must be periodic in z, z velocities must be 0, masses are discs' (π r² ρ) with a sphere's moment of inertia, `fix gravity` takes its direction in the xy plane, the temperature counts 2 degrees of freedom per particle, particle templates (insertion) stop with an error. rdem makes no z images (as LAMMPS in 2d) by giving the engine fixed z faces. `fix adapt` in 2d: not supported yet"),
@@ -153,8 +154,9 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("quit", "stops the script"),
         sim("shell", shell::shell, "`cd`, `mkdir [-p]`, `rm [-f]`, `rmdir`, `mv`, `putenv` done by rdem; any other command run by `/bin/sh -c`")
             .notes("a failed action or a non-zero exit status is a warning (LIGGGHTS 3.8 says nothing); `mkdir -p` makes parents (LIGGGHTS 3.8 makes a folder named `-p`); under `rdem -check` only `cd` and `putenv` act"),
-        Row::not_yet("bond_style", "bonds"),
-        Row::not_yet("bond_coeff", "bonds"),
+        sim("bond_style", bonds::bond_style, "`gran` (LIGGGHTS_Flexible_Fibers' flexible-fiber bonds; needs `atom_style hybrid granular bond/gran n_bondtypes N bonds_per_atom M`)"),
+        sim("bond_coeff", bonds::bond_coeff, "`T ro ri Y G dstyle d... bstyle b...` (Flexible_Fibers' form): damping style `0 x` (none), `1 beta`, `2 beta0 beta1 beta2`; break style `1 sigma_c tau_c`")
+            .notes("damping and break style are one for all bond types, as in the fork (a second type with other styles is an error); break styles 0 and 2–5 and LIGGGHTS-PFM's form (`ro ri lb Sn St Sben Stor damp bn bt break ...`) are not supported yet"),
         Row::not_yet("create_bonds", "bonds"),
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),

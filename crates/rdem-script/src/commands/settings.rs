@@ -14,21 +14,80 @@ pub(super) fn atom_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_cmd("atom_style after the simulation box is defined", None));
     }
     sim.setup.sph = s == "sph";
-    if s != "granular" && s != "sphere" && s != "sph" {
-        let later = [
-            "hybrid",
-            "superquadric",
-            "bond/gran",
-            "granular/multisphere",
-        ];
-        let help = if later.contains(&s) {
-            format!("atom_style {s} is not supported by this rdem release yet; use granular")
-        } else {
-            suggest(s, &["granular", "sphere", "sph"])
-        };
-        return Err(a.error_prev(format!("unsupported atom style '{s}'"), Some(help)));
+    sim.setup.bond_gran = None;
+    match s {
+        "granular" | "sphere" | "sph" => a.done(),
+        "bond/gran" => bond_gran_style(sim, a),
+        "hybrid" => {
+            // `hybrid granular bond/gran ...` (LIGGGHTS_Flexible_Fibers, LIGGGHTS-PFM).
+            let mut spheres = false;
+            while !a.is_done() {
+                match a.keyword(
+                    "atom_style hybrid sub-style",
+                    &["granular", "sphere", "bond/gran"],
+                )? {
+                    "bond/gran" => bond_gran_style(sim, a)?,
+                    _ => spheres = true,
+                }
+            }
+            if !spheres || sim.setup.bond_gran.is_none() {
+                return Err(a.error_cmd(
+                    "atom_style hybrid: rdem supports the hybrid of granular (or sphere) and bond/gran",
+                    Some("atom_style hybrid granular bond/gran n_bondtypes N bonds_per_atom M".into()),
+                ));
+            }
+            Ok(())
+        }
+        _ => {
+            let later = ["superquadric", "granular/multisphere"];
+            let help = if later.contains(&s) {
+                format!("atom_style {s} is not supported by this rdem release yet; use granular")
+            } else {
+                suggest(s, &["granular", "sphere", "sph", "bond/gran", "hybrid"])
+            };
+            Err(a.error_prev(format!("unsupported atom style '{s}'"), Some(help)))
+        }
     }
-    a.done()
+}
+
+/// The arguments of the `bond/gran` atom style: `n_bondtypes N bonds_per_atom M
+/// [disableNormalContact 0|1]`.
+fn bond_gran_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let (mut ntypes, mut per_atom) = (None, None);
+    while let Some(w) = a.peek() {
+        match w {
+            "n_bondtypes" => {
+                a.word("keyword")?;
+                ntypes = Some(a.count("number of bond types")? as usize);
+            }
+            "bonds_per_atom" => {
+                a.word("keyword")?;
+                per_atom = Some(a.count("bonds per atom")? as usize);
+            }
+            "disableNormalContact" => {
+                a.word("keyword")?;
+                let k = a.pos();
+                if a.u64("disableNormalContact (0 or 1)")? != 0 {
+                    return Err(a.error_at(
+                        k,
+                        "disableNormalContact 1 is not supported yet",
+                        Some("leave it out or give 0: bonded spheres in contact then also push as any pair".into()),
+                    ));
+                }
+            }
+            _ => break,
+        }
+    }
+    let (Some(ntypes), Some(per_atom)) = (ntypes, per_atom) else {
+        return Err(a.error_cmd(
+            "atom style bond/gran needs n_bondtypes and bonds_per_atom",
+            Some("bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact 0]".into()),
+        ));
+    };
+    rdem::bond_gran::GranBonds::new(ntypes, per_atom)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    sim.setup.bond_gran = Some((ntypes, per_atom));
+    Ok(())
 }
 
 pub(super) fn atom_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {

@@ -19,6 +19,7 @@ mod pair_gran_local_bond;
 mod pe;
 mod pressure;
 mod property_atom;
+mod property_local;
 pub mod reduce;
 mod rigid;
 mod stress_atom;
@@ -174,6 +175,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         temp::ROW,
         pair_gran_local::ROW,
         pair_gran_local_bond::ROW,
+        property_local::ROW,
         wall_gran_local::ROW,
         Row::not_yet("com", ""),
         Row::not_yet("msd", ""),

@@ -18,6 +18,7 @@ pub mod ave_euler;
 mod ave_histo;
 mod ave_time;
 mod balance;
+mod bond_create_gran;
 mod check_timestep_gran;
 mod couple_cfd;
 mod engine;
@@ -382,6 +383,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         couple_cfd::ROW_FORCE,
         couple_cfd::ROW_IMPLICIT,
         balance::ROW,
+        bond_create_gran::ROW,
         Row::not_yet("bond/gran", "bonds"),
     ],
 };

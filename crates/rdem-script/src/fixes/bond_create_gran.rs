@@ -1,0 +1,138 @@
+//! `fix ID group bond/create/gran Nevery itype jtype cutoff btype newperts`
+//! (LIGGGHTS_Flexible_Fibers): every `Nevery` steps, bonds of type `btype` between the
+//! spheres of the group of types `itype` and `jtype` whose centres are closer than
+//! `cutoff` (r² < cutoff², strictly) and not bonded yet. A sphere takes at most
+//! `newperts` new bonds at one step and holds at most the atom style's
+//! `bonds_per_atom`; the candidate pairs are taken in the order of their tags (lower tag,
+//! then higher), each where both spheres have room. That order gives the fork's bonds:
+//! on a 3 × 3 square of spheres with `newperts` 1, 2 and 3 it makes the same 4, 8 and 11
+//! bonds at the first step. `fix_modify ID every N` changes `Nevery`; `every 0` stops
+//! the creation. Bonds are made after the neighbor decision of a step, before its
+//! forces, never at a run's set-up (the fork's "Created N bonds at timestep 1" of a
+//! `run 1`); their length L₀ is the one of that step.
+//!
+//! The creation is part of the engine's step ([`rdem::bond_gran::GranBonds::create`]);
+//! this entry holds its ID and prints the fork's line for each step that made bonds.
+
+use crate::error::Error;
+
+use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
+use crate::args::{Args, CmdResult};
+use crate::sim::Sim;
+
+/// The registry row.
+pub(super) const ROW: FixRow = style(
+    "bond/create/gran",
+    parse,
+    Stages::END_OF_STEP,
+    "`Nevery itype jtype cutoff btype newperts` (LIGGGHTS_Flexible_Fibers): bonds between spheres closer than cutoff; `fix_modify ID every N` (0 stops it)",
+);
+
+fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let every = a.u64("Nevery")?;
+    let ntypes = sim.ntypes() as u64;
+    let mut ty = |what: &str| -> CmdResult<u32> {
+        let k = a.pos();
+        let t = a.count(what)?;
+        if t > ntypes {
+            return Err(a.error_at(
+                k,
+                format!("{what} {t} > the box's {ntypes} atom type(s)"),
+                None,
+            ));
+        }
+        Ok(t as u32)
+    };
+    let itype = ty("itype")?;
+    let jtype = ty("jtype")?;
+    let cutoff = a.positive("cutoff")?;
+    let bk = a.pos();
+    let btype = a.count("bond type")? as u32;
+    let per_step = a.count("newperts (new bonds per sphere and step)")? as usize;
+    a.done()?;
+    let w = sim.world_ref(a)?;
+    let Some(bonds) = &w.bonds else {
+        return Err(a.error_cmd(
+            "fix bond/create/gran needs an atom style with bonds",
+            Some("atom_style hybrid granular bond/gran n_bondtypes N bonds_per_atom M".into()),
+        ));
+    };
+    if btype as usize > bonds.ntypes {
+        return Err(a.error_at(
+            bk,
+            format!(
+                "bond type {btype} > the atom style's n_bondtypes {}",
+                bonds.ntypes
+            ),
+            None,
+        ));
+    }
+    let creator = rdem::bond_gran::Creator {
+        id: head.id.clone(),
+        groupbit: head.groupbit,
+        every,
+        itype,
+        jtype,
+        cutoff,
+        btype,
+        per_step,
+        made: Vec::new(),
+    };
+    Ok(Box::new(BondCreate(Some(creator))))
+}
+
+/// The script's entry: the creator, until `install` hands it to the world's bonds.
+struct BondCreate(Option<rdem::bond_gran::Creator>);
+
+/// This fix's creator in the world.
+fn creator<'w>(w: &'w mut rdem::World, head: &FixHead) -> Option<&'w mut rdem::bond_gran::Creator> {
+    w.bonds
+        .as_mut()
+        .and_then(|b| b.creators.iter_mut().find(|c| c.id == head.id))
+}
+
+impl ScriptFix for BondCreate {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
+        let w = sim.world_mut(a)?;
+        let bonds = w.bonds.as_mut().expect("checked by the parser");
+        let c = self.0.take().expect("installed once");
+        bonds.creators.retain(|o| o.id != head.id);
+        bonds.creators.push(c);
+        Ok(())
+    }
+
+    fn modify(
+        &mut self,
+        sim: &mut Sim,
+        head: &FixHead,
+        keyword: &str,
+        a: &mut Args,
+    ) -> CmdResult<bool> {
+        if keyword != "every" {
+            return Ok(false);
+        }
+        let every = a.u64("every (0 stops the creation)")?;
+        if let Some(c) = creator(sim.world_mut(a)?, head) {
+            c.every = every;
+        }
+        Ok(true)
+    }
+
+    /// The fork's line for each step that made bonds.
+    fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
+        let made = match creator(ctx.world(), head) {
+            Some(c) if !c.made.is_empty() => std::mem::take(&mut c.made),
+            _ => return Ok(()),
+        };
+        for (step, n) in made {
+            ctx.line(&format!("Created {n} bonds at timestep {step}"));
+        }
+        Ok(())
+    }
+
+    fn unfix(&mut self, sim: &mut Sim, head: &FixHead) {
+        if let Some(b) = sim.world.as_mut().and_then(|w| w.bonds.as_mut()) {
+            b.creators.retain(|c| c.id != head.id);
+        }
+    }
+}

@@ -1,0 +1,925 @@
+//! `bond_style gran`: the flexible-fiber bonds of LIGGGHTS_Flexible_Fibers (also in
+//! LIGGGHTS_SEAICE), a beam between two spheres in the manner of Potyondy & Cundall
+//! (2004) with the damping of Guo et al. (2013) and Schramm et al. (2019).
+//!
+//! A bond between spheres a and b (radii R_a, R_b) is a tube of outer and inner radii
+//! r_o = `ro`·min(R_a, R_b), r_i = `ri`·min(R_a, R_b), with A = π(r_o² − r_i²),
+//! I_p = π/2 (r_o⁴ − r_i⁴), I = I_p/2 and the length L₀ that the pair has at the bond's
+//! first evaluation. Its stiffnesses are K_n = Y A/L₀, K_t = G A/L₀, K_tor = G I_p/L₀,
+//! K_ben = Y I/L₀. With n the unit vector from a to b, v = v_a − v_b,
+//! v_n = (v·n)n, v_t = v − v_n + (R_a ω_a + R_b ω_b) × n, ω = ω_a − ω_b split into
+//! ω_n and ω_t, each step
+//!
+//! - the normal force on a is K_n (r − L₀) n (explicit);
+//! - the shear force F_t, the twisting torque T_n and the bending torque T_t grow by
+//!   −K_t v_t dt, −K_tor ω_n dt, −K_ben ω_t dt, after the stored F_t and T_t are turned
+//!   into the plane normal to the new n at constant length and T_n is projected on n;
+//! - a gets the force F_n + F_t (+ damping) and the torque R_a n × F_t + T_n + T_t
+//!   (+ damping), b the opposite force and R_b n × F_t − (T_n + T_t) (− damping). The
+//!   damping forces act on the centres only, without a lever arm.
+//!
+//! Damping (global, as in the fork: the last `bond_coeff` sets it):
+//! - style 0: none;
+//! - style 1: −2β√(m* K) times the matching relative velocity for each of the four
+//!   loads (m* the reduced mass for the forces, I* = I_aI_b/(I_a + I_b) of the spheres'
+//!   moments of inertia for the torques);
+//! - style 2: for each Cartesian component c of each load L with stiffness K,
+//!   −sgn(w_c)(K β₀ + β₁|L_c| + β₂ L_c²/K), w the load's relative velocity (for the shear
+//!   force the translational part only).
+//!
+//! Breaking (style 1): σ = |F_n|/A + 2|T_t|(r_o − r_i)/I_p above σ_c or
+//! τ = |F_t|/A + |T_n|(r_o − r_i)/I_p above τ_c breaks the bond; a broken bond acts no
+//! more and is removed at the next re-neighboring (`numbonds` counts it until then).
+//!
+//! Each figure above was measured against the fork (LIGGGHTS_Flexible_Fibers 0fc7c5b,
+//! built here): three bonded pairs in general motion follow it to 1e-10 over 1000 steps
+//! for each damping style (`crates/rdem-cli/tests/bond_gran.rs`).
+//!
+//! **Where the bonds live.** Each sphere holds its bonds in the dense per-particle
+//! property [`PROP`], [`SLOT`] values per bond: partner tag, bond type, broken flag, L₀,
+//! F_t, T_n, T_t, and the last elastic force and torque on the bond's first sphere (for
+//! output, without damping, as the fork reports them).
+//! A bond is held by both spheres, each in the orientation of the pair's lower tag, so
+//! the two copies evolve alike bit for bit and each sphere's force is computed from its
+//! own copy: no force is written to another particle, so the pass runs on any number of
+//! threads with the same result, and across MPI ranks without reverse communication. The
+//! property follows its particle through sorting, migration and restart files like any
+//! other. At each re-neighboring the broken bonds are dropped and each bond's partner is
+//! looked up among the owned particles and ghosts (the nearest image).
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::particles::{Particles, PropId, Tag, REMOTE_GHOST};
+
+/// Name of the per-particle property holding the bonds.
+pub const PROP: &str = "bond/gran";
+
+/// Values per bond in [`PROP`].
+pub const SLOT: usize = 19;
+
+const TAG: usize = 0;
+const TYPE: usize = 1;
+const BROKEN: usize = 2;
+const LEN0: usize = 3;
+const FT: usize = 4;
+const TN: usize = 7;
+const TT: usize = 10;
+const FORCE: usize = 13;
+const TORQUE: usize = 16;
+
+/// Marks a bond slot whose partner is not resolved.
+const NONE: u32 = u32::MAX;
+
+/// The damping of a bond type (`bond_coeff`'s damping style and values).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Damping {
+    /// Style 0: none.
+    None,
+    /// Style 1: −2β√(m*K) v per load.
+    Critical {
+        /// β.
+        beta: f64,
+    },
+    /// Style 2: −sgn(w_c)(Kβ₀ + β₁|L_c| + β₂L_c²/K) per component.
+    Dry {
+        /// β₀ (a length).
+        b0: f64,
+        /// β₁.
+        b1: f64,
+        /// β₂ (an inverse length).
+        b2: f64,
+    },
+}
+
+impl Damping {
+    /// The style number of the fork.
+    pub fn style(&self) -> u32 {
+        match self {
+            Damping::None => 0,
+            Damping::Critical { .. } => 1,
+            Damping::Dry { .. } => 2,
+        }
+    }
+}
+
+/// When a bond type breaks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Breaking {
+    /// Style 1: by the normal stress σ_c or the shear stress τ_c.
+    Stress {
+        /// σ_c.
+        sigma: f64,
+        /// τ_c.
+        tau: f64,
+    },
+}
+
+impl Breaking {
+    /// The style number of the fork.
+    pub fn style(&self) -> u32 {
+        match self {
+            Breaking::Stress { .. } => 1,
+        }
+    }
+}
+
+/// The coefficients of one bond type (`bond_coeff`, Flexible_Fibers' form).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BondCoeff {
+    /// Outer radius over the smaller sphere's radius.
+    pub ro: f64,
+    /// Inner radius over the smaller sphere's radius.
+    pub ri: f64,
+    /// Young's modulus Y of the bond.
+    pub youngs: f64,
+    /// Shear modulus G of the bond.
+    pub shear: f64,
+    /// Damping.
+    pub damping: Damping,
+    /// Breaking.
+    pub breaking: Breaking,
+}
+
+impl BondCoeff {
+    /// Checks the ranges.
+    pub fn new(
+        ro: f64,
+        ri: f64,
+        youngs: f64,
+        shear: f64,
+        damping: Damping,
+        breaking: Breaking,
+    ) -> Result<Self> {
+        let bad = |what: &'static str, reason: String| Err(Error::Invalid { what, reason });
+        if !(ro > 0.0 && ro.is_finite()) {
+            return bad("bond outer radius", format!("{ro} must be > 0"));
+        }
+        if !(ri >= 0.0 && ri < ro) {
+            return bad(
+                "bond inner radius",
+                format!("{ri} must be >= 0 and below the outer radius {ro}"),
+            );
+        }
+        if !(youngs > 0.0 && youngs.is_finite()) {
+            return bad("bond Young's modulus", format!("{youngs} must be > 0"));
+        }
+        if !(shear > 0.0 && shear.is_finite()) {
+            return bad("bond shear modulus", format!("{shear} must be > 0"));
+        }
+        let damping_ok = match damping {
+            Damping::None => true,
+            Damping::Critical { beta } => beta >= 0.0 && beta.is_finite(),
+            Damping::Dry { b0, b1, b2 } => [b0, b1, b2].iter().all(|b| *b >= 0.0 && b.is_finite()),
+        };
+        if !damping_ok {
+            return bad("bond damping", format!("{damping:?}: values must be >= 0"));
+        }
+        match breaking {
+            Breaking::Stress { sigma, tau } => {
+                if !(sigma > 0.0 && tau > 0.0) {
+                    return bad(
+                        "bond strength",
+                        format!("sigma {sigma} and tau {tau} must be > 0"),
+                    );
+                }
+            }
+        }
+        Ok(Self {
+            ro,
+            ri,
+            youngs,
+            shear,
+            damping,
+            breaking,
+        })
+    }
+}
+
+/// `fix bond/create/gran`: bonds between spheres closer than `cutoff`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Creator {
+    /// Fix ID.
+    pub id: String,
+    /// Group bit mask (both spheres in the group).
+    pub groupbit: u32,
+    /// Create every this many steps; 0: never (`fix_modify ID every 0`).
+    pub every: u64,
+    /// Atom types of the two spheres (either order).
+    pub itype: u32,
+    /// See `itype`.
+    pub jtype: u32,
+    /// Centre distance below which a pair bonds.
+    pub cutoff: f64,
+    /// Bond type of the new bonds (1-based).
+    pub btype: u32,
+    /// Most new bonds per sphere at one step.
+    pub per_step: usize,
+    /// (step, bonds made) of each step that made bonds, for the front end's log; the
+    /// front end drains it.
+    pub made: Vec<(u64, u64)>,
+}
+
+/// The bonds of a run: settings, coefficients, creators and the resolved partners.
+#[derive(Debug, Clone)]
+pub struct GranBonds {
+    /// Bond types (`n_bondtypes`).
+    pub ntypes: usize,
+    /// Bonds per sphere (`bonds_per_atom`).
+    pub per_atom: usize,
+    /// Coefficients per bond type (index type − 1).
+    pub coeffs: Vec<Option<BondCoeff>>,
+    /// Bond creation fixes, in definition order.
+    pub creators: Vec<Creator>,
+    prop: Option<PropId>,
+    /// Partner index per bond slot of each owned particle (`NONE`: none).
+    links: Vec<u32>,
+}
+
+/// One sphere of a bond, as the force reads it.
+#[derive(Debug, Clone, Copy)]
+struct Side {
+    x: DVec3,
+    v: DVec3,
+    w: DVec3,
+    r: f64,
+    m: f64,
+}
+
+/// What a bond gives its lower-tag sphere a: force, torque; and b's torque.
+#[derive(Debug, Clone, Copy, Default)]
+struct Load {
+    f: DVec3,
+    ta: DVec3,
+    tb: DVec3,
+    /// The elastic force and torque on a (without damping), for output.
+    fe: DVec3,
+    me: DVec3,
+}
+
+/// `h` turned into the plane normal to `n` at its length.
+#[inline(always)]
+fn turn(h: DVec3, n: DVec3) -> DVec3 {
+    let l2 = h.length_squared();
+    if l2 == 0.0 {
+        return h;
+    }
+    let t = h - h.dot(n) * n;
+    let t2 = t.length_squared();
+    if t2 > 0.0 {
+        t * (l2 / t2).sqrt()
+    } else {
+        DVec3::ZERO
+    }
+}
+
+#[inline(always)]
+fn get3(h: &[f64], k: usize) -> DVec3 {
+    DVec3::new(h[k], h[k + 1], h[k + 2])
+}
+
+#[inline(always)]
+fn put3(h: &mut [f64], k: usize, v: DVec3) {
+    h[k] = v.x;
+    h[k + 1] = v.y;
+    h[k + 2] = v.z;
+}
+
+/// sgn per component (0 at 0).
+#[inline(always)]
+fn sgn(v: DVec3) -> DVec3 {
+    let s = |x: f64| {
+        if x > 0.0 {
+            1.0
+        } else if x < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    DVec3::new(s(v.x), s(v.y), s(v.z))
+}
+
+/// Style-2 damping of a load `l` with stiffness `k` against the velocity `w`.
+#[inline(always)]
+fn dry(l: DVec3, w: DVec3, k: f64, b0: f64, b1: f64, b2: f64) -> DVec3 {
+    let a = l.abs();
+    -sgn(w) * (DVec3::splat(k * b0) + b1 * a + (b2 / k) * a * a)
+}
+
+/// The bond between a (the lower tag) and b, history `h` (one slot) advanced; `None` when
+/// it breaks now.
+#[inline(always)]
+fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> Option<Load> {
+    let d = b.x - a.x;
+    let r = d.length();
+    if !(r > 0.0) {
+        return Some(Load::default());
+    }
+    let n = d / r;
+    if h[LEN0] == 0.0 {
+        h[LEN0] = r;
+    }
+    let l0 = h[LEN0];
+    let rmin = a.r.min(b.r);
+    let (ro, ri) = (c.ro * rmin, c.ri * rmin);
+    let area = std::f64::consts::PI * (ro * ro - ri * ri);
+    let ip = std::f64::consts::FRAC_PI_2 * (ro.powi(4) - ri.powi(4));
+    let ib = 0.5 * ip;
+    let kn = c.youngs * area / l0;
+    let kt = c.shear * area / l0;
+    let ktor = c.shear * ip / l0;
+    let kben = c.youngs * ib / l0;
+
+    let vr = a.v - b.v;
+    let vn = vr.dot(n) * n;
+    let vtt = vr - vn;
+    let vt = vtt + (a.r * a.w + b.r * b.w).cross(n);
+    let dw = a.w - b.w;
+    let wn = dw.dot(n) * n;
+    let wt = dw - wn;
+
+    let ft = turn(get3(h, FT), n) - kt * dt * vt;
+    let tn = get3(h, TN).dot(n) * n - ktor * dt * wn;
+    let tt = turn(get3(h, TT), n) - kben * dt * wt;
+    put3(h, FT, ft);
+    put3(h, TN, tn);
+    put3(h, TT, tt);
+    let fnorm = kn * (r - l0) * n;
+
+    match c.breaking {
+        Breaking::Stress { sigma, tau } => {
+            let arm = ro - ri;
+            let s = fnorm.length() / area + 2.0 * tt.length() * arm / ip;
+            let t = ft.length() / area + tn.length() * arm / ip;
+            if s > sigma || t > tau {
+                return None;
+            }
+        }
+    }
+
+    let fe = fnorm + ft;
+    let me = tn + tt;
+    let (mut f, mut m) = (fe, me);
+    match c.damping {
+        Damping::None => {}
+        Damping::Critical { beta } => {
+            let ms = a.m * b.m / (a.m + b.m);
+            let (ia, ibb) = (0.4 * a.m * a.r * a.r, 0.4 * b.m * b.r * b.r);
+            let is = ia * ibb / (ia + ibb);
+            f -= 2.0 * beta * ((ms * kn).sqrt() * vn + (ms * kt).sqrt() * vt);
+            m -= 2.0 * beta * ((is * ktor).sqrt() * wn + (is * kben).sqrt() * wt);
+        }
+        Damping::Dry { b0, b1, b2 } => {
+            f += dry(fnorm, vn, kn, b0, b1, b2) + dry(ft, vtt, kt, b0, b1, b2);
+            m += dry(tn, wn, ktor, b0, b1, b2) + dry(tt, wt, kben, b0, b1, b2);
+        }
+    }
+    let lever = n.cross(ft);
+    Some(Load {
+        f,
+        ta: a.r * lever + m,
+        tb: b.r * lever - m,
+        fe,
+        me,
+    })
+}
+
+impl GranBonds {
+    /// Bonds of `ntypes` types, at most `per_atom` per sphere.
+    pub fn new(ntypes: usize, per_atom: usize) -> Result<Self> {
+        if ntypes == 0 || per_atom == 0 {
+            return Err(Error::Invalid {
+                what: "atom_style bond/gran",
+                reason: format!(
+                    "n_bondtypes ({ntypes}) and bonds_per_atom ({per_atom}) must be >= 1"
+                ),
+            });
+        }
+        Ok(Self {
+            ntypes,
+            per_atom,
+            coeffs: vec![None; ntypes],
+            creators: Vec::new(),
+            prop: None,
+            links: Vec::new(),
+        })
+    }
+
+    /// Values per sphere in [`PROP`].
+    pub fn width(&self) -> usize {
+        self.per_atom * SLOT
+    }
+
+    /// Adds [`PROP`] to `p` (idempotent).
+    pub fn attach(&mut self, p: &mut Particles) -> Result<()> {
+        let w = self.width();
+        self.prop = Some(p.add_property(PROP, w, &vec![0.0; w])?);
+        Ok(())
+    }
+
+    /// Sets the coefficients of bond type `t` (1-based); the damping and breaking styles
+    /// must agree with those of the types set before (the fork keeps one of each).
+    pub fn set_coeff(&mut self, t: usize, c: BondCoeff) -> Result<()> {
+        if t == 0 || t > self.ntypes {
+            return Err(Error::Invalid {
+                what: "bond type",
+                reason: format!("{t} is not within 1..={}", self.ntypes),
+            });
+        }
+        for (k, o) in self.coeffs.iter().enumerate() {
+            if let Some(o) = o {
+                if k + 1 != t
+                    && (o.damping.style() != c.damping.style()
+                        || o.breaking.style() != c.breaking.style())
+                {
+                    return Err(Error::Invalid {
+                        what: "bond_coeff",
+                        reason: format!(
+                            "type {t} has damping style {} and break style {}, type {} has {} and {}; \
+                             LIGGGHTS_Flexible_Fibers applies one damping and one break style to all bond types",
+                            c.damping.style(),
+                            c.breaking.style(),
+                            k + 1,
+                            o.damping.style(),
+                            o.breaking.style()
+                        ),
+                    });
+                }
+            }
+        }
+        self.coeffs[t - 1] = Some(c);
+        Ok(())
+    }
+
+    /// Checks before a run: every bond type has coefficients, every creator's bond type
+    /// exists and its cutoff lies within the neighbor reach `reach`.
+    pub fn check(&self, reach: f64) -> Result<()> {
+        if let Some(t) = self.coeffs.iter().position(Option::is_none) {
+            return Err(Error::Invalid {
+                what: "bond_coeff",
+                reason: format!("bond type {} has no coefficients", t + 1),
+            });
+        }
+        for c in &self.creators {
+            if c.btype == 0 || c.btype as usize > self.ntypes {
+                return Err(Error::Invalid {
+                    what: "fix bond/create/gran",
+                    reason: format!(
+                        "{}: bond type {} is not within 1..={}",
+                        c.id, c.btype, self.ntypes
+                    ),
+                });
+            }
+            if c.every > 0 && c.cutoff > reach {
+                return Err(Error::Invalid {
+                    what: "fix bond/create/gran",
+                    reason: format!(
+                        "{}: the cutoff {} exceeds the neighbor reach {} (twice the largest radius plus the skin); \
+                         raise the skin with `neighbor`",
+                        c.id, c.cutoff, reach
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Bonds held by owned particle `i`: its slots with a partner.
+    fn count(slots: &[f64]) -> usize {
+        slots.chunks_exact(SLOT).filter(|s| s[TYPE] != 0.0).count()
+    }
+
+    /// Bonds counted once each (by the sphere of the lower tag), broken ones included
+    /// until the next re-neighboring: thermo `numbonds` on this rank.
+    pub fn count_local(&self, p: &Particles) -> u64 {
+        let Some(id) = self.prop else { return 0 };
+        let data = &p.props[id.0];
+        (0..p.nlocal())
+            .map(|i| {
+                data.get(i)
+                    .chunks_exact(SLOT)
+                    .filter(|s| s[TYPE] != 0.0 && p.tag[i] < s[TAG] as Tag)
+                    .count() as u64
+            })
+            .sum()
+    }
+
+    /// Drops the broken bonds (at a re-neighboring) and finds each bond's partner.
+    pub fn link(&mut self, p: &mut Particles) -> Result<()> {
+        let Some(id) = self.prop else { return Ok(()) };
+        let (m, w) = (self.per_atom, self.width());
+        for i in 0..p.nlocal() {
+            let row = &mut p.props[id.0].data[i * w..(i + 1) * w];
+            // Keep the unbroken bonds, in order.
+            let mut k = 0;
+            for s in 0..m {
+                let slot = s * SLOT;
+                if row[slot + TYPE] != 0.0 && row[slot + BROKEN] == 0.0 {
+                    if k != s {
+                        row.copy_within(slot..slot + SLOT, k * SLOT);
+                    }
+                    k += 1;
+                }
+            }
+            row[k * SLOT..].fill(0.0);
+        }
+        self.resolve(p)
+    }
+
+    /// Finds each bond's partner among the owned particles and ghosts (the image nearest
+    /// to the sphere). A partner that is not there is an error.
+    fn resolve(&mut self, p: &Particles) -> Result<()> {
+        let Some(id) = self.prop else { return Ok(()) };
+        let (m, n, nl) = (self.per_atom, p.len(), p.nlocal());
+        let mut by_tag: Vec<(Tag, u32)> = (0..n).map(|i| (p.tag[i], i as u32)).collect();
+        by_tag.sort_unstable();
+        self.links.clear();
+        self.links.resize(nl * m, NONE);
+        for i in 0..nl {
+            for (s, h) in p.props[id.0].get(i).chunks_exact(SLOT).enumerate() {
+                if h[TYPE] == 0.0 {
+                    continue;
+                }
+                let t = h[TAG] as Tag;
+                let lo = by_tag.partition_point(|e| e.0 < t);
+                let hi = by_tag.partition_point(|e| e.0 <= t);
+                let best = by_tag[lo..hi].iter().map(|e| e.1).min_by(|&u, &v| {
+                    let du = (p.x[u as usize] - p.x[i]).length_squared();
+                    let dv = (p.x[v as usize] - p.x[i]).length_squared();
+                    du.total_cmp(&dv)
+                });
+                match best {
+                    Some(j) => self.links[i * m + s] = j,
+                    None if h[BROKEN] != 0.0 => {}
+                    None => {
+                        return Err(Error::Invalid {
+                            what: "bond/gran",
+                            reason: format!(
+                                "particle {} is bonded to particle {t}, which is neither on this rank nor one of its ghosts \
+                                 (a bond longer than the ghost cutoff, or a bonded particle lost)",
+                                p.tag[i]
+                            ),
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The bond forces and torques added to the owned particles' `f` and `torque`; each
+    /// bond's history advances (at a run's set-up too, as in the fork).
+    pub fn forces(&mut self, p: &mut Particles, dt: f64) {
+        let Some(id) = self.prop else { return };
+        let (m, nl, w) = (self.per_atom, p.nlocal(), self.width());
+        if nl == 0 {
+            return;
+        }
+        let coeffs = &self.coeffs;
+        let links = &self.links;
+        let (view, f, torque, props, _) = crate::par::View::split(p);
+        let data = &mut props[id.0].data[..nl * w];
+        let one = |i: usize, fi: &mut DVec3, ti: &mut DVec3, row: &mut [f64]| {
+            for s in 0..m {
+                let h = &mut row[s * SLOT..(s + 1) * SLOT];
+                if h[TYPE] == 0.0 || h[BROKEN] != 0.0 {
+                    continue;
+                }
+                let j = links[i * m + s];
+                if j == NONE {
+                    continue;
+                }
+                let j = j as usize;
+                let side = |k: usize| Side {
+                    x: view.x[k],
+                    v: view.v[k],
+                    w: view.omega[k],
+                    r: view.radius[k],
+                    m: view.rmass[k],
+                };
+                let first = view.tag[i] < view.tag[j];
+                let (a, b) = if first {
+                    (side(i), side(j))
+                } else {
+                    (side(j), side(i))
+                };
+                let Some(c) = coeffs[h[TYPE] as usize - 1].as_ref() else {
+                    continue;
+                };
+                match bond(&a, &b, c, h, dt) {
+                    Some(l) => {
+                        put3(h, FORCE, l.fe);
+                        put3(h, TORQUE, l.me);
+                        if first {
+                            *fi += l.f;
+                            *ti += l.ta;
+                        } else {
+                            *fi -= l.f;
+                            *ti += l.tb;
+                        }
+                    }
+                    None => {
+                        h[BROKEN] = 1.0;
+                        put3(h, FORCE, DVec3::ZERO);
+                        put3(h, TORQUE, DVec3::ZERO);
+                    }
+                }
+            }
+        };
+        let (f, t) = (&mut f[..nl], &mut torque[..nl]);
+        if crate::par::parallel(nl) {
+            let chunk = crate::par::CHUNK;
+            f.par_chunks_mut(chunk)
+                .zip(t.par_chunks_mut(chunk))
+                .zip(data.par_chunks_mut(chunk * w))
+                .enumerate()
+                .for_each(|(c, ((fc, tc), dc))| {
+                    for k in 0..fc.len() {
+                        one(
+                            c * chunk + k,
+                            &mut fc[k],
+                            &mut tc[k],
+                            &mut dc[k * w..(k + 1) * w],
+                        );
+                    }
+                });
+        } else {
+            for i in 0..nl {
+                one(i, &mut f[i], &mut t[i], &mut data[i * w..(i + 1) * w]);
+            }
+        }
+    }
+
+    /// Creates the bonds of the creators due at `step` from the neighbor list pairs
+    /// `pairs(i)` (partners of owned particle i, owned or ghosts); returns how many.
+    pub fn create(
+        &mut self,
+        p: &mut Particles,
+        list: &crate::neighbor::NeighborList,
+        step: u64,
+    ) -> Result<u64> {
+        let Some(id) = self.prop else { return Ok(0) };
+        let due: Vec<usize> = (0..self.creators.len())
+            .filter(|&k| {
+                let c = &self.creators[k];
+                c.every > 0 && step % c.every == 0
+            })
+            .collect();
+        if due.is_empty() {
+            return Ok(0);
+        }
+        let (m, nl, w) = (self.per_atom, p.nlocal(), self.width());
+        let mut total = 0;
+        for k in due {
+            let c = self.creators[k].clone();
+            let mut made = 0;
+            // Candidates (lower tag, higher tag, index of lower, index of higher).
+            let mut cand: Vec<(Tag, Tag, usize, usize)> = Vec::new();
+            let cut2 = c.cutoff * c.cutoff;
+            for i in 0..nl {
+                for &j in list.partners(i) {
+                    let j = j as usize;
+                    let (ti, tj) = (p.ty[i], p.ty[j]);
+                    let types =
+                        (ti == c.itype && tj == c.jtype) || (ti == c.jtype && tj == c.itype);
+                    if !types || p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {
+                        continue;
+                    }
+                    if (p.x[j] - p.x[i]).length_squared() >= cut2 {
+                        continue;
+                    }
+                    let (a, b) = if p.tag[i] < p.tag[j] { (i, j) } else { (j, i) };
+                    cand.push((p.tag[a], p.tag[b], a, b));
+                }
+            }
+            cand.sort_unstable();
+            cand.dedup_by(|x, y| x.0 == y.0 && x.1 == y.1);
+            // New bonds per particle at this step, by the owned particle (or remote ghost)
+            // they belong to.
+            let mut fresh = vec![0usize; p.len()];
+            let owner = |k: usize| {
+                let o = p.origin(k);
+                if o >= REMOTE_GHOST {
+                    k
+                } else {
+                    o
+                }
+            };
+            let data = &p.props[id.0].data;
+            let row = |k: usize| &data[k * w..(k + 1) * w];
+            let bonded = |k: usize, t: Tag| {
+                row(k)
+                    .chunks_exact(SLOT)
+                    .any(|s| s[TYPE] != 0.0 && s[TAG] as Tag == t)
+            };
+            let mut plan: Vec<(usize, usize)> = Vec::new();
+            let mut held: Vec<usize> = (0..p.len()).map(|k| Self::count(row(k))).collect();
+            for &(_, _, a, b) in &cand {
+                let (oa, ob) = (owner(a), owner(b));
+                if oa == ob || bonded(a, p.tag[b]) {
+                    continue;
+                }
+                if fresh[oa] >= c.per_step || fresh[ob] >= c.per_step {
+                    continue;
+                }
+                if held[oa] >= m || held[ob] >= m {
+                    continue;
+                }
+                fresh[oa] += 1;
+                fresh[ob] += 1;
+                held[oa] += 1;
+                held[ob] += 1;
+                plan.push((oa, ob));
+                if oa < nl || ob < nl {
+                    made += 1;
+                }
+            }
+            for (oa, ob) in plan {
+                let (ta, tb) = (p.tag[oa], p.tag[ob]);
+                for (me, other) in [(oa, tb), (ob, ta)] {
+                    if me >= nl {
+                        continue;
+                    }
+                    let r = &mut p.props[id.0].data[me * w..(me + 1) * w];
+                    let s = Self::count(r);
+                    let h = &mut r[s * SLOT..(s + 1) * SLOT];
+                    h.fill(0.0);
+                    h[TAG] = other as f64;
+                    h[TYPE] = c.btype as f64;
+                }
+            }
+            if made > 0 {
+                self.creators[k].made.push((step, made));
+            }
+            total += made;
+        }
+        if total > 0 {
+            self.resolve(p)?;
+        }
+        Ok(total)
+    }
+
+    /// The bonds for output, each once (held by the lower tag): (tag a, tag b, type,
+    /// position of a, position of b, force on a, bending and twisting torque on a, L₀,
+    /// broken).
+    pub fn local_rows(&self, p: &Particles) -> Vec<BondRow> {
+        let Some(id) = self.prop else {
+            return Vec::new();
+        };
+        let m = self.per_atom;
+        let data = &p.props[id.0];
+        let mut out = Vec::new();
+        for i in 0..p.nlocal() {
+            for (s, h) in data.get(i).chunks_exact(SLOT).enumerate() {
+                if h[TYPE] == 0.0 || (h[TAG] as Tag) < p.tag[i] {
+                    continue;
+                }
+                let j = self.links.get(i * m + s).copied().unwrap_or(NONE);
+                let xb = if j == NONE { p.x[i] } else { p.x[j as usize] };
+                out.push(BondRow {
+                    mask1: p.mask[i],
+                    mask2: if j == NONE { 0 } else { p.mask[j as usize] },
+                    atom1: p.tag[i],
+                    atom2: h[TAG] as Tag,
+                    btype: h[TYPE] as u32,
+                    x1: p.x[i],
+                    x2: xb,
+                    force: get3(h, FORCE),
+                    torque: get3(h, TORQUE),
+                    len0: h[LEN0],
+                    broken: h[BROKEN] != 0.0,
+                });
+            }
+        }
+        out
+    }
+}
+
+/// One bond as `compute property/local` reports it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BondRow {
+    /// Group mask of the first sphere.
+    pub mask1: u32,
+    /// Group mask of the second sphere (0 when it is not found).
+    pub mask2: u32,
+    /// Tag of the first sphere (the lower tag).
+    pub atom1: Tag,
+    /// Tag of the second sphere.
+    pub atom2: Tag,
+    /// Bond type.
+    pub btype: u32,
+    /// Position of the first sphere.
+    pub x1: DVec3,
+    /// Position of the second sphere (the image bonded).
+    pub x2: DVec3,
+    /// Force of the bond on the first sphere.
+    pub force: DVec3,
+    /// Twisting and bending torque of the bond on the first sphere (without the lever
+    /// arm of the shear force).
+    pub torque: DVec3,
+    /// Length at the first evaluation (0 before it).
+    pub len0: f64,
+    /// Broken since the last re-neighboring.
+    pub broken: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn coeff(damping: Damping) -> BondCoeff {
+        BondCoeff::new(
+            0.8,
+            0.2,
+            1e7,
+            4e6,
+            damping,
+            Breaking::Stress {
+                sigma: 1e32,
+                tau: 1e32,
+            },
+        )
+        .unwrap()
+    }
+
+    fn side(x: DVec3, v: DVec3, w: DVec3) -> Side {
+        Side {
+            x,
+            v,
+            w,
+            r: 1e-3,
+            m: 4.18879e-6,
+        }
+    }
+
+    /// A bond at rest at its length gives nothing; stretched by u it pulls with
+    /// K_n u = Y A u / L₀; the shear increment is −K_t v_t dt with the rotation's
+    /// R_a ω_a + R_b ω_b in v_t; equal and opposite twisting torques.
+    #[test]
+    fn the_first_increments_follow_the_formulas() {
+        let c = coeff(Damping::None);
+        let mut h = [0.0; SLOT];
+        let a = side(DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        let b = side(DVec3::new(2e-3, 0.0, 0.0), DVec3::ZERO, DVec3::ZERO);
+        let l = bond(&a, &b, &c, &mut h, 1e-7).unwrap();
+        assert_eq!(h[LEN0], 2e-3);
+        assert_eq!(l.f, DVec3::ZERO);
+        let area = std::f64::consts::PI * (0.64e-6 - 0.04e-6);
+        let u = 1e-6;
+        let b2 = side(DVec3::new(2e-3 + u, 0.0, 0.0), DVec3::ZERO, DVec3::ZERO);
+        let mut h2 = h;
+        let l = bond(&a, &b2, &c, &mut h2, 1e-7).unwrap();
+        let kn = 1e7 * area / 2e-3;
+        assert!((l.f.x - kn * u).abs() < 1e-12 * kn * u, "{:?}", l.f);
+        let a3 = side(
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.02, 0.0),
+            DVec3::new(0.0, 0.0, 3.0),
+        );
+        let mut h3 = h;
+        let l = bond(&a3, &b, &c, &mut h3, 1e-7).unwrap();
+        let kt = 4e6 * area / 2e-3;
+        // v_t = v + R ω × n = 0.02 + 1e-3·3·(z × x = y) = 0.023 along y.
+        assert!((l.f.y + kt * 0.023 * 1e-7).abs() < 1e-12, "{:?}", l.f);
+        let a4 = side(DVec3::ZERO, DVec3::ZERO, DVec3::new(5.0, 0.0, 0.0));
+        let mut h4 = h;
+        let l = bond(&a4, &b, &c, &mut h4, 1e-7).unwrap();
+        assert!((l.ta.x + l.tb.x).abs() < 1e-25 && l.ta.x < 0.0, "{l:?}");
+    }
+
+    /// Style-1 damping adds −2β√(m*K_n) v_n to the normal force.
+    #[test]
+    fn critical_damping_of_the_normal_force() {
+        let beta = 0.5;
+        let c = coeff(Damping::Critical { beta });
+        let mut h = [0.0; SLOT];
+        let a = side(DVec3::ZERO, DVec3::new(0.01, 0.0, 0.0), DVec3::ZERO);
+        let b = side(DVec3::new(2e-3, 0.0, 0.0), DVec3::ZERO, DVec3::ZERO);
+        let l = bond(&a, &b, &c, &mut h, 1e-7).unwrap();
+        let area = std::f64::consts::PI * (0.64e-6 - 0.04e-6);
+        let kn = 1e7 * area / 2e-3;
+        let want = -2.0 * beta * (0.5 * a.m * kn).sqrt() * 0.01;
+        assert!(
+            (l.f.x - want).abs() < 1e-12 * want.abs(),
+            "{} {want}",
+            l.f.x
+        );
+    }
+
+    /// A stress above σ_c breaks the bond.
+    #[test]
+    fn stress_breaks() {
+        let mut c = coeff(Damping::None);
+        c.breaking = Breaking::Stress {
+            sigma: 1.0,
+            tau: 1e32,
+        };
+        let mut h = [0.0; SLOT];
+        h[LEN0] = 2e-3;
+        let a = side(DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        let b = side(DVec3::new(2.001e-3, 0.0, 0.0), DVec3::ZERO, DVec3::ZERO);
+        assert!(bond(&a, &b, &c, &mut h, 1e-7).is_none());
+    }
+}
