@@ -121,6 +121,9 @@ pub struct Setup {
     pub sph: bool,
     /// `atom_style ... bond/gran n_bondtypes N bonds_per_atom M`: (N, M).
     pub bond_gran: Option<(usize, usize)>,
+    /// `pair_style gran ...` given before the box (LIGGGHTS 3.8 takes it there): the box
+    /// gets it.
+    pub pair: Option<rdem::ContactModel>,
 }
 
 impl Default for Setup {
@@ -138,6 +141,7 @@ impl Default for Setup {
             dimension: 3,
             sph: false,
             bond_gran: None,
+            pair: None,
         }
     }
 }
@@ -403,7 +407,15 @@ impl Sim {
                 w.bonds = Some(b);
             }
         }
+        let pair = self.setup.pair.take();
+        if let Some(m) = pair {
+            w.pair = Some(rdem::pair::PairGran::new(m));
+            w.sph = None;
+        }
         self.world = Some(w);
+        if pair.is_some_and(|m| m.cohesion == rdem::CohesionKind::Easo) {
+            crate::fixes::liquid::define(self);
+        }
     }
 
     /// The `neighbor` / `neigh_modify` settings: the world's once the box exists, else

@@ -32,6 +32,12 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(models::unknown(a, a.pos(), &[]));
     }
     models::parse_switches(a, &mut m)?;
+    if sim.world.is_none() {
+        // Before the box (LIGGGHTS 3.8 takes it there too): the box gets it.
+        sim.setup.pair = Some(m);
+        sim.defs.pair_coeff_set = false;
+        return Ok(());
+    }
     let w = sim.world_mut(a)?;
     w.pair = Some(PairGran::new(m));
     w.sph = None;

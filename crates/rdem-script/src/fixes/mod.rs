@@ -19,6 +19,7 @@ mod ave_histo;
 mod ave_time;
 mod balance;
 mod bond_create_gran;
+mod check_timestep_bond;
 mod check_timestep_gran;
 mod couple_cfd;
 mod engine;
@@ -384,6 +385,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         couple_cfd::ROW_IMPLICIT,
         balance::ROW,
         bond_create_gran::ROW,
+        check_timestep_bond::ROW,
         Row::not_yet("bond/gran", "bonds"),
     ],
 };
