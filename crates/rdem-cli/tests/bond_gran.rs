@@ -1,0 +1,379 @@
+//! `bond_style gran` (LIGGGHTS_Flexible_Fibers' flexible-fiber bonds) against
+//! LIGGGHTS_Flexible_Fibers itself and against Euler–Bernoulli beam theory.
+//!
+//! The fork (schrummy14/LIGGGHTS_Flexible_Fibers 0fc7c5b) was built here (`make auto`,
+//! USE_VTK OFF) and ran the scripts of `tests/data/bond_gran/`, written for these tests:
+//! `in.bonds` (two bonded pairs and a bent chain of three in general motion, radii and
+//! densities unequal, for each damping style), `in.pull` (a pair pulled apart until the
+//! bond breaks by its normal or its shear stress), `in.create` (bond creation on a 3 × 3
+//! square), `in.cantilever` (wild/24's beam bent by a tip force, then released), and a
+//! shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
+//! is stored beside them (`fibers_*`).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+fn data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bond_gran")
+}
+
+fn read(name: &str) -> String {
+    std::fs::read_to_string(data().join(name)).unwrap()
+}
+
+/// A data script with index variables set first (as `-var NAME VALUE` would).
+fn with_vars(name: &str, vars: &[(&str, &str)]) -> String {
+    let mut s: String = vars
+        .iter()
+        .map(|(k, v)| format!("variable {k} index \"{v}\"\n"))
+        .collect();
+    s.push_str(&read(name));
+    s
+}
+
+/// The frames of a `dump custom` file: (step, rows of numbers).
+fn frames(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
+    text.split("ITEM: TIMESTEP\n")
+        .skip(1)
+        .map(|blk| {
+            let mut lines = blk.lines();
+            let step = lines.next().unwrap().trim().parse().unwrap();
+            let rows = blk
+                .lines()
+                .skip(8)
+                .filter(|l| !l.trim().is_empty())
+                .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+                .collect();
+            (step, rows)
+        })
+        .collect()
+}
+
+/// Every value of `got` within `rel` of the largest magnitude of its column group
+/// (columns `groups` of three) in `want`.
+fn assert_frames(
+    got: &[(u64, Vec<Vec<f64>>)],
+    want: &[(u64, Vec<Vec<f64>>)],
+    rel: f64,
+    what: &str,
+) {
+    assert_eq!(got.len(), want.len(), "{what}: frame count");
+    let ncol = want[0].1[0].len();
+    let mut worst = 0.0f64;
+    for c0 in (1..ncol).step_by(3) {
+        let scale = want
+            .iter()
+            .flat_map(|f| f.1.iter().flat_map(|r| r[c0..c0 + 3].to_vec()))
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        for ((gs, g), (ws, w)) in got.iter().zip(want) {
+            assert_eq!(gs, ws, "{what}: steps");
+            assert_eq!(g.len(), w.len(), "{what}: rows at step {ws}");
+            for (gr, wr) in g.iter().zip(w) {
+                assert_eq!(gr[0], wr[0], "{what}: ids");
+                for c in c0..c0 + 3 {
+                    let e = (gr[c] - wr[c]).abs() / scale;
+                    worst = worst.max(e);
+                    assert!(
+                        e <= rel,
+                        "{what}: step {ws} atom {} column {c}: {} against the fork's {} (scale {scale})",
+                        wr[0],
+                        gr[c],
+                        wr[c]
+                    );
+                }
+            }
+        }
+    }
+    eprintln!("{what}: worst {worst:.1e}");
+}
+
+/// The two pairs and the chain of `in.bonds` follow the fork for each damping style:
+/// positions, velocities, angular velocities, forces and torques of every sphere, every
+/// 50 steps over 1000. Measured: 6e-11 (style 0), 3e-11 (style 1), 3e-9 (style 2, whose
+/// sign functions amplify the last digits) of each column's scale.
+#[test]
+fn bonds_follow_the_fork_for_each_damping_style() {
+    for (k, dval) in [(0, "0.0"), (1, "0.5"), (2, "1e-8 0.1 1e5")] {
+        let what = format!("damping style {k}");
+        let script = with_vars("in.bonds", &[("dtype", &k.to_string()), ("dval", dval)]);
+        let (dir, out) = common::run_kept_ok("bond_gran", &script, &[], None);
+        assert!(
+            out.contains("Created 4 bonds at timestep 1"),
+            "{what}: {out}"
+        );
+        let got = frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
+        let want = frames(&read(&format!("fibers_damping{k}.dump")));
+        assert_frames(&got, &want, 1e-7, &what);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// The thermo rows of a screen output after its last `Step numbonds` header.
+fn pull_rows(out: &str) -> Vec<Vec<f64>> {
+    let tail = out.rsplit("Step numbonds").next().unwrap();
+    tail.lines()
+        .skip(1)
+        .map_while(|l| {
+            let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
+            (v.len() == 7 && l.split_whitespace().count() == 7).then_some(v)
+        })
+        .collect()
+}
+
+/// A pair pulled apart breaks at the fork's step, by its normal stress (σ_c 3.5e5 Pa:
+/// free from step 30) and by its shear stress (τ_c 1.2e5 Pa: from step 23), the
+/// breaking step's force still acting; `numbonds` drops at the next re-neighboring
+/// (steps 168 and 163), as in the fork. Each of the 401 rows (position, velocity, force
+/// and spin of the second sphere) follows the fork to 1e-12 of its column's scale
+/// (measured 4e-15).
+#[test]
+fn a_pulled_pair_breaks_at_the_forks_step() {
+    for (name, sigc, tauc, free, drop) in [
+        ("sigma", "3.5e5", "1.0e9", 30.0, 168.0),
+        ("tau", "1.0e9", "1.2e5", 23.0, 163.0),
+    ] {
+        let out = common::run_script(
+            &with_vars("in.pull", &[("sigc", sigc), ("tauc", tauc)]),
+            None,
+        );
+        let got = pull_rows(&out);
+        let want: Vec<Vec<f64>> = read(&format!("fibers_pull_{name}.txt"))
+            .lines()
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(got.len(), want.len(), "{name}: rows");
+        for k in 1..7 {
+            let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+            for (g, w) in got.iter().zip(&want) {
+                assert!(
+                    (g[k] - w[k]).abs() <= 1e-12 * scale,
+                    "{name}: step {} column {k}: {} against the fork's {}",
+                    w[0],
+                    g[k],
+                    w[k]
+                );
+            }
+        }
+        // Free (the force on the second sphere is the applied 0.5 N alone) from the
+        // step after the breaking one.
+        let first_free = got.iter().skip(1).find(|r| r[5] == 0.5).map(|r| r[0]);
+        assert_eq!(first_free, Some(free), "{name}");
+        let first_zero = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
+        assert_eq!(first_zero, Some(drop), "{name}");
+    }
+}
+
+/// The bonds of one step of a `dump local` of `batom1 batom2`, as sorted pairs.
+fn bond_lists(text: &str) -> Vec<(u64, Vec<(u64, u64)>)> {
+    frames(text)
+        .into_iter()
+        .map(|(s, rows)| {
+            let mut v: Vec<(u64, u64)> = rows.iter().map(|r| (r[0] as u64, r[1] as u64)).collect();
+            v.sort_unstable();
+            (s, v)
+        })
+        .collect()
+}
+
+/// `fix bond/create/gran` on a 3 × 3 square (tags 1–9 row by row, spacing d): with at
+/// most `newperts` new bonds per sphere and step it makes the fork's bonds at steps 1
+/// and 2, pair by pair (listed here as the fork wrote them).
+#[test]
+fn creation_makes_the_forks_bonds() {
+    let b = |v: &[(u64, u64)]| v.to_vec();
+    let cases: [(&str, &str, Vec<(u64, u64)>, usize); 4] = [
+        ("1", "0.00201", b(&[(1, 2), (3, 6), (4, 5), (7, 8)]), 8),
+        (
+            "2",
+            "0.00201",
+            b(&[
+                (1, 2),
+                (1, 4),
+                (2, 3),
+                (3, 6),
+                (4, 5),
+                (5, 6),
+                (7, 8),
+                (8, 9),
+            ]),
+            12,
+        ),
+        (
+            "3",
+            "0.00201",
+            b(&[
+                (1, 2),
+                (1, 4),
+                (2, 3),
+                (2, 5),
+                (3, 6),
+                (4, 5),
+                (4, 7),
+                (5, 6),
+                (6, 9),
+                (7, 8),
+                (8, 9),
+            ]),
+            12,
+        ),
+        (
+            "6",
+            "0.00285",
+            b(&[
+                (1, 2),
+                (1, 4),
+                (1, 5),
+                (2, 3),
+                (2, 4),
+                (2, 5),
+                (2, 6),
+                (3, 5),
+                (3, 6),
+                (4, 5),
+                (4, 7),
+                (4, 8),
+                (5, 6),
+                (5, 7),
+                (6, 8),
+                (6, 9),
+                (7, 8),
+                (8, 9),
+            ]),
+            18,
+        ),
+    ];
+    for (np, cut, step1, total) in cases {
+        let script = with_vars("in.create", &[("np", np), ("cut", cut)]);
+        let (dir, out) = common::run_kept_ok("bond_create", &script, &[], None);
+        let lists = bond_lists(&std::fs::read_to_string(dir.join("bonds.txt")).unwrap());
+        assert_eq!(
+            lists[1],
+            (1, step1.clone()),
+            "newperts {np} cutoff {cut}: step 1"
+        );
+        assert_eq!(
+            lists[2].1.len(),
+            total,
+            "newperts {np} cutoff {cut}: step 2"
+        );
+        assert!(
+            out.contains(&format!("Created {} bonds at timestep 1", step1.len())),
+            "{out}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// The tip deflection and the free vibration of the thermo rows after each `Step
+/// numbonds` header: (static rows, free rows) as (step, z of the tip).
+fn cantilever(out: &str) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let mut parts = out.split("Step numbonds").skip(1).map(|t| {
+        t.lines()
+            .skip(1)
+            .map_while(|l| {
+                let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
+                (v.len() == 4 && l.split_whitespace().count() == 4).then(|| (v[0], v[2]))
+            })
+            .collect::<Vec<_>>()
+    });
+    (parts.next().unwrap(), parts.next().unwrap())
+}
+
+/// wild/24's beam (54 spheres, d 2.83 mm, ρ 420, E 1e9; the first sphere clamped):
+/// - a tip force of 1e-5 N bends it by F/k with k = 2.7991 N/m, Euler–Bernoulli's
+///   3EI/L³ = 2.7993 N/m (L = 53 d) within 1e-3 (measured 8e-5);
+/// - released, it vibrates at 32.614 Hz, the fork's figure to 1e-6, 1.9 % below
+///   Euler–Bernoulli's first frequency 33.25 Hz (the chain's masses are lumped at 54
+///   points, with their own rotary inertia), checked within 2.5 %.
+#[test]
+fn a_cantilever_bends_and_vibrates_as_a_beam() {
+    let pi = std::f64::consts::PI;
+    let (d, e, rho): (f64, f64, f64) = (2.83e-3, 1e9, 420.0);
+    let r = 0.5 * d;
+    let inertia = pi * r.powi(4) / 4.0;
+    let m = 4.0 / 3.0 * pi * r.powi(3) * rho;
+    let len = 53.0 * d;
+    let k_beam = 3.0 * e * inertia / len.powi(3);
+    let f_beam = 1.875f64.powi(2) / (2.0 * pi) * (e * inertia / (m / d * len.powi(4))).sqrt();
+    let dt = 0.95 / (e * pi * r * r / d / m).sqrt();
+
+    let out = common::run_script(&read("in.cantilever"), None);
+    let (bent, free) = cantilever(&out);
+    let k = 1e-5 / bent.last().unwrap().1;
+    assert!(
+        (k / k_beam - 1.0).abs() < 1e-3,
+        "tip stiffness {k} against {k_beam}"
+    );
+    // The period from the zero crossings of the tip.
+    let mut cross = Vec::new();
+    for w in free.windows(2) {
+        let ((s0, z0), (s1, z1)) = (w[0], w[1]);
+        if (z0 > 0.0 && z1 <= 0.0) || (z0 < 0.0 && z1 >= 0.0) {
+            cross.push((s0 + (s1 - s0) * (-z0) / (z1 - z0)) * dt);
+        }
+    }
+    assert!(cross.len() >= 6, "{} crossings", cross.len());
+    let f = (cross.len() - 1) as f64 / (2.0 * (cross[cross.len() - 1] - cross[0]));
+    assert!(
+        (f / 32.614 - 1.0).abs() < 1e-4,
+        "frequency {f} against the fork's 32.614"
+    );
+    assert!(
+        (f / f_beam - 1.0).abs() < 0.025,
+        "frequency {f} against {f_beam}"
+    );
+}
+
+/// wild/24 (the fork's cantilever tutorial: a mesh pushes the beam's end down, holds,
+/// lets go) with a deflection of 2 mm and 1 ms of waiting and of vibration: its
+/// `beam.csv` (time, tip x, tip z, kinetic energy every 5e-5 s) follows the fork's to
+/// 1e-8 of each column's scale (measured 3e-10).
+#[test]
+fn wild_24_shortened_follows_the_fork() {
+    let Some(dir) = common::wild_case("24_fibers_cantilever_beam", "in.liggghts") else {
+        return;
+    };
+    let mut script = std::fs::read_to_string(dir.join("in.liggghts")).unwrap();
+    for (from, to) in [
+        (
+            "deflection_distance     equal 20.0e-3",
+            "deflection_distance     equal 2.0e-3",
+        ),
+        (
+            "wait_time               equal 25.0e-3",
+            "wait_time               equal 1.0e-3",
+        ),
+        (
+            "vibrate_time            equal 0.125",
+            "vibrate_time            equal 1.0e-3",
+        ),
+    ] {
+        assert!(script.contains(from), "wild/24 changed: no '{from}'");
+        script = script.replace(from, to);
+    }
+    let mesh = std::fs::read_to_string(dir.join("Mesh.stl")).unwrap();
+    let (run, _) = common::run_kept_ok("wild24", &script, &[("Mesh.stl", &mesh)], None);
+    let parse = |t: &str| -> Vec<Vec<f64>> {
+        t.lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|x| x.trim().parse().unwrap()).collect())
+            .collect()
+    };
+    let got = parse(&std::fs::read_to_string(run.join("beam.csv")).unwrap());
+    let want = parse(&read("fibers_wild24_short.csv"));
+    assert_eq!(got.len(), want.len(), "rows of beam.csv");
+    for k in 0..4 {
+        let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+        for (g, w) in got.iter().zip(&want) {
+            assert!(
+                (g[k] - w[k]).abs() <= 1e-8 * scale,
+                "t {}: column {k}: {} against {}",
+                w[0],
+                g[k],
+                w[k]
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&run);
+}
