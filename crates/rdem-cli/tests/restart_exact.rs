@@ -721,3 +721,55 @@ run 100000000
     assert_eq!(counts, [28899, 28899], "{steps:?}");
     assert_eq!(steps[0].abs_diff(steps[1]), 3, "{steps:?}");
 }
+
+/// A block of 294 spheres bonded by `bond_style gran` (LIGGGHTS_Flexible_Fibers) dropped
+/// on a floor, some bonds breaking after the split: every bond (partners, L₀, the stored shear force and
+/// torques, broken ones until they are dropped) carries over.
+#[test]
+fn bonded_block_continues_bit_for_bit() {
+    let c = Case {
+        head: "atom_style hybrid granular bond/gran n_bondtypes 1 bonds_per_atom 6
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+",
+        make_box: BED_BOX,
+        defs: concat!(
+            "neighbor 0.002 bin\nneigh_modify delay 0\n",
+            common::materials!(),
+            "pair_style gran model hertz tangential history
+pair_coeff * *
+bond_style gran
+bond_coeff 1 1.0 0.0 1.0e7 4.0e6 1 0.5 1 4.0e4 4.0e4
+timestep 2e-5
+fix gravi all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
+fix integr all nve/sphere
+thermo_style custom step atoms numbonds ke
+thermo 500
+thermo_modify format float %.17g
+"
+        ),
+        init: "region blk block -0.024 0.024 -0.024 0.024 0.02 0.068 units box
+lattice sc 0.008
+create_atoms 1 region blk
+set group all density 2500 diameter 0.008
+fix bondcr all bond/create/gran 1 1 1 0.00801 1 6
+run 1
+fix_modify bondcr every 0
+",
+        after: "",
+        n1: 3000,
+        n2: 3000,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, rows) = check_split("bonded-block", &c);
+    assert_eq!(atoms(&end), 294);
+    // All 749 bonds hold until the split; the block lands after it, and some break.
+    let bonds: Vec<f64> = rows.iter().map(|r| r[2]).collect();
+    let last = *bonds.last().unwrap();
+    assert!(bonds[0] == 749.0 && last < 749.0 && last > 0.0, "{bonds:?}");
+}

@@ -456,7 +456,8 @@ impl GranBonds {
     }
 
     /// Checks before a run: every bond type has coefficients, every creator's bond type
-    /// exists and its cutoff lies within the neighbor reach `reach`.
+    /// exists and its cutoff lies within the neighbor cutoff `reach` (the ghosts' reach:
+    /// a pair across two ranks must be seen by both).
     pub fn check(&self, reach: f64) -> Result<()> {
         if let Some(t) = self.coeffs.iter().position(Option::is_none) {
             return Err(Error::Invalid {
@@ -478,8 +479,8 @@ impl GranBonds {
                 return Err(Error::Invalid {
                     what: "fix bond/create/gran",
                     reason: format!(
-                        "{}: the cutoff {} exceeds the neighbor reach {} (twice the largest radius plus the skin); \
-                         raise the skin with `neighbor`",
+                        "{}: the cutoff {} exceeds the neighbor cutoff {} (twice the largest radius plus the skin), \
+                         the reach of the ghost particles; raise the skin with `neighbor`",
                         c.id, c.cutoff, reach
                     ),
                 });
@@ -649,14 +650,12 @@ impl GranBonds {
         }
     }
 
-    /// Creates the bonds of the creators due at `step` from the neighbor list pairs
-    /// `pairs(i)` (partners of owned particle i, owned or ghosts); returns how many.
-    pub fn create(
-        &mut self,
-        p: &mut Particles,
-        list: &crate::neighbor::NeighborList,
-        step: u64,
-    ) -> Result<u64> {
+    /// Creates the bonds of the creators due at `step` between the owned particles and
+    /// their partners (owned or ghosts) closer than a creator's cutoff; returns how many.
+    /// Each rank finds the pairs of its owned particles itself (the neighbor list holds a
+    /// pair across two ranks on one of them only), so both spheres of a bond across
+    /// ranks get it.
+    pub fn create(&mut self, p: &mut Particles, step: u64) -> Result<u64> {
         let Some(id) = self.prop else { return Ok(0) };
         let due: Vec<usize> = (0..self.creators.len())
             .filter(|&k| {
@@ -674,22 +673,15 @@ impl GranBonds {
             let mut made = 0;
             // Candidates (lower tag, higher tag, index of lower, index of higher).
             let mut cand: Vec<(Tag, Tag, usize, usize)> = Vec::new();
-            let cut2 = c.cutoff * c.cutoff;
-            for i in 0..nl {
-                for &j in list.partners(i) {
-                    let j = j as usize;
-                    let (ti, tj) = (p.ty[i], p.ty[j]);
-                    let types =
-                        (ti == c.itype && tj == c.jtype) || (ti == c.jtype && tj == c.itype);
-                    if !types || p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {
-                        continue;
-                    }
-                    if (p.x[j] - p.x[i]).length_squared() >= cut2 {
-                        continue;
-                    }
-                    let (a, b) = if p.tag[i] < p.tag[j] { (i, j) } else { (j, i) };
-                    cand.push((p.tag[a], p.tag[b], a, b));
+            for (i, j) in near_pairs(p, c.cutoff) {
+                let (i, j) = (i as usize, j as usize);
+                let (ti, tj) = (p.ty[i], p.ty[j]);
+                let types = (ti == c.itype && tj == c.jtype) || (ti == c.jtype && tj == c.itype);
+                if !types || p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {
+                    continue;
                 }
+                let (a, b) = if p.tag[i] < p.tag[j] { (i, j) } else { (j, i) };
+                cand.push((p.tag[a], p.tag[b], a, b));
             }
             cand.sort_unstable();
             cand.dedup_by(|x, y| x.0 == y.0 && x.1 == y.1);
@@ -826,6 +818,43 @@ impl GranBonds {
         }
         out
     }
+}
+
+/// The pairs (i, j) of an owned particle i and an owned (j > i) or ghost particle j
+/// closer than `cut`, found in cells of side `cut`.
+fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
+    use std::collections::HashMap;
+    let (n, nl) = (p.len(), p.nlocal());
+    let cell = |x: DVec3| {
+        let c = (x / cut).floor();
+        (c.x as i64, c.y as i64, c.z as i64)
+    };
+    let mut cells: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
+    for k in 0..n {
+        cells.entry(cell(p.x[k])).or_default().push(k as u32);
+    }
+    let cut2 = cut * cut;
+    let mut out = Vec::new();
+    for i in 0..nl {
+        let (cx, cy, cz) = cell(p.x[i]);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(v) = cells.get(&(cx + dx, cy + dy, cz + dz)) else {
+                        continue;
+                    };
+                    for &j in v {
+                        let ju = j as usize;
+                        if (ju < nl && ju <= i) || (p.x[ju] - p.x[i]).length_squared() >= cut2 {
+                            continue;
+                        }
+                        out.push((i as u32, j));
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 /// One bond as `compute property/local` reports it.

@@ -108,20 +108,13 @@ impl World {
     }
 
     /// Set-up 3b: the bonds of `bond_style gran`: their per-particle property, their
-    /// coefficients, and the neighbor reach of the active creators (a pair closer than
-    /// a creator's cutoff must be listed to be bonded).
+    /// coefficients, and the creators' cutoffs within the ghost cutoff (a pair across two
+    /// ranks closer than a creator's cutoff must be seen by both).
     pub(crate) fn setup_bonds(&mut self) -> Result<()> {
         let Some(bonds) = &mut self.bonds else {
             return Ok(());
         };
         bonds.attach(&mut self.particles)?;
-        let cut = bonds
-            .creators
-            .iter()
-            .filter(|c| c.every > 0)
-            .map(|c| c.cutoff)
-            .fold(0.0, f64::max);
-        self.neighbor.reach = self.neighbor.reach.max(cut);
         let n = self.particles.nlocal();
         let rmax = self.comm.max(
             self.particles.radius[..n]
@@ -132,11 +125,10 @@ impl World {
         bonds.check(self.neighbor.cutoff_for(rmax))
     }
 
-    /// Bond creation of the creators due at this step (`fix bond/create/gran`), from the
-    /// current neighbor list.
+    /// Bond creation of the creators due at this step (`fix bond/create/gran`).
     pub(crate) fn create_bonds(&mut self) -> Result<()> {
         if let Some(bonds) = &mut self.bonds {
-            bonds.create(&mut self.particles, &self.neighbor.list, self.step)?;
+            bonds.create(&mut self.particles, self.step)?;
         }
         Ok(())
     }
