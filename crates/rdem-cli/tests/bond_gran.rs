@@ -449,3 +449,31 @@ fn ranks_give_the_serial_bonded_block() {
         }
     }
 }
+
+/// Bonded templates (`particletemplate/multiplespheres ... bonded`): 40 fibres of four
+/// spheres inserted by `insert/pack` hold 120 bonds, as in the fork (whose run of the
+/// same script prints 160 atoms and 120 bonds), each joining two consecutive spheres of
+/// a fibre at their template distance 2.5 mm (L₀ to 1e-12); `bonded yes` (spheres closer
+/// than r_i + r_j + skin) bonds the same pairs as the explicit list.
+#[test]
+fn bonded_templates_make_their_bonds() {
+    for bonded in ["yes/explicit", "yes"] {
+        let script = with_vars("in.template", &[("bonded", bonded)]);
+        let (dir, out) = common::run_kept_ok("bond_template", &script, &[], None);
+        let rows = common::thermo_rows(&out[out.rfind("Step").unwrap()..]);
+        let last = rows.last().unwrap();
+        assert_eq!((last[1], last[2]), (160.0, 120.0), "{bonded}: {out}");
+        let bonds = frames(&std::fs::read_to_string(dir.join("bonds.txt")).unwrap());
+        let (_, rows) = bonds.last().unwrap();
+        assert_eq!(rows.len(), 120, "{bonded}");
+        for r in rows {
+            assert_eq!(r[1], r[0] + 1.0, "{bonded}: bond {} {}", r[0], r[1]);
+            assert!(
+                (r[2] - 0.0025).abs() < 1e-12 * 0.0025,
+                "{bonded}: L0 {}",
+                r[2]
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -236,6 +236,9 @@ pub struct GranBonds {
     prop: Option<PropId>,
     /// Partner index per bond slot of each owned particle (`NONE`: none).
     links: Vec<u32>,
+    /// Bonds of inserted templates (local indices, bond type), made once the particles
+    /// have tags ([`GranBonds::make_pending`]).
+    pending: Vec<(usize, usize, u32)>,
 }
 
 /// One sphere of a bond, as the force reads it.
@@ -406,6 +409,7 @@ impl GranBonds {
             creators: Vec::new(),
             prop: None,
             links: Vec::new(),
+            pending: Vec::new(),
         })
     }
 
@@ -484,6 +488,49 @@ impl GranBonds {
                         c.id, c.cutoff, reach
                     ),
                 });
+            }
+        }
+        Ok(())
+    }
+
+    /// A bond of type `t` between the owned particles `i` and `j`, just inserted: made
+    /// by [`GranBonds::make_pending`] once they have tags.
+    pub fn add_pending(&mut self, i: usize, j: usize, t: u32) {
+        self.pending.push((i, j, t));
+    }
+
+    /// Makes the pending bonds of inserted templates (their particles have tags now);
+    /// a particle with more bonds than `bonds_per_atom` is an error.
+    pub fn make_pending(&mut self, p: &mut Particles) -> Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let Some(id) = self.prop else { return Ok(()) };
+        let (m, w) = (self.per_atom, self.width());
+        for (i, j, t) in std::mem::take(&mut self.pending) {
+            if t == 0 || t as usize > self.ntypes {
+                return Err(Error::Invalid {
+                    what: "bonded template",
+                    reason: format!("bond type {t} is not within 1..={}", self.ntypes),
+                });
+            }
+            for (me, other) in [(i, j), (j, i)] {
+                let tag = p.tag[other];
+                let row = &mut p.props[id.0].data[me * w..(me + 1) * w];
+                let s = Self::count(row);
+                if s >= m {
+                    return Err(Error::Invalid {
+                        what: "bonded template",
+                        reason: format!(
+                            "particle {} would get more than bonds_per_atom = {m} bonds",
+                            p.tag[me]
+                        ),
+                    });
+                }
+                let h = &mut row[s * SLOT..(s + 1) * SLOT];
+                h.fill(0.0);
+                h[TAG] = tag as f64;
+                h[TYPE] = t as f64;
             }
         }
         Ok(())

@@ -133,6 +133,15 @@ impl World {
         Ok(())
     }
 
+    /// The bonds of the bonded templates inserted since the last call, once their
+    /// particles have tags.
+    pub(crate) fn make_pending_bonds(&mut self) -> Result<()> {
+        if let Some(bonds) = &mut self.bonds {
+            bonds.make_pending(&mut self.particles)?;
+        }
+        Ok(())
+    }
+
     /// The bond forces (`bond_style gran`), after the pair forces.
     pub(crate) fn bond_forces(&mut self) {
         if let Some(bonds) = &mut self.bonds {

@@ -250,6 +250,7 @@ impl World {
             self.timers.lap(Stage::Neigh, t1);
             if added {
                 self.extend_tags();
+                self.make_pending_bonds()?;
             }
             self.reneighbor()?;
         } else {
@@ -314,6 +315,7 @@ impl World {
     pub fn setup(&mut self) -> Result<()> {
         self.check_settings()?;
         self.extend_tags();
+        self.make_pending_bonds()?;
         self.check_types()?;
         self.setup_pair()?;
         self.setup_sph()?;

@@ -38,7 +38,7 @@ pub(super) const ROW_MULTIPLE: FixRow = style(
     Stages::NONE,
     "`atom_type`, `density constant`, `nspheres`, `ntry`, `spheres x y z r ...\\|file F`, `scale`, `bonded no`: the spheres are placed as a clump would be (about the Monte Carlo centre of mass, turned by the insertion's `orientation`) and inserted as separate particles, as LIGGGHTS 3.8 does",
 )
-.notes("`bonded yes\\|yes/explicit` (the forks' bonded templates) is not supported yet (a located error)")
+.notes("`bonded yes\\|yes/implicit` (spheres closer than r_i + r_j + skin bonded) and `bonded yes/explicit nbond_pairs N i1 j1 ... [bond_type T]` (the pairs given): the forks' bonded templates, with `bond_style gran`; the bonds are made at insertion, their length L0 at their first evaluation")
 .atoi();
 
 /// A defined clump template: it lives in `Sim::templates` under the fix ID.
@@ -84,6 +84,10 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let (mut source, mut scale, mut ms_type) = (None, 1.0, None);
     let (mut mass, mut inertia, mut use_volume, mut use_density) = (None, None, false, false);
     let (mut fflag, mut tflag) = ([true; 3], [true; 3]);
+    // `bonded yes|yes/implicit|yes/explicit` (the forks' bonded templates): implicit
+    // (None) or explicit (the pairs given, 1-based, with where they stand); bond type.
+    let (mut bonded, mut pairs, mut bond_type): (Option<bool>, Vec<(u64, u64, usize)>, u64) =
+        (None, Vec::new(), 1);
     const KEYS: [&str; 15] = [
         "atom_type",
         "density",
@@ -101,7 +105,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         "tflag",
         "relative",
     ];
-    const KEYS_MULTIPLE: [&str; 9] = [
+    const KEYS_MULTIPLE: [&str; 11] = [
         "atom_type",
         "density",
         "volume_limit",
@@ -111,18 +115,36 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         "scale",
         "relative",
         "bonded",
+        "nbond_pairs",
+        "bond_type",
     ];
     let keys: &[&'static str] = if rigid { &KEYS } else { &KEYS_MULTIPLE };
     while !a.is_done() {
         match a.keyword(&format!("{style_name} keyword"), keys)? {
             "bonded" => {
-                if a.keyword("bonded", &["no", "yes", "yes/implicit", "yes/explicit"])? != "no" {
+                bonded =
+                    match a.keyword("bonded", &["no", "yes", "yes/implicit", "yes/explicit"])? {
+                        "no" => None,
+                        "yes/explicit" => Some(true),
+                        _ => Some(false),
+                    };
+                if bonded.is_some() && sim.setup.bond_gran.is_none() {
                     return Err(a.error_prev(
-                        "bonded templates need the bond/gran package, which rdem does not have yet",
-                        Some("leave 'bonded' out (or 'bonded no') for separate spheres".into()),
+                        "bonded templates need an atom style with bonds",
+                        Some("atom_style hybrid granular bond/gran n_bondtypes N bonds_per_atom M (or leave 'bonded' out for separate spheres)".into()),
                     ));
                 }
             }
+            "nbond_pairs" => {
+                let n = a.u64("number of bonded pairs")?;
+                for k in 1..=n {
+                    let at = a.pos();
+                    let i = a.count(&format!("first sphere of bonded pair {k}"))?;
+                    let j = a.count(&format!("second sphere of bonded pair {k}"))?;
+                    pairs.push((i, j, at));
+                }
+            }
+            "bond_type" => bond_type = a.count("bond type")?,
             "atom_type" => ty = super::particletemplate_sphere::atom_type(sim, a)?,
             "density" => {
                 a.keyword("density distribution", &["constant"])?;
@@ -228,6 +250,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         s.x *= scale;
         s.r *= scale;
     }
+    let bonds = template_bonds(sim, a, &spheres, bonded, &pairs, bond_type)?;
     let source = match (mass, inertia) {
         (None, None) => {
             let rho = density.ok_or_else(|| {
@@ -293,6 +316,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         tflag,
         clump_type: u32::try_from(clump_type).unwrap_or(u32::MAX),
         rigid,
+        bonds,
     };
     let t = ParticleTemplate::clump(id, seed, ty, density, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
@@ -300,6 +324,66 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         parsed: Some(t),
         report,
     }))
+}
+
+/// The bonds of a bonded template (`bonded yes/explicit`: the pairs given; `bonded yes`:
+/// the spheres closer than r_i + r_j + the neighbor skin), as 0-based sphere pairs with
+/// the bond type.
+fn template_bonds(
+    sim: &Sim,
+    a: &Args,
+    spheres: &[Sphere],
+    bonded: Option<bool>,
+    pairs: &[(u64, u64, usize)],
+    bond_type: u64,
+) -> CmdResult<Vec<(u32, u32, u32)>> {
+    let Some(explicit) = bonded else {
+        if let Some(&(_, _, at)) = pairs.first() {
+            return Err(a.error_at(at, "nbond_pairs without 'bonded yes/explicit'", None));
+        }
+        return Ok(Vec::new());
+    };
+    let ntypes = sim.setup.bond_gran.map_or(0, |b| b.0) as u64;
+    if bond_type > ntypes {
+        return Err(a.error_cmd(
+            format!("bond_type {bond_type} > the atom style's n_bondtypes {ntypes}"),
+            None,
+        ));
+    }
+    let t = bond_type as u32;
+    if explicit {
+        if pairs.is_empty() {
+            return Err(a.error_cmd(
+                "bonded yes/explicit needs 'nbond_pairs N i1 j1 ...'",
+                Some("e.g. 'bonded yes/explicit nbond_pairs 2 1 2 2 3 bond_type 1'".into()),
+            ));
+        }
+        let n = spheres.len() as u64;
+        let mut out = Vec::with_capacity(pairs.len());
+        for &(i, j, at) in pairs {
+            if i > n || j > n || i == j {
+                return Err(a.error_at(
+                    at,
+                    format!("bonded pair {i} {j}: spheres are 1..={n}, two different ones"),
+                    None,
+                ));
+            }
+            out.push(((i - 1) as u32, (j - 1) as u32, t));
+        }
+        Ok(out)
+    } else {
+        let skin = sim.neighbor_settings().skin;
+        let mut out = Vec::new();
+        for i in 0..spheres.len() {
+            for j in i + 1..spheres.len() {
+                let (si, sj) = (&spheres[i], &spheres[j]);
+                if (si.x - sj.x).length() < si.r + sj.r + skin {
+                    out.push((i as u32, j as u32, t));
+                }
+            }
+        }
+        Ok(out)
+    }
 }
 
 /// The spheres of a template file: a line `x y z r` per sphere, `#` starting a comment,

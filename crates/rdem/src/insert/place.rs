@@ -249,6 +249,38 @@ pub(crate) fn choose(
     out
 }
 
+/// The bonds of an inserted bonded template whose spheres were added at the local
+/// indices `at` (`None`: on another rank), made once the spheres have tags.
+fn bond_template(
+    world: &mut World,
+    id: &str,
+    bonds: &[(u32, u32, u32)],
+    at: &[Option<usize>],
+) -> Result<()> {
+    let Some(store) = world.bonds.as_mut() else {
+        return Err(crate::error::Error::Invalid {
+            what: "particletemplate/multiplespheres",
+            reason: format!("template '{id}' has bonds: it needs atom_style ... bond/gran"),
+        });
+    };
+    for &(a, b, t) in bonds {
+        match (at[a as usize], at[b as usize]) {
+            (Some(i), Some(j)) => store.add_pending(i, j, t),
+            (None, None) => {}
+            _ => {
+                return Err(crate::error::Error::Invalid {
+                    what: "particletemplate/multiplespheres",
+                    reason: format!(
+                        "a bonded particle of template '{id}' was inserted across two ranks' subdomains; \
+                         that is not supported yet (run it on one rank)"
+                    ),
+                })
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Adds the placed sphere or clump `pl` (of a template of `dist`, spinning at `omega`,
 /// in the groups `groupbit` and `all`) to `world` if this rank owns its position (a
 /// clump's centre of mass; every rank adds a clump's body); returns its mass and, when
@@ -264,9 +296,11 @@ pub(crate) fn add_placed(
     if let Some(c) = t.clump.as_ref().filter(|c| !c.rigid) {
         // Separate spheres: each goes to the rank that owns its centre.
         let first = world.particles.nlocal();
+        let mut at = Vec::with_capacity(c.template.spheres.len());
         for s in &c.template.spheres {
             let x = pl.x + pl.q * s.x;
             if !world.owns_inserted(x) {
+                at.push(None);
                 continue;
             }
             let mut np = NewParticle::at(x, s.r, t.density)
@@ -274,7 +308,10 @@ pub(crate) fn add_placed(
                 .with_omega(omega);
             np.v = pl.v;
             np.mask = 1 | groupbit;
-            world.add_particle(&np)?;
+            at.push(Some(world.add_particle(&np)?));
+        }
+        if !c.bonds.is_empty() {
+            bond_template(world, &t.id, &c.bonds, &at)?;
         }
         let last = world.particles.nlocal();
         return Ok((c.template.props.mass, (last > first).then_some(first..last)));

@@ -36,6 +36,9 @@ pub struct ClumpShape {
     /// `particletemplate/multiplespheres`, whose spheres are inserted as separate
     /// particles (placed as the clump would be; each sphere's mass from the density).
     pub rigid: bool,
+    /// Bonds between the spheres of a non-rigid template (the forks' `bonded yes`):
+    /// (sphere, sphere, bond type), spheres counted from 0.
+    pub bonds: Vec<(u32, u32, u32)>,
 }
 
 impl ClumpShape {
