@@ -44,7 +44,7 @@ pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
-    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`",
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`; `check_dist_from_subdomain_border` (read; rdem's placement never overlaps across ranks)",
 )
 .notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not")
 .atoi();
@@ -195,6 +195,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "start",
             "compress_tags",
             "region",
+            "check_dist_from_subdomain_border",
         ]
     } else {
         &[
@@ -204,6 +205,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "mass_in_region",
             "ntry_mc",
             "start",
+            "check_dist_from_subdomain_border",
         ]
     };
     let valid: Vec<&'static str> = COMMON.iter().chain(own).copied().collect();
@@ -305,6 +307,14 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "mass_in_region" => target = Some(PackTarget::Mass(a.positive("mass")?)),
             "ntry_mc" => {
                 a.count("ntry_mc")?;
+            }
+            // LIGGGHTS keeps particles a bounding radius away from subdomain borders so
+            // that two ranks cannot insert overlapping particles. rdem places every
+            // particle on every rank, each checked against all the others and against the
+            // particles of every rank, and each rank keeps those in its subdomain: no
+            // overlap across a border either way.
+            "check_dist_from_subdomain_border" => {
+                a.yes_no("check_dist_from_subdomain_border")?;
             }
             "start" => start = Some(a.u64("start step")?),
             "nparticles" => {
