@@ -921,7 +921,10 @@ fn multiplespheres_insert_separate_spheres() {
         }
     }
     for (extra, msg) in [
-        ("bonded yes", "bonded templates need the bond/gran package"),
+        (
+            "bonded yes",
+            "bonded templates need an atom style with bonds",
+        ),
         (
             "type 1",
             "unknown particletemplate/multiplespheres keyword 'type'",

@@ -384,3 +384,40 @@ fn a_template_of_weight_zero_is_never_inserted() {
     let e = r.unwrap_err();
     assert!(e.contains("sum of the template weights"), "{e}");
 }
+
+/// `pair_style gran ...` before `create_box`, as LIGGGHTS 3.8 takes it (measured: it runs
+/// such a script; wild/24 has one): the box gets the model, and two overlapping spheres
+/// push each other apart as with the style given after the box.
+#[test]
+fn pair_style_before_the_box_is_the_boxs() {
+    let tail = "region box block 0 0.1 0 0.1 0 0.1 units box
+create_box 1 box
+pair_coeff * *
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+create_atoms 1 single 0.05 0.05 0.05 units box
+create_atoms 1 single 0.0595 0.05 0.05 units box
+set group all diameter 0.01 density 2500
+fix integr all nve/sphere
+timestep 1e-6
+run 10
+";
+    let style = "pair_style gran model hertz tangential history\n";
+    let head = "atom_style granular\nunits si\n";
+    let vx = |src: &str| {
+        let (i, r, out) = run(src);
+        r.unwrap_or_else(|e| panic!("{e}\n{out}"));
+        let w = i.sim.world.as_ref().unwrap();
+        let k = w.particles.find_tag(1).unwrap();
+        w.particles.v[k].x
+    };
+    let before = vx(&format!("{head}{style}{tail}"));
+    let after = vx(&format!(
+        "{head}{}",
+        tail.replacen("pair_coeff", &format!("{style}pair_coeff"), 1)
+    ));
+    assert!(before < 0.0, "{before}");
+    assert_eq!(before, after);
+}

@@ -98,6 +98,12 @@ pub(super) fn pair_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
             None,
         ));
     }
+    if sim.world.is_none() {
+        return Err(a.error_cmd(
+            "pair_coeff before the simulation box is defined",
+            Some("use create_box or read_data first".into()),
+        ));
+    }
     if sim
         .world
         .as_ref()
