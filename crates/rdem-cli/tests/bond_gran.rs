@@ -182,7 +182,9 @@ fn bond_lists(text: &str) -> Vec<(u64, Vec<(u64, u64)>)> {
 #[test]
 fn creation_makes_the_forks_bonds() {
     let b = |v: &[(u64, u64)]| v.to_vec();
-    let cases: [(&str, &str, Vec<(u64, u64)>, usize); 4] = [
+    // (newperts, cutoff, the bonds of step 1, the bonds after step 2)
+    type Case<'a> = (&'a str, &'a str, Vec<(u64, u64)>, usize);
+    let cases: [Case; 4] = [
         ("1", "0.00201", b(&[(1, 2), (3, 6), (4, 5), (7, 8)]), 8),
         (
             "2",
@@ -265,9 +267,12 @@ fn creation_makes_the_forks_bonds() {
     }
 }
 
+/// (step, value) rows.
+type Series = Vec<(f64, f64)>;
+
 /// The tip deflection and the free vibration of the thermo rows after each `Step
 /// numbonds` header: (static rows, free rows) as (step, z of the tip).
-fn cantilever(out: &str) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn cantilever(out: &str) -> (Series, Series) {
     let mut parts = out.split("Step numbonds").skip(1).map(|t| {
         t.lines()
             .skip(1)

@@ -320,7 +320,8 @@ fn dry(l: DVec3, w: DVec3, k: f64, b0: f64, b1: f64, b2: f64) -> DVec3 {
 fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, bool) {
     let d = b.x - a.x;
     let r = d.length();
-    if !(r > 0.0) {
+    // Coincident centres (or a NaN): no direction, no force.
+    if r.is_nan() || r <= 0.0 {
         return (Load::default(), false);
     }
     let n = d / r;
