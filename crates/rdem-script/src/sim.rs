@@ -119,8 +119,9 @@ pub struct Setup {
     pub dimension: u8,
     /// `atom_style sph`: per-type masses (`mass`), density and pressure per particle.
     pub sph: bool,
-    /// `atom_style ... bond/gran n_bondtypes N bonds_per_atom M`: (N, M).
-    pub bond_gran: Option<(usize, usize)>,
+    /// `atom_style ... bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact
+    /// 0|1]`: (N, M, disableNormalContact).
+    pub bond_gran: Option<(usize, usize, bool)>,
     /// `pair_style gran ...` given before the box (LIGGGHTS 3.8 takes it there): the box
     /// gets it.
     pub pair: Option<rdem::ContactModel>,
@@ -396,11 +397,12 @@ impl Sim {
         w.neighbor.exclude.clone_from(&self.setup.exclude);
         w.sort = self.setup.sort;
         w.lost_policy = self.setup.lost;
-        if let Some((ntypes, per_atom)) = self.setup.bond_gran {
+        if let Some((ntypes, per_atom, disable)) = self.setup.bond_gran {
             if w.bonds.is_none() {
                 // Checked by the atom style.
                 let mut b = rdem::bond_gran::GranBonds::new(ntypes, per_atom)
                     .expect("bond/gran settings checked by atom_style");
+                b.disable_contact = disable;
                 // A restart file's property of another width fails here and again,
                 // with its message, at the run's set-up.
                 let _ = b.attach(&mut w.particles);

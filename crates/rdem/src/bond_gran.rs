@@ -233,6 +233,10 @@ pub struct GranBonds {
     pub coeffs: Vec<Option<BondCoeff>>,
     /// Bond creation fixes, in definition order.
     pub creators: Vec<Creator>,
+    /// `disableNormalContact 1`: bonded spheres have no pair contact (the pair is left
+    /// out of the neighbor list from the re-neighboring after the bond is made to the one
+    /// after it breaks, as in the fork).
+    pub disable_contact: bool,
     prop: Option<PropId>,
     /// Partner index per bond slot of each owned particle (`NONE`: none).
     links: Vec<u32>,
@@ -408,10 +412,16 @@ impl GranBonds {
             per_atom,
             coeffs: vec![None; ntypes],
             creators: Vec::new(),
+            disable_contact: false,
             prop: None,
             links: Vec::new(),
             pending: Vec::new(),
         })
+    }
+
+    /// The handle of [`PROP`] once attached.
+    pub fn prop_id(&self) -> Option<PropId> {
+        self.prop
     }
 
     /// Values per sphere in [`PROP`].
@@ -638,7 +648,7 @@ impl GranBonds {
                 if h[TYPE] == 0.0 || h[BROKEN] != 0.0 {
                     continue;
                 }
-                let j = links[i * m + s];
+                let j = links.get(i * m + s).copied().unwrap_or(NONE);
                 if j == NONE {
                     continue;
                 }
@@ -903,6 +913,14 @@ fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
         }
     }
     out
+}
+
+/// True when the bonds `row` of a sphere (its values of [`PROP`]) hold an unbroken bond
+/// to the sphere of tag `tag`.
+#[inline]
+pub fn holds(row: &[f64], tag: Tag) -> bool {
+    row.chunks_exact(SLOT)
+        .any(|s| s[TYPE] != 0.0 && s[BROKEN] == 0.0 && s[TAG] as Tag == tag)
 }
 
 /// One bond as `compute property/local` reports it.

@@ -115,6 +115,7 @@ impl World {
             return Ok(());
         };
         bonds.attach(&mut self.particles)?;
+        self.neighbor.exclude.bonded = bonds.disable_contact.then(|| bonds.prop_id()).flatten();
         let n = self.particles.nlocal();
         let rmax = self.comm.max(
             self.particles.radius[..n]
@@ -125,10 +126,17 @@ impl World {
         bonds.check(self.neighbor.cutoff_for(rmax))
     }
 
-    /// Bond creation of the creators due at this step (`fix bond/create/gran`).
+    /// Bond creation of the creators due at this step (`fix bond/create/gran`). With
+    /// `disableNormalContact 1` new bonds re-neighbor at once, so that their pairs leave
+    /// the neighbor list before this step's forces (as the fork's creation does).
     pub(crate) fn create_bonds(&mut self) -> Result<()> {
-        if let Some(bonds) = &mut self.bonds {
-            bonds.create(&mut self.particles, self.step)?;
+        let Some(bonds) = &mut self.bonds else {
+            return Ok(());
+        };
+        let made = bonds.create(&mut self.particles, self.step)?;
+        let renew = bonds.disable_contact && self.comm.sum_count(made) > 0;
+        if renew {
+            self.reneighbor()?;
         }
         Ok(())
     }

@@ -75,7 +75,7 @@ pub static REGISTRY: Registry<Command> = Registry {
     family: "command",
     readme_prefix: "",
     rows: &[
-        sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same), `sph` (see [SPH](#sph)), `bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact 0]` alone or in `hybrid granular bond/gran ...` (see `bond_style`)"),
+        sim("atom_style", settings::atom_style, "`granular`, `sphere` (the same), `sph` (see [SPH](#sph)), `bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact 0\\|1]` alone or in `hybrid granular bond/gran ...` (see `bond_style`)"),
         sim("atom_modify", settings::atom_modify, "`map array\\|hash` (accepted), `sort N binsize`, `id`"),
         sim("boundary", settings::boundary, "`p f s m` per axis, one or two letters").notes("before the box. A periodic length may be shorter than twice the neighbor cutoff, or than the cutoff (as in LIGGGHTS 3.8, the ghosts then hold several images of a particle); it must be at least twice the largest contact distance (twice the largest radius, times the contact distance factor, or the longest bond), else `run` stops with an error: rdem does not support a particle touching two images of one partner"),
         sim("dimension", settings::dimension, "`3`, `2` (with `fix enforce2d`)").notes("before the box; in 2d, as in LIGGGHTS 3.8: the box must be periodic in z, z velocities must be 0, masses are discs' (π r² ρ) with a sphere's moment of inertia, `fix gravity` takes its direction in the xy plane, the temperature counts 2 degrees of freedom per particle, particle templates (insertion) stop with an error. rdem makes no z images (as LAMMPS in 2d) by giving the engine fixed z faces. `fix adapt` in 2d: not supported yet"),

@@ -53,7 +53,7 @@ pub(super) fn atom_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
 /// The arguments of the `bond/gran` atom style: `n_bondtypes N bonds_per_atom M
 /// [disableNormalContact 0|1]`.
 fn bond_gran_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    let (mut ntypes, mut per_atom) = (None, None);
+    let (mut ntypes, mut per_atom, mut disable) = (None, None, false);
     while let Some(w) = a.peek() {
         match w {
             "n_bondtypes" => {
@@ -67,13 +67,17 @@ fn bond_gran_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "disableNormalContact" => {
                 a.word("keyword")?;
                 let k = a.pos();
-                if a.u64("disableNormalContact (0 or 1)")? != 0 {
-                    return Err(a.error_at(
-                        k,
-                        "disableNormalContact 1 is not supported yet",
-                        Some("leave it out or give 0: bonded spheres in contact then also push as any pair".into()),
-                    ));
-                }
+                disable = match a.u64("disableNormalContact (0 or 1)")? {
+                    0 => false,
+                    1 => true,
+                    v => {
+                        return Err(a.error_at(
+                            k,
+                            format!("disableNormalContact {v}: 0 or 1"),
+                            Some("1: bonded spheres have no pair contact".into()),
+                        ))
+                    }
+                };
             }
             _ => break,
         }
@@ -86,7 +90,7 @@ fn bond_gran_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     };
     rdem::bond_gran::GranBonds::new(ntypes, per_atom)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    sim.setup.bond_gran = Some((ntypes, per_atom));
+    sim.setup.bond_gran = Some((ntypes, per_atom, disable));
     Ok(())
 }
 

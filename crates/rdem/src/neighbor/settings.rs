@@ -80,12 +80,18 @@ pub struct Exclusions {
     /// spheres of one rigid clump ([`crate::multisphere`]; LIGGGHTS' `fix multisphere`
     /// excludes them so).
     pub same_body: Option<crate::particles::PropId>,
+    /// Pairs joined by an unbroken bond of this per-particle bond property
+    /// ([`crate::bond_gran`] with `disableNormalContact 1`).
+    pub bonded: Option<crate::particles::PropId>,
 }
 
 impl Exclusions {
     /// True when nothing is excluded.
     pub fn is_empty(&self) -> bool {
-        self.types.is_empty() && self.groups.is_empty() && self.same_body.is_none()
+        self.types.is_empty()
+            && self.groups.is_empty()
+            && self.same_body.is_none()
+            && self.bonded.is_none()
     }
 
     /// True when the pair (i, j) is excluded.
@@ -93,6 +99,11 @@ impl Exclusions {
         if let Some(id) = self.same_body {
             let b = &p.props[id.0].data;
             if b[i] != 0.0 && b[i] == b[j] {
+                return true;
+            }
+        }
+        if let Some(id) = self.bonded {
+            if crate::bond_gran::holds(p.props[id.0].get(i), p.tag[j]) {
                 return true;
             }
         }
