@@ -177,8 +177,10 @@ fn bond_lists(text: &str) -> Vec<(u64, Vec<(u64, u64)>)> {
 }
 
 /// `fix bond/create/gran` on a 3 × 3 square (tags 1–9 row by row, spacing d): with at
-/// most `newperts` new bonds per sphere and step it makes the fork's bonds at steps 1
-/// and 2, pair by pair (listed here as the fork wrote them).
+/// most `newperts` new bonds per sphere and step it makes the fork's bonds at step 1,
+/// pair by pair (listed here as the fork wrote them), and the fork's total after step 2
+/// (8 and 12). With newperts 6 and the diagonals within the cutoff, the fork's run
+/// stopped after step 1; rdem's 18 after step 2 is the centre sphere full at 6.
 #[test]
 fn creation_makes_the_forks_bonds() {
     let b = |v: &[(u64, u64)]| v.to_vec();
