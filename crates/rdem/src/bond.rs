@@ -623,7 +623,7 @@ fn damped(f: DVec3, v: DVec3, alpha: f64, smooth: bool, minvel: f64, dt: f64) ->
 /// `h` brought onto the plane normal to `n` with its length kept (a rotation for the
 /// small turn of one step).
 #[inline(always)]
-fn turn_tangent(h: DVec3, n: DVec3) -> DVec3 {
+pub(crate) fn turn_tangent(h: DVec3, n: DVec3) -> DVec3 {
     let len2 = h.length_squared();
     if len2 == 0.0 {
         return h;

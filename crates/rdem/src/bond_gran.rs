@@ -51,6 +51,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::bond::turn_tangent;
 use crate::error::{Error, Result};
 use crate::particles::{Particles, PropId, Tag, REMOTE_GHOST};
 
@@ -266,22 +267,6 @@ struct Load {
     me: DVec3,
 }
 
-/// `h` turned into the plane normal to `n` at its length.
-#[inline(always)]
-fn turn(h: DVec3, n: DVec3) -> DVec3 {
-    let l2 = h.length_squared();
-    if l2 == 0.0 {
-        return h;
-    }
-    let t = h - h.dot(n) * n;
-    let t2 = t.length_squared();
-    if t2 > 0.0 {
-        t * (l2 / t2).sqrt()
-    } else {
-        DVec3::ZERO
-    }
-}
-
 #[inline(always)]
 fn get3(h: &[f64], k: usize) -> DVec3 {
     DVec3::new(h[k], h[k + 1], h[k + 2])
@@ -351,9 +336,9 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
     let wn = dw.dot(n) * n;
     let wt = dw - wn;
 
-    let ft = turn(get3(h, FT), n) - kt * dt * vt;
+    let ft = turn_tangent(get3(h, FT), n) - kt * dt * vt;
     let tn = get3(h, TN).dot(n) * n - ktor * dt * wn;
-    let tt = turn(get3(h, TT), n) - kben * dt * wt;
+    let tt = turn_tangent(get3(h, TT), n) - kben * dt * wt;
     put3(h, FT, ft);
     put3(h, TN, tn);
     put3(h, TT, tt);

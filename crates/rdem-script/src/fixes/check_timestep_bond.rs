@@ -79,12 +79,7 @@ impl ScriptFix for CheckBond {
                 head.id,
                 100.0 * self.fraction
             );
-            if self.error {
-                return Err(Error::Invalid(msg));
-            }
-            if self.warn {
-                ctx.warn_once(&msg);
-            }
+            super::check_timestep_gran::report(ctx, msg, self.error, self.warn)?;
         }
         Ok(())
     }

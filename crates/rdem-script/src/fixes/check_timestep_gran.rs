@@ -106,6 +106,23 @@ pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
     Some((w.comm.min(t_r), w.comm.min(t_h)))
 }
 
+/// A time step over its limit: the error (`error yes`), else the warning once (`warn
+/// yes`), else nothing.
+pub(super) fn report(
+    ctx: &mut StageCtx,
+    msg: String,
+    error: bool,
+    warn: bool,
+) -> Result<(), Error> {
+    if error {
+        return Err(Error::Invalid(msg));
+    }
+    if warn {
+        ctx.warn_once(&msg);
+    }
+    Ok(())
+}
+
 impl ScriptFix for CheckTimestep {
     fn values(&self, _sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
         Ok(self.values.to_vec())
@@ -140,12 +157,7 @@ impl ScriptFix for CheckTimestep {
                     head.id,
                     100.0 * f
                 );
-                if self.error {
-                    return Err(Error::Invalid(msg));
-                }
-                if self.warn {
-                    ctx.warn_once(&msg);
-                }
+                report(ctx, msg, self.error, self.warn)?;
             }
         }
         Ok(())
