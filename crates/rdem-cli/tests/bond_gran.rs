@@ -22,6 +22,14 @@ fn read(name: &str) -> String {
     std::fs::read_to_string(data().join(name)).unwrap()
 }
 
+/// The rows of numbers of a reference file.
+fn table(name: &str) -> Vec<Vec<f64>> {
+    read(name)
+        .lines()
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
 /// A data script with index variables set first (as `-var NAME VALUE` would).
 fn with_vars(name: &str, vars: &[(&str, &str)]) -> String {
     let mut s: String = vars
@@ -30,24 +38,6 @@ fn with_vars(name: &str, vars: &[(&str, &str)]) -> String {
         .collect();
     s.push_str(&read(name));
     s
-}
-
-/// The frames of a `dump custom` file: (step, rows of numbers).
-fn frames(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
-    text.split("ITEM: TIMESTEP\n")
-        .skip(1)
-        .map(|blk| {
-            let mut lines = blk.lines();
-            let step = lines.next().unwrap().trim().parse().unwrap();
-            let rows = blk
-                .lines()
-                .skip(8)
-                .filter(|l| !l.trim().is_empty())
-                .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-                .collect();
-            (step, rows)
-        })
-        .collect()
 }
 
 /// Every value of `got` within `rel` of the largest magnitude of its column group
@@ -102,8 +92,8 @@ fn bonds_follow_the_fork_for_each_damping_style() {
             out.contains("Created 4 bonds at timestep 1"),
             "{what}: {out}"
         );
-        let got = frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
-        let want = frames(&read(&format!("fibers_damping{k}.dump")));
+        let got = common::dump_frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
+        let want = common::dump_frames(&read(&format!("fibers_damping{k}.dump")));
         assert_frames(&got, &want, 1e-7, &what);
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -138,23 +128,8 @@ fn a_pulled_pair_breaks_at_the_forks_step() {
             None,
         );
         let got = pull_rows(&out);
-        let want: Vec<Vec<f64>> = read(&format!("fibers_pull_{name}.txt"))
-            .lines()
-            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-            .collect();
-        assert_eq!(got.len(), want.len(), "{name}: rows");
-        for k in 1..7 {
-            let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-            for (g, w) in got.iter().zip(&want) {
-                assert!(
-                    (g[k] - w[k]).abs() <= 1e-12 * scale,
-                    "{name}: step {} column {k}: {} against the fork's {}",
-                    w[0],
-                    g[k],
-                    w[k]
-                );
-            }
-        }
+        let want = table(&format!("fibers_pull_{name}.txt"));
+        common::assert_columns(&got, &want, 1, 1e-12, name);
         // Free (the force on the second sphere is the applied 0.5 N alone) from the
         // step after the breaking one.
         let first_free = got.iter().skip(1).find(|r| r[5] == 0.5).map(|r| r[0]);
@@ -166,7 +141,7 @@ fn a_pulled_pair_breaks_at_the_forks_step() {
 
 /// The bonds of one step of a `dump local` of `batom1 batom2`, as sorted pairs.
 fn bond_lists(text: &str) -> Vec<(u64, Vec<(u64, u64)>)> {
-    frames(text)
+    common::dump_frames(text)
         .into_iter()
         .map(|(s, rows)| {
             let mut v: Vec<(u64, u64)> = rows.iter().map(|r| (r[0] as u64, r[1] as u64)).collect();
@@ -369,19 +344,7 @@ fn wild_24_shortened_follows_the_fork() {
     };
     let got = parse(&std::fs::read_to_string(run.join("beam.csv")).unwrap());
     let want = parse(&read("fibers_wild24_short.csv"));
-    assert_eq!(got.len(), want.len(), "rows of beam.csv");
-    for k in 0..4 {
-        let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-        for (g, w) in got.iter().zip(&want) {
-            assert!(
-                (g[k] - w[k]).abs() <= 1e-8 * scale,
-                "t {}: column {k}: {} against {}",
-                w[0],
-                g[k],
-                w[k]
-            );
-        }
-    }
+    common::assert_columns(&got, &want, 0, 1e-8, "beam.csv");
     let _ = std::fs::remove_dir_all(&run);
 }
 
@@ -427,13 +390,13 @@ fn ranks_give_the_serial_bonded_block() {
         return;
     }
     let (serial, rows) = block("1", None);
-    let want = &frames(&serial)[0].1;
+    let want = &common::dump_frames(&serial)[0].1;
     let counts = |r: &[Vec<f64>]| r.iter().map(|r| r[2]).collect::<Vec<_>>();
     for ranks in [2, 4] {
         let (end, got_rows) = block("1", Some(ranks));
         let what = format!("{ranks} ranks");
         assert_eq!(counts(&got_rows), counts(&rows), "{what}: numbonds");
-        let got = &frames(&end)[0].1;
+        let got = &common::dump_frames(&end)[0].1;
         assert_eq!(got.len(), want.len(), "{what}");
         for c0 in (1..13).step_by(3) {
             let scale = want
@@ -470,7 +433,7 @@ fn bonded_templates_make_their_bonds() {
         let rows = common::thermo_rows(&out[out.rfind("Step").unwrap()..]);
         let last = rows.last().unwrap();
         assert_eq!((last[1], last[2]), (160.0, 120.0), "{bonded}: {out}");
-        let bonds = frames(&std::fs::read_to_string(dir.join("bonds.txt")).unwrap());
+        let bonds = common::dump_frames(&std::fs::read_to_string(dir.join("bonds.txt")).unwrap());
         let (_, rows) = bonds.last().unwrap();
         assert_eq!(rows.len(), 120, "{bonded}");
         for r in rows {
@@ -497,22 +460,7 @@ fn disable_normal_contact_leaves_bonded_pairs_without_contact() {
     for dnc in ["0", "1"] {
         let out = common::run_script(&with_vars("in.contact", &[("dnc", dnc)]), None);
         let got = common::thermo_rows(&out[out.rfind("Step").unwrap()..]);
-        let want: Vec<Vec<f64>> = read(&format!("fibers_contact{dnc}.txt"))
-            .lines()
-            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-            .collect();
-        assert_eq!(got.len(), want.len(), "disableNormalContact {dnc}: rows");
-        for k in 1..4 {
-            let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-            for (g, w) in got.iter().zip(&want) {
-                assert!(
-                    (g[k] - w[k]).abs() <= 1e-9 * scale,
-                    "disableNormalContact {dnc}: step {} column {k}: {} against the fork's {}",
-                    w[0],
-                    g[k],
-                    w[k]
-                );
-            }
-        }
+        let want = table(&format!("fibers_contact{dnc}.txt"));
+        common::assert_columns(&got, &want, 1, 1e-9, &format!("disableNormalContact {dnc}"));
     }
 }

@@ -39,21 +39,7 @@ fn script(mu: &str, e: &str, td: &str, edit: impl Fn(String) -> String) -> Strin
 /// Every value of `got` within `rel` of the largest magnitude of its column in `want`
 /// (columns of velocity or spin pass through zero).
 fn assert_rows(got: &[Vec<f64>], want: &[Vec<f64>], rel: f64, what: &str) {
-    assert_eq!(got.len(), want.len(), "{what}: row count");
-    let cols = want[0].len();
-    for k in 1..cols {
-        let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-        for (g, w) in got.iter().zip(want) {
-            assert_eq!(g.len(), cols, "{what}: {g:?}");
-            assert!(
-                (g[k] - w[k]).abs() <= rel * scale,
-                "{what}: step {} column {k}: {} against LIGGGHTS-PFM's {} (scale {scale})",
-                w[0],
-                g[k],
-                w[k]
-            );
-        }
-    }
+    common::assert_columns(got, want, 1, rel, what);
 }
 
 /// The largest difference of `a` from `b`, relative to each column's largest magnitude.

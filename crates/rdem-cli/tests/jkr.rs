@@ -46,19 +46,7 @@ fn with_vars(name: &str, vars: &[(&str, &str)]) -> String {
 
 /// Every value of `got` within `rel` of the largest magnitude of its column in `want`.
 fn assert_rows(got: &[Vec<f64>], want: &[Vec<f64>], rel: f64, what: &str) {
-    assert_eq!(got.len(), want.len(), "{what}: row count");
-    for k in 1..want[0].len() {
-        let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
-        for (g, w) in got.iter().zip(want) {
-            assert!(
-                (g[k] - w[k]).abs() <= rel * scale,
-                "{what}: step {} column {k}: {} against the fork's {} (scale {scale})",
-                w[0],
-                g[k],
-                w[k]
-            );
-        }
-    }
+    common::assert_columns(got, want, 1, rel, what);
 }
 
 /// The four encounters of `in.impacts` follow the fork in three settings: damped with

@@ -24,31 +24,9 @@ fn data() -> PathBuf {
 
 /// A `dump custom` file: per step, the rows (sorted by id) of its columns.
 fn read_dump(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
-    let mut out = Vec::new();
-    let mut lines = text.lines();
-    while let Some(l) = lines.next() {
-        if l.starts_with("ITEM: TIMESTEP") {
-            let step = lines.next().unwrap().trim().parse().unwrap();
-            out.push((step, Vec::new()));
-        } else if l.starts_with("ITEM: NUMBER OF ATOMS") {
-            let n: usize = lines.next().unwrap().trim().parse().unwrap();
-            for l in lines.by_ref() {
-                if l.starts_with("ITEM: ATOMS") {
-                    break;
-                }
-            }
-            let rows = &mut out.last_mut().unwrap().1;
-            for _ in 0..n {
-                let row: Vec<f64> = lines
-                    .next()
-                    .unwrap()
-                    .split_whitespace()
-                    .map(|w| w.parse().unwrap())
-                    .collect();
-                rows.push(row);
-            }
-            rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
-        }
+    let mut out = common::dump_frames(text);
+    for (_, rows) in &mut out {
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
     }
     out
 }

@@ -269,3 +269,43 @@ pub fn floor_stl() -> String {
     }
     s + "endsolid floor\n"
 }
+
+/// Every value of `got`, from column `first` on, within `rel` of the largest magnitude of
+/// its column in `want` (columns of velocity or spin pass through zero); the rows have
+/// `want`'s length. Column 0 names the row (the step) in the failure message.
+pub fn assert_columns(got: &[Vec<f64>], want: &[Vec<f64>], first: usize, rel: f64, what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: row count");
+    let cols = want[0].len();
+    for k in first..cols {
+        let scale = want.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+        for (g, w) in got.iter().zip(want) {
+            assert_eq!(g.len(), cols, "{what}: {g:?}");
+            assert!(
+                (g[k] - w[k]).abs() <= rel * scale,
+                "{what}: row {} column {k}: {} against the reference's {} (scale {scale})",
+                w[0],
+                g[k],
+                w[k]
+            );
+        }
+    }
+}
+
+/// The snapshots of a `dump custom` or `dump local` file: per `ITEM: TIMESTEP`, the step
+/// and the rows of numbers after its `ITEM: ATOMS` or `ITEM: ENTRIES` line, in file order.
+pub fn dump_frames(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
+    text.split("ITEM: TIMESTEP")
+        .skip(1)
+        .map(|snap| {
+            let mut lines = snap.lines().skip_while(|l| l.trim().is_empty());
+            let step = lines.next().unwrap().trim().parse().unwrap();
+            let rows = lines
+                .skip_while(|l| !l.starts_with("ITEM: ATOMS") && !l.starts_with("ITEM: ENTRIES"))
+                .skip(1)
+                .filter(|l| !l.trim().is_empty())
+                .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+                .collect();
+            (step, rows)
+        })
+        .collect()
+}
