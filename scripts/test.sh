@@ -61,6 +61,11 @@ cargo nextest run --workspace --release --features rdem-cli/mpi --no-fail-fast
 python3 -m venv target/pyenv
 target/pyenv/bin/python -m pip install --quiet --upgrade maturin numpy pytest meshio
 rm -rf target/wheels-test
-target/pyenv/bin/maturin build --release --quiet --out target/wheels-test
+# With the suite's features, so that the wheel links the engine the suite has just built
+# instead of building it a second time (crates/rdem-py/Cargo.toml says how the two builds
+# are kept alike); `--compatibility linux`: this wheel links the machine's libmpi, and is
+# for the tests here, not for PyPI.
+target/pyenv/bin/maturin build --release --quiet --features rdem-cli/mpi --compatibility linux \
+  --out target/wheels-test
 target/pyenv/bin/python -m pip install --quiet --force-reinstall --no-deps target/wheels-test/rdem-*.whl
 target/pyenv/bin/python -m pytest -q python/tests
