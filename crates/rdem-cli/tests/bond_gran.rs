@@ -464,3 +464,139 @@ fn disable_normal_contact_leaves_bonded_pairs_without_contact() {
         common::assert_columns(&got, &want, 1, 1e-9, &format!("disableNormalContact {dnc}"));
     }
 }
+
+/// LIGGGHTS-PFM's form of `bond_coeff` (`ro ri lb Sn St Sben Stor damp bn bt`): the three
+/// pairs of `in.pfm` (bonded at rest, then set moving) follow LIGGGHTS-PFM 24.01 (built
+/// here) every 50 of 1000 steps, with the FENE factor strong (bn 2.5 and 3 mm against
+/// pair lengths of 1.6–2 mm), pairs squeezed (lb 0.98, no damping) and stretched
+/// (lb 1.02, damping ratio 0.5). Measured: 2e-10 and 1e-11 of each column's scale.
+#[test]
+fn pfm_bonds_follow_liggghts_pfm() {
+    for (name, lb, damp, bn) in [
+        ("f0", "0.98", "0", "0.0025"),
+        ("f3", "1.02", "0.5", "0.003"),
+    ] {
+        let script = with_vars(
+            "in.pfm",
+            &[
+                ("lb", lb),
+                ("damp", damp),
+                ("bn", bn),
+                ("bt", "0"),
+                ("nrun", "1000"),
+                ("de", "50"),
+            ],
+        );
+        let (dir, out) = common::run_kept_ok("bond_pfm", &script, &[], None);
+        assert!(
+            out.contains("Created 3 bonds at timestep 1"),
+            "{name}: {out}"
+        );
+        let got = common::dump_frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
+        let want = common::dump_frames(&read(&format!("pfm_{name}.dump")));
+        assert_frames(&got, &want, 1e-8, name);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// Break style 0 (`0 r_b`: the bond breaks when the centres are farther apart than
+/// 2 r_b), in LIGGGHTS-PFM's form: a pair bonded at 1.8005 mm with L₀ = 1.0005·1.8 mm is
+/// pushed apart by its bond and breaks past 2 r_b = 1.8006 mm: free from step 7 and
+/// `numbond` 0 from step 152, as in LIGGGHTS-PFM; its 401 rows within 1e-12 of the
+/// fork's (measured 1e-15). (LIGGGHTS_Flexible_Fibers stops with "ERROR: broken" where
+/// such a bond breaks; its manual describes the style as PFM runs it.)
+#[test]
+fn break_style_0_breaks_apart_beyond_twice_the_radius() {
+    let out = common::run_script(&read("in.pfm_pull"), None);
+    let tail = out.rsplit("numbond").next().unwrap();
+    let got: Vec<Vec<f64>> = tail
+        .lines()
+        .skip(1)
+        .map_while(|l| {
+            let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
+            (v.len() == 7 && l.split_whitespace().count() == 7).then_some(v)
+        })
+        .collect();
+    let want = table("pfm_pull.txt");
+    common::assert_columns(&got, &want, 1, 1e-12, "break style 0");
+    let first_free = got.iter().skip(1).find(|r| r[5] == 0.5).map(|r| r[0]);
+    assert_eq!(first_free, Some(7.0));
+    let first_zero = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
+    assert_eq!(first_zero, Some(152.0));
+}
+
+/// wild/06 (CFDEMcoupling-PFM's red blood cell: a ring of ten spheres of one bonded
+/// template placed by insert/pack's `pos`, LIGGGHTS-PFM's `bond_coeff`, `neigh_modify
+/// exclude molecule all`), shortened to 1000 + 2000 steps: ten spheres, ten bonds, one
+/// molecule, no pair in the neighbor list (the ring's spheres overlap, all of one
+/// molecule), and the dump's forces equal LIGGGHTS-PFM's to its six digits; the ring's
+/// shape (positions about its centre) too. The ring's centre differs by 4e-3 µm: rdem
+/// places a template by its Monte Carlo centre of mass, LIGGGHTS-PFM by a bounding
+/// sphere's centre.
+#[test]
+fn wild_06_shortened_holds_the_forks_ring() {
+    let Some(src) = common::wild_case("06_cfdem_rbc_bonds_init", "DEM/in.liggghts_init") else {
+        return;
+    };
+    let top = common::scratch_dir("wild06");
+    common::copy_dir(&src, &top);
+    let dem = top.join("DEM");
+    let script = std::fs::read_to_string(dem.join("in.liggghts_init")).unwrap();
+    assert!(script.contains("run\t\t100000"), "wild/06 changed");
+    std::fs::write(
+        dem.join("in.short"),
+        script.replace("run\t\t100000", "run 2000"),
+    )
+    .unwrap();
+    let out = common::rdem_in(&dem, "in.short", None)
+        .env("RDEM_THREADS", "1")
+        .output()
+        .unwrap();
+    let out = common::success("wild06", &out);
+    assert!(out.contains("Total # of neighbors = 0"), "{out}");
+    let rows = |t: &str| -> Vec<Vec<f64>> {
+        let mut v: Vec<Vec<f64>> = t
+            .split("ITEM: ATOMS")
+            .nth(1)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect();
+        v.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        v
+    };
+    let got = rows(&std::fs::read_to_string(dem.join("post/dump3000.liggghts")).unwrap());
+    let want = rows(&format!("ITEM: ATOMS\n{}", read("pfm_wild06_dump3000.txt")));
+    assert_eq!(got.len(), 10);
+    let centre = |r: &[Vec<f64>], c: usize| r.iter().map(|x| x[c]).sum::<f64>() / r.len() as f64;
+    for (g, w) in got.iter().zip(&want) {
+        assert_eq!(g[..3], w[..3], "id, mol, type");
+        for c in 3..6 {
+            let (gc, wc) = (g[c] - centre(&got, c), w[c] - centre(&want, c));
+            assert!(
+                (gc - wc).abs() < 1e-3,
+                "atom {} column {c}: {gc} against {wc}",
+                g[0]
+            );
+        }
+        for c in 9..12 {
+            assert!(
+                (g[c] - w[c]).abs() <= 1e-5 * w[c].abs() + 1e-11,
+                "atom {} force column {c}: {} against the fork's {}",
+                g[0],
+                g[c],
+                w[c]
+            );
+        }
+    }
+    let last = out
+        .lines()
+        .rfind(|l| l.trim_start().starts_with("3000"))
+        .unwrap();
+    assert_eq!(
+        last.split_whitespace().collect::<Vec<_>>(),
+        ["3000", "10", "10"]
+    );
+    let _ = std::fs::remove_dir_all(&top);
+}

@@ -231,6 +231,10 @@ impl Field {
             Field::Radius => p.radius[i],
             Field::Diameter => 2.0 * p.radius[i],
             Field::Density => p.density[i],
+            Field::Mol if p.property(rdem::bond_gran::MOLECULE).is_some() => {
+                let id = p.property(rdem::bond_gran::MOLECULE).expect("checked");
+                p.props[id.0].data[i]
+            }
             Field::Mol | Field::IdMultisphere => {
                 let body = p
                     .property(rdem::multisphere::bodies::BODY_PROP)

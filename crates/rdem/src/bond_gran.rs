@@ -27,10 +27,14 @@
 //!   −sgn(w_c)(K β₀ + β₁|L_c| + β₂ L_c²/K), w the load's relative velocity (for the shear
 //!   force the translational part only).
 //!
-//! Breaking (style 1): σ = |F_n|/A + 2|T_t|(r_o − r_i)/I_p above σ_c or
-//! τ = |F_t|/A + |T_n|(r_o − r_i)/I_p above τ_c breaks the bond: it still acts at that
-//! step, no more from the next, and is removed at the next re-neighboring (`numbonds`
-//! counts it until then).
+//! Breaking: style 1, σ = |F_n|/A + 2|T_t|(r_o − r_i)/I_p above σ_c or
+//! τ = |F_t|/A + |T_n|(r_o − r_i)/I_p above τ_c; style 0, the centres farther apart
+//! than 2 r_b. A bond that breaks still acts at that step, no more from the next, and is
+//! removed at the next re-neighboring (`numbonds` counts it until then).
+//!
+//! LIGGGHTS-PFM's form of `bond_coeff` (see [`BondCoeff::pfm`]) is the same beam with a
+//! prescribed length L₀ = lb (R_a + R_b), moduli of its own for bending and twisting,
+//! damping style 1, and the normal force multiplied by (1 − L₀/bn)/(1 − r/bn).
 //!
 //! Each figure above was measured against the fork (LIGGGHTS_Flexible_Fibers 0fc7c5b,
 //! built here): three bonded pairs in general motion follow it to 1e-10 over 1000 steps
@@ -57,6 +61,11 @@ use crate::particles::{Particles, PropId, Tag, REMOTE_GHOST};
 
 /// Name of the per-particle property holding the bonds.
 pub const PROP: &str = "bond/gran";
+
+/// Name of the per-particle molecule ID of atom style bond/gran (`mol` in dumps): each
+/// inserted bonded template gets the next ID (1, 2, …, in insertion order), other
+/// particles 0. `neigh_modify exclude molecule` reads it.
+pub const MOLECULE: &str = "molecule";
 
 /// Values per bond in [`PROP`].
 pub const SLOT: usize = 19;
@@ -109,6 +118,13 @@ impl Damping {
 /// When a bond type breaks.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Breaking {
+    /// Style 0: when the centres are farther apart than 2 `rb` (measured in
+    /// LIGGGHTS-PFM; Flexible_Fibers' manual says the same, but its build stops with
+    /// "ERROR: broken" instead).
+    Distance {
+        /// The break radius r_b.
+        rb: f64,
+    },
     /// Style 1: by the normal stress σ_c or the shear stress τ_c.
     Stress {
         /// σ_c.
@@ -122,6 +138,7 @@ impl Breaking {
     /// The style number of the fork.
     pub fn style(&self) -> u32 {
         match self {
+            Breaking::Distance { .. } => 0,
             Breaking::Stress { .. } => 1,
         }
     }
@@ -138,6 +155,18 @@ pub struct BondCoeff {
     pub youngs: f64,
     /// Shear modulus G of the bond.
     pub shear: f64,
+    /// Modulus of the bending stiffness K_ben = E_ben I/L₀: Y in Flexible_Fibers' form,
+    /// its own value (`Sben`) in LIGGGHTS-PFM's.
+    pub bend_modulus: f64,
+    /// Modulus of the twisting stiffness K_tor = G_tor I_p/L₀: G in Flexible_Fibers'
+    /// form, its own value (`Stor`) in LIGGGHTS-PFM's.
+    pub twist_modulus: f64,
+    /// LIGGGHTS-PFM's prescribed length L₀ = `lb`(R_a + R_b); `None` (Flexible_Fibers):
+    /// L₀ is the length at the bond's first evaluation.
+    pub length_ratio: Option<f64>,
+    /// LIGGGHTS-PFM's `bn`: the normal force is multiplied by (1 − L₀/bn)/(1 − r/bn)
+    /// (lengths in the script's units, as the fork computes it); `None`: by 1.
+    pub fene: Option<f64>,
     /// Damping.
     pub damping: Damping,
     /// Breaking.
@@ -179,6 +208,11 @@ impl BondCoeff {
             return bad("bond damping", format!("{damping:?}: values must be >= 0"));
         }
         match breaking {
+            Breaking::Distance { rb } => {
+                if !(rb > 0.0 && rb.is_finite()) {
+                    return bad("bond break radius", format!("{rb} must be > 0"));
+                }
+            }
             Breaking::Stress { sigma, tau } => {
                 if !(sigma > 0.0 && tau > 0.0) {
                     return bad(
@@ -193,9 +227,56 @@ impl BondCoeff {
             ri,
             youngs,
             shear,
+            bend_modulus: youngs,
+            twist_modulus: shear,
+            length_ratio: None,
+            fene: None,
             damping,
             breaking,
         })
+    }
+
+    /// LIGGGHTS-PFM's form (`bond_coeff T ro ri lb Sn St Sben Stor damp bn bt …`): the
+    /// same beam with L₀ = `lb`(R_a + R_b) prescribed, bending and twisting moduli of
+    /// their own, damping style 1 with β = `damp`, and the normal force multiplied by
+    /// (1 − L₀/bn)/(1 − r/bn). Measured against LIGGGHTS-PFM 24.01 (built here): `bt`
+    /// changes nothing in it (a spinning, stretched three-pair probe gives the same
+    /// bytes for bt 0, 1e-4 and 1.5), so it is read and not used.
+    #[allow(clippy::too_many_arguments)]
+    pub fn pfm(
+        ro: f64,
+        ri: f64,
+        lb: f64,
+        sn: f64,
+        st: f64,
+        sben: f64,
+        stor: f64,
+        damp: f64,
+        bn: f64,
+        breaking: Breaking,
+    ) -> Result<Self> {
+        let bad = |what: &'static str, reason: String| Err(Error::Invalid { what, reason });
+        if !(lb > 0.0 && lb.is_finite()) {
+            return bad("bond length multiplier lb", format!("{lb} must be > 0"));
+        }
+        if !(sben > 0.0 && sben.is_finite() && stor > 0.0 && stor.is_finite()) {
+            return bad(
+                "bond bending and twisting moduli",
+                format!("Sben {sben} and Stor {stor} must be > 0"),
+            );
+        }
+        if !(bn > 0.0 && bn.is_finite()) {
+            return bad(
+                "bond maximum length bn",
+                format!("{bn} must be > 0 (the fork divides by it)"),
+            );
+        }
+        let mut c = Self::new(ro, ri, sn, st, Damping::Critical { beta: damp }, breaking)?;
+        c.bend_modulus = sben;
+        c.twist_modulus = stor;
+        c.length_ratio = Some(lb);
+        c.fene = Some(bn);
+        Ok(c)
     }
 }
 
@@ -239,6 +320,9 @@ pub struct GranBonds {
     /// after it breaks, as in the fork).
     pub disable_contact: bool,
     prop: Option<PropId>,
+    molecule: Option<PropId>,
+    /// The last molecule ID given.
+    last_molecule: u64,
     /// Partner index per bond slot of each owned particle (`NONE`: none).
     links: Vec<u32>,
     /// Bonds of inserted templates (local indices, bond type), made once the particles
@@ -315,7 +399,7 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
     }
     let n = d / r;
     if h[LEN0] == 0.0 {
-        h[LEN0] = r;
+        h[LEN0] = c.length_ratio.map_or(r, |lb| lb * (a.r + b.r));
     }
     let l0 = h[LEN0];
     let rmin = a.r.min(b.r);
@@ -325,8 +409,8 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
     let ib = 0.5 * ip;
     let kn = c.youngs * area / l0;
     let kt = c.shear * area / l0;
-    let ktor = c.shear * ip / l0;
-    let kben = c.youngs * ib / l0;
+    let ktor = c.twist_modulus * ip / l0;
+    let kben = c.bend_modulus * ib / l0;
 
     let vr = a.v - b.v;
     let vn = vr.dot(n) * n;
@@ -342,9 +426,11 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
     put3(h, FT, ft);
     put3(h, TN, tn);
     put3(h, TT, tt);
-    let fnorm = kn * (r - l0) * n;
+    let fene = c.fene.map_or(1.0, |bn| (1.0 - l0 / bn) / (1.0 - r / bn));
+    let fnorm = kn * (r - l0) * fene * n;
 
     let broke = match c.breaking {
+        Breaking::Distance { rb } => r > 2.0 * rb,
         Breaking::Stress { sigma, tau } => {
             let arm = ro - ri;
             let s = fnorm.length() / area + 2.0 * tt.length() * arm / ip;
@@ -399,6 +485,8 @@ impl GranBonds {
             creators: Vec::new(),
             disable_contact: false,
             prop: None,
+            molecule: None,
+            last_molecule: 0,
             links: Vec::new(),
             pending: Vec::new(),
         })
@@ -418,7 +506,28 @@ impl GranBonds {
     pub fn attach(&mut self, p: &mut Particles) -> Result<()> {
         let w = self.width();
         self.prop = Some(p.add_property(PROP, w, &vec![0.0; w])?);
+        self.molecule = Some(p.add_property(MOLECULE, 1, &[0.0])?);
         Ok(())
+    }
+
+    /// The handle of [`MOLECULE`] once attached.
+    pub fn molecule_id(&self) -> Option<PropId> {
+        self.molecule
+    }
+
+    /// The molecule ID of the next inserted bonded template (every rank draws every
+    /// template, so the IDs agree across ranks).
+    pub fn next_molecule(&mut self) -> f64 {
+        self.last_molecule += 1;
+        self.last_molecule as f64
+    }
+
+    /// Raises the molecule counter to `max_seen`, the largest ID held by any particle
+    /// (after a restart file or a data file).
+    pub fn seen_molecules(&mut self, max_seen: f64) {
+        if max_seen.is_finite() && max_seen > self.last_molecule as f64 {
+            self.last_molecule = max_seen as u64;
+        }
     }
 
     /// Sets the coefficients of bond type `t` (1-based); the damping and breaking styles
@@ -698,7 +807,12 @@ impl GranBonds {
     /// Each rank finds the pairs of its owned particles itself (the neighbor list holds a
     /// pair across two ranks on one of them only), so both spheres of a bond across
     /// ranks get it.
-    pub fn create(&mut self, p: &mut Particles, step: u64) -> Result<u64> {
+    pub fn create(
+        &mut self,
+        p: &mut Particles,
+        step: u64,
+        exclude: &crate::neighbor::Exclusions,
+    ) -> Result<u64> {
         let Some(id) = self.prop else { return Ok(0) };
         let due: Vec<usize> = (0..self.creators.len())
             .filter(|&k| {
@@ -721,6 +835,11 @@ impl GranBonds {
                 let (ti, tj) = (p.ty[i], p.ty[j]);
                 let types = (ti == c.itype && tj == c.jtype) || (ti == c.jtype && tj == c.itype);
                 if !types || p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {
+                    continue;
+                }
+                // The forks create bonds from the neighbor list: a pair that
+                // `neigh_modify exclude` leaves out never bonds (measured in LIGGGHTS-PFM).
+                if exclude.excludes(p, i, j) {
                     continue;
                 }
                 let (a, b) = if p.tag[i] < p.tag[j] { (i, j) } else { (j, i) };
@@ -814,6 +933,8 @@ impl GranBonds {
                 let j = j as usize;
                 let l0 = if h[LEN0] > 0.0 {
                     h[LEN0]
+                } else if let Some(lb) = c.length_ratio {
+                    lb * (p.radius[i] + p.radius[j])
                 } else {
                     (p.x[j] - p.x[i]).length()
                 };

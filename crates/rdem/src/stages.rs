@@ -116,7 +116,15 @@ impl World {
         };
         bonds.attach(&mut self.particles)?;
         self.neighbor.exclude.bonded = bonds.disable_contact.then(|| bonds.prop_id()).flatten();
+        self.neighbor.exclude.molecule = bonds.molecule_id();
         let n = self.particles.nlocal();
+        if let Some(id) = bonds.molecule_id() {
+            let local = self.particles.props[id.0].data[..n]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max);
+            bonds.seen_molecules(self.comm.max(local));
+        }
         let rmax = self.comm.max(
             self.particles.radius[..n]
                 .iter()
@@ -133,7 +141,7 @@ impl World {
         let Some(bonds) = &mut self.bonds else {
             return Ok(());
         };
-        let made = bonds.create(&mut self.particles, self.step)?;
+        let made = bonds.create(&mut self.particles, self.step, &self.neighbor.exclude)?;
         let renew = bonds.disable_contact && self.comm.sum_count(made) > 0;
         if renew {
             self.reneighbor()?;

@@ -43,7 +43,9 @@ pub(super) fn bond_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
 }
 
 /// `bond_coeff T ro ri Y G dstyle d... bstyle b...` (Flexible_Fibers' form): damping
-/// style 0 (one value, unused), 1 (β) or 2 (β₀ β₁ β₂); break style 1 (σ_c τ_c).
+/// style 0 (one value, unused), 1 (β) or 2 (β₀ β₁ β₂); break style 0 (r_b) or 1
+/// (σ_c τ_c); or `bond_coeff T ro ri lb Sn St Sben Stor damp bn bt bstyle b...`
+/// (LIGGGHTS-PFM's form, [`BondCoeff::pfm`]).
 pub(super) fn bond_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let ntypes = sim.setup.bond_gran.map_or(0, |b| b.0);
     bonds_of(sim, a)?;
@@ -63,16 +65,75 @@ pub(super) fn bond_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
             }
         }
     };
-    if a.remaining() == 13 {
-        if let Some(w) = a.words().get(a.pos() + 4) {
-            if !matches!(w.text.as_str(), "0" | "1" | "2") {
-                return Err(a.error_cmd(
-                    "the LIGGGHTS-PFM form of bond_coeff (ro ri lb Sn St Sben Stor damp bn bt break ...) is not supported yet",
-                    Some("Flexible_Fibers' form: bond_coeff T ro ri Y G dstyle d... bstyle b...".into()),
-                ));
-            }
-        }
+    // Two dialects: Flexible_Fibers' (8 to 12 values, the fifth a damping style 0, 1 or
+    // 2) and LIGGGHTS-PFM's (12 to 13 values, the fifth its shear modulus).
+    let pfm = a.remaining() >= 13
+        || (a.remaining() == 12
+            && a.words()
+                .get(a.pos() + 4)
+                .is_some_and(|w| !matches!(w.text.as_str(), "0" | "1" | "2")));
+    let c = if pfm { pfm_coeff(a)? } else { fibers_coeff(a)? };
+    a.done()?;
+    let bonds = bonds_of(sim, a)?;
+    for t in types {
+        bonds
+            .set_coeff(t, c)
+            .map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
+    Ok(())
+}
+
+/// The break style and its values (both dialects): 0 r_b (apart beyond 2 r_b) or
+/// 1 σ_c τ_c (by stress).
+fn breaking(a: &mut Args) -> CmdResult<Breaking> {
+    let bk = a.pos();
+    Ok(match a.u64("break style")? {
+        0 => Breaking::Distance {
+            rb: a.positive("bond break radius r_b")?,
+        },
+        1 => Breaking::Stress {
+            sigma: a.positive("bond normal strength sigma_c")?,
+            tau: a.positive("bond shear strength tau_c")?,
+        },
+        b @ 2..=5 => {
+            return Err(a.error_at(
+                bk,
+                format!("break style {b} is not supported yet"),
+                Some(
+                    "0 r_b (apart beyond 2 r_b) or 1 sigma_c tau_c (by stress); a very large strength keeps the bond"
+                        .into(),
+                ),
+            ))
+        }
+        b => {
+            return Err(a.error_at(
+                bk,
+                format!("unknown break style {b}"),
+                Some("0 r_b or 1 sigma_c tau_c".into()),
+            ))
+        }
+    })
+}
+
+/// LIGGGHTS-PFM's form: `ro ri lb Sn St Sben Stor damp bn bt bstyle b...`.
+fn pfm_coeff(a: &mut Args) -> CmdResult<BondCoeff> {
+    let ro = a.positive("bond outer radius multiplier ro")?;
+    let ri = a.non_negative("bond inner radius multiplier ri")?;
+    let lb = a.positive("bond length multiplier lb")?;
+    let sn = a.positive("bond normal modulus Sn")?;
+    let st = a.positive("bond shear modulus St")?;
+    let sben = a.positive("bond bending modulus Sben")?;
+    let stor = a.positive("bond twisting modulus Stor")?;
+    let damp = a.non_negative("bond damping ratio damp")?;
+    let bn = a.positive("bond maximum length bn")?;
+    a.f64("bt (read; it has no effect in LIGGGHTS-PFM)")?;
+    let breaking = breaking(a)?;
+    BondCoeff::pfm(ro, ri, lb, sn, st, sben, stor, damp, bn, breaking)
+        .map_err(|e| a.error_cmd(e.to_string(), None))
+}
+
+/// Flexible_Fibers' form: `ro ri Y G dstyle d... bstyle b...`.
+fn fibers_coeff(a: &mut Args) -> CmdResult<BondCoeff> {
     let ro = a.positive("bond outer radius multiplier ro")?;
     let ri = a.non_negative("bond inner radius multiplier ri")?;
     let youngs = a.positive("bond Young's modulus Y")?;
@@ -99,37 +160,7 @@ pub(super) fn bond_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
             ))
         }
     };
-    let bk = a.pos();
-    let breaking =
-        match a.u64("break style")? {
-            1 => Breaking::Stress {
-                sigma: a.positive("bond normal strength sigma_c")?,
-                tau: a.positive("bond shear strength tau_c")?,
-            },
-            b @ (0 | 2..=5) => return Err(a.error_at(
-                bk,
-                format!("break style {b} is not supported yet"),
-                Some(
-                    "1 sigma_c tau_c (breaking by stress); a very large strength keeps the bond"
-                        .into(),
-                ),
-            )),
-            b => {
-                return Err(a.error_at(
-                    bk,
-                    format!("unknown break style {b}"),
-                    Some("1 sigma_c tau_c".into()),
-                ))
-            }
-        };
-    a.done()?;
-    let c = BondCoeff::new(ro, ri, youngs, shear, damping, breaking)
-        .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    let bonds = bonds_of(sim, a)?;
-    for t in types {
-        bonds
-            .set_coeff(t, c)
-            .map_err(|e| a.error_cmd(e.to_string(), None))?;
-    }
-    Ok(())
+    let breaking = breaking(a)?;
+    BondCoeff::new(ro, ri, youngs, shear, damping, breaking)
+        .map_err(|e| a.error_cmd(e.to_string(), None))
 }

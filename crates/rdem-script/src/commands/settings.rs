@@ -498,8 +498,8 @@ pub(super) fn neigh_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
-/// `exclude type M N | group G1 G2 | none` (LAMMPS' `molecule` form needs molecules,
-/// which granular atoms do not have: an error).
+/// `exclude type M N | group G1 G2 | molecule G | none` (`molecule` needs the molecule
+/// IDs of atom style bond/gran: granular atoms have none, an error).
 fn exclude_pairs(sim: &Sim, a: &mut Args, ex: &mut rdem::Exclusions) -> CmdResult {
     match a.keyword("exclude style", &["type", "group", "none", "molecule"])? {
         "type" => {
@@ -523,10 +523,15 @@ fn exclude_pairs(sim: &Sim, a: &mut Args, ex: &mut rdem::Exclusions) -> CmdResul
             ex.groups.push((g1, g2));
         }
         "none" => *ex = rdem::Exclusions::default(),
-        _ => return Err(a.error_prev(
-            "neigh_modify exclude molecule needs molecule IDs, which granular atoms do not have",
-            Some("exclude pairs by 'type M N' or 'group G1 G2'".into()),
-        )),
+        _ => {
+            if sim.setup.bond_gran.is_none() {
+                return Err(a.error_prev(
+                    "neigh_modify exclude molecule needs molecule IDs, which granular atoms do not have",
+                    Some("exclude pairs by 'type M N' or 'group G1 G2', or use atom_style hybrid granular bond/gran ...".into()),
+                ));
+            }
+            ex.molecule_groups.push(sim.group_bit(a, "group ID")?);
+        }
     }
     Ok(())
 }

@@ -44,7 +44,7 @@ pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
-    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`; `check_dist_from_subdomain_border` (read; rdem's placement never overlaps across ranks)",
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`; `check_dist_from_subdomain_border` (read; rdem's placement never overlaps across ranks); LIGGGHTS-PFM's `pos x y z` (every try at that point: one particle or template)",
 )
 .notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not")
 .atoi();
@@ -206,6 +206,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "ntry_mc",
             "start",
             "check_dist_from_subdomain_border",
+            "pos",
         ]
     };
     let valid: Vec<&'static str> = COMMON.iter().chain(own).copied().collect();
@@ -241,6 +242,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let mut orientation = Orientation::Template;
     let (mut nparticles, mut massmax, mut prate, mut mrate) = (None, None, None, None);
     let mut every_once = false;
+    let mut position = None;
     let (mut face, mut extrude, mut duration) = (None, None, None);
     while !a.is_done() {
         let k = a.keyword(&format!("{style} keyword"), valid)?;
@@ -316,6 +318,8 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
             "check_dist_from_subdomain_border" => {
                 a.yes_no("check_dist_from_subdomain_border")?;
             }
+            // LIGGGHTS-PFM: insert at this position (see `InsertPack::position`).
+            "pos" => position = Some(a.vec3("insertion position")?),
             "start" => start = Some(a.u64("start step")?),
             "nparticles" => {
                 if a.peek() == Some("INF") {
@@ -451,6 +455,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     pack.omega = omega;
     pack.orientation = orientation;
     pack.start = start;
+    pack.position = position;
     Ok(Box::new(Inserter {
         pack: InsertEngine::Pack(pack),
         total: 0,

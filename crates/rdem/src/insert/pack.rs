@@ -106,6 +106,10 @@ pub struct InsertPack {
     /// `fix pour`: the vertical velocity is that of a fall from the top (replaces the
     /// velocity law's z component).
     pub fall: Option<FallFromTop>,
+    /// LIGGGHTS-PFM's `pos x y z`: every try puts the particle (a template's centre)
+    /// there, so that with the overlap check one particle is inserted (measured in the
+    /// fork: `particles_in_region 2 pos ...` inserts one template, unturned).
+    pub position: Option<DVec3>,
     rng: InsertRng,
     last: Option<u64>,
     /// The thin-subdomain warning was given.
@@ -159,6 +163,7 @@ impl InsertPack {
             omega: DVec3::ZERO,
             orientation: Orientation::Template,
             fall: None,
+            position: None,
             rng: super::rng(seed),
             last: None,
             warned_extent: false,
@@ -269,6 +274,7 @@ impl InsertPack {
             .then(|| OverlapGrid::gather(world, self.region.bounding_box(), rbound));
         let region = &self.region;
         let all_in = self.all_in;
+        let position = self.position;
         // A try is a position where the sphere fits the region (LIGGGHTS draws from the
         // region shrunk by the radius), so positions too close to the boundary are drawn
         // again without using up a try. Whatever `all_in` says, the centre is drawn at
@@ -286,6 +292,9 @@ impl InsertPack {
             grid.as_mut(),
             self.orientation,
             |rng, r| {
+                if position.is_some() {
+                    return position;
+                }
                 for _ in 0..1000 {
                     let inside = (domain.0 + DVec3::splat(r), domain.1 - DVec3::splat(r));
                     match region.sample(inside, || rng.gen(), 1000) {

@@ -294,8 +294,13 @@ pub(crate) fn add_placed(
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     let t = &dist.templates[pl.template];
     if let Some(c) = t.clump.as_ref().filter(|c| !c.rigid) {
-        // Separate spheres: each goes to the rank that owns its centre.
+        // Separate spheres: each goes to the rank that owns its centre; the spheres of a
+        // bonded template share a new molecule ID.
         let first = world.particles.nlocal();
+        let molecule = match world.bonds.as_mut() {
+            Some(b) if !c.bonds.is_empty() => b.molecule_id().map(|id| (id, b.next_molecule())),
+            _ => None,
+        };
         let mut at = Vec::with_capacity(c.template.spheres.len());
         for s in &c.template.spheres {
             let x = pl.x + pl.q * s.x;
@@ -308,7 +313,11 @@ pub(crate) fn add_placed(
                 .with_omega(omega);
             np.v = pl.v;
             np.mask = 1 | groupbit;
-            at.push(Some(world.add_particle(&np)?));
+            let i = world.add_particle(&np)?;
+            if let Some((id, m)) = molecule {
+                world.particles.props[id.0].data[i] = m;
+            }
+            at.push(Some(i));
         }
         if !c.bonds.is_empty() {
             bond_template(world, &t.id, &c.bonds, &at)?;

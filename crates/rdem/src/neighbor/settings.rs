@@ -83,6 +83,12 @@ pub struct Exclusions {
     /// Pairs joined by an unbroken bond of this per-particle bond property
     /// ([`crate::bond_gran`] with `disableNormalContact 1`).
     pub bonded: Option<crate::particles::PropId>,
+    /// `exclude molecule G` as group bit masks: both particles in G with the same
+    /// molecule ID (LAMMPS' rule: ID 0 included).
+    pub molecule_groups: Vec<u32>,
+    /// The per-particle molecule IDs ([`crate::bond_gran::MOLECULE`]), set when the atom
+    /// style has them.
+    pub molecule: Option<crate::particles::PropId>,
 }
 
 impl Exclusions {
@@ -92,6 +98,7 @@ impl Exclusions {
             && self.groups.is_empty()
             && self.same_body.is_none()
             && self.bonded.is_none()
+            && self.molecule_groups.is_empty()
     }
 
     /// True when the pair (i, j) is excluded.
@@ -109,6 +116,17 @@ impl Exclusions {
         }
         let (ti, tj) = (p.ty[i], p.ty[j]);
         let (mi, mj) = (p.mask[i], p.mask[j]);
+        if let Some(id) = self.molecule {
+            let m = &p.props[id.0].data;
+            if m[i] == m[j]
+                && self
+                    .molecule_groups
+                    .iter()
+                    .any(|&g| mi & g != 0 && mj & g != 0)
+            {
+                return true;
+            }
+        }
         self.types
             .iter()
             .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
