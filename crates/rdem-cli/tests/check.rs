@@ -307,6 +307,7 @@ bogus_after_the_loop
 const WILD_FULLY_SUPPORTED: &[&str] = &[
     "02_cfdem_periodic_channel_init/DEM",
     "04_cfdem_fillcylinder_init/DEM",
+    "06_cfdem_rbc_bonds_init/DEM",
     "08_cfdem_hopper_tracer_init/DEM",
     "10_pfm_servo_wall",
     "12_pfm_chung_normal_impact",
