@@ -78,6 +78,17 @@ fn assert_frames(
     eprintln!("{what}: worst {worst:.1e}");
 }
 
+/// Runs `script`, which must say `created` ("Created N bonds at timestep 1"), and
+/// compares its `atoms.txt` with the fork's dump `reference` ([`assert_frames`]).
+fn assert_follows_dump(script: &str, created: &str, reference: &str, rel: f64, what: &str) {
+    let (dir, out) = common::run_kept_ok("bond_gran", script, &[], None);
+    assert!(out.contains(created), "{what}: {out}");
+    let got = common::dump_frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
+    let want = common::dump_frames(&read(reference));
+    assert_frames(&got, &want, rel, what);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The two pairs and the chain of `in.bonds` follow the fork for each damping style:
 /// positions, velocities, angular velocities, forces and torques of every sphere, every
 /// 50 steps over 1000. Measured: 6e-11 (style 0), 3e-11 (style 1), 3e-9 (style 2, whose
@@ -87,21 +98,20 @@ fn bonds_follow_the_fork_for_each_damping_style() {
     for (k, dval) in [(0, "0.0"), (1, "0.5"), (2, "1e-8 0.1 1e5")] {
         let what = format!("damping style {k}");
         let script = with_vars("in.bonds", &[("dtype", &k.to_string()), ("dval", dval)]);
-        let (dir, out) = common::run_kept_ok("bond_gran", &script, &[], None);
-        assert!(
-            out.contains("Created 4 bonds at timestep 1"),
-            "{what}: {out}"
+        assert_follows_dump(
+            &script,
+            "Created 4 bonds at timestep 1",
+            &format!("fibers_damping{k}.dump"),
+            1e-7,
+            &what,
         );
-        let got = common::dump_frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
-        let want = common::dump_frames(&read(&format!("fibers_damping{k}.dump")));
-        assert_frames(&got, &want, 1e-7, &what);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 
-/// The thermo rows of a screen output after its last `Step numbonds` header.
-fn pull_rows(out: &str) -> Vec<Vec<f64>> {
-    let tail = out.rsplit("Step numbonds").next().unwrap();
+/// The thermo rows of a screen output after the last occurrence of `header` (the
+/// header's bond count column: Flexible_Fibers' `Step numbonds`, PFM's `numbond`).
+fn pull_rows(out: &str, header: &str) -> Vec<Vec<f64>> {
+    let tail = out.rsplit(header).next().unwrap();
     tail.lines()
         .skip(1)
         .map_while(|l| {
@@ -127,7 +137,7 @@ fn a_pulled_pair_breaks_at_the_forks_step() {
             &with_vars("in.pull", &[("sigc", sigc), ("tauc", tauc)]),
             None,
         );
-        let got = pull_rows(&out);
+        let got = pull_rows(&out, "Step numbonds");
         let want = table(&format!("fibers_pull_{name}.txt"));
         common::assert_columns(&got, &want, 1, 1e-12, name);
         // Free (the force on the second sphere is the applied 0.5 N alone) from the
@@ -487,15 +497,13 @@ fn pfm_bonds_follow_liggghts_pfm() {
                 ("de", "50"),
             ],
         );
-        let (dir, out) = common::run_kept_ok("bond_pfm", &script, &[], None);
-        assert!(
-            out.contains("Created 3 bonds at timestep 1"),
-            "{name}: {out}"
+        assert_follows_dump(
+            &script,
+            "Created 3 bonds at timestep 1",
+            &format!("pfm_{name}.dump"),
+            1e-8,
+            name,
         );
-        let got = common::dump_frames(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
-        let want = common::dump_frames(&read(&format!("pfm_{name}.dump")));
-        assert_frames(&got, &want, 1e-8, name);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 
@@ -508,15 +516,7 @@ fn pfm_bonds_follow_liggghts_pfm() {
 #[test]
 fn break_style_0_breaks_apart_beyond_twice_the_radius() {
     let out = common::run_script(&read("in.pfm_pull"), None);
-    let tail = out.rsplit("numbond").next().unwrap();
-    let got: Vec<Vec<f64>> = tail
-        .lines()
-        .skip(1)
-        .map_while(|l| {
-            let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
-            (v.len() == 7 && l.split_whitespace().count() == 7).then_some(v)
-        })
-        .collect();
+    let got = pull_rows(&out, "numbond");
     let want = table("pfm_pull.txt");
     common::assert_columns(&got, &want, 1, 1e-12, "break style 0");
     let first_free = got.iter().skip(1).find(|r| r[5] == 0.5).map(|r| r[0]);

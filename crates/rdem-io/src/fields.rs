@@ -231,11 +231,11 @@ impl Field {
             Field::Radius => p.radius[i],
             Field::Diameter => 2.0 * p.radius[i],
             Field::Density => p.density[i],
-            Field::Mol if p.property(rdem::bond_gran::MOLECULE).is_some() => {
-                let id = p.property(rdem::bond_gran::MOLECULE).expect("checked");
-                p.props[id.0].data[i]
-            }
             Field::Mol | Field::IdMultisphere => {
+                // Atom style bond/gran's molecule ID; else the clump (multisphere body).
+                if let (Field::Mol, Some(id)) = (self, p.property(rdem::bond_gran::MOLECULE)) {
+                    return p.props[id.0].data[i];
+                }
                 let body = p
                     .property(rdem::multisphere::bodies::BODY_PROP)
                     .map_or(0.0, |id| p.props[id.0].data[i]);

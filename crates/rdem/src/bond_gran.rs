@@ -173,6 +173,18 @@ pub struct BondCoeff {
     pub breaking: Breaking,
 }
 
+/// `Ok` when `v` is finite and above 0, else the error that says so for `what`.
+fn positive(what: &'static str, v: f64) -> Result<()> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::Invalid {
+            what,
+            reason: format!("{v} must be > 0"),
+        })
+    }
+}
+
 impl BondCoeff {
     /// Checks the ranges.
     pub fn new(
@@ -184,21 +196,15 @@ impl BondCoeff {
         breaking: Breaking,
     ) -> Result<Self> {
         let bad = |what: &'static str, reason: String| Err(Error::Invalid { what, reason });
-        if !(ro > 0.0 && ro.is_finite()) {
-            return bad("bond outer radius", format!("{ro} must be > 0"));
-        }
+        positive("bond outer radius", ro)?;
         if !(ri >= 0.0 && ri < ro) {
             return bad(
                 "bond inner radius",
                 format!("{ri} must be >= 0 and below the outer radius {ro}"),
             );
         }
-        if !(youngs > 0.0 && youngs.is_finite()) {
-            return bad("bond Young's modulus", format!("{youngs} must be > 0"));
-        }
-        if !(shear > 0.0 && shear.is_finite()) {
-            return bad("bond shear modulus", format!("{shear} must be > 0"));
-        }
+        positive("bond Young's modulus", youngs)?;
+        positive("bond shear modulus", shear)?;
         let damping_ok = match damping {
             Damping::None => true,
             Damping::Critical { beta } => beta >= 0.0 && beta.is_finite(),
@@ -208,11 +214,7 @@ impl BondCoeff {
             return bad("bond damping", format!("{damping:?}: values must be >= 0"));
         }
         match breaking {
-            Breaking::Distance { rb } => {
-                if !(rb > 0.0 && rb.is_finite()) {
-                    return bad("bond break radius", format!("{rb} must be > 0"));
-                }
-            }
+            Breaking::Distance { rb } => positive("bond break radius", rb)?,
             Breaking::Stress { sigma, tau } => {
                 if !(sigma > 0.0 && tau > 0.0) {
                     return bad(
@@ -255,22 +257,11 @@ impl BondCoeff {
         bn: f64,
         breaking: Breaking,
     ) -> Result<Self> {
-        let bad = |what: &'static str, reason: String| Err(Error::Invalid { what, reason });
-        if !(lb > 0.0 && lb.is_finite()) {
-            return bad("bond length multiplier lb", format!("{lb} must be > 0"));
-        }
-        if !(sben > 0.0 && sben.is_finite() && stor > 0.0 && stor.is_finite()) {
-            return bad(
-                "bond bending and twisting moduli",
-                format!("Sben {sben} and Stor {stor} must be > 0"),
-            );
-        }
-        if !(bn > 0.0 && bn.is_finite()) {
-            return bad(
-                "bond maximum length bn",
-                format!("{bn} must be > 0 (the fork divides by it)"),
-            );
-        }
+        positive("bond length multiplier lb", lb)?;
+        positive("bond bending modulus Sben", sben)?;
+        positive("bond twisting modulus Stor", stor)?;
+        // The fork divides by it.
+        positive("bond maximum length bn", bn)?;
         let mut c = Self::new(ro, ri, sn, st, Damping::Critical { beta: damp }, breaking)?;
         c.bend_modulus = sben;
         c.twist_modulus = stor;
