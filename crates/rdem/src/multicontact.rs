@@ -47,9 +47,16 @@
 //!   atoms spatially (`atom_modify sort`, every 1000 steps by default), so its `j` is not
 //!   always the higher tag. With LIGGGHTS' sort off the tutorial's pair forces agree to
 //!   6e-7 of the largest at the first corrected step (4e-4 with it on).
-//! - A particle that is a wall's candidate without touching it changes LIGGGHTS'
-//!   corrections of other particles at that wall (three spheres near an `xplane`: 1.7e-3).
-//!   Not understood.
+//! - A particle within a wall's reach that does not touch it drops, in LIGGGHTS, the wall
+//!   contact of the next touching particle in its storage order from the next step's
+//!   corrections (three spheres near an `xplane`: leaving that one record out reproduces
+//!   LIGGGHTS' forces to 1e-16; listed last, the non-touching sphere changes nothing).
+//!   That follows the storage order, not the physics; rdem keeps every record.
+//!
+//! Pairs are listed up to 2 (r_i + r_j) + skin, as LIGGGHTS does under this model. Where
+//! a far pair's contact point lies beyond another contact on the same line, the
+//! Boussinesq term is 0/0; the pair then does not touch, as in LIGGGHTS (whose overlap
+//! test is false for NaN).
 //!
 //! The records carry the contact points relative to the particle's centre, so periodic
 //! images of a particle see the same records. The store is filled by the force passes
@@ -326,7 +333,8 @@ impl State {
 
     /// The pair contact of `a` and `b` (a's tag lower; tag, type, centre, radius each),
     /// `dist` apart, under the model: the corrected overlap, R*, contact point and lever
-    /// arms. `None` when the corrected overlap is not positive.
+    /// arms. `None` when the corrected overlap is not positive, or not a number (a far
+    /// pair in line with another contact).
     pub fn pair(
         &self,
         (tag_a, ty_a, xa, r_a): (Tag, u32, DVec3, f64),
@@ -341,7 +349,8 @@ impl State {
         let c_a = self.correction((tag_a, ty_a, xa, r_a), tag_b, p_a, -n_ab);
         let c_b = self.correction((tag_b, ty_b, xb, r_b), tag_a, p_a - d, n_ab);
         let delta = delta + c_a + c_b;
-        if delta <= 0.0 {
+        // NaN (a far pair in line with another contact) forms no contact either.
+        if delta.is_nan() || delta <= 0.0 {
             return None;
         }
         let rb = r_b + c_b;
@@ -359,7 +368,7 @@ impl State {
     /// when r' no longer reaches the wall.
     pub fn shape_wall(&self, g: &mut Geom, (tag, ty, x): (Tag, u32, DVec3), key: u64) -> bool {
         let r = g.ri + self.correction((tag, ty, x, g.ri), key, -g.dist * g.n, g.n);
-        if r <= g.dist {
+        if r.is_nan() || r <= g.dist {
             return false;
         }
         g.delta = r - g.dist;

@@ -51,18 +51,13 @@ impl World {
             .iter()
             .filter(|f| matches!(f.kind, crate::fix::FixKind::Freeze))
             .fold(0, |bits, f| bits | f.groupbit);
-        // The larger of liquid bridges' reach and the user's `contact_distance_factor`.
-        // (LIGGGHTS 3.8 also lists `surface multicontact` pairs up to 2 (r_i + r_j) +
-        // skin; rdem does not yet: see docs/parity.md, hydrogel_multicontact.)
-        let user = self.neighbor.settings.contact_distance_factor;
-        if user > 1.0 && pair.model.surface == crate::SurfaceKind::Multicontact {
-            // Its shaping of pairs far apart is not known yet (it gave NaN forces).
-            return Err(Error::Invalid {
-                what: "neigh_modify contact_distance_factor",
-                reason: format!(
-                    "{user} with surface multicontact is not supported yet; leave it out (1)"
-                ),
-            });
+        // The largest of liquid bridges' reach, the user's `contact_distance_factor` and
+        // `surface multicontact`'s 2: LIGGGHTS 3.8 lists multicontact pairs up to
+        // 2 (r_i + r_j) + skin, since the corrections can close a gap (measured: the
+        // hydrogel tutorial's 9680 pairs; docs/parity.md).
+        let mut user = self.neighbor.settings.contact_distance_factor;
+        if pair.model.surface == crate::SurfaceKind::Multicontact {
+            user = user.max(2.0);
         }
         self.neighbor.contact_factor = pair
             .setup_liquid(&mut self.particles, &self.materials)?

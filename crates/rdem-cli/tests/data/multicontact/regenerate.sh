@@ -5,7 +5,7 @@ set -e
 here=$(cd "$(dirname "$0")" && pwd)
 tmp=$(mktemp -d)
 cd "$tmp"
-for s in static static_tworuns reach spinning_pair spinning_wall falling; do
+for s in static static_tworuns reach chain wall_candidate spinning_pair spinning_wall falling; do
     liggghts -in "$here/in.$s" -log none > "$s.log"
     mv dump.atoms "$here/$s.liggghts.dump"
 done
