@@ -42,6 +42,18 @@ pub trait Kernel: Copy + Send + Sync {
     fn dw(r: f64, h: f64) -> f64 {
         Self::SIGMA_GRAD / h.powi(Self::DIM + 1) * Self::dshape(r / h)
     }
+
+    /// W at q = r/h given 1/h: [`Kernel::w`] without a division, for the pair passes.
+    #[inline(always)]
+    fn w_q(q: f64, inv_h: f64) -> f64 {
+        Self::SIGMA * inv_h.powi(Self::DIM) * Self::shape(q)
+    }
+
+    /// dW/dr at q = r/h given 1/h: [`Kernel::dw`] without a division.
+    #[inline(always)]
+    fn dw_q(q: f64, inv_h: f64) -> f64 {
+        Self::SIGMA_GRAD * inv_h.powi(Self::DIM + 1) * Self::dshape(q)
+    }
 }
 
 /// Cubic spline f(q): 1 − 3/2 q² + 3/4 q³ (q < 1), ¼ (2 − q)³ (1 ≤ q < 2).

@@ -238,7 +238,7 @@ impl World {
     /// `pair_style sph/artVisc/tensCorr` and a kernel; radii become the types' smoothing
     /// lengths; dρ/dt is zeroed.
     pub(crate) fn setup_sph(&mut self) -> Result<()> {
-        let Some(pair) = &self.sph else {
+        let Some(pair) = &mut self.sph else {
             if let Some(f) = self.fixes.iter().find(|f| {
                 matches!(
                     &f.kind,
@@ -276,6 +276,7 @@ impl World {
                 w.sl.clone_from(&pair.sl);
             }
         }
+        pair.prepare();
         let props = SphProps::add(&mut self.particles)?;
         let n = self.particles.nlocal();
         for i in 0..n {

@@ -50,10 +50,35 @@ pub struct SphPair {
     pub eps: f64,
     /// Δp per type (`tensCorrDeltaP`).
     pub deltap: Vec<f64>,
+    /// The constants of each type pair, row `t_a`, column `t_b` ([`SphPair::prepare`]).
+    pairs: Vec<TypePair>,
+    /// Row length of `pairs` (ntypes + 1).
+    stride: usize,
     /// Scratch: per-particle sums of a pass (locals and ghosts).
     buf: Vec<f64>,
     /// Scratch: second per-particle sum.
     buf2: Vec<f64>,
+}
+
+/// What the pair passes need of a type pair, computed once per run
+/// ([`SphPair::prepare`]): the per-type means and the smoothing length's powers, so that a
+/// pair costs no division for them.
+#[derive(Debug, Clone, Copy, Default)]
+struct TypePair {
+    /// h̄ = (sl_a + sl_b)/2.
+    h: f64,
+    /// 1/h̄.
+    inv_h: f64,
+    /// The support squared, (2h̄)².
+    cut2: f64,
+    /// c̄ (`artVisc`).
+    c: f64,
+    /// ᾱ (`artVisc`).
+    alpha: f64,
+    /// β̄ (`artVisc`).
+    beta: f64,
+    /// 1/W(Δp̄, h̄) with the pair style's kernel (`tensCorr`).
+    inv_w_dp: f64,
 }
 
 impl SphPair {
@@ -95,6 +120,47 @@ impl SphPair {
         Ok(())
     }
 
+    /// Computes the type-pair constants from the per-type tables (at each run's set-up,
+    /// after [`SphPair::check`]).
+    pub fn prepare(&mut self) {
+        let nt = self.sl.len();
+        let mean = |t: &[f64], a: usize, b: usize| {
+            if t.len() == nt {
+                0.5 * (t[a] + t[b])
+            } else {
+                0.0
+            }
+        };
+        self.stride = nt;
+        self.pairs.clear();
+        for a in 0..nt {
+            for b in 0..nt {
+                let h = 0.5 * (self.sl[a] + self.sl[b]);
+                let dp = mean(&self.deltap, a, b);
+                let inv_w_dp = match self.kernel {
+                    Some(k) if self.tens_corr && a > 0 && b > 0 => 1.0 / k.w(dp, h),
+                    _ => 0.0,
+                };
+                self.pairs.push(TypePair {
+                    h,
+                    inv_h: 1.0 / h,
+                    cut2: 4.0 * h * h,
+                    c: mean(&self.c, a, b),
+                    alpha: mean(&self.alpha, a, b),
+                    beta: mean(&self.beta, a, b),
+                    inv_w_dp,
+                });
+            }
+        }
+    }
+
+    /// The constants of types `a` and `b`'s row (`a`'s), indexed by `b`'s type.
+    #[inline]
+    fn row(&self, a: u32) -> &[TypePair] {
+        let a = a as usize;
+        &self.pairs[a * self.stride..(a + 1) * self.stride]
+    }
+
     /// Pair forces onto `p.f` (ghosts' forces go to their owners in the reverse
     /// communication that follows).
     pub fn compute(&self, p: &mut Particles, props: SphProps, list: &NeighborList) {
@@ -114,20 +180,20 @@ impl SphPair {
         let f = &mut p.f;
         let eta2 = self.eta2;
         for i in 0..n {
-            let ti = ty[i] as usize;
+            let row = self.row(ty[i]);
             let (xi, mi, rhoi, pi) = (x[i], m[i], rho[i], pr[i]);
             let vi = DVec3::from_slice(&vest[3 * i..3 * i + 3]);
             let pi_r2 = pi / (rhoi * rhoi);
             for &j in list.partners(i) {
                 let j = j as usize;
-                let tj = ty[j] as usize;
-                let h = 0.5 * (self.sl[ti] + self.sl[tj]);
+                let tp = row[ty[j] as usize];
                 let del = xi - x[j];
                 let rsq = del.length_squared();
-                if rsq >= 4.0 * h * h || rsq == 0.0 {
+                if rsq >= tp.cut2 || rsq == 0.0 {
                     continue;
                 }
                 let r = rsq.sqrt();
+                let q = r * tp.inv_h;
                 let (rhoj, pj) = (rho[j], pr[j]);
                 let pj_r2 = pj / (rhoj * rhoj);
                 let mut term = pi_r2 + pj_r2;
@@ -135,11 +201,8 @@ impl SphPair {
                     let vj = DVec3::from_slice(&vest[3 * j..3 * j + 3]);
                     let vr = (vi - vj).dot(del);
                     if vr < 0.0 {
-                        let mu = h * vr / (rsq + eta2);
-                        let c = 0.5 * (self.c[ti] + self.c[tj]);
-                        let a = 0.5 * (self.alpha[ti] + self.alpha[tj]);
-                        let b = 0.5 * (self.beta[ti] + self.beta[tj]);
-                        term += (-a * c * mu + b * mu * mu) / (0.5 * (rhoi + rhoj));
+                        let mu = tp.h * vr / (rsq + eta2);
+                        term += (-tp.alpha * tp.c * mu + tp.beta * mu * mu) / (0.5 * (rhoi + rhoj));
                     }
                 }
                 if self.tens_corr {
@@ -153,12 +216,11 @@ impl SphPair {
                     if rr == 0.0 {
                         rr = 0.01 * (pi_r2 + pj_r2);
                     }
-                    let dp = 0.5 * (self.deltap[ti] + self.deltap[tj]);
-                    let fab = K::w(r, h) / K::w(dp, h);
+                    let fab = K::w_q(q, tp.inv_h) * tp.inv_w_dp;
                     let f2 = fab * fab;
                     term += rr * f2 * f2;
                 }
-                let fpair = -mi * m[j] * term * K::dw(r, h) / r;
+                let fpair = -mi * m[j] * term * K::dw_q(q, tp.inv_h) / r;
                 f[i] += fpair * del;
                 f[j] -= fpair * del;
             }
@@ -206,18 +268,18 @@ impl SphPair {
         let vest = &p.props[props.vest.0].data;
         for i in 0..n {
             let vi = DVec3::from_slice(&vest[3 * i..3 * i + 3]);
-            let ti = p.ty[i] as usize;
+            let row = self.row(p.ty[i]);
             for &j in list.partners(i) {
                 let j = j as usize;
-                let h = 0.5 * (self.sl[ti] + self.sl[p.ty[j] as usize]);
+                let tp = row[p.ty[j] as usize];
                 let del = p.x[i] - p.x[j];
                 let rsq = del.length_squared();
-                if rsq >= 4.0 * h * h || rsq == 0.0 {
+                if rsq >= tp.cut2 || rsq == 0.0 {
                     continue;
                 }
                 let r = rsq.sqrt();
                 let vj = DVec3::from_slice(&vest[3 * j..3 * j + 3]);
-                let s = (vi - vj).dot(del) * K::dw(r, h) / r;
+                let s = (vi - vj).dot(del) * K::dw_q(r * tp.inv_h, tp.inv_h) / r;
                 if p.mask[i] & bit != 0 {
                     out[i] += p.rmass[j] * s;
                 }
@@ -314,15 +376,15 @@ impl SphPair {
             return;
         }
         for i in 0..n {
-            let ti = p.ty[i] as usize;
+            let row = self.row(p.ty[i]);
             for &j in list.partners(i) {
                 let j = j as usize;
-                let h = 0.5 * (self.sl[ti] + self.sl[p.ty[j] as usize]);
+                let tp = row[p.ty[j] as usize];
                 let rsq = (p.x[i] - p.x[j]).length_squared();
-                if rsq >= 4.0 * h * h {
+                if rsq >= tp.cut2 {
                     continue;
                 }
-                let w = K::w(rsq.sqrt(), h);
+                let w = K::w_q(rsq.sqrt() * tp.inv_h, tp.inv_h);
                 num[i] += p.rmass[j] * w;
                 den[i] += p.rmass[j] / rho[j] * w;
                 num[j] += p.rmass[i] * w;
