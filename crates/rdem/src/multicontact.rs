@@ -296,6 +296,18 @@ impl MultiContact {
     }
 }
 
+/// How far a particle (centre `x`, radius `r`) moved since a record made at centre
+/// `then`. A record made on a periodic image is farther than a step's motion: it counts as
+/// not moved.
+fn moved_since(x: DVec3, then: DVec3, r: f64) -> DVec3 {
+    let moved = x - then;
+    if moved.length_squared() < r * r {
+        moved
+    } else {
+        DVec3::ZERO
+    }
+}
+
 impl State {
     /// The records of particle `owner`.
     fn of(&self, owner: Tag) -> &[Record] {
@@ -334,15 +346,7 @@ impl State {
                 continue;
             }
             // The other contact stays where it was; this one moves with the particle.
-            // (A record made on a periodic image is farther than a step's motion: it
-            // counts as not moved.)
-            let moved = x - rec.x;
-            let moved = if moved.length_squared() < r * r {
-                moved
-            } else {
-                DVec3::ZERO
-            };
-            let u = p + moved - rec.p;
+            let u = p + moved_since(x, rec.x, r) - rec.p;
             let d = u.length();
             if d == 0.0 {
                 continue;
@@ -360,8 +364,8 @@ impl State {
     /// own, cheap enough to skip pairs far apart (one square root per particle): with
     /// ν = 1/2 the Boussinesq bracket is at most 1 + |3 − 4ν| in magnitude (its last term
     /// vanishes), the forces sum to the particle's total, and every distance from the
-    /// contact point is at least its distance from the centre (moved as in
-    /// `correction`) less the farthest recorded point. Twice that, against rounding.
+    /// contact point is at least its distance from the centre (moved by
+    /// [`moved_since`]) less the farthest recorded point. Twice that, against rounding.
     /// Infinite (no bound) for ν ≠ 1/2, for records made at several centres, or when
     /// the contact has a record, whose point the correction would use instead of `p`.
     fn correction_bound(
@@ -386,13 +390,7 @@ impl State {
         if 1.0 - 2.0 * nu != 0.0 || recs.iter().any(|rec| rec.key == key) {
             return f64::INFINITY;
         }
-        let moved = x - x0;
-        let moved = if moved.length_squared() < r * r {
-            moved
-        } else {
-            DVec3::ZERO
-        };
-        let d = (p + moved).length() - sum.reach;
+        let d = (p + moved_since(x, x0, r)).length() - sum.reach;
         if d <= 0.0 {
             return f64::INFINITY;
         }

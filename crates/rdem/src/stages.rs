@@ -55,13 +55,13 @@ impl World {
         // `surface multicontact`'s 2: LIGGGHTS 3.8 lists multicontact pairs up to
         // 2 (r_i + r_j) + skin, since the corrections can close a gap (measured: the
         // hydrogel tutorial's 9680 pairs; docs/parity.md).
-        let mut user = self.neighbor.settings.contact_distance_factor;
+        let mut factor = self.neighbor.settings.contact_distance_factor;
         if pair.model.surface == crate::SurfaceKind::Multicontact {
-            user = user.max(2.0);
+            factor = factor.max(2.0);
         }
         self.neighbor.contact_factor = pair
             .setup_liquid(&mut self.particles, &self.materials)?
-            .max(user);
+            .max(factor);
         let (w, odd) = (pair.model.history_width(), pair.model.history_odd());
         self.neighbor.set_history_layout(w, odd);
         self.neighbor.reach = pair.reach();
