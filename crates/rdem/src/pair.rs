@@ -854,7 +854,7 @@ impl PairPass<'_> {
         let ph1 = Phase1 {
             near: near.rows(&list.first, &list.partner),
             table,
-            flags: model.flags,
+            flags: model.kernel_flags(),
             list_first: &list.first,
             width: w,
             nlocal,

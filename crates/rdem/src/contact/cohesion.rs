@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::{Geom, PairCoeff};
+use super::{CohesionKind, Flags, Geom, PairCoeff};
 
 /// A cohesion law: the attractive normal force of a touching pair and, for liquid
 /// bridges, the forces of a bridged pair that no longer touches.
@@ -18,14 +18,20 @@ pub trait Cohesion {
     const BONDS: bool = false;
 
     /// Attractive force (≥ 0) of a touching pair.
-    fn force(g: &Geom, c: &PairCoeff) -> f64;
+    fn force(g: &Geom, c: &PairCoeff, flags: Flags) -> f64;
 
     /// Touching pair, bridge models: the attractive normal force (≥ 0 pulls; a repulsive
     /// viscous force is negative) and the tangential force on i, given the relative
     /// tangential velocity of the contact points `vt_rel`; `hist` is the model's history.
     #[inline(always)]
-    fn touching(g: &Geom, c: &PairCoeff, _vt_rel: DVec3, _hist: &mut [f64]) -> (f64, DVec3) {
-        (Self::force(g, c), DVec3::ZERO)
+    fn touching(
+        g: &Geom,
+        c: &PairCoeff,
+        flags: Flags,
+        _vt_rel: DVec3,
+        _hist: &mut [f64],
+    ) -> (f64, DVec3) {
+        (Self::force(g, c, flags), DVec3::ZERO)
     }
 
     /// A pair of the neighbor list that does not touch (bridge models only): the bridge's
@@ -58,7 +64,7 @@ pub struct Off;
 
 impl Cohesion for Off {
     #[inline(always)]
-    fn force(_: &Geom, _: &PairCoeff) -> f64 {
+    fn force(_: &Geom, _: &PairCoeff, _: Flags) -> f64 {
         0.0
     }
 }
@@ -70,7 +76,7 @@ pub struct Bonded;
 impl Cohesion for Bonded {
     const BONDS: bool = true;
     #[inline(always)]
-    fn force(_: &Geom, _: &PairCoeff) -> f64 {
+    fn force(_: &Geom, _: &PairCoeff, _: Flags) -> f64 {
         0.0
     }
 }
@@ -81,7 +87,7 @@ pub struct Sjkr;
 
 impl Cohesion for Sjkr {
     #[inline(always)]
-    fn force(g: &Geom, c: &PairCoeff) -> f64 {
+    fn force(g: &Geom, c: &PairCoeff, _: Flags) -> f64 {
         let d = g.dist;
         let a = if g.rj.is_finite() {
             let (ri, rj) = (g.ri, g.rj);
@@ -101,12 +107,27 @@ pub struct Sjkr2;
 
 impl Cohesion for Sjkr2 {
     #[inline(always)]
-    fn force(g: &Geom, c: &PairCoeff) -> f64 {
+    fn force(g: &Geom, c: &PairCoeff, _: Flags) -> f64 {
         let two_r = if g.rj.is_finite() {
             2.0 * g.r_star
         } else {
             g.ri
         };
         c.cohesion * 2.0 * std::f64::consts::PI * g.delta * two_r
+    }
+}
+
+/// The kernel of `cohesion sjkr` and `sjkr2`, which keep no history: it runs the law
+/// that [`Flags`] names ([`super::ContactModel::kernel_flags`]), so that one kernel serves
+/// both.
+pub struct Pull;
+
+impl Cohesion for Pull {
+    #[inline(always)]
+    fn force(g: &Geom, c: &PairCoeff, flags: Flags) -> f64 {
+        match flags.cohesion {
+            CohesionKind::Sjkr2 => Sjkr2::force(g, c, flags),
+            _ => Sjkr::force(g, c, flags),
+        }
     }
 }

@@ -23,7 +23,7 @@
 use glam::DVec3;
 
 use super::cohesion::{Bridge, Cohesion};
-use super::{ContactForce, Geom, PairCoeff};
+use super::{ContactForce, Flags, Geom, PairCoeff};
 
 /// LIGGGHTS' 4/3 · 1000, as it writes it.
 const VOL1000: f64 = 1333.333333;
@@ -118,7 +118,7 @@ impl Cohesion for Easo {
     const HIST: usize = 1;
     const BRIDGE: bool = true;
 
-    fn force(_: &Geom, _: &PairCoeff) -> f64 {
+    fn force(_: &Geom, _: &PairCoeff, _: Flags) -> f64 {
         0.0
     }
 
@@ -126,7 +126,13 @@ impl Cohesion for Easo {
     /// viscous normal force −6πμR*·v_n/minSep, viscous tangential force
     /// −6πμR*(8/15 ln(1/minSep) + 0.9588)·v_t.
     #[inline(always)]
-    fn touching(g: &Geom, c: &PairCoeff, vt_rel: DVec3, hist: &mut [f64]) -> (f64, DVec3) {
+    fn touching(
+        g: &Geom,
+        c: &PairCoeff,
+        _: Flags,
+        vt_rel: DVec3,
+        hist: &mut [f64],
+    ) -> (f64, DVec3) {
         hist[0] = 1.0;
         if !g.rj.is_finite() {
             // Walls are dry (LIGGGHTS 3.8 gives wall bridges no liquid of the wall's).

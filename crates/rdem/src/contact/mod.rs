@@ -170,6 +170,12 @@ pub struct Flags {
     /// `absolute_damping on|off` (`hooke/stiffness` only, default off): the damping
     /// coefficients are `gamman_abs`, `gammat_abs` as given, not `gamman`, `gammat` times m*.
     pub absolute_damping: bool,
+    /// The rolling law, for the kernel that chooses it per contact ([`rolling::Spring`]);
+    /// set from the model's own field by [`ContactModel::kernel_flags`].
+    pub(crate) rolling: RollingKind,
+    /// The cohesion law, for the kernel that chooses it per contact ([`cohesion::Pull`]);
+    /// set by [`ContactModel::kernel_flags`].
+    pub(crate) cohesion: CohesionKind,
 }
 
 impl Default for Flags {
@@ -180,6 +186,8 @@ impl Default for Flags {
             torsion_torque: false,
             tangential_reduce: false,
             absolute_damping: false,
+            rolling: RollingKind::Off,
+            cohesion: CohesionKind::Off,
         }
     }
 }
@@ -220,6 +228,16 @@ impl ContactModel {
             surface: SurfaceKind::Default,
             flags: Flags::default(),
             bond: crate::bond::BondFlags::default(),
+        }
+    }
+
+    /// The switches the kernels read: [`ContactModel::flags`] with the rolling and
+    /// cohesion laws, which the kernels that serve several laws choose by.
+    pub fn kernel_flags(&self) -> Flags {
+        Flags {
+            rolling: self.rolling,
+            cohesion: self.cohesion,
+            ..self.flags
         }
     }
 
@@ -305,13 +323,17 @@ impl ContactModel {
             }
         }
     }
+    // Rolling and cohesion laws that keep the same history share a kernel, which picks
+    // the law per contact from `Flags` (a branch that goes the same way all run): with
+    // one kernel per law, the passes were compiled for 360 kernels, most of rdem's build
+    // time. `off` keeps kernels of its own: sharing them cost in.dense 9 % of its speed.
     fn d_roll<N: normal::Normal, T: tangential::Tangential, V: Visitor>(&self, v: V) -> V::Output {
         match self.rolling {
             RollingKind::Off => self.d_coh::<N, T, rolling::Off, V>(v),
             RollingKind::Cdt => self.d_coh::<N, T, rolling::Cdt, V>(v),
-            // epsd3 is epsd with the user's prefactor in the table: one kernel for both.
-            RollingKind::Epsd | RollingKind::Epsd3 => self.d_coh::<N, T, rolling::Epsd, V>(v),
-            RollingKind::Epsd2 => self.d_coh::<N, T, rolling::Epsd2, V>(v),
+            RollingKind::Epsd | RollingKind::Epsd2 | RollingKind::Epsd3 => {
+                self.d_coh::<N, T, rolling::Spring, V>(v)
+            }
         }
     }
     fn d_coh<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, V: Visitor>(
@@ -320,9 +342,10 @@ impl ContactModel {
     ) -> V::Output {
         match self.cohesion {
             CohesionKind::Off => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
+            CohesionKind::Sjkr | CohesionKind::Sjkr2 => {
+                v.visit::<Kernel<N, T, R, cohesion::Pull>>()
+            }
             CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Bonded>>(),
-            CohesionKind::Sjkr => v.visit::<Kernel<N, T, R, cohesion::Sjkr>>(),
-            CohesionKind::Sjkr2 => v.visit::<Kernel<N, T, R, cohesion::Sjkr2>>(),
             CohesionKind::Easo => v.visit::<Kernel<N, T, R, liquid::Easo>>(),
         }
     }
@@ -587,9 +610,9 @@ pub fn contact<
     // A liquid bridge adds a viscous tangential force (on the same lever arms as the
     // tangential model's); the other cohesion models only pull.
     let (f_coh, ft_coh) = if C::BRIDGE {
-        C::touching(g, c, vt_rel, h_coh)
+        C::touching(g, c, flags, vt_rel, h_coh)
     } else {
-        (C::force(g, c), DVec3::ZERO)
+        (C::force(g, c, flags), DVec3::ZERO)
     };
     // The normal load that sets the Coulomb and rolling limits: the normal model's force
     // (damping included); with `tangential_reduce on` the cohesive pull is added to it and

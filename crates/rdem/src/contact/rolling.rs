@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::{Flags, Geom, NormalOut, PairCoeff};
+use super::{Flags, Geom, NormalOut, PairCoeff, RollingKind};
 
 /// A rolling resistance law.
 pub trait Rolling {
@@ -164,5 +164,29 @@ impl Rolling for Epsd2 {
         let wr = without_torsion(relative_rotation(g), g, flags);
         let kr = no.kt * g.r_star * g.r_star;
         spring_torque(g, c, kr, wr, load, hist).0
+    }
+}
+
+/// The kernel of `rolling_friction epsd`, `epsd2` and `epsd3`, which keep the same
+/// spring torque: it runs the law that [`Flags`] names, so that one kernel serves the
+/// three.
+pub struct Spring;
+
+impl Rolling for Spring {
+    const HIST: usize = 3;
+    #[inline(always)]
+    fn torque(
+        g: &Geom,
+        c: &PairCoeff,
+        no: &NormalOut,
+        load: f64,
+        flags: Flags,
+        hist: &mut [f64],
+    ) -> DVec3 {
+        if flags.rolling == RollingKind::Epsd2 {
+            Epsd2::torque(g, c, no, load, flags, hist)
+        } else {
+            Epsd::torque(g, c, no, load, flags, hist)
+        }
     }
 }

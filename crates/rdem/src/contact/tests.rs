@@ -202,7 +202,7 @@ fn epsd3_is_epsd_with_the_given_stiffness_prefactor() {
     let out = K3::contact(&g, &c, Flags::default(), &mut h);
     let cap = c.mu_r * g.r_star * c.kn * g.delta;
     assert!((out.t_i.z + cap).abs() < 1e-12 * cap);
-    // The two names run one kernel, and the table gives epsd the prefactor 2.25.
+    // The three names run one kernel, and the table gives epsd the prefactor 2.25.
     struct Name;
     impl Visitor for Name {
         type Output = &'static str;
@@ -215,7 +215,9 @@ fn epsd3_is_epsd_with_the_given_stiffness_prefactor() {
     let epsd = m.dispatch(Name);
     m.rolling = RollingKind::Epsd3;
     assert_eq!(m.dispatch(Name), epsd);
-    assert!(epsd.contains("rolling::Epsd,"), "{epsd}");
+    assert!(epsd.contains("rolling::Spring,"), "{epsd}");
+    m.rolling = RollingKind::Epsd2;
+    assert_eq!(m.dispatch(Name), epsd);
     assert_eq!(coeff(1.0, 0.5).roll_stiffness, 2.25);
 }
 
@@ -264,17 +266,17 @@ fn sjkr_area_is_the_intersection_circle() {
     let d = g.dist;
     let xa = (d * d + ri * ri - rj * rj) / (2.0 * d);
     let a2 = ri * ri - xa * xa;
-    let f = cohesion::Sjkr::force(&g, &c);
+    let f = cohesion::Sjkr::force(&g, &c, Flags::default());
     assert!((f - c.cohesion * PI * a2).abs() < 1e-9 * f);
-    let f2 = cohesion::Sjkr2::force(&g, &c);
+    let f2 = cohesion::Sjkr2::force(&g, &c, Flags::default());
     assert!((f2 - c.cohesion * 2.0 * PI * delta * 2.0 * g.r_star).abs() < 1e-12 * f2);
     // Wall: circle of the sphere cut by the plane, and 2π δ r_i for sjkr2.
     g.rj = f64::INFINITY;
     g.r_star = ri;
     g.dist = ri - delta;
-    let fw = cohesion::Sjkr::force(&g, &c);
+    let fw = cohesion::Sjkr::force(&g, &c, Flags::default());
     assert!((fw - c.cohesion * PI * (2.0 * ri * delta - delta * delta)).abs() < 1e-9 * fw);
-    let fw2 = cohesion::Sjkr2::force(&g, &c);
+    let fw2 = cohesion::Sjkr2::force(&g, &c, Flags::default());
     assert!((fw2 - c.cohesion * 2.0 * PI * delta * ri).abs() < 1e-12 * fw2);
 }
 
@@ -284,7 +286,7 @@ fn cohesion_pulls_and_tangential_reduce_changes_the_cap() {
     let c = coeff(1.0, 0.5);
     let g = geom(1e-4);
     let fe = 4.0 / 3.0 * c.e_star * (g.r_star * g.delta).sqrt() * g.delta;
-    let fc = cohesion::Sjkr2::force(&g, &c);
+    let fc = cohesion::Sjkr2::force(&g, &c, Flags::default());
     let mut h = [0.0, 1.0, 0.0];
     let out = K::contact(&g, &c, Flags::default(), &mut h);
     assert!((out.f_i.x - (fe - fc)).abs() < 1e-12 * fe);
@@ -386,4 +388,64 @@ fn incremental_history_keeps_its_scalars_out_of_the_odd_part() {
     // The unloading steps scaled the stored force by k_t/k_t,old (k_t ∝ √δ).
     assert!(h[3] > 0.0 && h[4] > 0.0, "{h:?}");
     assert_eq!((hr[6], hr[7]), (h[3], h[4]));
+}
+
+/// The kernels that serve several laws ([`rolling::Spring`], [`cohesion::Pull`]) give
+/// each law's own force and torques, to the bit, when the model's flags name it; and the
+/// model dispatches those names to them.
+#[test]
+fn shared_kernels_run_the_law_the_model_names() {
+    struct Run<'a>(&'a Geom, &'a PairCoeff, Flags);
+    impl Visitor for Run<'_> {
+        type Output = (ContactForce, Vec<f64>);
+        fn visit<K: ContactKernel>(self) -> (ContactForce, Vec<f64>) {
+            let mut h = vec![1e-9; K::HIST];
+            (K::contact(self.0, self.1, self.2, &mut h), h)
+        }
+    }
+    fn own<K: ContactKernel>(g: &Geom, c: &PairCoeff) -> (ContactForce, Vec<f64>) {
+        let mut h = vec![1e-9; K::HIST];
+        (K::contact(g, c, Flags::default(), &mut h), h)
+    }
+    type H = normal::Hertz;
+    type T = tangential::History;
+    let c = coeff(0.6, 0.4);
+    let mut g = geom(2e-4);
+    g.vr = DVec3::new(-0.1, 0.02, -0.03);
+    g.wi = DVec3::new(1.0, -2.0, 0.5);
+    g.wj = DVec3::new(-0.3, 0.7, 2.0);
+    let mut m = ContactModel::hertz_history();
+    let cases: [(RollingKind, CohesionKind, (ContactForce, Vec<f64>)); 4] = [
+        (
+            RollingKind::Epsd,
+            CohesionKind::Sjkr,
+            own::<Kernel<H, T, rolling::Epsd, cohesion::Sjkr>>(&g, &c),
+        ),
+        (
+            RollingKind::Epsd2,
+            CohesionKind::Sjkr2,
+            own::<Kernel<H, T, rolling::Epsd2, cohesion::Sjkr2>>(&g, &c),
+        ),
+        (
+            RollingKind::Cdt,
+            CohesionKind::Sjkr2,
+            own::<Kernel<H, T, rolling::Cdt, cohesion::Sjkr2>>(&g, &c),
+        ),
+        (
+            RollingKind::Off,
+            CohesionKind::Sjkr,
+            own::<Kernel<H, T, rolling::Off, cohesion::Sjkr>>(&g, &c),
+        ),
+    ];
+    for (rolling, cohesion, want) in cases {
+        (m.rolling, m.cohesion) = (rolling, cohesion);
+        let got = m.dispatch(Run(&g, &c, m.kernel_flags()));
+        assert_eq!(got, want, "{rolling:?} {cohesion:?}");
+    }
+    // The laws differ on this contact, so the comparison can tell them apart.
+    let sjkr = own::<Kernel<H, T, rolling::Epsd, cohesion::Sjkr>>(&g, &c).0;
+    let sjkr2 = own::<Kernel<H, T, rolling::Epsd, cohesion::Sjkr2>>(&g, &c).0;
+    let epsd2 = own::<Kernel<H, T, rolling::Epsd2, cohesion::Sjkr>>(&g, &c).0;
+    assert_ne!(sjkr.fn_total, sjkr2.fn_total);
+    assert_ne!(sjkr.t_i, epsd2.t_i);
 }

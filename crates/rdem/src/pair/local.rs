@@ -117,7 +117,7 @@ impl Visitor for Records<'_> {
         let ph1 = Phase1 {
             near: pair.near.rows(&list.first, &list.partner),
             table: &pair.table,
-            flags: pair.model.flags,
+            flags: pair.model.kernel_flags(),
             list_first: &list.first,
             width: list.width,
             nlocal,

@@ -836,7 +836,7 @@ impl MeshPass<'_> {
         let pw = width + if BOND { BOND_BLOCK } else { 0 };
         let create_now =
             BOND && update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
-        let flags = wall.model.flags;
+        let flags = wall.model.kernel_flags();
         // Fixed-size scratch: no allocation in the pass.
         let none = Touch {
             mesh: 0,

@@ -397,7 +397,7 @@ impl WallPass<'_> {
             dt,
             update,
         } = self;
-        let flags = wall.model.flags;
+        let flags = wall.model.kernel_flags();
         let mut empty: [f64; 0] = [];
         let w = if BOND {
             bond::VEC + K::HIST + bond::WALL_TAIL
