@@ -10,7 +10,7 @@
 //! shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
 //! is stored beside them (`fibers_*`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

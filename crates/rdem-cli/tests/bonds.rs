@@ -12,7 +12,7 @@
 //! `damping*Bond` coefficients are 0 and `fix viscous` on the moving spheres damps the
 //! motion instead (it does not change the equilibrium). No gravity.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 use std::process::Output;

@@ -48,7 +48,7 @@
 //! (δ/L = 1e-3) so the geometry stays linear, and the run is long enough (∝ N², the ratio
 //! of the fastest to the slowest mode) for the transient to die out well below 1e-3.
 
-mod common;
+use crate::common;
 
 /// Sphere radius r (bond radius r_b = r), density, k_n.
 const R: f64 = 1e-3;

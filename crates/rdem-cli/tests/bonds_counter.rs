@@ -2,7 +2,7 @@
 //! periodic wrap and (feature `mpi`) migration between ranks. Scripts in
 //! `tests/data/bonds/`.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

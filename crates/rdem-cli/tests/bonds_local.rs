@@ -6,7 +6,7 @@
 //! normal force, d read from the dumped centres) and equals F; it is all normal (no
 //! tangential part, no torque); the history ends with the bond flag 1 and d₀.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

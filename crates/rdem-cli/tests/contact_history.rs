@@ -2,7 +2,7 @@
 //! its tangential history, as in LIGGGHTS 3.8 (rdem cleared it before; see
 //! `NeighborList::touch` and docs/parity.md, hydrogel_default).
 
-mod common;
+use crate::common;
 
 /// The tutorial hydrogel_default, unmodified, on 1 thread. Its soft spheres part and
 /// touch again between builds (atoms 324 and 135: apart from step 236, touching again at

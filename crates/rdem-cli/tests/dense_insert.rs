@@ -2,7 +2,7 @@
 //! are the same on 1 and 2 threads (thermo printed to 15 digits), and the count, centre
 //! of mass and kinetic energy do not depend on the thread count.
 
-mod common;
+use crate::common;
 use common::{rdem_in, scratch_dir, success, thermo_rows};
 
 const SCRIPT: &str = "\

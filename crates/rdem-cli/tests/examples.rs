@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-mod common;
+use crate::common;
 
 /// Runs `examples/<dir>/<file>` in a temporary copy; returns (stdout, the copy's path).
 fn run(dir: &str, file: &str) -> (String, std::path::PathBuf) {

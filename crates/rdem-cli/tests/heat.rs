@@ -10,7 +10,7 @@
 //! on top of the previous step's values; it is zeroed before the next step, so no
 //! temperature depends on it): that one value is not compared.
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::path::Path;

@@ -7,7 +7,7 @@
 //! LIGGGHTS gives. Closed form at step 0: the 1–2 pair conducts
 //! 4 k₁k₂/(k₁+k₂) √A (T₂ − T₁).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -15,7 +15,7 @@
 use std::path::Path;
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::{copy_dir, thermo_rows};
 
 /// (bulk density, discharge rate) of the example with orifice `d_mm`.

@@ -10,7 +10,7 @@
 //! the run split in two (`run 500`, `run 1000`: the set-up of the second run evaluates the
 //! stored force), printing positions, velocities and spins every 25 steps at 15 digits.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -13,7 +13,7 @@
 //! at 1e-3, 1.3e-8 at 1e-4, measured on the sticking setting), so the comparisons allow
 //! 1e-7 of each column's scale.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

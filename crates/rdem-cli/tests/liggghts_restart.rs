@@ -2,7 +2,7 @@
 //! written by LIGGGHTS 3.8.0; its README says how): the particles as LIGGGHTS wrote them,
 //! and a continued run against LIGGGHTS continuing the same file.
 
-mod common;
+use crate::common;
 use common::{have_mpirun, run_kept, scratch_dir, thermo_rows};
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@
 //! byte (`tests/data/local/`, recorded with the command in each script's header), and the
 //! normal force must be the closed-form Hertz force with its damping.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

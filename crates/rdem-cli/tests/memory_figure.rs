@@ -3,7 +3,7 @@
 //! (`../shared/bench/in.lattice`) at n = 50, 125,000 spheres settling, where the
 //! engine's own count of its arrays gave about half of it.
 
-mod common;
+use crate::common;
 
 #[test]
 fn the_printed_memory_is_the_measured_peak_within_10_percent() {

@@ -4,7 +4,7 @@
 //! its centre at 2/7 of the belt speed (a free sphere rolling on the belt: the friction
 //! impulse J gives v = J/m and ω r = 5J/(2m), and sticking means v + ω r = belt speed).
 
-mod common;
+use crate::common;
 
 use common::{run_with_files_raw, thermo_rows};
 

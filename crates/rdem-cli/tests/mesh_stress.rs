@@ -3,7 +3,7 @@
 //! mesh/stl files read back with VTK's own reader and ours, and the per-triangle sums do
 //! not depend on the thread count.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::run_kept;
 
 fn data() -> PathBuf {

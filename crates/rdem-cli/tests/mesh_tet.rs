@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::{run_kept, tutorial_copy, TUTORIALS};
 
 fn data() -> PathBuf {

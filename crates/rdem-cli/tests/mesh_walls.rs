@@ -1,7 +1,7 @@
 //! `fix mesh/surface` and `fix wall/gran ... mesh`: an STL floor against the primitive
 //! plane, and the errors of bad mesh input.
 
-mod common;
+use crate::common;
 
 use common::{run_with_files_raw, thermo_rows};
 

@@ -3,7 +3,7 @@
 //! not installed.
 #![cfg(feature = "mpi")]
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -11,7 +11,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::{have_mpirun, rdem_in, success};
 
 const N: usize = 1024;

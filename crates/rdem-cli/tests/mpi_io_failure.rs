@@ -10,7 +10,7 @@
 //! next collective call and wait there forever.
 #![cfg(feature = "mpi")]
 
-mod common;
+use crate::common;
 
 use std::time::{Duration, Instant};
 

@@ -5,7 +5,7 @@
 //! the forces differs between rank counts, so the runs are not bit-identical).
 #![cfg(feature = "mpi")]
 
-mod common;
+use crate::common;
 
 use common::{have_mpirun, run_kept, thermo_rows};
 

@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::{run_kept, run_script_raw};
 
 fn data() -> PathBuf {

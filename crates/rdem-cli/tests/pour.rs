@@ -6,7 +6,7 @@
 //! without overlaps, with the z velocity of a fall from the region's top
 //! −√(vz² + 2 g (top − z)) to 1e-12, and diameters from the law asked for.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -10,7 +10,7 @@
 //! significant digits at the end, and the thermo rows of the second run; they must be
 //! the same bytes.
 
-mod common;
+use crate::common;
 use common::{run_kept, MATERIALS};
 
 /// One case.

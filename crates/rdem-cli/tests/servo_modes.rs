@@ -4,7 +4,7 @@
 //! `floor.stl` = [`common::floor_stl`]), and the torque servo's resting state with its
 //! closed form.
 
-mod common;
+use crate::common;
 
 use common::{floor_stl, run_with_files, thermo_rows};
 

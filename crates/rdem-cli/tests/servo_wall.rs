@@ -3,7 +3,7 @@
 //! them (`liggghts -in in.x -log none`, `floor.stl` = [`common::floor_stl`]), and its
 //! resting state with the closed form of a Hertzian column.
 
-mod common;
+use crate::common;
 
 use common::{floor_stl, run_with_files, run_with_files_raw, thermo_rows};
 

@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::{rdem_command, scratch_dir, thermo_rows, tutorial_copy, TUTORIALS};
 
 fn data() -> PathBuf {

@@ -2,7 +2,7 @@
 //! stream has crossed the extrusion), `fix massflow/mesh` (mass and count through a
 //! face) and the portable restart files (`write_restart` / `read_restart`).
 
-mod common;
+use crate::common;
 
 use common::{run_with_files_raw, thermo_rows};
 

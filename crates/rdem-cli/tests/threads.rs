@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::copy_dir;
 
 const CASE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/cohesion";

@@ -5,7 +5,7 @@
 //! 3.8's (`tests/data/wall_local/`, recorded with the command in each script's header) to
 //! the 6 digits it prints, and the contact area and overlap must be their closed forms.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@
 //! stored wall force of rdem equals LIGGGHTS 3.8's to 1e-10 relative (zeros exactly);
 //! the resting sphere's floor force at step 0 is Hertz's 4/3 E* √R δ^1.5.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! moment (after the first half kick), as LIGGGHTS 3.8 evaluates them in its post-force
 //! stage. And `fix aveforce` with equal-style variables.
 
-mod common;
+use crate::common;
 
 /// Two spheres in a 2 m box, dt = 1 ms, no gravity; particle 1 moves with (1, −2, 0.5)
 /// m/s, particle 2 with (−1, 0, 0).

@@ -2,7 +2,7 @@
 //! the end of a run undoes (fix adapt's `reset yes`) is undone, so later lines are checked
 //! against the state a real run would leave.
 
-mod common;
+use crate::common;
 
 #[test]
 fn adapt_reset_restores_radii_after_a_checked_run() {

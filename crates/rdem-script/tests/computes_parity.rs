@@ -4,7 +4,7 @@
 //! below; the full LIGGGHTS outputs are the itemN.liggghts.* files next to the scripts,
 //! made by regenerate.sh: `liggghts -in itemN.in -log none`).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 

@@ -6,7 +6,7 @@
 //! a√3 = 0.0346). `*.liggghts.dump` are LIGGGHTS 3.8's dumps of the same scripts
 //! (`liggghts -in in.fff -log none`).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/coord_atom");
 

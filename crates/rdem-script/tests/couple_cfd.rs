@@ -2,7 +2,7 @@
 //! solver: as LIGGGHTS 3.8 run alone, the run goes on with no fluid force (measured: the
 //! same dump with and without the lines, `f_dragforce` and the other properties 0).
 
-mod common;
+use crate::common;
 
 use rdem_script::Interpreter;
 

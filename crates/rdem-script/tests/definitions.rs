@@ -6,7 +6,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 const SETUP: &str = "units si\n\
     atom_style granular\n\

@@ -3,7 +3,7 @@
 //! (`regenerate.sh`; output in in.2d.liggghts.txt, hard-coded below), closed forms of a
 //! free fall in the plane and of the 2d temperature, and LIGGGHTS 3.8's 2d errors.
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/dim2");
 

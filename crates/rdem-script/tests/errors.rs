@@ -17,7 +17,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::render;
 
 const DIR: &str = "tests/data/errors";

@@ -7,7 +7,7 @@ use std::process::Command;
 
 use rdem_script::{context, euler, Interpreter};
 
-mod common;
+use crate::common;
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../rdem-io/tests/data/liggghts/euler_vtk")

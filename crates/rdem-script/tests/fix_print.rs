@@ -3,7 +3,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 use common::render;
 
 /// A 1 m box with one particle at rest and materials (the set-up of the LIGGGHTS runs).

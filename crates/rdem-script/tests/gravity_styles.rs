@@ -6,7 +6,7 @@
 // The LIGGGHTS figures are kept with the 17 digits it printed.
 #![allow(clippy::excessive_precision)]
 
-mod common;
+use crate::common;
 use common::render;
 
 /// One sphere (d = 0.1 m, 1000 kg/m³) at the origin of a 2 m box, dt = 1 ms.

@@ -2,7 +2,7 @@
 //! group command. The counts are LIGGGHTS 3.8's for the same script (200 atoms on a
 //! simple cubic lattice, IDs 1–200, atoms 5–20 of type 2).
 
-mod common;
+use crate::common;
 
 const HEAD: &str = "units si\n\
     atom_style granular\n\

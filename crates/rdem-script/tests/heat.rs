@@ -11,7 +11,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 /// Two atom types (conductivity 100 and 50, capacity 10 and 20), Hertz contacts, dt 1 ms,
 /// no integration: the particles stay where they are created.

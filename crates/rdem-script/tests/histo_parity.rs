@@ -4,7 +4,7 @@
 //! its `itemN-K.histo` renamed), and their thermo rows (`f_ID[1..4]`) LIGGGHTS' (in
 //! itemN.liggghts.txt) to 1e-6.
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 

@@ -5,7 +5,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 const HEAD: &str = "\
 atom_style granular

@@ -18,7 +18,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 use common::screen;
 
 fn run(script: &str) -> Interpreter {

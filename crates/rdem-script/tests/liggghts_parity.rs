@@ -2,7 +2,7 @@
 //! numbers LIGGGHTS printed for it (hard-coded below; the full LIGGGHTS outputs are the
 //! itemN.liggghts.* files next to the scripts, made by regenerate.sh).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 

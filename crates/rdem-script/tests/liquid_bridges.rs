@@ -2,7 +2,7 @@
 //! tests/data/liquid/ run here and their numbers are compared with what LIGGGHTS wrote for
 //! them (item40.liggghts.txt, item41.liggghts.txt; regenerate.sh there makes them).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/liquid");
 

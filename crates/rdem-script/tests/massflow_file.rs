@@ -5,7 +5,7 @@
 //! 3.8.0, Debian) on the script [`script`] makes, with the face `FACE` in `face.stl`:
 //! two spheres falling under gravity through a square face at z = 0.05.
 
-mod common;
+use crate::common;
 use common::MATERIALS;
 
 const FACE: &str = "solid face

@@ -10,7 +10,7 @@ use std::path::Path;
 use rdem::DVec3;
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 use common::render;
 
 const HEAD: &str = "atom_style granular

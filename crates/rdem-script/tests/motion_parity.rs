@@ -3,7 +3,7 @@
 //! outputs are the itemN.liggghts.* files next to it, made by regenerate.sh) and checks
 //! the numbers LIGGGHTS printed (hard-coded below) and closed forms.
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parity");
 

@@ -6,7 +6,7 @@
 //! with a moving region after a run). LIGGGHTS' lines are in moving.liggghts.txt with
 //! the command that made them.
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/regions");
 

@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 use common::render;
 
 const HEAD: &str = "\

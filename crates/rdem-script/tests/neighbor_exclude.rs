@@ -4,7 +4,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 /// Three overlapping spheres at rest, no gravity: 1 and 2 of type 1, 3 of type 2, all
 /// pairs overlapping by 2 mm. `tail` is read before a 10-step run.

@@ -6,7 +6,7 @@
 //! each translated command is asserted word for word, and the old keywords that have no
 //! 3.x counterpart in rdem stop with a located error.
 
-mod common;
+use crate::common;
 use common::render;
 
 /// 27 spheres (d = 10 mm, 2500 kg/m³) on a 12 mm lattice, thrown sideways and down.

@@ -11,7 +11,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 const SCRIPT: &str = "\
 units si

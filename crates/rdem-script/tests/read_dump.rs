@@ -6,7 +6,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/read_dump");
 

@@ -23,7 +23,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
-mod common;
+use crate::common;
 
 /// The largest allocation a reader may make for these inputs.
 const LIMIT: usize = 64 << 20;

@@ -4,7 +4,7 @@
 //! `create_atoms`. Each test's doc comment records what LIGGGHTS 3.8 did with the same
 //! script.
 
-mod common;
+use crate::common;
 use common::render;
 
 /// The first lines of every script here: a granular SI set-up.

@@ -36,7 +36,7 @@ fn readme_tables_are_the_registries() {
             .position(|(g, w)| g != w)
             .unwrap_or(got.lines().count().min(want.lines().count()));
         panic!(
-            "the command tables of docs/commands.md differ from the registries at table line {}:\n  docs:     {:?}\n  registry: {:?}\nRun RDEM_BLESS=1 cargo test -p rdem-script --test readme_registry",
+            "the command tables of docs/commands.md differ from the registries at table line {}:\n  docs:     {:?}\n  registry: {:?}\nRun RDEM_BLESS=1 cargo test -p rdem-script --test suite readme_registry",
             first + 1,
             got.lines().nth(first),
             want.lines().nth(first)

@@ -10,7 +10,7 @@ use std::path::Path;
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 const SI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units/si.in");
 

@@ -7,7 +7,7 @@
 
 use rdem_script::ScriptReport;
 
-mod common;
+use crate::common;
 use common::render;
 
 /// One particle falling in a box, and `tail` after it.

@@ -6,7 +6,7 @@
 //! says when the chunk ended. The figures were printed by
 //! `liggghts -in in.e1 -log none -echo none` (LIGGGHTS 3.8.0, scripts as below).
 
-mod common;
+use crate::common;
 
 const HEAD: &str = concat!(
     "\

@@ -4,7 +4,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 use common::screen;
 
 /// A box 0.1 × 0.1 × 0.15 with one type and materials, no particles.

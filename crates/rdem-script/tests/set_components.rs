@@ -3,7 +3,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 /// Three particles on the x axis at 0.1, 0.2, 0.3; `tail` after them.
 fn run(tail: &str) -> Result<Interpreter, String> {

@@ -3,7 +3,7 @@
 
 use rdem_script::{Interpreter, Sim};
 
-mod common;
+use crate::common;
 use common::render;
 
 /// Runs `src` (a script named `in.t`) and returns the interpreter and its output.

@@ -11,7 +11,7 @@
 //!
 //! which tends to v_set·(1 − e^(−K·t/dt)) for small K.
 
-mod common;
+use crate::common;
 
 /// Two spheres (d = 0.1 m, 1000 kg/m³) far apart in a 2 m box, dt = 1 ms, no gravity.
 const FREE: &str = "\

@@ -11,7 +11,7 @@
 //! Ignored for now: the scenarios set the spins with `set atom N omegax ...`, which rdem's
 //! `set` does not read yet (it stops with "unknown set keyword 'omegax'").
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../rdem/tests/data/liggghts");
 

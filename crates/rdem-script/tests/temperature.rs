@@ -2,7 +2,7 @@
 //! tests/data/settings/ ran there (`regenerate.sh`, outputs in `*.liggghts.txt`); the rows
 //! LIGGGHTS printed are hard-coded below.
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/settings");
 

@@ -4,7 +4,7 @@
 //! lines of each run (after `Memory usage`, before `Loop time`) are compared with the CPU
 //! seconds masked (the only values that depend on the machine).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/thermo_multi");
 

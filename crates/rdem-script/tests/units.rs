@@ -3,7 +3,7 @@
 //! (`make.py` converts every number) gives one motion, and the `cgs` run matches
 //! LIGGGHTS 3.8 (`regenerate.sh`; outputs in `NAME.liggghts.txt`, hard-coded below).
 
-mod common;
+use crate::common;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/units");
 

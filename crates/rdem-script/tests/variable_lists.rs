@@ -4,7 +4,7 @@
 
 use rdem_script::Interpreter;
 
-mod common;
+use crate::common;
 
 fn screen(i: &Interpreter) -> Vec<String> {
     let s = common::screen(i);

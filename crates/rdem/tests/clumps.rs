@@ -12,7 +12,7 @@
 //! - Falling freely under gravity it does not start to turn, although its spheres'
 //!   masses differ (gravity acts at the centre of mass), and its centre falls by ½ g t².
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::multisphere::{ClumpTemplate, MassSource, NewClump, Sphere};
 use rdem::{

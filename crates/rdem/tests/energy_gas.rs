@@ -9,7 +9,7 @@
 //! periodic images (ghosts) carry every collision across the faces, so this also checks
 //! that ghost forces reach their owners exactly once.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, NewParticle, World};
 

@@ -9,7 +9,7 @@
 //!   relative error n a²/2 (1e-3 here).
 //! - `addforce`, `setforce` (with NULL components) and `freeze` act only on their group.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, Fix, FixKind, NewParticle, World};
 

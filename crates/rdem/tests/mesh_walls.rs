@@ -1,6 +1,6 @@
 //! Triangle-mesh walls against primitive planes and the Hertz law at edges and corners.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::mesh::TriMesh;
 use rdem::wall::{MeshSurface, MeshWall};

@@ -25,7 +25,7 @@
 //! require 0.3 % for e, 0.5 % for t_c and the undamped δ_max = v √(m*/k_n).
 //! `hertz/stiffness` without damping is Hertz with 4/3 E* = kn.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, Materials, NewParticle, NormalKind, WallShape, World};
 

@@ -20,7 +20,7 @@
 //! up to the Coulomb limit, during which friction is below μ F_n, and the spin comes out
 //! 0.8 % low; the checks use e ≥ 0.6.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, Materials, NewParticle, WallShape};
 

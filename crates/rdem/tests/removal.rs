@@ -2,7 +2,7 @@
 //! deferred `World::remove_at_reneighbor` of `fix massflow/mesh delete_atoms`) leaves the
 //! others exactly where they would be without the removed one.
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, NewParticle, WallShape, World};
 

@@ -12,7 +12,7 @@
 //! s = v₀² / (2a) ≈ 7 v₀² / (10 μ_r g). Tolerance 0.5 % for the onset of rolling, 1 % for
 //! the stopping distance (the spring models wind up over a short distance first).
 
-mod common;
+use crate::common;
 use common::*;
 use rdem::{Boundary, ContactModel, DVec3, NewParticle, RollingKind, WallShape, World};
 

@@ -1,0 +1,44 @@
+//! The integration tests of this crate, one module per file of `tests/`, built as one
+//! test binary: one link instead of one per file (see `autotests` in Cargo.toml).
+
+mod bond_gran;
+mod bonds;
+mod bonds_cantilever;
+mod bonds_counter;
+mod bonds_local;
+mod check;
+mod cli_errors;
+mod cli_run;
+mod common;
+mod contact_history;
+mod dense_insert;
+mod examples;
+mod heat;
+mod heat_local;
+mod hopper;
+mod incremental_history;
+mod jkr;
+mod liggghts_restart;
+mod local_dump;
+mod memory_figure;
+mod mesh_motion;
+mod mesh_stress;
+mod mesh_stresscomponents;
+mod mesh_tet;
+mod mesh_tutorials;
+mod mesh_walls;
+mod mpi;
+mod mpi_dumps;
+mod mpi_io_failure;
+mod mpi_restart;
+mod multicontact;
+mod pour;
+mod restart_exact;
+mod servo_modes;
+mod servo_wall;
+mod sph;
+mod stream_insert;
+mod threads;
+mod tutorials;
+mod wall_local;
+mod wall_store_force;
