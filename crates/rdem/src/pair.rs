@@ -244,20 +244,13 @@ struct PairPass<'a> {
 
 impl Visitor for PairPass<'_> {
     type Output = ();
-    fn visit<K: ContactKernel>(mut self) {
+    fn visit<K: ContactKernel>(self) {
         debug_assert_eq!(self.pair.bond.is_some(), K::BONDS);
         // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
-        let virial = self.virial.take();
         if K::BONDS {
-            match virial {
-                None => self.run::<K, false, true>(&mut []),
-                Some(v) => self.run::<K, true, true>(v),
-            }
+            self.run::<K, true>()
         } else {
-            match virial {
-                None => self.run::<K, false, false>(&mut []),
-                Some(v) => self.run::<K, true, false>(v),
-            }
+            self.run::<K, false>()
         }
     }
 }
@@ -298,16 +291,14 @@ struct Phase1<'a> {
 }
 
 impl Phase1<'_> {
-    /// Runs blocks `b0..b1`; `res`, `rv` and `hist` start at the first pair, the first
-    /// virial entry and the first history value of block `b0`, `own` at its first
-    /// particle.
+    /// Runs blocks `b0..b1`; `res` and `hist` start at the first pair and the first
+    /// history value of block `b0`, `own` at its first particle.
     #[allow(clippy::too_many_arguments)]
-    fn blocks<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
+    fn blocks<K: ContactKernel, const BOND: bool>(
         &self,
         b0: usize,
         b1: usize,
         res: &mut [PairOut],
-        rv: &mut [[f64; 6]],
         hist: &mut [f64],
         touch: &mut [u8],
         own: &mut [OwnSum],
@@ -319,30 +310,24 @@ impl Phase1<'_> {
             let kp = (self.list_first[m] - self.list_first[lo]) as usize;
             let kh = kp * self.width;
             let (ra, rb) = res.split_at_mut(kn);
-            let (va, vb) = if VIRIAL {
-                rv.split_at_mut(kn)
-            } else {
-                (&mut [][..], &mut [][..])
-            };
             let (ha, hb) = hist.split_at_mut(kh);
             let (ta, tb) = touch.split_at_mut(if touch.is_empty() { 0 } else { kp });
             let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
-                || self.blocks::<K, VIRIAL, BOND>(b0, mid, ra, va, ha, ta, oa),
-                || self.blocks::<K, VIRIAL, BOND>(mid, b1, rb, vb, hb, tb, ob),
+                || self.blocks::<K, BOND>(b0, mid, ra, ha, ta, oa),
+                || self.blocks::<K, BOND>(mid, b1, rb, hb, tb, ob),
             );
         } else {
-            self.block::<K, VIRIAL, BOND>(b0, res, rv, hist, touch, own);
+            self.block::<K, BOND>(b0, res, hist, touch, own);
         }
     }
 
     /// One block of owned particles.
     #[inline(always)]
-    fn block<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
+    fn block<K: ContactKernel, const BOND: bool>(
         &self,
         b: usize,
         res: &mut [PairOut],
-        rv: &mut [[f64; 6]],
         hist: &mut [f64],
         touch: &mut [u8],
         own: &mut [OwnSum],
@@ -366,17 +351,11 @@ impl Phase1<'_> {
                 } else {
                     (&mut empty, &mut no_touch)
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
+                let Some((_, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
                 else {
                     res[r] = PairOut::default();
-                    if VIRIAL {
-                        rv[r] = [0.0; 6];
-                    }
                     continue;
                 };
-                if VIRIAL {
-                    rv[r] = virial_of(d, out.f_i);
-                }
                 res[r] = PairOut {
                     f_i: out.f_i,
                     t_j: out.t_j,
@@ -635,13 +614,12 @@ impl Phase1<'_> {
     /// whose sums phase 2 repeats, so its result is the two-phase pass's, bit for bit.
     /// Used when the pool has one thread. `hist` starts at the first history value of
     /// particle 0.
-    fn serial<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(
+    fn serial<K: ContactKernel, const BOND: bool>(
         &self,
         hist: &mut [f64],
         touch: &mut [u8],
         f: &mut [DVec3],
         torque: &mut [DVec3],
-        virial: &mut [[f64; 6]],
     ) {
         let w = self.width;
         let near = self.near;
@@ -660,19 +638,10 @@ impl Phase1<'_> {
                 } else {
                     (&mut empty, &mut no_touch)
                 };
-                let Some((d, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
+                let Some((_, out)) = self.eval::<K, BOND>(i, j, s + kk, coeff_row, hist, touch)
                 else {
                     continue;
                 };
-                if VIRIAL {
-                    let w = virial_of(d, out.f_i);
-                    for (a, b) in virial[i].iter_mut().zip(&w) {
-                        *a += b;
-                    }
-                    for (a, b) in virial[j].iter_mut().zip(&w) {
-                        *a += b;
-                    }
-                }
                 fi += out.f_i;
                 tqi += out.t_i;
                 f[j] -= out.f_i;
@@ -690,6 +659,21 @@ fn touch_range(touch: &mut [u8], a: usize, b: usize) -> &mut [u8] {
         touch
     } else {
         &mut touch[a..b]
+    }
+}
+
+/// The virial of each listed pair of the owned particles (rows `near`), from the force
+/// phase 1 left in `res`: pairs out of contact have a zero force, whose virial changes
+/// no sum. Apart from the passes, so that they are compiled once per kernel, not twice;
+/// serial, as it runs only on the steps that need a virial.
+fn pair_virials(near: Rows, nlocal: usize, x: &[DVec3], res: &[PairOut], rv: &mut [[f64; 6]]) {
+    let k0 = near.first[0] as usize;
+    for i in 0..nlocal {
+        let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
+        for (kk, (j, _)) in near.pairs(s, e).enumerate() {
+            let r = s - k0 + kk;
+            rv[r] = virial_of(x[i] - x[j], res[r].f_i);
+        }
     }
 }
 
@@ -812,16 +796,18 @@ impl Phase2<'_> {
 }
 
 impl PairPass<'_> {
-    /// The pass with kernel `K`; with `VIRIAL` the contact virial goes into `virial`.
+    /// The pass with kernel `K`, and with `BOND` the bonds; the contact virial goes into
+    /// `virial` when it is asked for (then in two phases whatever the thread count:
+    /// they give the serial pass's sums, bit for bit).
     #[inline(always)]
-    fn run<K: ContactKernel, const VIRIAL: bool, const BOND: bool>(self, virial: &mut [[f64; 6]]) {
+    fn run<K: ContactKernel, const BOND: bool>(self) {
         let PairPass {
             pair,
             p,
             list,
             dt,
             update,
-            virial: _,
+            virial,
         } = self;
         let w = list.width;
         debug_assert_eq!(w, pair.model.history_width());
@@ -845,7 +831,7 @@ impl PairPass<'_> {
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
-        let threaded = rayon::current_num_threads() > 1;
+        let threaded = rayon::current_num_threads() > 1 || virial.is_some();
         if threaded && near.rfirst.len() != n + 1 {
             near.build_reverse(&list.partner, n);
         }
@@ -887,20 +873,20 @@ impl PairPass<'_> {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
             let touch = touch_range(&mut list.touch, p0, p1);
-            ph1.serial::<K, VIRIAL, BOND>(hist, touch, f, torque, virial);
+            ph1.serial::<K, BOND>(hist, touch, f, torque);
             return;
         }
         let npairs = ph1.near.partner.len();
         res.resize(npairs, PairOut::default());
-        if VIRIAL {
-            res_virial.resize(npairs, [0.0; 6]);
-        }
         own.resize(nlocal, OwnSum::default());
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
-            let rv: &mut [[f64; 6]] = if VIRIAL { res_virial } else { &mut [] };
             let touch = touch_range(&mut list.touch, p0, p1);
-            ph1.blocks::<K, VIRIAL, BOND>(0, nb_own, res, rv, &mut list.hist[h0..h1], touch, own);
+            ph1.blocks::<K, BOND>(0, nb_own, res, &mut list.hist[h0..h1], touch, own);
+        }
+        if virial.is_some() {
+            res_virial.resize(npairs, [0.0; 6]);
+            pair_virials(ph1.near, nlocal, &p.x, res, res_virial);
         }
         let ph2 = Phase2 {
             near: ph1.near,
@@ -908,14 +894,18 @@ impl PairPass<'_> {
             rk: &near.rk,
             res,
             own,
-            rv: if VIRIAL { res_virial } else { &[] },
+            rv: if virial.is_some() { res_virial } else { &[] },
             nlocal,
             n,
         };
         let nb_all = n.div_ceil(BLOCK);
         if nb_all > 0 {
-            let vir: &mut [[f64; 6]] = if VIRIAL { &mut virial[..n] } else { &mut [] };
-            ph2.blocks::<VIRIAL>(0, nb_all, &mut p.f[..n], &mut p.torque[..n], vir);
+            match virial {
+                Some(v) => {
+                    ph2.blocks::<true>(0, nb_all, &mut p.f[..n], &mut p.torque[..n], &mut v[..n])
+                }
+                None => ph2.blocks::<false>(0, nb_all, &mut p.f[..n], &mut p.torque[..n], &mut []),
+            }
         }
     }
 }
