@@ -936,3 +936,62 @@ fn multiplespheres_insert_separate_spheres() {
         assert!(e.contains(msg), "{e}");
     }
 }
+
+/// LIGGGHTS-INL's `fix nve/nonspherical`: with a `fix multisphere`, the clumps move as
+/// they do without it (rdem's fix multisphere integrates them, as LIGGGHTS 3.8; INL's
+/// trajectory of a dropped clump is the same for every scheme, group and order, checked
+/// with an INL build): the same bits, in either order and with any scheme. Its errors
+/// point at the word, and its `unfix` is refused while the clumps would stop in INL.
+#[test]
+fn nve_nonspherical_moves_the_clumps_once() {
+    let drop = |fixes: &str| {
+        let (i, _) = run(&format!(
+            "{DUMBBELL}fix pdd1 all particledistribution/discrete 15485867 1 pts1 1.0
+fix gravi all gravity 9.81 vector 0.0 0.0 -1.0
+fix zw all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+region bc block -0.01 0.01 -0.01 0.01 0.002 0.012 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd1 vel constant 0.1 0 -0.5 insert_every once overlapcheck yes region bc particles_in_region 5
+{fixes}run 60000
+"
+        ))
+        .unwrap();
+        let b: Vec<_> = bodies(&i).iter().map(|b| (b.x, b.v, b.omega())).collect();
+        assert_eq!(b.len(), 5);
+        b
+    };
+    let alone = drop("fix ms all multisphere\n");
+    // They fell onto the plane and bounced off it, spinning: a run that moves them.
+    let hit = alone
+        .iter()
+        .filter(|(_, v, w)| (v.z - (-0.5 - 9.81 * 0.06)).abs() > 0.01 && w.length() > 1.0)
+        .count();
+    assert_eq!(hit, 5, "{alone:?}");
+    for fixes in [
+        "fix ms all multisphere\nfix integr all nve/nonspherical\n",
+        "fix integr all nve/nonspherical integration_scheme 3\nfix ms all multisphere\n",
+        "group none type 2\nfix ms all multisphere\nfix integr none nve/nonspherical integration_scheme 0\n",
+    ] {
+        assert_eq!(drop(fixes), alone, "{fixes}");
+    }
+    let cases: [(&str, &str); 3] = [
+        (
+            "fix integr all nve/nonspherical integration_scheme 4\n",
+            "integration_scheme 4 is not one of LIGGGHTS-INL's",
+        ),
+        (
+            "fix integr all nve/nonspherical scheme 1\n",
+            "integration_scheme",
+        ),
+        (
+            "fix ms all multisphere\nfix integr all nve/nonspherical\nunfix integr\n",
+            "unfix integr: in LIGGGHTS-INL this stops the clumps of fix multisphere 'ms'",
+        ),
+    ];
+    for (tail, want) in cases {
+        let e = run(tail).map(|_| ()).unwrap_err();
+        assert!(e.contains(want), "{tail}: {e}");
+        assert!(e.contains("in.ms:"), "{tail}: {e}");
+    }
+    // Without clumps it may go: it moved nothing.
+    run("fix integr all nve/nonspherical\nunfix integr\n").unwrap();
+}

@@ -37,6 +37,7 @@ mod move_mesh;
 mod move_particles;
 mod multicontact;
 pub(crate) mod multisphere;
+mod nve_nonspherical;
 mod particledistribution_discrete;
 mod particletemplate_multisphere;
 mod particletemplate_sphere;
@@ -344,6 +345,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         particletemplate_multisphere::ROW,
         particletemplate_multisphere::ROW_MULTIPLE,
         multisphere::ROW,
+        nve_nonspherical::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,
         particledistribution_discrete::ROW_NUMBER,
