@@ -831,8 +831,9 @@ impl PairPass<'_> {
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
-        let threaded = rayon::current_num_threads() > 1 || virial.is_some();
-        if threaded && near.rfirst.len() != n + 1 {
+        // Two phases with several threads, or for the virial (phase 1's per-pair forces).
+        let two_phase = rayon::current_num_threads() > 1 || virial.is_some();
+        if two_phase && near.rfirst.len() != n + 1 {
             near.build_reverse(&list.partner, n);
         }
         let (p0, p1) = (list.first[0] as usize, list.first[nlocal] as usize);
@@ -869,7 +870,7 @@ impl PairPass<'_> {
             mask: &p.mask,
             freeze: *freeze,
         };
-        if !threaded {
+        if !two_phase {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
             let touch = touch_range(&mut list.touch, p0, p1);
