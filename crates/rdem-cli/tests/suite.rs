@@ -16,6 +16,7 @@ mod examples;
 mod heat;
 mod heat_local;
 mod hopper;
+mod hysteretic;
 mod incremental_history;
 mod jkr;
 mod liggghts_restart;

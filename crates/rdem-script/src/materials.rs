@@ -101,6 +101,15 @@ pub fn materials(sim: &Sim) -> Result<Materials, Error> {
                 continue;
             }
             "workOfAdhesion" => &mut m.work_of_adhesion,
+            "LoadingStiffness" => &mut m.hysteretic.loading_stiffness,
+            "UnloadingStiffness" => &mut m.hysteretic.unloading_stiffness,
+            "pullOffForce" => &mut m.hysteretic.pull_off_force,
+            "alphaCustom" => &mut m.hysteretic.alpha,
+            "cinCustom" => &mut m.hysteretic.cin,
+            "aoneCustom" => &mut m.hysteretic.a1,
+            "atwoCustom" => &mut m.hysteretic.a2,
+            "athreeCustom" => &mut m.hysteretic.a3,
+            "kcinCustom" => &mut m.hysteretic.kcin,
             "resolutionJKR" => {
                 m.resolution_jkr = p.values.first().copied();
                 continue;

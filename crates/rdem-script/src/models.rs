@@ -78,7 +78,10 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
         last = Some(k);
         a.seek(a.pos() + 1);
         match k {
-            0 => m.normal = a.choice("normal model", NORMAL_MODELS)?,
+            0 => {
+                m.normal = a.choice("normal model", NORMAL_MODELS)?;
+                m.flags.limit_force = m.normal.traits().limit_force;
+            }
             1 => m.tangential = a.choice("tangential model", TANGENTIAL_MODELS)?,
             2 => {
                 if let Some(w @ "washino/capillary/viscous") = a.peek() {

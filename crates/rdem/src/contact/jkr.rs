@@ -169,6 +169,7 @@ impl Normal for Jkr {
         characteristic_velocity: false,
         hysteresis: false,
         adhesion: true,
+        limit_force: false,
         force_exponent: 1.5,
     };
     const NECK: bool = true;

@@ -53,6 +53,8 @@ pub struct Materials {
     /// `rollingStiffness` scalar: the prefactor of the epsd3 rolling stiffness (the
     /// LIGGGHTS 3.8 manual calls it `coeffRollingStiffness`, its code reads this name).
     pub rolling_stiffness: Option<f64>,
+    /// The properties of `model hysteretic/nonlinear1|2` (LIGGGHTS-INL) that were given.
+    pub hysteretic: HystereticProperties,
     /// The `cohesion bond` coefficients that were given.
     pub bond: crate::bond::BondCoefficients,
     /// The liquid-bridge properties that were given (`cohesion easo/capillary/viscous`).
@@ -74,6 +76,105 @@ pub struct LiquidProperties {
     pub min_separation: Option<f64>,
     /// `maxSeparationDistanceRatio` scalar.
     pub max_separation: Option<f64>,
+}
+
+/// The per-type-pair properties of `model hysteretic/nonlinear1|2` (LIGGGHTS-INL), as a
+/// script gives them ([`super::hysteretic`]); with these laws `coefficientAdhesionStiffness`
+/// and `coefficientPlasticityDepth` are read too.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HystereticProperties {
+    /// `LoadingStiffness`.
+    pub loading_stiffness: Vec<f64>,
+    /// `UnloadingStiffness`.
+    pub unloading_stiffness: Vec<f64>,
+    /// `pullOffForce`.
+    pub pull_off_force: Vec<f64>,
+    /// `alphaCustom` (α).
+    pub alpha: Vec<f64>,
+    /// `cinCustom` (C).
+    pub cin: Vec<f64>,
+    /// `aoneCustom` (A₁).
+    pub a1: Vec<f64>,
+    /// `atwoCustom` (A₂).
+    pub a2: Vec<f64>,
+    /// `athreeCustom` (A₃).
+    pub a3: Vec<f64>,
+    /// `kcinCustom`.
+    pub kcin: Vec<f64>,
+}
+
+impl HystereticProperties {
+    /// The mixed coefficients of every type pair for `n` types, checked; `variant` is 1 or
+    /// 2 (nonlinear2 divides by C, which must then be > 0). `rest` is the restitution
+    /// table, `kc_ratio` `coefficientAdhesionStiffness`.
+    fn coeffs(
+        &self,
+        n: usize,
+        variant: u8,
+        rest: &[f64],
+        kc_ratio: &[f64],
+    ) -> Result<Vec<super::hysteretic::HystereticCoeff>> {
+        let t = |name: &'static str, v: &Vec<f64>, ok: fn(f64) -> bool, range| {
+            if v.is_empty() {
+                return Err(Error::Invalid {
+                    what: name,
+                    reason: format!(
+                        "model hysteretic/nonlinear{variant} needs fix property/global {name} peratomtypepair {n} ..."
+                    ),
+                });
+            }
+            pair_table(name, v, n, true, ok, range)
+        };
+        let ge0: fn(f64) -> bool = |v| v >= 0.0;
+        let gt0: fn(f64) -> bool = |v| v > 0.0;
+        let any: fn(f64) -> bool = |v| v.is_finite();
+        let loading = t(
+            "LoadingStiffness",
+            &self.loading_stiffness,
+            ge0,
+            "must be >= 0",
+        )?;
+        t(
+            "UnloadingStiffness",
+            &self.unloading_stiffness,
+            ge0,
+            "must be >= 0",
+        )?;
+        let pull = t("pullOffForce", &self.pull_off_force, any, "must be finite")?;
+        let alpha = t("alphaCustom", &self.alpha, gt0, "must be > 0")?;
+        let cin = if variant == 2 {
+            t(
+                "cinCustom",
+                &self.cin,
+                gt0,
+                "must be > 0 (hysteretic/nonlinear2 divides by it)",
+            )?
+        } else {
+            t("cinCustom", &self.cin, ge0, "must be >= 0")?
+        };
+        let a1 = t("aoneCustom", &self.a1, ge0, "must be >= 0")?;
+        let a2 = t("atwoCustom", &self.a2, gt0, "must be > 0")?;
+        let a3 = t("athreeCustom", &self.a3, gt0, "must be > 0")?;
+        let kcin = t("kcinCustom", &self.kcin, ge0, "must be >= 0")?;
+        let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+        Ok((0..n * n)
+            .map(|k| {
+                let ln_e = rest[k].ln();
+                super::hysteretic::HystereticCoeff {
+                    alpha: alpha[k],
+                    cin: cin[k],
+                    a1: a1[k],
+                    a2: a2[k],
+                    a3: a3[k],
+                    kc_adh: kcin[k] * a2[k],
+                    pull_off: pull[k],
+                    limitable: kc_ratio[k] * loading[k] == 0.0 && pull[k] == 0.0,
+                    // e = 1 (ln e = 0) gives no damping, as the fork's formula does.
+                    damp: 4.0 / (1.0 + pi2 / (ln_e * ln_e)),
+                }
+            })
+            .collect())
+    }
 }
 
 impl LiquidProperties {
@@ -220,6 +321,8 @@ pub struct PairCoeff {
     pub jkr_w: f64,
     /// `model jkr`: 9πW/(2E*), so that a₀³ = this × R*² ([`super::jkr::Scales`]).
     pub jkr_k: f64,
+    /// `model hysteretic/nonlinear1|2`: their coefficients.
+    pub hysteretic: super::hysteretic::HystereticCoeff,
 }
 
 /// Which optional properties a contact model needs.
@@ -237,6 +340,8 @@ pub struct Needs {
     pub characteristic_velocity: bool,
     /// Hysteresis coefficients.
     pub hysteresis: bool,
+    /// The properties of `model hysteretic/nonlinear1|2`: `Some(1)` or `Some(2)`.
+    pub hysteretic_nonlinear: Option<u8>,
     /// The epsd3 rolling stiffness prefactor.
     pub rolling_stiffness: bool,
     /// `workOfAdhesion` and `resolutionJKR` (`model jkr`).
@@ -356,11 +461,12 @@ impl CoeffTable {
             |v| v >= 0.0,
             "must be >= 0",
         )?;
+        let hyst_nl = needs.hysteretic_nonlinear;
         let kc = pair_table(
             "coefficientAdhesionStiffness",
             &m.adhesion_stiffness,
             n,
-            needs.hysteresis,
+            needs.hysteresis || hyst_nl.is_some(),
             |v| v >= 0.0,
             "must be >= 0",
         )?;
@@ -368,7 +474,7 @@ impl CoeffTable {
             "coefficientPlasticityDepth",
             &m.plasticity_depth,
             n,
-            needs.hysteresis,
+            needs.hysteresis || hyst_nl.is_some(),
             |v| v > 0.0,
             "must be > 0",
         )?;
@@ -432,6 +538,10 @@ impl CoeffTable {
         } else {
             0.0
         };
+        let hyst = match hyst_nl {
+            Some(variant) => m.hysteretic.coeffs(n, variant, &rest, &kc)?,
+            None => vec![Default::default(); n * n],
+        };
         let mut coeffs = Vec::with_capacity(n * n);
         for a in 0..n {
             for b in 0..n {
@@ -480,6 +590,7 @@ impl CoeffTable {
                     liquid,
                     jkr_w: wa[k],
                     jkr_k: 4.5 * std::f64::consts::PI * wa[k] / e_star,
+                    hysteretic: hyst[k],
                 });
             }
         }

@@ -1,5 +1,6 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
-//! hooke/hysteresis, hertz/stiffness, hooke/stiffness, jkr), tangential (history, no_history,
+//! hooke/hysteresis, hertz/stiffness, hooke/stiffness, jkr, hysteretic/nonlinear1 and 2),
+//! tangential (history, no_history,
 //! incremental_history),
 //! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
 //! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
@@ -8,6 +9,7 @@
 //! dispatch. Particle–particle and particle–wall contacts share [`contact`].
 
 pub mod cohesion;
+pub mod hysteretic;
 pub mod jkr;
 pub mod liquid;
 pub mod materials;
@@ -18,7 +20,9 @@ pub mod tangential;
 
 use glam::DVec3;
 
-pub use materials::{CoeffTable, LiquidProperties, Materials, Needs, PairCoeff};
+pub use materials::{
+    CoeffTable, HystereticProperties, LiquidProperties, Materials, Needs, PairCoeff,
+};
 
 /// The normal force laws, one row each: the kind, the law's type (a
 /// [`normal::Normal`]) and its script name. The kind enum, the names the script reads
@@ -70,6 +74,12 @@ normal_laws! {
     /// `jkr` (LIGGGHTS_Flexible_Fibers, PICI): the JKR adhesive contact, which holds
     /// while the spheres are apart down to δ = −δ_c ([`jkr::Jkr`]).
     Jkr => jkr::Jkr, "jkr";
+    /// `hysteretic/nonlinear1` (LIGGGHTS-INL): elasto-plastic, loading α k₁ δ², linear
+    /// unloading, an adhesive branch ([`hysteretic`]).
+    HystereticNonlinear1 => hysteretic::HystereticNonlinear, "hysteretic/nonlinear1";
+    /// `hysteretic/nonlinear2` (LIGGGHTS-INL): as nonlinear1 with exponential unloading
+    /// ([`hysteretic`]; the two share one kernel).
+    HystereticNonlinear2 => hysteretic::HystereticNonlinear, "hysteretic/nonlinear2";
 }
 
 impl NormalKind {
@@ -176,6 +186,9 @@ pub struct Flags {
     /// The cohesion law, for the kernel that chooses it per contact ([`cohesion::Pull`]);
     /// set by [`ContactModel::kernel_flags`].
     pub(crate) cohesion: CohesionKind,
+    /// The normal law, for the kernel that chooses it per contact
+    /// ([`hysteretic::HystereticNonlinear`]); set by [`ContactModel::kernel_flags`].
+    pub(crate) normal: NormalKind,
 }
 
 impl Default for Flags {
@@ -188,6 +201,7 @@ impl Default for Flags {
             absolute_damping: false,
             rolling: RollingKind::Off,
             cohesion: CohesionKind::Off,
+            normal: NormalKind::Hertz,
         }
     }
 }
@@ -237,6 +251,7 @@ impl ContactModel {
         Flags {
             rolling: self.rolling,
             cohesion: self.cohesion,
+            normal: self.normal,
             ..self.flags
         }
     }
@@ -252,6 +267,11 @@ impl ContactModel {
             liquid: self.cohesion == CohesionKind::Easo,
             characteristic_velocity: self.normal.traits().characteristic_velocity,
             hysteresis: self.normal.traits().hysteresis,
+            hysteretic_nonlinear: match self.normal {
+                NormalKind::HystereticNonlinear1 => Some(1),
+                NormalKind::HystereticNonlinear2 => Some(2),
+                _ => None,
+            },
             stiffness: if self.normal.is_stiffness() {
                 Some(self.flags.absolute_damping)
             } else {

@@ -17,6 +17,8 @@ pub struct LawTraits {
     pub hysteresis: bool,
     /// It reads `workOfAdhesion` and `resolutionJKR`.
     pub adhesion: bool,
+    /// The default of `limitForce` (off but for the laws whose fork makes it on).
+    pub limit_force: bool,
     /// The exponent p of its elastic force, F ~ δ^p (heat/gran's area correction).
     pub force_exponent: f64,
 }
@@ -65,6 +67,7 @@ impl Normal for Hertz {
         characteristic_velocity: false,
         hysteresis: false,
         adhesion: false,
+        limit_force: false,
         force_exponent: 1.5,
     };
     #[inline(always)]
@@ -112,6 +115,7 @@ impl Normal for Hooke {
         characteristic_velocity: true,
         hysteresis: false,
         adhesion: false,
+        limit_force: false,
         force_exponent: 1.0,
     };
     #[inline(always)]
@@ -144,6 +148,7 @@ impl Normal for HookeHysteresis {
         characteristic_velocity: true,
         hysteresis: true,
         adhesion: false,
+        limit_force: false,
         force_exponent: 1.0,
     };
     #[inline(always)]
@@ -200,6 +205,7 @@ impl Normal for HertzStiffness {
         characteristic_velocity: false,
         hysteresis: false,
         adhesion: false,
+        limit_force: false,
         force_exponent: 1.5,
     };
     #[inline(always)]
@@ -230,6 +236,7 @@ impl Normal for HookeStiffness {
         characteristic_velocity: false,
         hysteresis: false,
         adhesion: false,
+        limit_force: false,
         force_exponent: 1.0,
     };
     #[inline(always)]
