@@ -35,6 +35,7 @@ mod mpi_restart;
 mod multicontact;
 mod pour;
 mod restart_exact;
+mod rolling_cdt;
 mod servo_modes;
 mod servo_wall;
 mod sph;

@@ -204,7 +204,7 @@ fn parse_switches_while(
                 if on && m.rolling == RollingKind::Off {
                     return Err(a.error_at(
                         a.pos() - 2,
-                        "torsionTorque needs a rolling friction model (rolling_friction cdt, epsd, epsd2 or epsd3)",
+                        "torsionTorque needs a rolling friction model (rolling_friction cdt, cdtnonlinear2, epsd, epsd2 or epsd3)",
                         None,
                     ));
                 }

@@ -2,7 +2,7 @@
 //! hooke/hysteresis, hertz/stiffness, hooke/stiffness, jkr, hysteretic/nonlinear1 and 2),
 //! tangential (history, no_history,
 //! incremental_history),
-//! rolling friction (off, cdt, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
+//! rolling friction (off, cdt, cdtnonlinear2, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
 //! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
 //! [`ContactModel`] value picks one of each and [`ContactModel::dispatch`] turns that
 //! choice into one monomorphized kernel per pass, so the per-contact code has no dynamic
@@ -128,6 +128,8 @@ model_kinds! {
         Off = "off",
         /// `cdt`: constant directional torque.
         Cdt = "cdt",
+        /// `cdtnonlinear2` (LIGGGHTS-INL): as `cdt` with the normal model's whole force.
+        CdtNonlinear2 = "cdtnonlinear2",
         /// `epsd`: elastic–plastic spring–dashpot (Ai et al.).
         Epsd = "epsd",
         /// `epsd2`: Iwashita–Oda spring, no damping.
@@ -350,7 +352,7 @@ impl ContactModel {
     fn d_roll<N: normal::Normal, T: tangential::Tangential, V: Visitor>(&self, v: V) -> V::Output {
         match self.rolling {
             RollingKind::Off => self.d_coh::<N, T, rolling::Off, V>(v),
-            RollingKind::Cdt => self.d_coh::<N, T, rolling::Cdt, V>(v),
+            RollingKind::Cdt | RollingKind::CdtNonlinear2 => self.d_coh::<N, T, rolling::Cdt, V>(v),
             RollingKind::Epsd | RollingKind::Epsd2 | RollingKind::Epsd3 => {
                 self.d_coh::<N, T, rolling::Spring, V>(v)
             }

@@ -62,7 +62,10 @@ mod tests {
             names(COHESION_MODELS),
             "off sjkr sjkr2 bond easo/capillary/viscous"
         );
-        assert_eq!(names(ROLLING_MODELS), "off cdt epsd epsd2 epsd3");
+        assert_eq!(
+            names(ROLLING_MODELS),
+            "off cdt cdtnonlinear2 epsd epsd2 epsd3"
+        );
         assert_eq!(names(SURFACE_MODELS), "default multicontact");
     }
 }

@@ -48,8 +48,12 @@ impl Rolling for Off {
     }
 }
 
-/// `rolling_friction cdt`: torque μ_r k_n δ R* against the direction of w_r (k_n δ is the
-/// elastic normal force); the torsion part is removed from the torque.
+/// `rolling_friction cdt`: torque μ_r k_n δ R* against the direction of w_r, k_n the normal
+/// law's stiffness (as LIGGGHTS: k_n δ is the elastic force of Hertz and Hooke, not of
+/// hooke/hysteresis, JKR or the hysteretic nonlinear laws); the torsion part is removed
+/// from the torque. The same kernel runs `rolling_friction cdtnonlinear2` (LIGGGHTS-INL),
+/// whose torque takes the normal law's whole force (damping and `limitForce` included)
+/// for k_n δ, as the fork's code does (it has no manual page).
 pub struct Cdt;
 
 impl Rolling for Cdt {
@@ -66,7 +70,12 @@ impl Rolling for Cdt {
         let wr = relative_rotation(g);
         let mag = wr.length();
         if mag > 0.0 {
-            without_torsion(-(c.mu_r * no.fn_elastic * g.r_star / mag) * wr, g, flags)
+            let load = if flags.rolling == RollingKind::CdtNonlinear2 {
+                no.fn_contact
+            } else {
+                no.kn * g.delta
+            };
+            without_torsion(-(c.mu_r * load * g.r_star / mag) * wr, g, flags)
         } else {
             DVec3::ZERO
         }
