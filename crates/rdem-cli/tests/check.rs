@@ -325,6 +325,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "46_helix_read_data_hooke",
     "48_fluidised_bed_sjkr_init/DEM",
     "50_capillary_heat_init/DEM",
+    "52_mcg_hourglass",
     "54_pici_jkr_rotating_drum",
     "56_2x_chute_cylinder_obstacle",
 ];

@@ -21,6 +21,7 @@ mod incremental_history;
 mod jkr;
 mod liggghts_restart;
 mod local_dump;
+mod mcg;
 mod memory_figure;
 mod mesh_motion;
 mod mesh_stress;

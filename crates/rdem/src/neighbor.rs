@@ -217,19 +217,26 @@ impl Neighbor {
     /// some particle moved more than skin/2 since then. `any` combines the local answer
     /// of the distance check over all ranks (the identity serially).
     pub fn decide(&mut self, step: u64, x: &[DVec3], any: impl Fn(bool) -> bool) -> bool {
+        let (due, dangerous) = self.due(step, x, any);
+        if dangerous {
+            self.ndangerous += 1;
+        }
+        due
+    }
+
+    /// What [`Neighbor::decide`] would answer at `step`, and whether that build would be
+    /// a dangerous one, without counting it.
+    pub fn due(&self, step: u64, x: &[DVec3], any: impl Fn(bool) -> bool) -> (bool, bool) {
         let ago = step.saturating_sub(self.last_build);
         let s = self.settings;
         if ago < s.delay || (s.every > 1 && ago % s.every != 0) {
-            return false;
+            return (false, false);
         }
         if !s.check {
-            return true;
+            return (true, false);
         }
         let moved = any(self.moved_too_far(x));
-        if moved && ago == s.every.max(1).max(s.delay) {
-            self.ndangerous += 1;
-        }
-        moved
+        (moved, moved && ago == s.every.max(1).max(s.delay))
     }
 
     /// True if any particle may have moved more than skin/2 − [`Neighbor::growth`] since

@@ -710,6 +710,27 @@ impl World {
     /// moving mesh that drifted half a skin since the wall candidates were built (every
     /// rank moves every mesh alike: no communication). Every rank takes the same
     /// decision. Clears the added and removed flags.
+    /// Whether this step will re-neighbor (asked after the initial integration, before
+    /// step 5 decides; every rank must ask): particles added or removed, the list's
+    /// delay/every/check, or a moving mesh's drift. A fix that acts only where LIGGGHTS'
+    /// `pre_exchange` runs (on re-neighboring steps) asks this.
+    pub fn rebuild_pending(&self) -> bool {
+        let nlocal = self.particles.nlocal();
+        let comm = &self.comm;
+        let changed = comm.any(self.needs_reneighbor || self.rebuild_next);
+        let skin = self.neighbor.settings.skin;
+        let mesh_far = self
+            .meshes
+            .iter()
+            .any(|m| m.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
+        changed
+            || self
+                .neighbor
+                .due(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
+                .0
+            || mesh_far
+    }
+
     pub(crate) fn rebuild_due(&mut self) -> (bool, bool) {
         let nlocal = self.particles.nlocal();
         let removed = std::mem::take(&mut self.rebuild_next);

@@ -30,6 +30,7 @@ mod insert_dense;
 mod insert_stream;
 pub(crate) mod liquid;
 mod massflow_mesh;
+mod mcg;
 mod mesh_servo;
 mod mesh_surface;
 mod modify;
@@ -346,6 +347,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         particletemplate_multisphere::ROW_MULTIPLE,
         multisphere::ROW,
         nve_nonspherical::ROW,
+        mcg::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,
         particledistribution_discrete::ROW_NUMBER,
