@@ -201,3 +201,50 @@ fn a_restart_continues_the_cycle_exactly() {
     assert_eq!(resumed, whole[from..]);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The same throw at an STL floor (`mesh/surface/stress`) bounces as off the primitive
+/// plane, to the fork's rows; with a rolling spring too (the widest mesh-wall history:
+/// 10 normal values, tangential and rolling springs, the stress values) it runs.
+#[test]
+fn a_mesh_wall_gives_the_primitive_walls_bounce() {
+    let stl = "solid floor\n\
+        facet normal 0 0 1\nouter loop\nvertex -0.01 -0.01 0\nvertex 0.01 -0.01 0\nvertex 0.01 0.01 0\nendloop\nendfacet\n\
+        facet normal 0 0 1\nouter loop\nvertex -0.01 -0.01 0\nvertex 0.01 0.01 0\nvertex -0.01 0.01 0\nendloop\nendfacet\n\
+        endsolid floor\n";
+    let mesh = |roll: &str| {
+        let s = with_vars("in.drop", &[("law", "2")]);
+        let line = s
+            .lines()
+            .find(|l| l.starts_with("fix floor all wall/gran"))
+            .unwrap()
+            .to_string();
+        s.replace(
+            &line,
+            &format!(
+                "fix fl all mesh/surface/stress file floor.stl type 2\n\
+                 fix r1 all property/global coefficientRollingFriction peratomtypepair 2 0.1 0.1 0.1 0.1\n\
+                 fix r2 all property/global coefficientRollingViscousDamping peratomtypepair 2 0.1 0.1 0.1 0.1\n\
+                 fix floor all wall/gran model hysteretic/nonlinear2 tangential history \
+                 rolling_friction {roll} mesh n_meshes 1 meshes fl"
+            ),
+        )
+    };
+    let got = common::thermo_rows(&common::run_with_files(
+        &mesh("off"),
+        &[("floor.stl", stl)],
+        None,
+    ));
+    common::assert_columns(
+        &got,
+        &reference("inl_drop_law2.txt"),
+        1,
+        1e-10,
+        "mesh floor",
+    );
+    let spring = common::thermo_rows(&common::run_with_files(
+        &mesh("epsd"),
+        &[("floor.stl", stl)],
+        None,
+    ));
+    assert_eq!(spring.len(), got.len());
+}

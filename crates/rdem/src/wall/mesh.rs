@@ -50,7 +50,7 @@ pub const SLOTS: usize = 6;
 const BOND_BLOCK: usize = bond::VEC + bond::WALL_TAIL + 4;
 
 /// Largest history of one particle (all slots).
-const MAX_WIDTH: usize = 128;
+const MAX_WIDTH: usize = 256;
 
 /// Most triangle features one particle is checked against in a step (more are ignored).
 const MAX_TOUCH: usize = 64;
