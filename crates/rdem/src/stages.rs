@@ -705,11 +705,6 @@ impl World {
         }
     }
 
-    /// Step 5: whether particles were added (on any rank), and whether the neighbor
-    /// lists must be rebuilt: particles added or removed, the list's own decision, or a
-    /// moving mesh that drifted half a skin since the wall candidates were built (every
-    /// rank moves every mesh alike: no communication). Every rank takes the same
-    /// decision. Clears the added and removed flags.
     /// Whether this step will re-neighbor (asked after the initial integration, before
     /// step 5 decides; every rank must ask): particles added or removed, the list's
     /// delay/every/check, or a moving mesh's drift. A fix that acts only where LIGGGHTS'
@@ -717,20 +712,18 @@ impl World {
     pub fn rebuild_pending(&self) -> bool {
         let nlocal = self.particles.nlocal();
         let comm = &self.comm;
-        let changed = comm.any(self.needs_reneighbor || self.rebuild_next);
-        let skin = self.neighbor.settings.skin;
-        let mesh_far = self
-            .meshes
-            .iter()
-            .any(|m| m.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
-        changed
+        comm.any(self.needs_reneighbor || self.rebuild_next)
             || self
                 .neighbor
                 .due(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
                 .0
-            || mesh_far
+            || self.mesh_drifted()
     }
 
+    /// Step 5: whether particles were added (on any rank), and whether the neighbor
+    /// lists must be rebuilt: particles added or removed, the list's own decision, or a
+    /// moving mesh that drifted half a skin since the wall candidates were built. Every
+    /// rank takes the same decision. Clears the added and removed flags.
     pub(crate) fn rebuild_due(&mut self) -> (bool, bool) {
         let nlocal = self.particles.nlocal();
         let removed = std::mem::take(&mut self.rebuild_next);
@@ -738,18 +731,22 @@ impl World {
         let comm = &self.comm;
         let added = comm.any(added);
         let removed = comm.any(removed);
-        let skin = self.neighbor.settings.skin;
-        let mesh_far = self
-            .meshes
-            .iter()
-            .any(|m| m.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin);
         let rebuild = added
             || removed
             || self
                 .neighbor
                 .decide(self.step, &self.particles.x[..nlocal], |b| comm.any(b))
-            || mesh_far;
+            || self.mesh_drifted();
         (added, rebuild)
+    }
+
+    /// Whether a moving mesh drifted half a skin since its wall candidates were built
+    /// (every rank moves every mesh alike: no communication).
+    fn mesh_drifted(&self) -> bool {
+        let skin = self.neighbor.settings.skin;
+        self.meshes
+            .iter()
+            .any(|m| m.is_moving() && m.motion.max_drift(&m.mesh.verts) > 0.5 * skin)
     }
 
     /// Step 6: forces and torques zeroed; the walls told the step (bonds are created at
