@@ -114,15 +114,7 @@ impl HystereticProperties {
         rest: &[f64],
         kc_ratio: &[f64],
     ) -> Result<Vec<super::hysteretic::HystereticCoeff>> {
-        let t = |name: &'static str, v: &Vec<f64>, ok: fn(f64) -> bool, range| {
-            if v.is_empty() {
-                return Err(Error::Invalid {
-                    what: name,
-                    reason: format!(
-                        "model hysteretic/nonlinear{variant} needs fix property/global {name} peratomtypepair {n} ..."
-                    ),
-                });
-            }
+        let t = |name, v: &Vec<f64>, ok: fn(f64) -> bool, range| {
             pair_table(name, v, n, true, ok, range)
         };
         let ge0: fn(f64) -> bool = |v| v >= 0.0;
@@ -374,6 +366,15 @@ pub(crate) fn pair_table(
 ) -> Result<Vec<f64>> {
     if !needed {
         return Ok(vec![0.0; n * n]);
+    }
+    if table.is_empty() {
+        return Err(Error::Invalid {
+            what: name,
+            reason: format!(
+                "the contact model needs it: define fix ID all property/global {name} peratomtypepair {n} followed by {} values",
+                n * n
+            ),
+        });
     }
     if table.len() != n * n {
         return Err(Error::Invalid {
