@@ -20,12 +20,7 @@ fn data() -> PathBuf {
 
 /// The thermo rows of a reference file (comment lines skipped).
 fn reference(name: &str) -> Vec<Vec<f64>> {
-    std::fs::read_to_string(data().join(name))
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-        .collect()
+    common::reference_rows(&data().join(name))
 }
 
 /// in.oblique with `MU`, `E`, `TD` set, `tangential` for the model and `edit` applied.

@@ -27,21 +27,12 @@ fn read(name: &str) -> String {
 
 /// The thermo rows of a reference file (comment lines skipped).
 fn reference(name: &str) -> Vec<Vec<f64>> {
-    read(name)
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-        .collect()
+    common::reference_rows(&data().join(name))
 }
 
 /// A data script with index variables set first (as `-var NAME VALUE` would).
 fn with_vars(name: &str, vars: &[(&str, &str)]) -> String {
-    let mut s: String = vars
-        .iter()
-        .map(|(k, v)| format!("variable {k} index {v}\n"))
-        .collect();
-    s.push_str(&read(name));
-    s
+    common::index_vars(vars) + &read(name)
 }
 
 /// Every value of `got` within `rel` of the largest magnitude of its column in `want`.

@@ -17,20 +17,14 @@ fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/rolling")
 }
 
+/// The thermo rows of a reference file (comment lines skipped).
 fn reference(name: &str) -> Vec<Vec<f64>> {
-    std::fs::read_to_string(data().join(name))
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-        .collect()
+    common::reference_rows(&data().join(name))
 }
 
 fn run(roll: &str, model: &str) -> Vec<Vec<f64>> {
-    let script = format!(
-        "variable roll index {roll}\nvariable model index {model}\n{}",
-        std::fs::read_to_string(data().join("in.roll")).unwrap()
-    );
+    let script = common::index_vars(&[("roll", roll), ("model", model)])
+        + &std::fs::read_to_string(data().join("in.roll")).unwrap();
     common::thermo_rows(&common::run_script(&script, None))
 }
 

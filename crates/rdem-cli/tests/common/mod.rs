@@ -270,6 +270,24 @@ pub fn floor_stl() -> String {
     s + "endsolid floor\n"
 }
 
+/// The rows of numbers of a reference file (thermo rows a program printed), lines
+/// starting with `#` (its source) skipped.
+pub fn reference_rows(path: &Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+/// Index-variable lines setting `vars` ahead of a script, as `-var NAME VALUE` would.
+pub fn index_vars(vars: &[(&str, &str)]) -> String {
+    vars.iter()
+        .map(|(k, v)| format!("variable {k} index {v}\n"))
+        .collect()
+}
+
 /// Every value of `got`, from column `first` on, within `rel` of the largest magnitude of
 /// its column in `want` (columns of velocity or spin pass through zero); the rows have
 /// `want`'s length. Column 0 names the row (the step) in the failure message.
