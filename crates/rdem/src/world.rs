@@ -199,10 +199,10 @@ impl World {
     /// goes with them; a clump goes whole with any of its spheres); the next step re-neighbors (without a new set-up: the others
     /// carry on as if nothing happened).
     pub fn remove_particles(&mut self, remove: &[bool]) -> usize {
-        if self.particles.nghost() > 0 {
-            self.neighbor.save_history(&self.particles);
-            self.particles.clear_ghosts();
-        }
+        // The contact histories go by tag before the indices shift (with or without
+        // ghosts: a list without ghosts holds histories by index too).
+        self.neighbor.save_history(&self.particles);
+        self.particles.clear_ghosts();
         let mut remove = remove.to_vec();
         self.remove_whole_bodies(&mut remove);
         let n = self.particles.remove_locals(&remove);
