@@ -315,6 +315,7 @@ const WILD_FULLY_SUPPORTED: &[&str] = &[
     "16_pfm_rotary_kiln_init",
     "18_inl_chain_bending_bond_counter",
     "20_inl_chain_test_plate",
+    "22_inl_bonds_from_multisphere",
     "24_fibers_cantilever_beam",
     "26_fibers_shear_box_insert",
     "28_seaice_bond_break",

@@ -13,6 +13,7 @@ mod common;
 mod contact_history;
 mod dense_insert;
 mod examples;
+mod fragments;
 mod heat;
 mod heat_local;
 mod hopper;

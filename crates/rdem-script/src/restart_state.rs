@@ -23,7 +23,7 @@ use crate::error::Error;
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use rdem::restart::{HistoryState, ParticleState, RankState, WorldValues};
+use rdem::restart::{BodyStateV1, HistoryState, ParticleState, RankState, WorldValues};
 use rdem::{Boundary, Domain, World};
 use serde::{Deserialize, Serialize};
 
@@ -251,8 +251,18 @@ pub fn decode(payload: &[u8]) -> Result<RestartContents, Error> {
     for _ in 0..nb {
         let n = c.len()?;
         let bytes = c.take(n)?;
-        // Files of rdem before clumps end a rank's block at its histories.
+        // Files of rdem before clumps end a rank's block at its histories; files of rdem
+        // before bodies kept their template's bounding sphere and frame hold
+        // `BodyStateV1`.
         let rank = postcard::from_bytes::<RankState>(bytes).or_else(|e| {
+            type V1 = (ParticleState, HistoryState, Option<Vec<BodyStateV1>>);
+            if let Ok((particles, history, bodies)) = postcard::from_bytes::<V1>(bytes) {
+                return Ok(RankState {
+                    particles,
+                    history,
+                    bodies: bodies.map(|b| b.into_iter().map(Into::into).collect()),
+                });
+            }
             postcard::from_bytes::<(ParticleState, HistoryState)>(bytes)
                 .map(|(particles, history)| RankState {
                     particles,

@@ -91,3 +91,42 @@ fn bad_group_values_are_located_errors() {
         assert!(e.contains(&format!("in.bad:{line}:{col}")), "{args}: {e}");
     }
 }
+
+/// Inserted particles join the inserting fix's group, the template fix's and the
+/// distribution fix's, as in LIGGGHTS 3.8 (measured with this script: 10 atoms in each of
+/// g2, g3 and g4 after the insertion).
+#[test]
+fn inserted_particles_join_the_template_and_distribution_groups() {
+    let src = "atom_style granular\n\
+        atom_modify map array\n\
+        boundary f f f\n\
+        units si\n\
+        region reg block 0 1 0 1 0 1 units box\n\
+        create_box 2 reg\n\
+        neighbor 0.01 bin\n\
+        fix m1 all property/global youngsModulus peratomtype 5e6 5e6\n\
+        fix m2 all property/global poissonsRatio peratomtype 0.45 0.45\n\
+        fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3\n\
+        fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5\n\
+        pair_style gran model hertz tangential history\n\
+        pair_coeff * *\n\
+        timestep 1e-5\n\
+        group g2 region reg\n\
+        group g3 region reg\n\
+        group g4 region reg\n\
+        group g5 region reg\n\
+        fix pts1 g2 particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.02\n\
+        fix pdd g4 particledistribution/discrete 15485867 1 pts1 1.0\n\
+        region ins block 0.1 0.9 0.1 0.9 0.1 0.9 units box\n\
+        fix ins g3 insert/pack seed 32452843 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 10 region ins\n\
+        run 1\n\
+        group c2 intersect g2 all\n\
+        group c3 intersect g3 all\n\
+        group c4 intersect g4 all\n\
+        group c5 intersect g5 all\n";
+    let s = common::run_screen("in.template_groups", src);
+    assert_eq!(
+        ["c2", "c3", "c4", "c5"].map(|g| count(&s, g)),
+        [10, 10, 10, 0]
+    );
+}

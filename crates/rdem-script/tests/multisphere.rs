@@ -885,8 +885,9 @@ run 40000
 /// 5 templates of three touching 2 mm spheres 4 mm apart on x inserted by insert/pack,
 /// made 15 atoms of mass 8.37758e-05 each (ρ·4/3·π·r³), three in a row on x 4 mm apart
 /// with the default orientation and turned about the middle one with `orientation
-/// random`; no `fix multisphere` is needed. rdem does the same; `bonded yes` and the
-/// rigid-body keywords are located errors.
+/// random`; no `fix multisphere` is needed. rdem does the same; `bonded yes/implicit`
+/// without bond atoms and the rigid-body keywords are located errors, and `bonded yes`
+/// is LIGGGHTS-INL's (a bond ID per copy).
 #[test]
 fn multiplespheres_insert_separate_spheres() {
     let template = "fix pts1 all particletemplate/multiplespheres 15485863 atom_type 1 \
@@ -920,9 +921,28 @@ fn multiplespheres_insert_separate_spheres() {
             }
         }
     }
+    // LIGGGHTS-INL's `bonded yes` without bond atoms: each copy's spheres share a bond
+    // ID (the step, 1, plus a fraction), different for each copy.
+    let (i, out) = run(&tail("").replacen(template, &format!("{template} bonded yes"), 1))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let p = &i.sim.world.as_ref().unwrap().particles;
+    assert_eq!(p.nlocal(), 15, "{out}");
+    let id = p.property("bond_random_id").expect("the property");
+    let ids = &p.props[id.0].data[..15];
+    for t in 0..5 {
+        let c = &ids[3 * t..3 * t + 3];
+        assert!(
+            c[0] > 1.0 && c[0] < 2.0 && c[1] == c[0] && c[2] == c[0],
+            "{ids:?}"
+        );
+        assert!(
+            (0..5).filter(|&u| ids[3 * u] == c[0]).count() == 1,
+            "{ids:?}"
+        );
+    }
     for (extra, msg) in [
         (
-            "bonded yes",
+            "bonded yes/implicit",
             "bonded templates need an atom style with bonds",
         ),
         (

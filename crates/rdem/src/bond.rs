@@ -52,6 +52,33 @@ pub const PAIR_TAIL: usize = 2;
 /// Trailing history values of a wall bond: flag, d₀, anchor point (3).
 pub const WALL_TAIL: usize = 5;
 
+/// Per-particle property (LIGGGHTS-INL's `bond_random_id`): the spheres of one inserted
+/// copy of a bonded template (`bonded yes` without bond atoms, or the fragments of
+/// `fix insert/fragments`) share a value, the insertion step plus a number in (0, 1). Two
+/// spheres that share it bond, as at `tsCreateBond`, while the step is below it: at the
+/// step they were inserted.
+pub const RANDOM_ID: &str = "bond_random_id";
+
+/// A [`RANDOM_ID`] value for a copy inserted at `step`: the step plus a fraction in
+/// (0, 1) drawn from `key` by a fixed mixing function (splitmix64), so that every rank
+/// and thread count gives the same values; different keys give different values.
+pub fn random_id(step: u64, key: u64) -> f64 {
+    let mut z = key.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^= z >> 31;
+    // 52 bits, then in (0, 1): never the step itself.
+    let frac = ((z >> 12) as f64 + 0.5) / (1u64 << 52) as f64;
+    step as f64 + frac
+}
+
+/// Whether two spheres with [`RANDOM_ID`] values `a` and `b` are bonded by them at
+/// `step`.
+#[inline(always)]
+pub fn same_random_id(a: f64, b: f64, step: u64) -> bool {
+    a == b && (step as f64) < a
+}
+
 /// Below this radius multiplier a type pair does not bond (as LIGGGHTS-INL).
 const MIN_MULTIPLIER: f64 = 1e-6;
 
@@ -788,6 +815,26 @@ pub fn bond(
 
 #[cfg(test)]
 mod tests {
+
+    /// Random bond IDs: the step plus a fraction in (0, 1), different for different keys;
+    /// they bond only at the step of the insertion.
+    #[test]
+    fn random_ids_bond_at_their_step_only() {
+        let ids: Vec<f64> = (0..1000).map(|k| random_id(15051, k)).collect();
+        assert!(ids.iter().all(|&v| v > 15051.0 && v < 15052.0));
+        let mut sorted = ids.clone();
+        sorted.sort_by(f64::total_cmp);
+        sorted.dedup();
+        assert_eq!(sorted.len(), ids.len());
+        assert_eq!(random_id(7, 3), random_id(7, 3));
+        let a = random_id(100, 1);
+        assert!(same_random_id(a, a, 100));
+        assert!(!same_random_id(a, a, 101));
+        assert!(!same_random_id(a, random_id(100, 2), 100));
+        // Spheres without an ID (the default, -1) never bond by it.
+        assert!(!same_random_id(-1.0, -1.0, 0));
+    }
+
     use super::*;
 
     fn flags_plain() -> BondFlags {

@@ -276,6 +276,10 @@ struct Phase1<'a> {
     bond_flags: bond::BondFlags,
     /// Whether bonds are created in this pass.
     create_now: bool,
+    /// With `cohesion bond`: every particle's [`bond::RANDOM_ID`] (empty if none has
+    /// one), and the step, when the history advances (else empty).
+    random_id: &'a [f64],
+    step: u64,
     events: &'a BondEvents,
     /// Liquid contents of all particles (liquid bridges; else empty).
     lq: &'a [f64],
@@ -393,7 +397,9 @@ impl Phase1<'_> {
         let (ti, tj) = (self.ty[i], self.ty[j]);
         let c = table.get(ti, tj);
         if !bond::is_bonded(tail) {
-            if !self.create_now {
+            let by_id = !self.random_id.is_empty()
+                && bond::same_random_id(self.random_id[i], self.random_id[j], self.step);
+            if !self.create_now && !by_id {
                 return out.map(|o| (d, o));
             }
             let dist = rsq.sqrt();
@@ -831,6 +837,10 @@ impl PairPass<'_> {
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
+        let random_id = match p.property(bond::RANDOM_ID) {
+            Some(id) if update && bond.is_some() => &p.props[id.0].data[..n],
+            _ => &[][..],
+        };
         // Two phases with several threads, or for the virial (phase 1's per-pair forces).
         let two_phase = rayon::current_num_threads() > 1 || virial.is_some();
         if two_phase && near.rfirst.len() != n + 1 {
@@ -860,6 +870,8 @@ impl PairPass<'_> {
             bond: bond.as_ref(),
             bond_flags: model.bond,
             create_now,
+            random_id,
+            step: *step,
             events: bond_events,
             lq: liquid
                 .as_ref()

@@ -128,6 +128,61 @@ pub struct BodyState {
     pub atom_type: u32,
     /// Multisphere type of its template.
     pub clump_type: u32,
+    /// Radius of its template's bounding sphere (0: unknown).
+    pub bound: f64,
+    /// Its template's frame (input frame to body frame): x, y, z, w.
+    pub frame: [f64; 4],
+}
+
+/// [`BodyState`] as rdem wrote it before bodies kept their template's bounding sphere
+/// and frame (read from older restart files).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct BodyStateV1 {
+    /// The tag its spheres carry.
+    pub tag: u64,
+    /// Mass.
+    pub mass: f64,
+    /// Principal moments of inertia.
+    pub moments: [f64; 3],
+    /// Centre of mass.
+    pub x: [f64; 3],
+    /// Velocity of the centre of mass.
+    pub v: [f64; 3],
+    /// Orientation (body frame to space frame): x, y, z, w.
+    pub q: [f64; 4],
+    /// Angular momentum (space frame).
+    pub angmom: [f64; 3],
+    /// Translational switches.
+    pub fflag: [bool; 3],
+    /// Rotational switches.
+    pub tflag: [bool; 3],
+    /// Density of its template.
+    pub density: f64,
+    /// Atom type of its spheres.
+    pub atom_type: u32,
+    /// Multisphere type of its template.
+    pub clump_type: u32,
+}
+
+impl From<BodyStateV1> for BodyState {
+    fn from(b: BodyStateV1) -> Self {
+        Self {
+            tag: b.tag,
+            mass: b.mass,
+            moments: b.moments,
+            x: b.x,
+            v: b.v,
+            q: b.q,
+            angmom: b.angmom,
+            fflag: b.fflag,
+            tflag: b.tflag,
+            density: b.density,
+            atom_type: b.atom_type,
+            clump_type: b.clump_type,
+            bound: 0.0,
+            frame: [0.0, 0.0, 0.0, 1.0],
+        }
+    }
 }
 
 /// One rank's share of a restart file.
@@ -227,6 +282,8 @@ impl World {
                         density: info.density,
                         atom_type: info.atom_type,
                         clump_type: info.clump_type,
+                        bound: info.bound,
+                        frame: info.frame.to_array(),
                     })
                     .collect()
             }),
@@ -251,6 +308,8 @@ impl World {
                 density: b.density,
                 atom_type: b.atom_type,
                 clump_type: b.clump_type,
+                bound: b.bound,
+                frame: glam::DQuat::from_array(b.frame),
             };
             ms.push(body, b.tag, info);
         }

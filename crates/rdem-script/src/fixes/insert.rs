@@ -39,6 +39,39 @@ pub(super) fn orientation_law(a: &mut Args) -> CmdResult<Orientation> {
     )
 }
 
+/// The distribution named by the next word (after `distributiontemplate`). Its templates
+/// must be relative ones (`relative yes`) if `relative`, else none may be.
+pub(super) fn distribution(
+    sim: &Sim,
+    a: &mut Args,
+    relative: bool,
+) -> CmdResult<rdem::insert::Distribution> {
+    let d = a.word("distribution template ID")?;
+    let dist = sim.defs.distributions.get(d).cloned().ok_or_else(|| {
+        let names: Vec<&str> = sim.defs.distributions.keys().map(|s| s.as_str()).collect();
+        a.error_prev(
+            format!("no particle distribution '{d}'"),
+            Some(suggest(d, &names)),
+        )
+    })?;
+    let is_relative =
+        |t: &rdem::insert::ParticleTemplate| t.clump.as_ref().is_some_and(|c| c.relative);
+    if let Some(t) = dist.templates.iter().find(|t| is_relative(t) != relative) {
+        return Err(if relative {
+            a.error_prev(
+                format!("template {} of distribution {d} is not relative", t.id),
+                Some("fix insert/fragments takes a particletemplate/multiplespheres with 'relative yes'".into()),
+            )
+        } else {
+            a.error_prev(
+                format!("template {} of distribution {d} is relative ('relative yes')", t.id),
+                Some("relative templates are the fragments of fix insert/fragments; other insertions take absolute sizes".into()),
+            )
+        });
+    }
+    Ok(dist)
+}
+
 /// The registry row of `insert/pack`.
 pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
@@ -260,15 +293,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 a.yes_no("parallel")?;
             }
             "distributiontemplate" => {
-                let d = a.word("distribution template ID")?;
-                dist = Some(sim.defs.distributions.get(d).cloned().ok_or_else(|| {
-                    let names: Vec<&str> =
-                        sim.defs.distributions.keys().map(|s| s.as_str()).collect();
-                    a.error_prev(
-                        format!("no particle distribution '{d}'"),
-                        Some(suggest(d, &names)),
-                    )
-                })?);
+                dist = Some(distribution(sim, a, false)?);
             }
             "verbose" => verbose = a.yes_no("verbose")?,
             "maxattempt" => maxattempt = a.count("maxattempt")? as usize,

@@ -10,7 +10,7 @@ use rdem::insert::{DensePack, VelocityLaw};
 use rdem::World;
 
 use super::{style, FixHead, FixRow, Notes, ScriptFix, Stages, STYLE_WORD};
-use crate::args::{suggest, Args, CmdResult};
+use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 use crate::variables::format_g;
 
@@ -111,15 +111,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         }
         match k {
             "distributiontemplate" => {
-                let d = a.word("distribution template ID")?;
-                dist = Some(sim.defs.distributions.get(d).cloned().ok_or_else(|| {
-                    let names: Vec<&str> =
-                        sim.defs.distributions.keys().map(|s| s.as_str()).collect();
-                    a.error_prev(
-                        format!("no particle distribution '{d}'"),
-                        Some(suggest(d, &names)),
-                    )
-                })?);
+                dist = Some(super::insert::distribution(sim, a, false)?);
             }
             "region" => region = Some(sim.fixed_region(a, "fix insert/pack/dense")?),
             "volumefraction_region" => {

@@ -27,6 +27,7 @@ mod gravity;
 mod heat_gran;
 pub mod insert;
 mod insert_dense;
+mod insert_fragments;
 mod insert_stream;
 pub(crate) mod liquid;
 mod massflow_mesh;
@@ -348,6 +349,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         multisphere::ROW,
         nve_nonspherical::ROW,
         mcg::ROW,
+        insert_fragments::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,
         particledistribution_discrete::ROW_NUMBER,

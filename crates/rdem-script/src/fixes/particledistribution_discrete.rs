@@ -77,7 +77,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     } else {
         Weighting::Mass
     };
-    let d = Distribution::new(id, seed, weighting, parts)
+    let mut d = Distribution::new(id, seed, weighting, parts)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    // Inserted particles join the distribution's group too, as in LIGGGHTS 3.8.
+    d.groupbit = head.groupbit;
     Ok(Box::new(DistributionFix { parsed: Some(d) }))
 }

@@ -38,7 +38,7 @@ pub(super) const ROW_MULTIPLE: FixRow = style(
     Stages::NONE,
     "`atom_type`, `density constant`, `nspheres`, `ntry`, `spheres x y z r ...\\|file F`, `scale`, `bonded no`: the spheres are placed as a clump would be (about the Monte Carlo centre of mass, turned by the insertion's `orientation`) and inserted as separate particles, as LIGGGHTS 3.8 does",
 )
-.notes("`bonded yes\\|yes/implicit` (spheres closer than r_i + r_j + skin bonded) and `bonded yes/explicit nbond_pairs N i1 j1 ... [bond_type T]` (the pairs given): the forks' bonded templates, with `bond_style gran`; the bonds are made at insertion, their length L0 at their first evaluation")
+.notes("`bonded yes\\|yes/implicit` (spheres closer than r_i + r_j + skin bonded) and `bonded yes/explicit nbond_pairs N i1 j1 ... [bond_type T]` (the pairs given): the forks' bonded templates, with `bond_style gran`; the bonds are made at insertion, their length L0 at their first evaluation. Without bond atoms, `bonded yes` is LIGGGHTS-INL's: each copy's spheres share a `bond_random_id` (fix `bond_random_id`, `f_bond_random_id`), by which `cohesion bond` bonds those closer than createDistanceBond at the step they appear. `relative yes` (LIGGGHTS-INL): sizes in bounding radii, for `fix insert/fragments` only. Inserted spheres join the template's and the distribution's groups, as in LIGGGHTS 3.8")
 .atoi();
 
 /// A defined clump template: it lives in `Sim::templates` under the fix ID.
@@ -49,9 +49,26 @@ pub struct MultisphereTemplate {
 }
 
 impl ScriptFix for MultisphereTemplate {
-    fn install(&mut self, sim: &mut Sim, _a: &Args, head: &FixHead) -> CmdResult<()> {
+    fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
         if let Some(t) = self.parsed.take() {
             sim.outputs.out.line(&self.report);
+            if t.clump.as_ref().is_some_and(|c| c.random_bond_id)
+                && sim.fix_index(rdem::bond::RANDOM_ID).is_none()
+            {
+                // As LIGGGHTS-INL: the fix `bond_random_id` (property/atom), dumped as
+                // `f_bond_random_id`.
+                super::property_atom::define(
+                    sim,
+                    a,
+                    super::property_atom::PropertyAtom {
+                        name: rdem::bond::RANDOM_ID.to_string(),
+                        vector: false,
+                        defaults: vec![-1.0],
+                        forward: false,
+                        restart: true,
+                    },
+                )?;
+            }
             sim.defs.templates.insert(head.id.clone(), t);
         }
         Ok(())
@@ -88,6 +105,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     // (None) or explicit (the pairs given, 1-based, with where they stand); bond type.
     let (mut bonded, mut pairs, mut bond_type): (Option<bool>, Vec<(u64, u64, usize)>, u64) =
         (None, Vec::new(), 1);
+    // LIGGGHTS-INL's `bonded yes` without bond atoms (see `ClumpShape::random_bond_id`);
+    // `relative yes` (for `fix insert/fragments`).
+    let (mut random_bond_id, mut relative) = (false, false);
     const KEYS: [&str; 15] = [
         "atom_type",
         "density",
@@ -122,13 +142,19 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     while !a.is_done() {
         match a.keyword(&format!("{style_name} keyword"), keys)? {
             "bonded" => {
-                bonded =
-                    match a.keyword("bonded", &["no", "yes", "yes/implicit", "yes/explicit"])? {
-                        "no" => None,
-                        "yes/explicit" => Some(true),
-                        _ => Some(false),
-                    };
-                if bonded.is_some() && sim.setup.bond_gran.is_none() {
+                let word = a.keyword("bonded", &["no", "yes", "yes/implicit", "yes/explicit"])?;
+                bonded = match word {
+                    "no" => None,
+                    "yes/explicit" => Some(true),
+                    _ => Some(false),
+                };
+                random_bond_id = false;
+                if word == "yes" && sim.setup.bond_gran.is_none() {
+                    // LIGGGHTS-INL: each copy's spheres share a random ID, which
+                    // `cohesion bond` bonds them by.
+                    bonded = None;
+                    random_bond_id = true;
+                } else if bonded.is_some() && sim.setup.bond_gran.is_none() {
                     return Err(a.error_prev(
                         "bonded templates need an atom style with bonds",
                         Some("atom_style hybrid granular bond/gran n_bondtypes N bonds_per_atom M (or leave 'bonded' out for separate spheres)".into()),
@@ -205,8 +231,12 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 }
             }
             _ => {
-                if a.yes_no("relative")? {
-                    return Err(a.error_prev("relative radii are not supported", None));
+                relative = a.yes_no("relative")?;
+                if relative && rigid {
+                    return Err(a.error_prev(
+                        "a rigid template cannot be relative",
+                        Some("relative templates are the fragments of fix insert/fragments: define them with particletemplate/multiplespheres".into()),
+                    ));
                 }
             }
         }
@@ -317,9 +347,13 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         clump_type: u32::try_from(clump_type).unwrap_or(u32::MAX),
         rigid,
         bonds,
+        random_bond_id,
+        relative,
     };
-    let t = ParticleTemplate::clump(id, seed, ty, density, shape)
+    let mut t = ParticleTemplate::clump(id, seed, ty, density, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    // Inserted spheres join the template's group too, as in LIGGGHTS 3.8.
+    t.groupbit = head.groupbit;
     Ok(Box::new(MultisphereTemplate {
         parsed: Some(t),
         report,

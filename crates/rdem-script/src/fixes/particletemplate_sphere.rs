@@ -91,7 +91,10 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             }
             _ => {
                 if a.yes_no("relative")? {
-                    return Err(a.error_prev("relative radii are not supported", None));
+                    return Err(a.error_prev(
+                        "a sphere template cannot be relative",
+                        Some("relative templates are the fragments of fix insert/fragments: define them with particletemplate/multiplespheres".into()),
+                    ));
                 }
             }
         }
@@ -110,7 +113,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             Some("add 'radius constant R' (m), or 'radius uniform RMIN RMAX'".into()),
         )
     })?;
-    let t = ParticleTemplate::new(id, seed, ty, density, radius)
+    let mut t = ParticleTemplate::new(id, seed, ty, density, radius)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    // Inserted spheres join the template's group too, as in LIGGGHTS 3.8.
+    t.groupbit = head.groupbit;
     Ok(Box::new(Template { parsed: Some(t) }))
 }

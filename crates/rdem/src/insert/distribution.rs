@@ -31,6 +31,9 @@ pub struct Distribution {
     pub mass_fraction: Vec<f64>,
     /// Set when the weights had to be normalised.
     pub warning: Option<String>,
+    /// Groups its particles join besides the inserting fix's and the template's (the
+    /// distribution fix's group, as LIGGGHTS 3.8 adds it).
+    pub groupbit: u32,
     rng: InsertRng,
 }
 
@@ -105,6 +108,7 @@ impl Distribution {
             number_fraction: number,
             mass_fraction: mass,
             warning,
+            groupbit: 0,
             rng: super::rng(seed),
         })
     }

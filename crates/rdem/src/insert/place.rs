@@ -293,6 +293,8 @@ pub(crate) fn add_placed(
     groupbit: u32,
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     let t = &dist.templates[pl.template];
+    // The particles join the template's and the distribution's groups too (LIGGGHTS 3.8).
+    let groupbit = groupbit | t.groupbit | dist.groupbit;
     if let Some(c) = t.clump.as_ref().filter(|c| !c.rigid) {
         // Separate spheres: each goes to the rank that owns its centre; the spheres of a
         // bonded template share a new molecule ID.
@@ -300,6 +302,28 @@ pub(crate) fn add_placed(
         let molecule = match world.bonds.as_mut() {
             Some(b) if !c.bonds.is_empty() => b.molecule_id().map(|id| (id, b.next_molecule())),
             _ => None,
+        };
+        // LIGGGHTS-INL's bonded copy: one random bond ID for its spheres, the same on
+        // every rank (keyed by where the copy goes).
+        let random_id = if c.random_bond_id {
+            let key =
+                pl.x.to_array()
+                    .iter()
+                    .fold(pl.template as u64, |k, v| k.rotate_left(21) ^ v.to_bits());
+            let id = world
+                .particles
+                .property(crate::bond::RANDOM_ID)
+                .ok_or_else(|| crate::error::Error::Invalid {
+                    what: "particletemplate/multiplespheres",
+                    reason: format!(
+                        "template '{}' is bonded, but its spheres have no {}",
+                        t.id,
+                        crate::bond::RANDOM_ID
+                    ),
+                })?;
+            Some((id, crate::bond::random_id(world.step, key)))
+        } else {
+            None
         };
         let mut at = Vec::with_capacity(c.template.spheres.len());
         for s in &c.template.spheres {
@@ -316,6 +340,9 @@ pub(crate) fn add_placed(
             let i = world.add_particle(&np)?;
             if let Some((id, m)) = molecule {
                 world.particles.props[id.0].data[i] = m;
+            }
+            if let Some((id, r)) = random_id {
+                world.particles.props[id.0].data[i] = r;
             }
             at.push(Some(i));
         }

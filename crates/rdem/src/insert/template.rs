@@ -39,6 +39,13 @@ pub struct ClumpShape {
     /// Bonds between the spheres of a non-rigid template (the forks' `bonded yes`):
     /// (sphere, sphere, bond type), spheres counted from 0.
     pub bonds: Vec<(u32, u32, u32)>,
+    /// LIGGGHTS-INL's `bonded yes` without bond atoms: the spheres of each inserted copy
+    /// share a [`crate::bond::RANDOM_ID`] value, which lets `cohesion bond` bond them at
+    /// the step they are inserted.
+    pub random_bond_id: bool,
+    /// `relative yes` (LIGGGHTS-INL): positions and radii are in units of the bounding
+    /// radius of what `fix insert/fragments` replaces; no other insertion takes it.
+    pub relative: bool,
 }
 
 impl ClumpShape {
@@ -62,6 +69,9 @@ pub struct ParticleTemplate {
     pub radius: RadiusDist,
     /// A multisphere template's clump (`None`: spheres).
     pub clump: Option<Arc<ClumpShape>>,
+    /// Groups its particles join besides the inserting fix's (the template fix's group,
+    /// as LIGGGHTS 3.8 adds it).
+    pub groupbit: u32,
     pub(crate) rng: InsertRng,
 }
 
@@ -104,6 +114,7 @@ impl ParticleTemplate {
             density,
             radius,
             clump: None,
+            groupbit: 0,
             rng: super::rng(seed),
         })
     }

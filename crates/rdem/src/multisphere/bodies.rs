@@ -74,6 +74,13 @@ pub struct BodyInfo {
     /// Multisphere type of its template (`type MT` of `fix particletemplate/multisphere`;
     /// 0 if not from a template).
     pub clump_type: u32,
+    /// Radius of its template's bounding sphere ([`super::ClumpTemplate::enclosing`]),
+    /// which `fix insert/fragments` scales fragments by (0: unknown, a body from a
+    /// restart file of an older rdem).
+    pub bound: f64,
+    /// Its template's frame: the rotation from the frame the template's spheres were
+    /// given in to the body frame (the template's principal axes).
+    pub frame: DQuat,
 }
 
 impl Multisphere {
@@ -215,6 +222,8 @@ impl World {
             density: template.props.mass / template.props.volume,
             atom_type: c.ty,
             clump_type: 0,
+            bound: template.enclosing.1,
+            frame: DQuat::from_mat3(&template.axes.transpose()).normalize(),
         };
         ms.push(body, tag, info);
         Ok(tag)

@@ -78,6 +78,10 @@ pub struct ClumpTemplate {
     pub props: MassProperties,
     /// Radius of the sphere about the centre of mass that holds every sphere.
     pub bound_radius: f64,
+    /// A small sphere that holds every sphere: its centre (body frame) and radius. This is
+    /// the bounding sphere LIGGGHTS-INL scales fragments by (`fix insert/fragments`),
+    /// found as it finds it, by growing a sphere over the spheres ([`enclosing_sphere`]).
+    pub enclosing: (DVec3, f64),
 }
 
 impl ClumpTemplate {
@@ -119,14 +123,51 @@ impl ClumpTemplate {
             .iter()
             .map(|s| s.x.length() + s.r)
             .fold(0.0, f64::max);
+        let enclosing = enclosing_sphere(&spheres);
         Ok(Self {
             spheres,
             axes,
             moments,
             props,
             bound_radius,
+            enclosing,
         })
     }
+}
+
+/// A sphere holding every one of `spheres` (centre, radius), near the smallest: from each
+/// sphere in turn, the sphere is grown to take in the one that sticks out farthest, until
+/// none does (each growth is the smallest sphere holding the old one and the new, so it
+/// keeps what it held); the smallest result wins. LIGGGHTS-INL grows its bounding sphere
+/// the same way, over random orders of the spheres; taking the farthest first makes the
+/// result independent of chance and at least as small for the templates users give
+/// (rows, rings, regular clusters: then it is the smallest sphere).
+pub fn enclosing_sphere(spheres: &[Sphere]) -> (DVec3, f64) {
+    let mut best = (DVec3::ZERO, f64::INFINITY);
+    for start in spheres {
+        let (mut c, mut r) = (start.x, start.r);
+        loop {
+            let out = spheres
+                .iter()
+                .map(|s| (s, (s.x - c).length() + s.r - r))
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((s, excess)) = out.filter(|o| o.1 > 1e-12 * r) else {
+                break;
+            };
+            let d = s.x - c;
+            let dist = d.length();
+            if dist > 0.0 {
+                c += d * (excess / (2.0 * dist));
+                r += 0.5 * excess;
+            } else {
+                r = s.r;
+            }
+        }
+        if r < best.1 {
+            best = (c, r);
+        }
+    }
+    best
 }
 
 /// The Monte Carlo mass properties of the union of `spheres`.
@@ -490,6 +531,49 @@ mod tests {
         let back = axes.transpose() * (r * d * r.transpose()) * axes;
         assert!((back - DMat3::from_diagonal(moments)).abs_diff_eq(DMat3::ZERO, 1e-13));
         assert!((axes.determinant() - 1.0).abs() < 1e-13);
+    }
+
+    /// The bounding sphere of rows and of a sphere inside another is the smallest one,
+    /// found from any order of the spheres.
+    #[test]
+    fn enclosing_sphere_is_the_smallest_for_rows_and_nests() {
+        let s = |x: f64, y: f64, r: f64| Sphere {
+            x: DVec3::new(x, y, 0.0),
+            r,
+        };
+        let row = [
+            s(-0.006, 0.0, 0.003),
+            s(0.0, 0.0, 0.003),
+            s(0.006, 0.0, 0.003),
+        ];
+        for k in 0..3 {
+            let mut v = row.to_vec();
+            v.rotate_left(k);
+            let (c, r) = enclosing_sphere(&v);
+            assert!(c.length() < 1e-15 && (r - 0.009).abs() < 1e-15, "{c} {r}");
+        }
+        // Unequal ends: the sphere spans them, centred between the far points.
+        let (c, r) = enclosing_sphere(&[s(0.0, 0.0, 1.0), s(3.0, 0.0, 2.0)]);
+        assert!(
+            (r - 3.0).abs() < 1e-15 && (c.x - 2.0).abs() < 1e-15,
+            "{c} {r}"
+        );
+        // A sphere inside a larger one (also at the same centre).
+        assert_eq!(
+            enclosing_sphere(&[s(0.1, 0.0, 0.2), s(0.0, 0.0, 1.0)]).1,
+            1.0
+        );
+        assert_eq!(
+            enclosing_sphere(&[s(0.0, 0.0, 0.2), s(0.0, 0.0, 1.0)]).1,
+            1.0
+        );
+        // Three at the corners of a right triangle: the farthest pair's sphere holds
+        // the third.
+        let (c, r) = enclosing_sphere(&[s(0.0, 0.0, 0.1), s(1.0, 0.0, 0.1), s(0.0, 1.0, 0.1)]);
+        for p in [DVec3::ZERO, DVec3::X, DVec3::Y] {
+            assert!((p - c).length() + 0.1 <= r + 1e-12);
+        }
+        assert!(r <= 0.5f64.sqrt() + 0.1 + 1e-12, "{r}");
     }
 
     /// Bad templates are refused with the reason.

@@ -134,6 +134,8 @@ impl Visitor for Records<'_> {
             bond: pair.bond.as_ref(),
             bond_flags: pair.model.bond,
             create_now: false,
+            random_id: &[],
+            step: pair.step,
             events: &events,
             lq: pair
                 .liquid
