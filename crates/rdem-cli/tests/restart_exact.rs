@@ -773,3 +773,73 @@ fix_modify bondcr every 0
     let last = *bonds.last().unwrap();
     assert!(bonds[0] == 749.0 && last < 749.0 && last > 0.0, "{bonds:?}");
 }
+
+/// `fix insert/fragments` (tests/data/fragments' rods): the split falls between the two
+/// replacements; the continued run replaces the second rod at the same step, and its
+/// fragments keep their bonds and bond IDs (the marks, the schedule and the counts come
+/// back with the particles and the fix's state).
+#[test]
+fn fragments_continue_bit_for_bit() {
+    let c = Case {
+        head: "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+",
+        make_box: "region box block -0.25 0.25 -0.1 0.1 -0.1 0.1 units box
+create_box 2 box
+group frags region box
+group rods region box
+",
+        defs: "neighbor 0.01 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5
+fix m5 all property/global radiusMultiplierBond peratomtypepair 2 1 1 1 1
+fix m6 all property/global normalBondStiffnessPerUnitArea peratomtypepair 2 1e7 1e7 1e7 1e7
+fix m7 all property/global tangentialBondStiffnessPerUnitArea peratomtypepair 2 1e6 1e6 1e6 1e6
+fix m8 all property/global maxDistanceBond peratomtypepair 2 0.05 0.05 0.05 0.05
+fix m9 all property/global dampingNormalForceBond peratomtypepair 2 0. 0. 0. 0.
+fix m10 all property/global dampingTangentialForceBond peratomtypepair 2 0. 0. 0. 0.
+fix m11 all property/global dampingNormalTorqueBond peratomtypepair 2 0. 0. 0. 0.
+fix m12 all property/global dampingTangentialTorqueBond peratomtypepair 2 0. 0. 0. 0.
+fix m13 all property/global tsCreateBond scalar 0.
+fix m14 all property/global createDistanceBond peratomtypepair 2 0.007 0.007 0.007 0.007
+pair_style gran model hertz tangential history cohesion bond createBondAlways off
+pair_coeff * *
+timestep 0.00001
+fix integrsp frags nve/sphere
+fix ms rods multisphere
+fix rod rods particletemplate/multisphere 999667 atom_type 1 density constant 2500 nspheres 3 ntry 100000 spheres -0.006 0 0 0.003 0 0 0 0.003 0.006 0 0 0.003 type 1
+fix pdrod all particledistribution/discrete 999683 1 rod 1.0
+region fac1 block -0.2001 -0.1999 0.019 0.021 -0.001 0.001 units box
+region fac2 block -0.2007 -0.2005 -0.021 -0.019 -0.001 0.001 units box
+fix ins1 all insert/rate/region seed 999999937 distributiontemplate pdrod vel constant 1. 0. 0. nparticles 1 particlerate 4000 insert_every 100 overlapcheck yes all_in no orientation constant 1. 0. 0. 0. region fac1
+fix ins2 all insert/rate/region seed 999727 distributiontemplate pdrod vel constant 1. 0. 0. nparticles 1 particlerate 4000 insert_every 100 overlapcheck yes all_in no orientation constant 0.7071067811865476 0. 0.7071067811865476 0. region fac2
+fix fragments frags particletemplate/multiplespheres 999671 atom_type 2 density constant 2500 relative yes nspheres 3 ntry 100000 spheres -0.66666666 0 0 0.33333333 0 0 0 0.33333333 0.66666666 0 0 0.33333333 bonded yes
+fix pdfragments all particledistribution/discrete 999721 1 fragments 1.
+region band block -0.04975 0.05 INF INF INF INF units box
+fix replace all insert/fragments seed 999749 distributiontemplate pdfragments every 50 region band type_replace 1
+compute bc all bond/counter
+thermo_style custom step atoms ke f_replace[1] c_bc[3]
+thermo 25
+thermo_modify format float %.17g
+",
+        init: "",
+        after: "",
+        n1: 15075,
+        n2: 200,
+        files: Vec::new(),
+        compare: &[],
+    };
+    let (end, rows) = check_split("fragments", &c);
+    assert_eq!(atoms(&end), 6);
+    // The second rod is replaced after the split: 2 replaced, 4 bonds.
+    let last = rows.last().unwrap();
+    assert_eq!((last[3], last[4]), (2.0, 4.0), "{rows:?}");
+    assert!(rows.iter().any(|r| r[3] == 1.0), "{rows:?}");
+}
