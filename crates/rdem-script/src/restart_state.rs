@@ -23,7 +23,7 @@ use crate::error::Error;
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use rdem::restart::{BodyStateV1, HistoryState, ParticleState, RankState, WorldValues};
+use rdem::restart::{BodyCore, HistoryState, ParticleState, RankState, WorldValues};
 use rdem::{Boundary, Domain, World};
 use serde::{Deserialize, Serialize};
 
@@ -251,29 +251,33 @@ pub fn decode(payload: &[u8]) -> Result<RestartContents, Error> {
     for _ in 0..nb {
         let n = c.len()?;
         let bytes = c.take(n)?;
-        // Files of rdem before clumps end a rank's block at its histories; files of rdem
-        // before bodies kept their template's bounding sphere and frame hold
-        // `BodyStateV1`.
-        let rank = postcard::from_bytes::<RankState>(bytes).or_else(|e| {
-            type V1 = (ParticleState, HistoryState, Option<Vec<BodyStateV1>>);
-            if let Ok((particles, history, bodies)) = postcard::from_bytes::<V1>(bytes) {
-                return Ok(RankState {
-                    particles,
-                    history,
-                    bodies: bodies.map(|b| b.into_iter().map(Into::into).collect()),
-                });
-            }
-            postcard::from_bytes::<(ParticleState, HistoryState)>(bytes)
-                .map(|(particles, history)| RankState {
-                    particles,
-                    history,
-                    bodies: None,
-                })
-                .map_err(|_| e.to_string())
-        })?;
+        let rank = decode_rank(bytes)?;
         ranks.push(rank);
     }
     Ok(RestartContents { head, ranks })
+}
+
+/// Decodes one rank's block. Files of rdem before clumps end it at the histories; files
+/// of rdem before bodies kept their template's bounding sphere and frame hold bodies
+/// without them ([`BodyCore`]s).
+fn decode_rank(bytes: &[u8]) -> Result<RankState, String> {
+    postcard::from_bytes::<RankState>(bytes).or_else(|e| {
+        type V1 = (ParticleState, HistoryState, Option<Vec<BodyCore>>);
+        if let Ok((particles, history, bodies)) = postcard::from_bytes::<V1>(bytes) {
+            return Ok(RankState {
+                particles,
+                history,
+                bodies: bodies.map(|b| b.into_iter().map(Into::into).collect()),
+            });
+        }
+        postcard::from_bytes::<(ParticleState, HistoryState)>(bytes)
+            .map(|(particles, history)| RankState {
+                particles,
+                history,
+                bodies: None,
+            })
+            .map_err(|_| e.to_string())
+    })
 }
 
 /// Builds the world a restart file describes (box, decomposition, particles this rank
@@ -334,4 +338,49 @@ pub(crate) fn restore(
     };
     sim.install_world(w);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rdem::restart::BodyState;
+
+    /// A rank's block in each layout rdem has written reads back: today's, bodies
+    /// without their bounding sphere (their bound then 0, "unknown"), and no bodies.
+    #[test]
+    fn older_rank_blocks_still_read() {
+        let core = |tag| BodyCore {
+            tag,
+            mass: 2.0,
+            x: [1.0, 2.0, 3.0],
+            q: [0.0, 0.0, 0.0, 1.0],
+            fflag: [true; 3],
+            tflag: [true, false, true],
+            ..BodyCore::default()
+        };
+        let now = RankState {
+            bodies: Some(vec![BodyState {
+                core: core(1),
+                bound: 0.009,
+                frame: [0.0, 0.0, 0.0, 1.0],
+            }]),
+            ..RankState::default()
+        };
+        assert_eq!(decode_rank(&encode(&now)).unwrap(), now);
+        let old = (
+            ParticleState::default(),
+            HistoryState::default(),
+            Some(vec![core(1), core(2), core(7)]),
+        );
+        let got = decode_rank(&encode(&old)).unwrap();
+        let bodies = got.bodies.unwrap();
+        assert_eq!(bodies.len(), 3);
+        assert!(bodies.iter().all(|b| b.bound == 0.0 && b.core.mass == 2.0));
+        assert_eq!(
+            bodies.iter().map(|b| b.core.tag).collect::<Vec<_>>(),
+            [1, 2, 7]
+        );
+        let oldest = (ParticleState::default(), HistoryState::default());
+        assert_eq!(decode_rank(&encode(&oldest)).unwrap().bodies, None);
+    }
 }

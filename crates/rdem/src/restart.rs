@@ -101,43 +101,23 @@ pub struct HistoryState {
     pub entries: Vec<f64>,
 }
 
-/// One rigid clump of a restart file ([`crate::multisphere::RigidBody`] and its tag).
+/// One rigid clump of a restart file ([`crate::multisphere::RigidBody`] and its tag):
+/// what every rdem restart file keeps of it, then what files keep since bodies kept their
+/// template's bounding sphere and frame. (Postcard writes a nested struct as its fields,
+/// so older files are these bytes without the last two fields: [`BodyCore`] reads them.)
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct BodyState {
-    /// The tag its spheres carry.
-    pub tag: u64,
-    /// Mass.
-    pub mass: f64,
-    /// Principal moments of inertia.
-    pub moments: [f64; 3],
-    /// Centre of mass.
-    pub x: [f64; 3],
-    /// Velocity of the centre of mass.
-    pub v: [f64; 3],
-    /// Orientation (body frame to space frame): x, y, z, w.
-    pub q: [f64; 4],
-    /// Angular momentum (space frame).
-    pub angmom: [f64; 3],
-    /// Translational switches.
-    pub fflag: [bool; 3],
-    /// Rotational switches.
-    pub tflag: [bool; 3],
-    /// Density of its template.
-    pub density: f64,
-    /// Atom type of its spheres.
-    pub atom_type: u32,
-    /// Multisphere type of its template.
-    pub clump_type: u32,
-    /// Radius of its template's bounding sphere (0: unknown).
+    /// The body itself.
+    pub core: BodyCore,
+    /// Radius of its template's bounding sphere (0: unknown, from an older file).
     pub bound: f64,
     /// Its template's frame (input frame to body frame): x, y, z, w.
     pub frame: [f64; 4],
 }
 
-/// [`BodyState`] as rdem wrote it before bodies kept their template's bounding sphere
-/// and frame (read from older restart files).
+/// The part of a [`BodyState`] that every rdem restart file keeps.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct BodyStateV1 {
+pub struct BodyCore {
     /// The tag its spheres carry.
     pub tag: u64,
     /// Mass.
@@ -164,21 +144,11 @@ pub struct BodyStateV1 {
     pub clump_type: u32,
 }
 
-impl From<BodyStateV1> for BodyState {
-    fn from(b: BodyStateV1) -> Self {
+impl From<BodyCore> for BodyState {
+    /// A body of an older restart file: its bounding sphere unknown.
+    fn from(core: BodyCore) -> Self {
         Self {
-            tag: b.tag,
-            mass: b.mass,
-            moments: b.moments,
-            x: b.x,
-            v: b.v,
-            q: b.q,
-            angmom: b.angmom,
-            fflag: b.fflag,
-            tflag: b.tflag,
-            density: b.density,
-            atom_type: b.atom_type,
-            clump_type: b.clump_type,
+            core,
             bound: 0.0,
             frame: [0.0, 0.0, 0.0, 1.0],
         }
@@ -270,18 +240,20 @@ impl World {
                     .zip(&ms.tags)
                     .zip(&ms.info)
                     .map(|((b, &tag), info)| BodyState {
-                        tag,
-                        mass: b.mass,
-                        moments: arr(b.moments),
-                        x: arr(b.x),
-                        v: arr(b.v),
-                        q: b.q.to_array(),
-                        angmom: arr(b.angmom),
-                        fflag: b.fflag,
-                        tflag: b.tflag,
-                        density: info.density,
-                        atom_type: info.atom_type,
-                        clump_type: info.clump_type,
+                        core: BodyCore {
+                            tag,
+                            mass: b.mass,
+                            moments: arr(b.moments),
+                            x: arr(b.x),
+                            v: arr(b.v),
+                            q: b.q.to_array(),
+                            angmom: arr(b.angmom),
+                            fflag: b.fflag,
+                            tflag: b.tflag,
+                            density: info.density,
+                            atom_type: info.atom_type,
+                            clump_type: info.clump_type,
+                        },
                         bound: info.bound,
                         frame: info.frame.to_array(),
                     })
@@ -293,7 +265,8 @@ impl World {
     /// Adds the rigid clumps of a restart file (their spheres come with the particles).
     pub fn restore_bodies(&mut self, bodies: &[BodyState]) {
         let ms = self.multisphere.get_or_insert_with(Default::default);
-        for b in bodies {
+        for state in bodies {
+            let b = &state.core;
             let mut body = crate::multisphere::RigidBody::at_rest(
                 b.mass,
                 DVec3::from(b.moments),
@@ -308,8 +281,8 @@ impl World {
                 density: b.density,
                 atom_type: b.atom_type,
                 clump_type: b.clump_type,
-                bound: b.bound,
-                frame: glam::DQuat::from_array(b.frame),
+                bound: state.bound,
+                frame: glam::DQuat::from_array(state.frame),
             };
             ms.push(body, b.tag, info);
         }
