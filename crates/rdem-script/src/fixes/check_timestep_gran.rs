@@ -81,15 +81,10 @@ pub fn timestep_limits(sim: &Sim, vmax: f64) -> Option<(f64, f64)> {
     // the Rayleigh time on every seed, the value of density 2500 and the smallest sphere;
     // neither the sphere's share of its body's mass nor the body's mass, which its dump
     // `mass` shows, gives LIGGGHTS' Hertz fractions).
-    let ms = w.multisphere.as_ref();
-    let body = p.property(rdem::multisphere::bodies::BODY_PROP);
-    let density = |i: usize| {
-        let k = ms
-            .zip(body)
-            .and_then(|(ms, b)| ms.body_of(p.props[b.0].data[i]));
-        k.map_or(p.density[i], |k| {
-            ms.map_or(p.density[i], |ms| ms.info[k].density)
-        })
+    let clump_of = w.clump_of();
+    let density = |i: usize| match (clump_of(i), &w.multisphere) {
+        (Some(k), Some(ms)) => ms.info[k].density,
+        _ => p.density[i],
     };
     for i in 0..p.nlocal() {
         let t = p.ty[i] as usize - 1;

@@ -39,6 +39,30 @@ pub(super) fn orientation_law(a: &mut Args) -> CmdResult<Orientation> {
     )
 }
 
+/// Reads the keyword `seed` that every insertion fix takes first (LIGGGHTS' and the
+/// forks'); the caller reads the number, by its own rule. A located error otherwise; a
+/// missing one shows `example`, a whole command of the style.
+pub(super) fn seed_keyword(a: &mut Args, style: &str, example: &str) -> CmdResult<()> {
+    match a.peek() {
+        Some("seed") => {
+            a.seek(a.pos() + 1);
+            Ok(())
+        }
+        Some(w) => Err(a.error_at(
+            a.pos(),
+            format!("{style}: the first keyword must be 'seed', not '{w}'"),
+            Some(format!(
+                "LIGGGHTS requires the seed first: 'fix ID group {style} seed 32452867 {w} ...'"
+            )),
+        )),
+        None => Err(a.error_at(
+            a.pos(),
+            format!("{style}: missing 'seed N'"),
+            Some(format!("e.g. {example}")),
+        )),
+    }
+}
+
 /// The distribution named by the next word (after `distributiontemplate`). Its templates
 /// must be relative ones (`relative yes`) if `relative`, else none may be.
 pub(super) fn distribution(
@@ -244,27 +268,11 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     };
     let valid: Vec<&'static str> = COMMON.iter().chain(own).copied().collect();
     let valid = valid.as_slice();
-    match a.peek() {
-        Some("seed") => a.seek(a.pos() + 1),
-        Some(w) => {
-            return Err(a.error_at(
-                a.pos(),
-                format!("{style}: the first keyword must be 'seed', not '{w}'"),
-                Some(format!(
-                    "LIGGGHTS requires the seed first: 'fix ID group {style} seed 32452867 {w} ...'"
-                )),
-            ))
-        }
-        None => {
-            return Err(a.error_at(
-                a.pos(),
-                format!("{style}: missing 'seed N'"),
-                Some(format!(
-                    "e.g. 'fix ID group {style} seed 32452867 distributiontemplate ID ...'"
-                )),
-            ))
-        }
-    }
+    seed_keyword(
+        a,
+        style,
+        &format!("'fix ID group {style} seed 32452867 distributiontemplate ID ...'"),
+    )?;
     let seed = a.seed()?;
     let mut dist = None;
     let (mut region, mut target, mut every, mut start) = (None, None, None, None);

@@ -77,16 +77,13 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         "overlapcheck",
         "all_in",
     ];
-    if a.peek() != Some("seed") {
-        return Err(a.error_at(
-            a.pos(),
-            "insert/pack/dense: the first keyword must be 'seed'",
-            Some("e.g. 'fix ID group insert/pack/dense seed 123 region R distributiontemplate D volumefraction_region 0.5'".into()),
-        ));
-    }
-    a.seek(a.pos() + 1);
     // Any positive integer, as LIGGGHTS-PFM's manual says (not the prime > 10000 that
     // LIGGGHTS 3.8's other insertion fixes ask for).
+    super::insert::seed_keyword(
+        a,
+        "insert/pack/dense",
+        "'fix ID group insert/pack/dense seed 123 region R distributiontemplate D volumefraction_region 0.5'",
+    )?;
     let seed = a.u64("seed")?;
     if seed == 0 {
         return Err(a.error_prev("seed must be a positive integer, not 0", None));

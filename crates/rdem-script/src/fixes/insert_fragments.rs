@@ -34,7 +34,6 @@
 //! random): only which spheres share one matters.
 
 use glam::{DQuat, DVec3};
-use rdem::multisphere::bodies::BODY_PROP;
 use rdem::particles::NewParticle;
 use rdem::World;
 
@@ -119,14 +118,11 @@ const KEYS: [&str; 9] = [
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let w = sim.world_ref(a)?;
     let step = w.step;
-    if a.peek() != Some("seed") {
-        return Err(a.error_at(
-            a.pos(),
-            "insert/fragments: the first keyword must be 'seed'",
-            Some("e.g. 'fix ID all insert/fragments seed 123 distributiontemplate D every 50 region R'".into()),
-        ));
-    }
-    a.seek(a.pos() + 1);
+    super::insert::seed_keyword(
+        a,
+        "insert/fragments",
+        "'fix ID all insert/fragments seed 123 distributiontemplate D every 50 region R'",
+    )?;
     a.u64("seed")?;
     let (mut dist, mut every, mut region, mut type_replace) = (None, None, None, None);
     let (mut check_bound, mut start) = (true, None);
@@ -249,22 +245,20 @@ impl InsertFragments {
     fn mark(&self, w: &mut World, groupbit: u32) -> rdem::Result<()> {
         let p = &w.particles;
         let n = p.nlocal();
-        let body = p.property(BODY_PROP);
-        let ms = w.multisphere.as_ref();
-        let marks: Vec<usize> = (0..n)
-            .filter(|&i| p.mask[i] & groupbit != 0)
-            .filter(|&i| self.type_replace.is_none_or(|t| p.ty[i] == t))
-            .filter(|&i| {
-                let of_body = body
-                    .zip(ms)
-                    .and_then(|(id, ms)| ms.body_of(p.props[id.0].data[i]).map(|k| (ms, k)));
-                let x = match of_body {
-                    Some((ms, k)) => ms.bodies[k].x,
-                    None => p.x[i],
-                };
-                self.region.as_ref().is_none_or(|r| r.contains(x))
-            })
-            .collect();
+        let marks: Vec<usize> = {
+            let clump_of = w.clump_of();
+            (0..n)
+                .filter(|&i| p.mask[i] & groupbit != 0)
+                .filter(|&i| self.type_replace.is_none_or(|t| p.ty[i] == t))
+                .filter(|&i| {
+                    let x = match (clump_of(i), &w.multisphere) {
+                        (Some(k), Some(ms)) => ms.bodies[k].x,
+                        _ => p.x[i],
+                    };
+                    self.region.as_ref().is_none_or(|r| r.contains(x))
+                })
+                .collect()
+        };
         if marks.is_empty() {
             return Ok(());
         }
@@ -290,11 +284,7 @@ impl InsertFragments {
         let p = &w.particles;
         let n = p.nlocal();
         let marked = |i: usize| p.props[mark.0].data[i] != 0.0;
-        let body = p.property(BODY_PROP);
-        let body_of = |i: usize| {
-            body.zip(w.multisphere.as_ref())
-                .and_then(|(id, ms)| ms.body_of(p.props[id.0].data[i]))
-        };
+        let body_of = w.clump_of();
         // Clumps any rank marked, by tag (every rank holds every clump).
         let mine: Vec<f64> = (0..n)
             .filter(|&i| marked(i))
@@ -356,6 +346,7 @@ impl InsertFragments {
         }
         singles.sort_by_key(|r| r.key);
         out.extend(singles);
+        drop(body_of);
         // Every rank takes part: removing whole clumps is collective.
         w.remove_particles(&remove);
         let rid = if self.random_bond_id {

@@ -300,6 +300,14 @@ impl World {
         }));
     }
 
+    /// Which clump each particle belongs to: for particle `i`, the index of its body in
+    /// [`Multisphere::bodies`] (`None`: a free sphere, or no clumps at all).
+    pub fn clump_of(&self) -> impl Fn(usize) -> Option<usize> + '_ {
+        let p = &self.particles;
+        let ms = self.multisphere.as_ref().zip(p.property(BODY_PROP));
+        move |i| ms.and_then(|(ms, b)| ms.body_of(p.props[b.0].data[i]))
+    }
+
     /// The two member properties, added if missing.
     fn multisphere_props(&mut self) -> Result<(PropId, PropId)> {
         let p = &mut self.particles;
