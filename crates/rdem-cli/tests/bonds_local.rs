@@ -70,14 +70,9 @@ fix visc free viscous 0.5
     s
 }
 
-/// The rows of numbers after the last `ITEM: ENTRIES` of a `dump local` file.
+/// The rows of numbers of the last snapshot of a `dump local` file.
 fn last_rows(text: &str) -> Vec<Vec<f64>> {
-    let at = text.rfind("ITEM: ENTRIES").expect("an entries header");
-    text[at..]
-        .lines()
-        .skip(1)
-        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
-        .collect()
+    common::dump_frames(text).pop().expect("a snapshot").1
 }
 
 #[test]

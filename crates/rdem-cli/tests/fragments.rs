@@ -37,15 +37,10 @@ fn run_on(threads: &str, ranks: Option<usize>) -> (std::path::PathBuf, String) {
     (dir, text)
 }
 
-/// The rows (numbers) of a `dump custom` text file.
+/// The rows of the last snapshot of the dump file `path`.
 fn dump_rows(path: &std::path::Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap();
-    let at = text.find("ITEM: ATOMS").expect("an atoms section");
-    text[at..]
-        .lines()
-        .skip(1)
-        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
-        .collect()
+    common::dump_frames(&text).pop().expect("a snapshot").1
 }
 
 #[test]
@@ -152,14 +147,8 @@ fn fragments_do_not_depend_on_the_thread_count() {
 #[test]
 fn fragments_on_two_ranks_end_as_serial() {
     let sorted = |d: &std::path::Path| {
-        let text = std::fs::read_to_string(d.join("post/end.txt")).unwrap();
-        let mut rows: Vec<String> = text
-            .lines()
-            .skip_while(|l| !l.starts_with("ITEM: ATOMS"))
-            .skip(1)
-            .map(str::to_string)
-            .collect();
-        rows.sort_by_key(|l| l.split_whitespace().next().unwrap().parse::<u64>().unwrap());
+        let mut rows = dump_rows(&d.join("post/end.txt"));
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
         rows
     };
     let (d1, _) = run("1");
