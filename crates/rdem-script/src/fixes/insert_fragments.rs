@@ -241,14 +241,17 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 }
 
 impl InsertFragments {
-    /// Marks the particles to replace (group, type, and in the region).
+    /// Marks the particles to replace (group, type, and in the region); those marked
+    /// already are skipped, so that the list is empty on most steps.
     fn mark(&self, w: &mut World, groupbit: u32) -> rdem::Result<()> {
+        let id = self.mark_id(w)?;
         let p = &w.particles;
         let n = p.nlocal();
         let marks: Vec<usize> = {
             let clump_of = w.clump_of();
+            let done = &p.props[id.0].data;
             (0..n)
-                .filter(|&i| p.mask[i] & groupbit != 0)
+                .filter(|&i| done[i] == 0.0 && p.mask[i] & groupbit != 0)
                 .filter(|&i| self.type_replace.is_none_or(|t| p.ty[i] == t))
                 .filter(|&i| {
                     let x = match (clump_of(i), &w.multisphere) {
@@ -259,10 +262,6 @@ impl InsertFragments {
                 })
                 .collect()
         };
-        if marks.is_empty() {
-            return Ok(());
-        }
-        let id = self.mark_id(w)?;
         let data = &mut w.particles.props[id.0].data;
         for i in marks {
             data[i] = 1.0;
