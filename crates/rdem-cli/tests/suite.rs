@@ -2,6 +2,7 @@
 //! test binary: one link instead of one per file (see `autotests` in Cargo.toml).
 
 mod bond_gran;
+mod bond_nonlinear;
 mod bonds;
 mod bonds_cantilever;
 mod bonds_counter;

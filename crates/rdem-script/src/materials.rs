@@ -3,6 +3,7 @@
 //! engine's typed fields, with the errors about a property's style and value count.
 
 use crate::error::Error;
+use rdem::bond::nonlinear::STIFFNESS_PROPERTIES;
 use rdem::bond::BondCoefficients;
 use rdem::Materials;
 
@@ -33,6 +34,33 @@ fn bond_table<'a>(b: &'a mut BondCoefficients, name: &str) -> Option<&'a mut Opt
     })
 }
 
+/// The `cohesion bond/nonlinear` coefficient that the property `name` gives, if it is one
+/// (its names are those of `cohesion bond` with `nonlinear` appended, and the stiffness
+/// tables of [`rdem::bond::nonlinear::STIFFNESS_PROPERTIES`]).
+fn nonlinear_table<'a>(
+    b: &'a mut BondCoefficients,
+    name: &str,
+) -> Option<&'a mut Option<Vec<f64>>> {
+    if let Some(k) = STIFFNESS_PROPERTIES.iter().position(|p| *p == name) {
+        return Some(&mut b.stiffness[k]);
+    }
+    let base = name.strip_suffix("nonlinear")?;
+    if matches!(
+        base,
+        "normalBondStiffnessPerUnitArea"
+            | "tangentialBondStiffnessPerUnitArea"
+            | "frictionAngle"
+            | "ratioTensionCompression"
+    ) || base.starts_with("dissipation")
+    {
+        return None;
+    }
+    match base {
+        "ratioTensionCompressionBond" => Some(&mut b.ratio_tension_compression),
+        _ => bond_table(b, base),
+    }
+}
+
 /// Builds the engine's material table from the `fix property/global` values.
 pub fn materials(sim: &Sim) -> Result<Materials, Error> {
     let n = sim.ntypes();
@@ -41,8 +69,10 @@ pub fn materials(sim: &Sim) -> Result<Materials, Error> {
         ..Default::default()
     };
     for (name, p) in &sim.defs.properties {
-        let scalar = name == "tsCreateBond";
-        if scalar || bond_table(&mut m.bond, name).is_some() {
+        let scalar = name == "tsCreateBond" || name == "tsCreateBondnonlinear";
+        let known = bond_table(&mut m.bond, name).is_some()
+            || nonlinear_table(&mut m.bond_nonlinear, name).is_some();
+        if scalar || known {
             let ok = if scalar {
                 p.style == "scalar"
             } else {
@@ -65,10 +95,15 @@ pub fn materials(sim: &Sim) -> Result<Materials, Error> {
                     n * n
                 ).into());
             }
-            match bond_table(&mut m.bond, name) {
-                Some(table) => *table = Some(p.values.clone()),
+            if name == "tsCreateBond" {
                 // A scalar property has exactly one value.
-                None => m.bond.ts_create = p.values.first().copied(),
+                m.bond.ts_create = p.values.first().copied();
+            } else if name == "tsCreateBondnonlinear" {
+                m.bond_nonlinear.ts_create = p.values.first().copied();
+            } else if let Some(table) = bond_table(&mut m.bond, name) {
+                *table = Some(p.values.clone());
+            } else if let Some(table) = nonlinear_table(&mut m.bond_nonlinear, name) {
+                *table = Some(p.values.clone());
             }
             continue;
         }

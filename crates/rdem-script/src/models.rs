@@ -46,6 +46,22 @@ pub const BOND_SWITCHES: [&str; 15] = [
     "computeElasticPotential",
 ];
 
+/// Keywords of `cohesion bond/nonlinear` (LIGGGHTS-INL): those of `cohesion bond` without
+/// dissipation, Drucker–Prager and the energy bookkeeping, and `ratioTensionCompressionBond`
+/// for `ratioTensionCompression`.
+pub const NONLINEAR_SWITCHES: [&str; 10] = [
+    "stressBreak",
+    "tensionStress",
+    "compressionStress",
+    "shearStress",
+    "normalTorqueStress",
+    "shearTorqueStress",
+    "createBondAlways",
+    "dampingBond",
+    "dampingBondSmooth",
+    "ratioTensionCompressionBond",
+];
+
 /// Reads the model-type/name pairs at the cursor (stops at the first other word).
 pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
     let mut m = ContactModel::hertz_history();
@@ -106,8 +122,9 @@ pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
 
 /// True if the word at the cursor is a switch keyword.
 pub fn at_switch(a: &Args) -> bool {
-    a.peek()
-        .is_some_and(|w| SWITCHES.contains(&w) || BOND_SWITCHES.contains(&w))
+    a.peek().is_some_and(|w| {
+        SWITCHES.contains(&w) || BOND_SWITCHES.contains(&w) || NONLINEAR_SWITCHES.contains(&w)
+    })
 }
 
 /// Reads switch keywords at the cursor until the end of the command.
@@ -141,19 +158,27 @@ fn parse_switches_while(
                 )),
             ));
         }
-        let bonds = m.cohesion == CohesionKind::Bond;
-        if BOND_SWITCHES.contains(&w) && !bonds {
-            return Err(a.error_at(
-                a.pos(),
-                format!("'{w}' is a keyword of the bond model"),
-                Some("it needs 'cohesion bond' among the model types".into()),
-            ));
-        }
-        let valid: Vec<&str> = if bonds {
-            SWITCHES.iter().chain(&BOND_SWITCHES).copied().collect()
-        } else {
-            SWITCHES.to_vec()
+        let bond_words: &[&str] = match m.cohesion {
+            CohesionKind::Bond => &BOND_SWITCHES,
+            CohesionKind::BondNonlinear => &NONLINEAR_SWITCHES,
+            _ => &[],
         };
+        if !bond_words.contains(&w) {
+            let model = match (BOND_SWITCHES.contains(&w), NONLINEAR_SWITCHES.contains(&w)) {
+                (true, true) => Some("'cohesion bond' or 'cohesion bond/nonlinear'"),
+                (true, false) => Some("'cohesion bond'"),
+                (false, true) => Some("'cohesion bond/nonlinear'"),
+                _ => None,
+            };
+            if let Some(model) = model {
+                return Err(a.error_at(
+                    a.pos(),
+                    format!("'{w}' is not a keyword of the bond model given"),
+                    Some(format!("it is a keyword of {model}")),
+                ));
+            }
+        }
+        let valid: Vec<&str> = SWITCHES.iter().chain(bond_words).copied().collect();
         let k = a.keyword("model keyword", &valid)?;
         let on = matches!(
             a.keyword(&format!("{k} setting"), &["on", "off", "yes", "no"])?,
@@ -172,7 +197,7 @@ fn parse_switches_while(
             "dampingBondSmooth" => b.damping_smooth = on,
             "dissipationBond" => b.dissipation = on,
             "druckerPrager" => b.drucker_prager = on,
-            "ratioTensionCompression" => b.ratio_tc = on,
+            "ratioTensionCompression" | "ratioTensionCompressionBond" => b.ratio_tc = on,
             "temperatureBreak" | "computeDissipatedEnergy" | "computeElasticPotential" => {
                 if on {
                     let why = if k == "temperatureBreak" {

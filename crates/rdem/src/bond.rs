@@ -38,6 +38,8 @@
 //! when that is zero), and a bond stretched beyond the neighbor reach (possible only with
 //! `tensionStress off`) breaks instead of silently disappearing from the list.
 
+pub mod nonlinear;
+
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
@@ -51,6 +53,96 @@ pub const VEC: usize = 9;
 pub const PAIR_TAIL: usize = 2;
 /// Trailing history values of a wall bond: flag, d₀, anchor point (3).
 pub const WALL_TAIL: usize = 5;
+
+/// The law of a bond: `cohesion bond` or `cohesion bond/nonlinear`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Law {
+    /// `cohesion bond`: the parallel bond (this module).
+    #[default]
+    Parallel,
+    /// `cohesion bond/nonlinear` ([`nonlinear`]).
+    Nonlinear,
+}
+
+/// Where a bond's values sit in a pair's (or a wall contact's) history: `vec` values that
+/// change sign when i and j swap come first, the contact law's values next, and a tail
+/// last, starting with the flag and d₀ (a wall's tail then holds the anchor point).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layout {
+    /// Leading values that flip sign when i and j swap.
+    pub vec: usize,
+    /// Trailing values of a pair bond.
+    pub pair_tail: usize,
+    /// Trailing values of a wall bond.
+    pub wall_tail: usize,
+}
+
+impl Law {
+    /// The history layout of this law.
+    pub const fn layout(self) -> Layout {
+        match self {
+            Law::Parallel => Layout {
+                vec: VEC,
+                pair_tail: PAIR_TAIL,
+                wall_tail: WALL_TAIL,
+            },
+            Law::Nonlinear => Layout {
+                vec: nonlinear::VEC,
+                pair_tail: PAIR_TAIL + nonlinear::EXTRA,
+                wall_tail: WALL_TAIL + nonlinear::EXTRA,
+            },
+        }
+    }
+
+    /// The script's name of the model.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Law::Parallel => "cohesion bond",
+            Law::Nonlinear => "cohesion bond/nonlinear",
+        }
+    }
+
+    /// True if an intact bond takes the place of the normal contact force of its pair
+    /// while the two touch (LIGGGHTS-INL's `bond/nonlinear` writes its force over the
+    /// normal model's; its compression law is the contact). The tangential and rolling
+    /// forces of the contact stay.
+    pub const fn replaces_normal_contact(self) -> bool {
+        matches!(self, Law::Nonlinear)
+    }
+
+    /// The per-atom property whose equal values bond spheres at their insertion step.
+    pub const fn random_id_property(self) -> &'static str {
+        match self {
+            Law::Parallel => RANDOM_ID,
+            Law::Nonlinear => "bondnonlinear_random_id",
+        }
+    }
+
+    /// The name under which this law reads the `cohesion bond` property `base`
+    /// (LIGGGHTS-INL appends `nonlinear` for `bond/nonlinear`, and its normal stiffness is
+    /// the tension stiffness `stiffnessPerUnitAreaK_fn2`).
+    pub fn property(self, base: &'static str) -> &'static str {
+        if self == Law::Parallel {
+            return base;
+        }
+        match base {
+            "radiusMultiplierBond" => "radiusMultiplierBondnonlinear",
+            "normalBondStiffnessPerUnitArea" => "stiffnessPerUnitAreaK_fn2",
+            "tangentialBondStiffnessPerUnitArea" => "stiffnessPerUnitAreaK_ft",
+            "dampingNormalForceBond" => "dampingNormalForceBondnonlinear",
+            "dampingTangentialForceBond" => "dampingTangentialForceBondnonlinear",
+            "dampingNormalTorqueBond" => "dampingNormalTorqueBondnonlinear",
+            "dampingTangentialTorqueBond" => "dampingTangentialTorqueBondnonlinear",
+            "maxDistanceBond" => "maxDistanceBondnonlinear",
+            "maxSigmaBond" => "maxSigmaBondnonlinear",
+            "maxTauBond" => "maxTauBondnonlinear",
+            "createDistanceBond" => "createDistanceBondnonlinear",
+            "ratioTensionCompression" => "ratioTensionCompressionBondnonlinear",
+            "tsCreateBond" => "tsCreateBondnonlinear",
+            other => other,
+        }
+    }
+}
 
 /// Per-particle property (LIGGGHTS-INL's `bond_random_id`): the spheres of one inserted
 /// copy of a bonded template (`bonded yes` without bond atoms, or the fragments of
@@ -177,6 +269,9 @@ pub struct BondCoefficients {
     /// `tsCreateBond`: the step at which bonds are created, as given (checked to be a
     /// step number when `createBondAlways` is off).
     pub ts_create: Option<f64>,
+    /// `cohesion bond/nonlinear`: the stiffness tables, in
+    /// [`nonlinear::STIFFNESS_PROPERTIES`] order.
+    pub stiffness: [Option<Vec<f64>>; 13],
 }
 
 /// The bond parameters of one type pair (or particle type × wall type).
@@ -211,6 +306,9 @@ pub struct BondCoeff {
 pub struct BondTable {
     ntypes: usize,
     coeffs: Vec<BondCoeff>,
+    /// The nonlinear law's stiffnesses per type pair (empty for the parallel bond).
+    stiffness: Vec<nonlinear::Stiffness>,
+    law: Law,
     /// `tsCreateBond` (`None` with `createBondAlways on`).
     pub ts_create: Option<u64>,
     /// Longest centre distance at which a pair of particles may be bonded (or bond).
@@ -220,25 +318,28 @@ pub struct BondTable {
 }
 
 impl BondTable {
-    /// Checks the `given` coefficients for `ntypes` types and switches `fl` (what is required,
-    /// the lengths, ranges and symmetry) and builds the table.
-    pub fn new(given: &BondCoefficients, ntypes: usize, fl: BondFlags) -> Result<Self> {
+    /// Checks the `given` coefficients of the bond law `law` for `ntypes` types and
+    /// switches `fl` (what is required, the lengths, ranges and symmetry) and builds the
+    /// table.
+    pub fn new(given: &BondCoefficients, ntypes: usize, fl: BondFlags, law: Law) -> Result<Self> {
         let n = ntypes;
-        fn need<'a, T: ?Sized>(
-            values: Option<&'a T>,
+        let model = law.name();
+        fn need<'a>(
+            values: Option<&'a Vec<f64>>,
             name: &'static str,
             why: &str,
+            model: &str,
             n: usize,
-        ) -> Result<&'a T> {
+        ) -> Result<&'a Vec<f64>> {
             values.ok_or_else(|| Error::Invalid {
                 what: name,
                 reason: format!(
-                    "cohesion bond{why} needs 'fix ID all property/global {name} peratomtypepair {n} ...'"
+                    "{model}{why} needs 'fix ID all property/global {name} peratomtypepair {n} ...'"
                 ),
             })
         }
         let table = |values: &Option<Vec<f64>>,
-                     name: &'static str,
+                     base: &'static str,
                      why: &str,
                      needed: bool,
                      ok: fn(f64) -> bool,
@@ -247,16 +348,17 @@ impl BondTable {
             if !needed {
                 return Ok(vec![0.0; n * n]);
             }
+            let name = law.property(base);
             pair_table(
                 name,
-                need(values.as_deref(), name, why, n)?,
+                need(values.as_ref(), name, why, model, n)?,
                 n,
                 true,
                 ok,
                 range,
             )
         };
-        if !fl.damping && !fl.damping_smooth && !fl.dissipation {
+        if law == Law::Parallel && !fl.damping && !fl.damping_smooth && !fl.dissipation {
             return Err(Error::Invalid {
                 what: "cohesion bond",
                 reason:
@@ -267,6 +369,23 @@ impl BondTable {
         let damping = fl.damping || fl.damping_smooth;
         let pos = |v: f64| v > 0.0;
         let nonneg = |v: f64| v >= 0.0;
+        let mut stiffness = Vec::new();
+        if law == Law::Nonlinear {
+            let mut cols = Vec::new();
+            for (values, name) in given.stiffness.iter().zip(nonlinear::STIFFNESS_PROPERTIES) {
+                cols.push(pair_table(
+                    name,
+                    need(values.as_ref(), name, "", model, n)?,
+                    n,
+                    true,
+                    nonneg,
+                    "must be >= 0",
+                )?);
+            }
+            stiffness = (0..n * n)
+                .map(|k| nonlinear::Stiffness::from_values(std::array::from_fn(|c| cols[c][k])))
+                .collect();
+        }
         let mult = table(
             &given.radius_multiplier,
             "radiusMultiplierBond",
@@ -275,22 +394,28 @@ impl BondTable {
             nonneg,
             "must be >= 0",
         )?;
-        let kn = table(
+        let parallel = law == Law::Parallel;
+        let mut kn = table(
             &given.normal_stiffness,
             "normalBondStiffnessPerUnitArea",
             "",
-            true,
+            parallel,
             nonneg,
             "must be >= 0",
         )?;
-        let kt = table(
+        let mut kt = table(
             &given.tangential_stiffness,
             "tangentialBondStiffnessPerUnitArea",
             "",
-            true,
+            parallel,
             nonneg,
             "must be >= 0",
         )?;
+        if !parallel {
+            // The nonlinear law's tension and shear stiffness play their parts.
+            kn = stiffness.iter().map(|s| s.tension.k).collect();
+            kt = stiffness.iter().map(|s| s.shear).collect();
+        }
         let create = table(
             &given.create_distance,
             "createDistanceBond",
@@ -393,14 +518,15 @@ impl BondTable {
         let ts_create = if fl.create_always {
             None
         } else {
-            let t = *need(
-                given.ts_create.as_ref(),
-                "tsCreateBond",
-                " with createBondAlways off",
-                n,
-            )?;
+            let name = law.property("tsCreateBond");
+            let t = given.ts_create.ok_or_else(|| Error::Invalid {
+                what: name,
+                reason: format!(
+                    "{model} with createBondAlways off needs 'fix ID all property/global {name} scalar ...'"
+                ),
+            })?;
             check(
-                "tsCreateBond",
+                name,
                 t,
                 t >= 0.0 && t.fract() == 0.0,
                 "must be a step number >= 0",
@@ -432,7 +558,7 @@ impl BondTable {
             if c.multiplier >= MIN_MULTIPLIER {
                 if fl.stress_break && c.kn <= 0.0 {
                     return Err(Error::Invalid {
-                        what: "normalBondStiffnessPerUnitArea",
+                        what: law.property("normalBondStiffnessPerUnitArea"),
                         reason: "must be > 0 with stressBreak on (it sets the longest bond)".into(),
                     });
                 }
@@ -456,6 +582,8 @@ impl BondTable {
         Ok(Self {
             ntypes: n,
             coeffs,
+            stiffness,
+            law,
             ts_create,
             pair_reach,
             wall_reach,
@@ -467,10 +595,45 @@ impl BondTable {
         model: &crate::contact::ContactModel,
         materials: &crate::contact::Materials,
     ) -> Result<Option<Self>> {
-        if !model.has_bonds() {
+        let Some(law) = model.bond_law() else {
             return Ok(None);
+        };
+        let given = match law {
+            Law::Parallel => &materials.bond,
+            Law::Nonlinear => &materials.bond_nonlinear,
+        };
+        Self::new(given, materials.ntypes, model.bond, law).map(Some)
+    }
+
+    /// The bond law.
+    pub fn law(&self) -> Law {
+        self.law
+    }
+
+    /// The history layout of the bond law.
+    pub fn layout(&self) -> Layout {
+        self.law.layout()
+    }
+
+    /// One bonded pair of the 1-based types `(ti, tj)` (a wall: its type as `tj`) under
+    /// the table's law: [`bond`] or [`nonlinear::bond`].
+    #[inline(always)]
+    pub fn force(
+        &self,
+        g: &BondGeom,
+        ti: u32,
+        tj: u32,
+        fl: BondFlags,
+        vecs: &mut [f64],
+        tail: &mut [f64],
+    ) -> (BondForce, Event) {
+        let k = (ti as usize - 1) * self.ntypes + (tj as usize - 1);
+        match self.law {
+            Law::Parallel => bond(g, &self.coeffs[k], fl, vecs, tail),
+            Law::Nonlinear => {
+                nonlinear::bond(g, &self.coeffs[k], &self.stiffness[k], fl, vecs, tail)
+            }
         }
-        Self::new(&materials.bond, materials.ntypes, model.bond).map(Some)
     }
 
     /// Parameters of the 1-based type pair `(ti, tj)`.
@@ -607,10 +770,12 @@ pub fn creates(c: &BondCoeff, create_now: bool, r_create: f64) -> bool {
     create_now && c.multiplier >= MIN_MULTIPLIER && r_create < c.create_distance
 }
 
-/// Starts a bond at distance `d0`: flag set, loads zero (the wall anchor is the caller's).
+/// Starts a bond at distance `d0`: flag set, every other value zero (the wall anchor is
+/// the caller's to set).
 #[inline(always)]
 pub fn create(vecs: &mut [f64], tail: &mut [f64], d0: f64) {
-    vecs[..VEC].fill(0.0);
+    vecs.fill(0.0);
+    tail.fill(0.0);
     tail[0] = 1.0;
     tail[1] = d0;
 }
@@ -679,7 +844,7 @@ fn store(h: &mut [f64], k: usize, v: DVec3) {
 /// Breaks the bond: every bond value zeroed.
 #[inline(always)]
 fn break_bond(vecs: &mut [f64], tail: &mut [f64]) {
-    vecs[..VEC].fill(0.0);
+    vecs.fill(0.0);
     tail.fill(0.0);
 }
 
@@ -1020,7 +1185,7 @@ mod tests {
             ts_create: Some(3.0),
             ..Default::default()
         };
-        let t = BondTable::new(&given, 1, flags_plain()).unwrap();
+        let t = BondTable::new(&given, 1, flags_plain(), Law::Parallel).unwrap();
         assert_eq!(t.ts_create, Some(3));
         assert!(
             (t.pair_reach - 1.1 * 0.003).abs() < 1e-18,
@@ -1029,7 +1194,7 @@ mod tests {
         );
         assert_eq!(t.get(1, 1).dissipation, [2.0, 2.0, 2.0, 4.0]);
         given.normal_stiffness = None;
-        let e = BondTable::new(&given, 1, flags_plain()).unwrap_err();
+        let e = BondTable::new(&given, 1, flags_plain(), Law::Parallel).unwrap_err();
         assert!(
             e.to_string().contains(
                 "cohesion bond needs 'fix ID all property/global normalBondStiffnessPerUnitArea peratomtypepair 1 ...'"

@@ -113,7 +113,7 @@ impl PairGran {
             return 0;
         }
         let w = list.width;
-        let flag = w - bond::PAIR_TAIL;
+        let flag = w - self.bond.as_ref().map_or(0, |b| b.layout().pair_tail);
         list.hist
             .chunks_exact(w)
             .filter(|h| bond::is_bonded(&h[flag..]))
@@ -390,10 +390,17 @@ impl Phase1<'_> {
                 .contact::<K>(i, j, k, coeff_row, hist, touch, d, rsq)
                 .map(|o| (d, o));
         }
-        let (vecs, rest) = hist.split_at_mut(bond::VEC);
+        let table = self.bond.expect("bond table");
+        let (vecs, rest) = hist.split_at_mut(table.layout().vec);
         let (hc, tail) = rest.split_at_mut(K::HIST);
         let mut out = self.contact::<K>(i, j, k, coeff_row, hc, touch, d, rsq);
-        let table = self.bond.expect("bond table");
+        if out.is_none() {
+            // With bonds the neighbor reach exceeds the contact, and a listed pair apart
+            // loses its contact history at every evaluation, as in LIGGGHTS-INL (its
+            // models forget their springs when surfaces are close but apart): a pair that
+            // touches again starts its springs anew, bonded or not.
+            clear_history(hc);
+        }
         let (ti, tj) = (self.ty[i], self.ty[j]);
         let c = table.get(ti, tj);
         if !bond::is_bonded(tail) {
@@ -420,7 +427,7 @@ impl Phase1<'_> {
             update: self.update,
             reach: table.pair_reach,
         };
-        let (b, e) = bond::bond(&g, c, self.bond_flags, vecs, tail);
+        let (b, e) = table.force(&g, ti, tj, self.bond_flags, vecs, tail);
         self.events.count(e);
         // A bonded pair keeps its history at a build whether it touches or not.
         if bond::is_bonded(tail) {
@@ -428,6 +435,10 @@ impl Phase1<'_> {
         }
         if e != Event::Broken {
             let o = out.get_or_insert_with(ContactForce::default);
+            if table.law().replaces_normal_contact() && o.fn_total != 0.0 {
+                o.f_i -= o.fn_total * (d * (1.0 / rsq.sqrt()));
+                o.fn_total = 0.0;
+            }
             o.f_i += b.f_i;
             o.t_i += b.t_i;
             o.t_j += b.t_j;
@@ -837,8 +848,11 @@ impl PairPass<'_> {
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
-        let random_id = match p.property(bond::RANDOM_ID) {
-            Some(id) if update && bond.is_some() => &p.props[id.0].data[..n],
+        let random_id = match bond
+            .as_ref()
+            .and_then(|b| p.property(b.law().random_id_property()))
+        {
+            Some(id) if update => &p.props[id.0].data[..n],
             _ => &[][..],
         };
         // Two phases with several threads, or for the virial (phase 1's per-pair forces).

@@ -363,13 +363,10 @@ impl World {
         let nlocal = p.nlocal();
         let mut c = vec![0.0; p.len()];
         let list = &self.neighbor.list;
-        let has_bonds = self
-            .pair
-            .as_ref()
-            .is_some_and(|pair| pair.model.has_bonds());
+        let layout = self.pair.as_ref().and_then(|pair| pair.model.bond_layout());
         // A list older than the particles (after an insertion) counts nothing.
-        if has_bonds && list.width > 0 && list.first.len() == nlocal + 1 {
-            let flag = list.width - crate::bond::PAIR_TAIL;
+        if let Some(layout) = layout.filter(|_| list.width > 0 && list.first.len() == nlocal + 1) {
+            let flag = list.width - layout.pair_tail;
             for i in 0..nlocal {
                 for k in list.first[i] as usize..list.first[i + 1] as usize {
                     let j = list.partner[k] as usize;

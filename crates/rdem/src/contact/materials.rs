@@ -57,6 +57,9 @@ pub struct Materials {
     pub hysteretic: HystereticProperties,
     /// The `cohesion bond` coefficients that were given.
     pub bond: crate::bond::BondCoefficients,
+    /// The `cohesion bond/nonlinear` coefficients that were given (its own property
+    /// names, [`crate::bond::Law::property`]).
+    pub bond_nonlinear: crate::bond::BondCoefficients,
     /// The liquid-bridge properties that were given (`cohesion easo/capillary/viscous`).
     pub liquid: LiquidProperties,
 }

@@ -152,6 +152,9 @@ model_kinds! {
         /// `bond`: the parallel-bond model ([`crate::bond`]); the contact itself has no
         /// cohesion.
         Bond = "bond",
+        /// `bond/nonlinear` (LIGGGHTS-INL): the bond with hysteretic normal force and
+        /// torques ([`crate::bond::nonlinear`]).
+        BondNonlinear = "bond/nonlinear",
         /// `easo/capillary/viscous`: liquid bridges ([`liquid`]).
         Easo = "easo/capillary/viscous",
     }
@@ -282,19 +285,32 @@ impl ContactModel {
         }
     }
 
-    /// True with `cohesion bond`.
+    /// True with `cohesion bond` or `cohesion bond/nonlinear`.
     pub fn has_bonds(&self) -> bool {
-        self.cohesion == CohesionKind::Bond
+        self.bond_law().is_some()
+    }
+
+    /// The bond law, with `cohesion bond` or `cohesion bond/nonlinear`.
+    pub fn bond_law(&self) -> Option<crate::bond::Law> {
+        match self.cohesion {
+            CohesionKind::Bond => Some(crate::bond::Law::Parallel),
+            CohesionKind::BondNonlinear => Some(crate::bond::Law::Nonlinear),
+            _ => None,
+        }
+    }
+
+    /// The bond law's history layout ([`crate::bond::Layout`]), with bonds.
+    pub fn bond_layout(&self) -> Option<crate::bond::Layout> {
+        self.bond_law().map(|l| l.layout())
     }
 
     /// Number of f64 history values per particle pair: the contact's, and with bonds
     /// the bond's around them ([`crate::bond`]: its vectors first, its flag and d₀ last).
     pub fn history_width(&self) -> usize {
         let w = self.dispatch(HistoryWidth);
-        if self.has_bonds() {
-            crate::bond::VEC + w + crate::bond::PAIR_TAIL
-        } else {
-            w
+        match self.bond_layout() {
+            Some(l) => l.vec + w + l.pair_tail,
+            None => w,
         }
     }
 
@@ -313,10 +329,9 @@ impl ContactModel {
     /// the bond's tail also holding the anchor point).
     pub fn wall_history_width(&self) -> usize {
         let w = self.dispatch(HistoryWidth);
-        if self.has_bonds() {
-            crate::bond::VEC + w + crate::bond::WALL_TAIL
-        } else {
-            w
+        match self.bond_layout() {
+            Some(l) => l.vec + w + l.wall_tail,
+            None => w,
         }
     }
 
@@ -324,10 +339,9 @@ impl ContactModel {
     /// particles of a pair swap roles (vectors attached to the i→j orientation).
     pub fn history_odd(&self) -> usize {
         let odd = self.dispatch(HistoryOdd);
-        if self.has_bonds() {
-            crate::bond::VEC + odd
-        } else {
-            odd
+        match self.bond_layout() {
+            Some(l) => l.vec + odd,
+            None => odd,
         }
     }
 
@@ -367,7 +381,9 @@ impl ContactModel {
             CohesionKind::Sjkr | CohesionKind::Sjkr2 => {
                 v.visit::<Kernel<N, T, R, cohesion::Pull>>()
             }
-            CohesionKind::Bond => v.visit::<Kernel<N, T, R, cohesion::Bonded>>(),
+            CohesionKind::Bond | CohesionKind::BondNonlinear => {
+                v.visit::<Kernel<N, T, R, cohesion::Bonded>>()
+            }
             CohesionKind::Easo => v.visit::<Kernel<N, T, R, liquid::Easo>>(),
         }
     }

@@ -60,7 +60,7 @@ mod tests {
         );
         assert_eq!(
             names(COHESION_MODELS),
-            "off sjkr sjkr2 bond easo/capillary/viscous"
+            "off sjkr sjkr2 bond bond/nonlinear easo/capillary/viscous"
         );
         assert_eq!(
             names(ROLLING_MODELS),

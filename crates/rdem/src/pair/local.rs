@@ -146,7 +146,7 @@ impl Visitor for Records<'_> {
             tag: &p.tag,
         };
         // The contact law's values sit after the bond's vectors when there are bonds.
-        let off = if pair.bond.is_some() { bond::VEC } else { 0 };
+        let off = pair.bond.as_ref().map_or(0, |b| b.layout().vec);
         let w = list.width;
         if bonds {
             // Only `cohesion bond` kernels have bonds (and only they compile this path).
@@ -192,7 +192,7 @@ fn bond_records<K: ContactKernel>(
     mut out: PairContacts,
 ) -> PairContacts {
     let w = list.width;
-    let flag = w - bond::PAIR_TAIL;
+    let flag = w - pair.bond.as_ref().map_or(0, |b| b.layout().pair_tail);
     let mut scratch = vec![0.0; w];
     let near = ph1.near;
     for i in 0..p.nlocal() {

@@ -47,7 +47,11 @@ pub const SLOTS: usize = 6;
 /// Values of a wall bond after the slots: the bond's vectors and tail (flag, d₀, anchor
 /// offset), then the anchor's mesh (index in the wall), triangle and barycentric
 /// coordinates (2).
-const BOND_BLOCK: usize = bond::VEC + bond::WALL_TAIL + 4;
+/// Values of a particle's wall bond: the law's vectors and tail, and the link to its
+/// triangle (mesh, triangle, two barycentric coordinates).
+fn bond_block(l: bond::Layout) -> usize {
+    l.vec + l.wall_tail + 4
+}
 
 /// Largest history of one particle (all slots).
 const MAX_WIDTH: usize = 256;
@@ -316,7 +320,7 @@ impl MeshWall {
         };
         self.bond = BondTable::for_model(&self.model, materials)?;
         self.stride = 1 + self.model.contact_history_width() + self.extra;
-        let w = SLOTS * self.stride + if self.bond.is_some() { BOND_BLOCK } else { 0 };
+        let w = SLOTS * self.stride + self.bond.as_ref().map_or(0, |b| bond_block(b.layout()));
         assert!(
             SLOTS * self.stride <= MAX_WIDTH,
             "mesh wall history too wide"
@@ -344,7 +348,9 @@ impl MeshWall {
 
     /// Where a particle's wall bond flag sits in its history (with `cohesion bond`).
     pub(crate) fn bond_flag_at(&self) -> Option<usize> {
-        self.bond.as_ref().map(|_| SLOTS * self.stride + bond::VEC)
+        self.bond
+            .as_ref()
+            .map(|b| SLOTS * self.stride + b.layout().vec)
     }
 
     /// Intact bonds of owned particles with this wall.
@@ -632,9 +638,10 @@ impl Visitor for MeshPass<'_> {
     }
 }
 
-/// The wall bond of owned particle `i` (history `bh`, [`BOND_BLOCK`] values): created
+/// The wall bond of owned particle `i` (history `bh`, [`bond_block`] values): created
 /// to the nearest point of its candidate triangles `cands` when `create_now` and close
-/// enough, then loaded; returns its force and torque on the particle.
+/// enough, then loaded; returns its force and torque on the particle, and whether it
+/// holds after this step.
 #[allow(clippy::too_many_arguments)]
 fn wall_bond(
     wall: &MeshWall,
@@ -646,10 +653,11 @@ fn wall_bond(
     dt: f64,
     update: bool,
     create_now: bool,
-) -> (DVec3, DVec3) {
+) -> (DVec3, DVec3, bool) {
     let table = wall.bond.as_ref().expect("bond table");
-    let (vecs, rest) = bh.split_at_mut(bond::VEC);
-    let (tail, link) = rest.split_at_mut(bond::WALL_TAIL);
+    let layout = table.layout();
+    let (vecs, rest) = bh.split_at_mut(layout.vec);
+    let (tail, link) = rest.split_at_mut(layout.wall_tail);
     let x = p.x[i];
     if !bond::is_bonded(tail) && create_now {
         // The nearest point of the wall (first of equals, in candidate order).
@@ -676,7 +684,7 @@ fn wall_bond(
         }
     }
     if !bond::is_bonded(tail) {
-        return (DVec3::ZERO, DVec3::ZERO);
+        return (DVec3::ZERO, DVec3::ZERO, false);
     }
     let (mi, t) = (link[0] as usize, link[1] as u32);
     let surface = &surfaces[wall.meshes[mi]];
@@ -688,7 +696,6 @@ fn wall_bond(
         tail[2..5].copy_from_slice(&offset.to_array());
         anchor = surface.point_at(t, link[2], link[3]) + offset;
     }
-    let c = table.get(p.ty[i], surface.wall_type);
     let g = BondGeom::wall(
         x - anchor,
         p.radius[i],
@@ -698,9 +705,9 @@ fn wall_bond(
         update,
         table.wall_reach,
     );
-    let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
+    let (b, e) = table.force(&g, p.ty[i], surface.wall_type, wall.model.bond, vecs, tail);
     wall.bond_events.count(e);
-    (b.f_i, b.t_i)
+    (b.f_i, b.t_i, e != Event::Broken)
 }
 
 /// The contacts of a sphere at `x` of radius `r` with its candidate triangles `cands`,
@@ -833,7 +840,11 @@ impl MeshPass<'_> {
         let stride = wall.stride;
         debug_assert_eq!(stride, 1 + hw + extra);
         let width = SLOTS * stride;
-        let pw = width + if BOND { BOND_BLOCK } else { 0 };
+        let pw = width
+            + match (&wall.bond, BOND) {
+                (Some(b), true) => bond_block(b.layout()),
+                _ => 0,
+            };
         let create_now =
             BOND && update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
         let flags = wall.model.kernel_flags();
@@ -863,10 +874,18 @@ impl MeshPass<'_> {
             let k = i - lo;
             let cands = wall.candidates_of(i);
             let (h, bh) = hist[c * pw..(c + 1) * pw].split_at_mut(width);
+            // An intact `bond/nonlinear` bond takes the place of the normal contact forces.
+            let mut replace_normal = false;
             if BOND {
-                let (bf, bt) = wall_bond(wall, surfaces, p, i, cands, bh, dt, update, create_now);
+                let (bf, bt, holds) =
+                    wall_bond(wall, surfaces, p, i, cands, bh, dt, update, create_now);
                 f[k] += bf;
                 torque[k] += bt;
+                replace_normal = holds
+                    && wall
+                        .bond
+                        .as_ref()
+                        .is_some_and(|b| b.law().replaces_normal_contact());
             }
             let (x, r) = (p.x[i], p.radius[i]);
             let neck = if K::NECK {
@@ -943,7 +962,11 @@ impl MeshPass<'_> {
                     }
                 }
                 let coeff = wall.table.get(p.ty[i], surface.wall_type);
-                let out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
+                let mut out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
+                if replace_normal {
+                    out.f_i -= out.fn_total * g.n;
+                    out.fn_total = 0.0;
+                }
                 last_touch.note(
                     k,
                     super::touch::pack_triangle(wall.meshes[t.mesh as usize], t.tri),

@@ -255,7 +255,7 @@ impl PrimitiveWall {
     pub(crate) fn bond_flag_at(&self) -> Option<usize> {
         self.bond
             .as_ref()
-            .map(|_| self.model.wall_history_width() - bond::WALL_TAIL)
+            .map(|b| self.model.wall_history_width() - b.layout().wall_tail)
     }
 
     /// Intact bonds of owned particles with this wall.
@@ -399,10 +399,10 @@ impl WallPass<'_> {
         } = self;
         let flags = wall.model.kernel_flags();
         let mut empty: [f64; 0] = [];
-        let w = if BOND {
-            bond::VEC + K::HIST + bond::WALL_TAIL
-        } else {
-            K::HIST
+        let layout = wall.bond.as_ref().filter(|_| BOND).map(|b| b.layout());
+        let w = match layout {
+            Some(l) => l.vec + K::HIST + l.wall_tail,
+            None => K::HIST,
         };
         let create_now = update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
         // `surface multicontact`: the wall neither corrects nor records its contacts at a
@@ -422,13 +422,15 @@ impl WallPass<'_> {
             } else {
                 &mut empty
             };
-            let (hist, vecs, tail) = if BOND {
-                let (vecs, rest) = hist.split_at_mut(bond::VEC);
+            let (hist, vecs, tail) = if let Some(l) = layout {
+                let (vecs, rest) = hist.split_at_mut(l.vec);
                 let (hc, tail) = rest.split_at_mut(K::HIST);
                 (hc, vecs, tail)
             } else {
                 (hist, &mut [][..], &mut [][..])
             };
+            // An intact `bond/nonlinear` bond takes the place of the normal contact force.
+            let mut replace_normal = false;
             if BOND {
                 let table = wall.bond.as_ref().expect("bond table");
                 let c = table.get(p.ty[i], wall.wall_type);
@@ -455,8 +457,10 @@ impl WallPass<'_> {
                         update,
                         table.wall_reach,
                     );
-                    let (b, e) = bond::bond(&g, c, wall.model.bond, vecs, tail);
+                    let (b, e) =
+                        table.force(&g, p.ty[i], wall.wall_type, wall.model.bond, vecs, tail);
                     wall.bond_events.count(e);
+                    replace_normal = e != Event::Broken && table.law().replaces_normal_contact();
                     f[k] += b.f_i;
                     torque[k] += b.t_i;
                 }
@@ -487,7 +491,11 @@ impl WallPass<'_> {
                 }
             }
             let c = wall.table.get(p.ty[i], wall.wall_type);
-            let out = K::contact(&g, c, flags, hist);
+            let mut out = K::contact(&g, c, flags, hist);
+            if replace_normal {
+                out.f_i -= out.fn_total * g.n;
+                out.fn_total = 0.0;
+            }
             touches.note(k, -1.0);
             if let Some((store, _, key)) = &mc {
                 store.record_wall((p.tag[i], p.x[i]), *key, n, d, out.fn_total);
