@@ -848,6 +848,101 @@ fn break_bond(vecs: &mut [f64], tail: &mut [f64]) {
     tail.fill(0.0);
 }
 
+/// What every bond law needs of one bonded pair: its axis, its section and the relative
+/// motions of its two ends.
+#[derive(Debug, Clone, Copy)]
+struct Section {
+    /// Centre distance (a wall: the distance to the anchor).
+    r: f64,
+    /// Unit vector from j (the anchor) to i.
+    n: DVec3,
+    /// Bond radius r_b, its area A, polar moment J and moment of inertia I.
+    rb: f64,
+    area: f64,
+    j_polar: f64,
+    i_bend: f64,
+    /// Lever arms from the centres to the bond's middle (a wall: to the anchor).
+    ci: f64,
+    cj: f64,
+    /// Normal relative velocity (a vector along n).
+    vn: DVec3,
+    /// Relative velocity of i's side of the bond's middle against j's, across the pair.
+    v_shear: DVec3,
+    /// Relative spin ω_i − ω_j along the pair (twisting) and across it (bending).
+    wn: DVec3,
+    wt: DVec3,
+    /// Velocity scale of `dampingBondSmooth`.
+    minvel: f64,
+}
+
+impl Section {
+    /// The section of a bonded pair, or what the law returns at once: no force at a
+    /// run's set-up for a degenerate distance, or the bond broken by `maxDistanceBond`
+    /// (without `stressBreak`), by the reach, or by a distance that is not a number.
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn of(
+        g: &BondGeom,
+        c: &BondCoeff,
+        fl: BondFlags,
+        vecs: &mut [f64],
+        tail: &mut [f64],
+    ) -> std::result::Result<Self, (BondForce, Event)> {
+        let r = g.d.length();
+        // Written as "not within" so that a NaN distance breaks the bond (or, at set-up,
+        // gives no force).
+        if !g.update && !(r > 0.0) {
+            return Err((BondForce::default(), Event::None));
+        }
+        if g.update && ((!fl.stress_break && r > c.max_distance) || !(r <= g.reach) || !(r > 0.0)) {
+            break_bond(vecs, tail);
+            return Err((BondForce::default(), Event::Broken));
+        }
+        let wall = !g.rj.is_finite();
+        let n = g.d / r;
+        let rmin = if wall { g.ri } else { g.ri.min(g.rj) };
+        let rb = c.multiplier * rmin;
+        let area = std::f64::consts::PI * rb * rb;
+        let j_polar = 0.5 * area * rb * rb;
+        let (ci, cj) = if wall {
+            (r, 0.0)
+        } else {
+            let s = r / (g.ri + g.rj);
+            (g.ri * s, g.rj * s)
+        };
+        let vn = g.vr.dot(n) * n;
+        let w = g.wi - g.wj;
+        let wn = w.dot(n) * n;
+        Ok(Self {
+            r,
+            n,
+            rb,
+            area,
+            j_polar,
+            i_bend: 0.5 * j_polar,
+            ci,
+            cj,
+            vn,
+            v_shear: g.vr - vn + n.cross(ci * g.wi + cj * g.wj),
+            wn,
+            wt: w - wn,
+            minvel: 1e-5 * rmin / g.dt,
+        })
+    }
+
+    /// The force on i and the torques on i and j from the damped normal and shear forces
+    /// and the damped torques `tb` (twisting plus bending) of the bond.
+    #[inline(always)]
+    fn forces(&self, fnorm: DVec3, ft: DVec3, tb: DVec3) -> BondForce {
+        let lever = ft.cross(self.n);
+        BondForce {
+            f_i: fnorm + ft,
+            t_i: self.ci * lever + tb,
+            t_j: self.cj * lever - tb,
+        }
+    }
+}
+
 /// One bonded pair (the tail's flag must be set): forces and torques, and whether it
 /// broke. `vecs` are the [`VEC`] odd history values, `tail` the flag and d₀ (and anchor).
 #[inline(always)]
@@ -859,40 +954,25 @@ pub fn bond(
     vecs: &mut [f64],
     tail: &mut [f64],
 ) -> (BondForce, Event) {
-    let r = g.d.length();
-    let update = g.update;
-    // Written as "not within" so that a NaN distance breaks the bond (or, at set-up,
-    // gives no force).
-    if !update && !(r > 0.0) {
-        return (BondForce::default(), Event::None);
-    }
-    if update && ((!fl.stress_break && r > c.max_distance) || !(r <= g.reach) || !(r > 0.0)) {
-        break_bond(vecs, tail);
-        return (BondForce::default(), Event::Broken);
-    }
-    let wall = !g.rj.is_finite();
-    let n = g.d / r;
-    let rmin = if wall { g.ri } else { g.ri.min(g.rj) };
-    let rb = c.multiplier * rmin;
-    let area = std::f64::consts::PI * rb * rb;
-    let j_polar = 0.5 * area * rb * rb;
-    let i_bend = 0.5 * j_polar;
-    let dt = g.dt;
-    // Lever arms from the centres to the bond's middle (a wall: the anchor).
-    let (ci, cj) = if wall {
-        (r, 0.0)
-    } else {
-        let s = r / (g.ri + g.rj);
-        (g.ri * s, g.rj * s)
+    let sec = match Section::of(g, c, fl, vecs, tail) {
+        Ok(s) => s,
+        Err(out) => return out,
     };
-    let vn = g.vr.dot(n) * n;
-    let vt = g.vr - vn;
-    // Relative velocity of i's side of the bond's middle against j's, across the pair.
-    let v_shear = vt + n.cross(ci * g.wi + cj * g.wj);
-    let w = g.wi - g.wj;
-    let wn = w.dot(n) * n;
-    let wt = w - wn;
-    let minvel = 1e-5 * rmin / dt;
+    let Section {
+        r,
+        n,
+        rb,
+        area,
+        j_polar,
+        i_bend,
+        vn,
+        v_shear,
+        wn,
+        wt,
+        minvel,
+        ..
+    } = sec;
+    let (update, dt) = (g.update, g.dt);
     let smooth = fl.damping_smooth;
     let damping = fl.damping || smooth;
     let relax = |k: usize| 1.0 - (dt * c.dissipation[k]).min(1.0);
@@ -966,16 +1046,7 @@ pub fn bond(
         store(vecs, 1, tn);
         store(vecs, 2, tt);
     }
-    let lever = ft_d.cross(n);
-    let tb = tn_d + tt_d;
-    (
-        BondForce {
-            f_i: fnorm_d + ft_d,
-            t_i: ci * lever + tb,
-            t_j: cj * lever - tb,
-        },
-        Event::None,
-    )
+    (sec.forces(fnorm_d, ft_d, tn_d + tt_d), Event::None)
 }
 
 #[cfg(test)]

@@ -38,7 +38,9 @@
 
 use glam::DVec3;
 
-use super::{break_bond, damped, load, store, BondCoeff, BondFlags, BondForce, BondGeom, Event};
+use super::{
+    break_bond, damped, load, store, BondCoeff, BondFlags, BondForce, BondGeom, Event, Section,
+};
 
 /// History values that flip sign when i and j swap: F_t, θ_n, θ_t, θ_n,max + θ_n,min,
 /// θ_t,max + θ_t,min (3 each).
@@ -191,36 +193,25 @@ pub fn bond(
     vecs: &mut [f64],
     tail: &mut [f64],
 ) -> (BondForce, Event) {
-    let r = g.d.length();
-    let update = g.update;
-    if !update && !(r > 0.0) {
-        return (BondForce::default(), Event::None);
-    }
-    if update && ((!fl.stress_break && r > c.max_distance) || !(r <= g.reach) || !(r > 0.0)) {
-        break_bond(vecs, tail);
-        return (BondForce::default(), Event::Broken);
-    }
-    let wall = !g.rj.is_finite();
-    let n = g.d / r;
-    let rmin = if wall { g.ri } else { g.ri.min(g.rj) };
-    let rb = c.multiplier * rmin;
-    let area = std::f64::consts::PI * rb * rb;
-    let j_polar = 0.5 * area * rb * rb;
-    let i_bend = 0.5 * j_polar;
-    let dt = g.dt;
-    let (ci, cj) = if wall {
-        (r, 0.0)
-    } else {
-        let f = r / (g.ri + g.rj);
-        (g.ri * f, g.rj * f)
+    let sec = match Section::of(g, c, fl, vecs, tail) {
+        Ok(s) => s,
+        Err(out) => return out,
     };
-    let vn = g.vr.dot(n) * n;
-    let vt = g.vr - vn;
-    let v_shear = vt + n.cross(ci * g.wi + cj * g.wj);
-    let w = g.wi - g.wj;
-    let wn = w.dot(n) * n;
-    let wt = w - wn;
-    let minvel = 1e-5 * rmin / dt;
+    let Section {
+        r,
+        n,
+        rb,
+        area,
+        j_polar,
+        i_bend,
+        vn,
+        v_shear,
+        wn,
+        wt,
+        minvel,
+        ..
+    } = sec;
+    let (update, dt) = (g.update, g.dt);
     let smooth = fl.damping_smooth;
     let damping = fl.damping || smooth;
 
@@ -297,16 +288,7 @@ pub fn bond(
     tail[x0 + 1] = if delta > 0.0 { 0.0 } else { dmin };
     tail[x0 + 2..x0 + 5].copy_from_slice(&diff_n.to_array());
     tail[x0 + 5..x0 + 8].copy_from_slice(&diff_t.to_array());
-    let lever = ft_d.cross(n);
-    let tb = tn_d + tt_d;
-    (
-        BondForce {
-            f_i: fnorm_d + ft_d,
-            t_i: ci * lever + tb,
-            t_j: cj * lever - tb,
-        },
-        Event::None,
-    )
+    (sec.forces(fnorm_d, ft_d, tn_d + tt_d), Event::None)
 }
 
 #[cfg(test)]
