@@ -25,6 +25,10 @@
 //! force and torque, against the component of the matching relative velocity;
 //! `dissipationBond` relaxes each of them by dt/τ per step.
 //!
+//! A second law, `cohesion bond/nonlinear`, lives in [`nonlinear`]; the table
+//! ([`BondTable`]) knows its law ([`Law`]) and the law its history layout ([`Layout`]),
+//! and what both laws share of a bonded pair's geometry is one `Section`.
+//!
 //! The history of a bond lives in the contact history of its pair (or, for a wall, in
 //! the particle's wall history), so it survives re-neighboring, sorting, periodic wrap and
 //! migration like any contact history. Layout: [`VEC`] values that change sign when the
