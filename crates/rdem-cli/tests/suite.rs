@@ -37,6 +37,7 @@ mod mpi_io_failure;
 mod mpi_restart;
 mod multicontact;
 mod pour;
+mod region_wedge;
 mod restart_exact;
 mod rolling_cdt;
 mod servo_modes;

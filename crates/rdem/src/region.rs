@@ -1,4 +1,5 @@
 //! Regions (LIGGGHTS `region`): block, sphere, cylinder, cone, plane, union and intersect,
+//! and LIGGGHTS-INL's wedge (a cylinder's sector),
 //! with `side in|out`. A region answers whether a point is inside (boundary included, as
 //! LAMMPS), gives a bounding box when it is finite, and samples uniform random points
 //! (rejection in the bounding box) for insertion. A region may be posed (LIGGGHTS
@@ -66,6 +67,28 @@ pub enum Shape {
         lo: f64,
         /// Upper end.
         hi: f64,
+    },
+    /// LIGGGHTS-INL's wedge: the sector of a cylinder along `axis` between the angles
+    /// `start` and `start + span` (radians, counterclockwise about the axis), measured in
+    /// the plane of the cyclically next coordinates (u, v) = (y, z), (z, x) or (x, y)
+    /// from the u direction; the axis passes through (`cu`, `cv`).
+    Wedge {
+        /// Axis direction.
+        axis: usize,
+        /// The axis' u coordinate.
+        cu: f64,
+        /// The axis' v coordinate.
+        cv: f64,
+        /// Radius.
+        radius: f64,
+        /// Lower end along the axis.
+        lo: f64,
+        /// Upper end along the axis.
+        hi: f64,
+        /// Angle of the starting face.
+        start: f64,
+        /// Angle from the starting to the ending face, in (0, π] (LIGGGHTS-INL's limit).
+        span: f64,
     },
     /// Half space on the side the normal points to: (x − point)·normal ≥ 0.
     Plane {
@@ -190,6 +213,26 @@ fn nearest_on_segment(q: (f64, f64), p0: (f64, f64), p1: (f64, f64)) -> (f64, f6
 }
 
 /// Finite and > 0 (false for NaN).
+/// A wedge's view of `x`: the coordinate along its axis, the offset (u, v) from its axis,
+/// and the signed distances from the planes of its starting and ending faces (≤ 0 on
+/// the wedge's side of each), as LIGGGHTS-INL tests them.
+fn wedge_at(
+    axis: usize,
+    cu: f64,
+    cv: f64,
+    start: f64,
+    span: f64,
+    x: DVec3,
+) -> (f64, (f64, f64), (f64, f64)) {
+    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+    let d = (x[u] - cu, x[v] - cv);
+    let (s0, c0) = start.sin_cos();
+    let (s1, c1) = (start + span).sin_cos();
+    // Outward normals: the starting face's points back from the sector, the ending
+    // face's forward.
+    (x[axis], d, (d.0 * s0 - d.1 * c0, d.1 * c1 - d.0 * s1))
+}
+
 fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
@@ -255,6 +298,30 @@ impl Region {
                     return Err(bad("region cone", format!("radii {rlo} {rhi}, ends {lo} {hi}: need radii >= 0 (not both 0) and finite lo < hi")));
                 }
             }
+            Shape::Wedge {
+                axis,
+                cu,
+                cv,
+                radius,
+                lo,
+                hi,
+                start,
+                span,
+            } => {
+                let ok = *axis <= 2
+                    && cu.is_finite()
+                    && cv.is_finite()
+                    && positive(*radius)
+                    && lo.is_finite()
+                    && hi.is_finite()
+                    && lo <= hi
+                    && start.is_finite()
+                    && *span > 0.0
+                    && *span <= std::f64::consts::PI;
+                if !ok {
+                    return Err(bad("region wedge", format!("radius {radius}, bounds {lo} {hi}, angle {} degrees: need a radius > 0, finite lo <= hi and an angle in (0, 180] (LIGGGHTS-INL's limit)", span.to_degrees())));
+                }
+            }
             Shape::Plane { point, normal } => {
                 if !point.is_finite() || !normal.is_finite() || normal.length_squared() == 0.0 {
                     return Err(bad("region plane", format!("point {point}, normal {normal}: need a finite point and a non-zero normal")));
@@ -316,7 +383,7 @@ impl Region {
                 .map(|p| p.max_contacts(outside))
                 .sum::<Option<usize>>()
                 .filter(|&n| n <= MAX_SURFACE_CONTACTS),
-            Shape::TetMesh(_) => None,
+            Shape::TetMesh(_) | Shape::Wedge { .. } => None,
         }
     }
 
@@ -564,6 +631,20 @@ impl Region {
                 let r = rlo + (rhi - rlo) * (t - lo) / (hi - lo);
                 radial2(x, *axis, *c1, *c2) <= r * r
             }
+            &Shape::Wedge {
+                axis,
+                cu,
+                cv,
+                radius,
+                lo,
+                hi,
+                start,
+                span,
+            } => {
+                let (t, d, (s1, s2)) = wedge_at(axis, cu, cv, start, span, x);
+                let within = lo <= t && t <= hi && d.0 * d.0 + d.1 * d.1 <= radius * radius;
+                within && s1 <= 0.0 && s2 <= 0.0
+            }
             Shape::Plane { point, normal } => (x - *point).dot(*normal) >= 0.0,
             Shape::TetMesh(m) => m.contains(x),
             Shape::Union(parts) => parts.iter().any(|p| p.contains(x)),
@@ -635,6 +716,27 @@ impl Region {
                 } else {
                     let rt = rlo + slope * (t - lo);
                     lo + r <= t && t <= hi - r && rad <= rt - r * (1.0 + slope * slope).sqrt()
+                }
+            }
+            &Shape::Wedge {
+                axis,
+                cu,
+                cv,
+                radius,
+                lo,
+                hi,
+                start,
+                span,
+            } => {
+                let (t, d, (s1, s2)) = wedge_at(axis, cu, cv, start, span, x);
+                let rad = (d.0 * d.0 + d.1 * d.1).sqrt();
+                if out {
+                    // Clear of the whole cylinder (conservative).
+                    let dr = (rad - radius).max(0.0);
+                    let dt = (lo - t).max(t - hi).max(0.0);
+                    dr * dr + dt * dt >= r * r
+                } else {
+                    s1 <= -r && s2 <= -r && rad <= radius - r && lo + r <= t && t <= hi - r
                 }
             }
             Shape::Plane { point, normal } => {
@@ -752,6 +854,23 @@ impl Region {
                 hi,
             } => {
                 axial_box(*axis, *c1, *c2, rlo.max(*rhi), *lo, *hi).and_then(|(l, h)| finite(l, h))
+            }
+            &Shape::Wedge {
+                axis,
+                cu,
+                cv,
+                radius,
+                lo,
+                hi,
+                ..
+            } => {
+                // The whole cylinder's box.
+                let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                let (mut l, mut h) = (DVec3::ZERO, DVec3::ZERO);
+                (l[axis], h[axis]) = (lo, hi);
+                (l[u], h[u]) = (cu - radius, cu + radius);
+                (l[v], h[v]) = (cv - radius, cv + radius);
+                finite(l, h)
             }
             Shape::Plane { .. } => None,
             Shape::TetMesh(m) => Some(m.bounding_box()),
@@ -986,6 +1105,45 @@ mod tests {
         let p = Pose::new(v(0.3, -2., 1.), v(1., 2., 3.), v(1., 1., 0.), 0.7);
         let x = v(0.4, -0.2, 5.);
         assert!((p.inverse(p.forward(x)) - x).length() < 1e-14);
+    }
+
+    /// LIGGGHTS-INL's manual example, `wedge axis y center 0 0 radius 10 bounds 0 10
+    /// angle0 -22.5 angle 45`: about y the angles run from z towards x, so the sector
+    /// holds the points near +z within ±22.5°; a wedge's angle is at most 180°; whole
+    /// spheres must clear both faces.
+    #[test]
+    fn wedges_are_sectors_about_their_axis() {
+        let wedge = |start: f64, span: f64| {
+            Region::new(Shape::Wedge {
+                axis: 1,
+                cu: 0.0,
+                cv: 0.0,
+                radius: 10.0,
+                lo: 0.0,
+                hi: 10.0,
+                start: start.to_radians(),
+                span: span.to_radians(),
+            })
+        };
+        let w = wedge(-22.5, 45.0).unwrap();
+        for (p, inside) in [
+            (v(0.0, 5.0, 5.0), true),
+            (v(1.0, 5.0, 5.0), true),
+            (v(-1.0, 5.0, 5.0), true),
+            (v(5.0, 5.0, 5.0), false),
+            (v(0.0, 5.0, -5.0), false),
+            (v(0.0, 11.0, 5.0), false),
+            (v(0.0, 5.0, 10.5), false),
+            (v(0.0, 0.0, 0.0), true),
+        ] {
+            assert_eq!(w.contains(p), inside, "{p}");
+        }
+        assert!(w.contains_sphere(v(0.0, 5.0, 5.0), 1.0));
+        assert!(!w.contains_sphere(v(1.5, 5.0, 5.0), 1.0));
+        assert!(w.side_out().contains(v(5.0, 5.0, 5.0)));
+        assert!(wedge(0.0, 180.0).is_ok());
+        assert!(wedge(0.0, 200.0).is_err());
+        assert!(wedge(0.0, 0.0).is_err());
     }
 
     #[test]

@@ -56,7 +56,15 @@ pub static STYLES: Registry<&'static [&'static str]> = Registry {
         Row::runs("union", &[], "`N ID1 ID2 ...`"),
         Row::runs("intersect", &[], "`N ID1 ID2 ...`"),
         Row::not_yet("prism", ""),
-        Row::not_yet("wedge", ""),
+        Row::<&'static [&'static str]>::runs(
+            "wedge",
+            &[
+                "axis", "dim", "center", "c1", "c2", "radius", "r", "bounds", "lo", "hi",
+                "angle0", "alpha0", "angle", "alpha",
+            ],
+            "`axis dim center c1 c2 radius r bounds lo hi angle0 alpha0 angle alpha` (LIGGGHTS-INL): the sector of a cylinder along dim through (c1, c2) in the cyclically next coordinates (y z, z x or x y), from alpha0 over alpha degrees counterclockwise, measured from the first of them",
+        )
+        .notes("inside as LIGGGHTS-INL decides (boundary included); `all_in yes` keeps whole spheres inside the sector; not usable as a `fix wall/region` surface"),
     ],
 };
 
@@ -238,6 +246,39 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
                     lo: num(5, s[axis])?,
                     hi: num(6, s[axis])?,
                 }
+            }
+        }
+        "wedge" => {
+            for (k, want) in [
+                (0, "axis"),
+                (2, "center"),
+                (5, "radius"),
+                (7, "bounds"),
+                (10, "angle0"),
+                (12, "angle"),
+            ] {
+                if geo[k] != want {
+                    return Err(a.error_at(
+                        args_start + k,
+                        format!(
+                            "region wedge: expected the keyword '{want}', not '{}'",
+                            geo[k]
+                        ),
+                        Some(region_usage(style, arg_names)),
+                    ));
+                }
+            }
+            let axis = axis_of(1)?;
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            Shape::Wedge {
+                axis,
+                cu: num(3, s[u])?,
+                cv: num(4, s[v])?,
+                radius: num(6, s[u])?,
+                lo: num(8, s[axis])?,
+                hi: num(9, s[axis])?,
+                start: num(11, 1.0)?.to_radians(),
+                span: num(13, 1.0)?.to_radians(),
             }
         }
         "plane" => Shape::Plane {
