@@ -233,6 +233,14 @@ fn wedge_at(
     (x[axis], d, (d.0 * s0 - d.1 * c0, d.1 * c1 - d.0 * s1))
 }
 
+/// True if a sphere of radius `r` at distance `rad` from a cylinder's axis and at `t`
+/// along it lies wholly outside the cylinder of radius `radius` from `lo` to `hi`.
+fn clear_of_cylinder(rad: f64, t: f64, radius: f64, lo: f64, hi: f64, r: f64) -> bool {
+    let dr = (rad - radius).max(0.0);
+    let dt = (lo - t).max(t - hi).max(0.0);
+    dr * dr + dt * dt >= r * r
+}
+
 fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
@@ -692,9 +700,7 @@ impl Region {
                 let rad = radial2(x, *axis, *c1, *c2).sqrt();
                 let t = x[*axis];
                 if out {
-                    let dr = (rad - radius).max(0.0);
-                    let dt = (lo - t).max(t - hi).max(0.0);
-                    dr * dr + dt * dt >= r * r
+                    clear_of_cylinder(rad, t, *radius, *lo, *hi, r)
                 } else {
                     rad <= radius - r && lo + r <= t && t <= hi - r
                 }
@@ -732,9 +738,7 @@ impl Region {
                 let rad = (d.0 * d.0 + d.1 * d.1).sqrt();
                 if out {
                     // Clear of the whole cylinder (conservative).
-                    let dr = (rad - radius).max(0.0);
-                    let dt = (lo - t).max(t - hi).max(0.0);
-                    dr * dr + dt * dt >= r * r
+                    clear_of_cylinder(rad, t, radius, lo, hi, r)
                 } else {
                     s1 <= -r && s2 <= -r && rad <= radius - r && lo + r <= t && t <= hi - r
                 }
