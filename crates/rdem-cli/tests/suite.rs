@@ -12,6 +12,7 @@ mod cli_errors;
 mod cli_run;
 mod common;
 mod contact_history;
+mod create_particles;
 mod dense_insert;
 mod examples;
 mod fragments;

@@ -341,4 +341,20 @@ fn multisphere_template_reader() {
             read,
         );
     }
+    // `spheres_different_types` (LIGGGHTS-INL): a type after each radius.
+    let typed = b"# x y z r type\n0 0 0 0.5 2\n0.4 0 0 0.5 1 # second\n\n0 0.4 0 0.3 3\n".to_vec();
+    let got = rdem_script::fixes::parse_typed_spheres(&typed, 3).unwrap();
+    assert_eq!(got.iter().map(|s| s.1).collect::<Vec<_>>(), [2, 1, 3]);
+    assert!(rdem_script::fixes::parse_typed_spheres(b"0 0 0 0.5 0\n", 1).is_err());
+    assert!(rdem_script::fixes::parse_typed_spheres(b"0 0 0 0.5 1.5\n", 1).is_err());
+    assert!(rdem_script::fixes::parse_typed_spheres(&seed, 3).is_err());
+    for n in [3, 0, usize::MAX] {
+        let read = move |b: &[u8]| rdem_script::fixes::parse_typed_spheres(b, n);
+        run(&format!("typed template, n {n}, bytes"), bytes(), read);
+        run(
+            &format!("typed template, n {n}, edits"),
+            mutated(typed.clone()),
+            read,
+        );
+    }
 }

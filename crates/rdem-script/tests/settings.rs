@@ -34,11 +34,35 @@ fn processors_grid_that_does_not_fit_warns_and_runs() {
     r.unwrap();
     assert!(!out.contains("WARNING"), "{out}");
     assert_eq!(i.sim.setup.procs, [1, 0, 1]);
+    // `grid twolevel` and `numa` say how ranks group onto nodes: read, and laid out as
+    // onelevel; a process count that is not a multiple of the cores per node is a
+    // warning (LAMMPS stops), a core grid that does not fit them an error.
+    let (i, r, out) = run("processors * * 1 grid twolevel 24 * * 1\n");
+    r.unwrap();
+    assert!(
+        out.contains(
+            "WARNING: line 1: processors grid twolevel: 1 process is not a multiple of 24 \
+             cores per node (LAMMPS stops here): rdem lays the ranks out as grid onelevel"
+        ),
+        "{out}"
+    );
+    assert_eq!(i.sim.setup.procs, [0, 0, 1]);
+    let (_, r, out) = run("processors * * * grid numa\n");
+    r.unwrap();
+    assert!(!out.contains("WARNING"), "{out}");
     // Keywords rdem does not run are errors at the word.
     for (src, msg) in [
         (
-            "processors * * * grid numa\n",
-            "processors grid numa is not supported yet",
+            "processors * * * grid custom grid.txt\n",
+            "processors grid custom is not supported yet",
+        ),
+        (
+            "processors * * * grid twolevel 4 2 2 2\n",
+            "processors grid twolevel: the core grid 2 x 2 x 2 does not fit 4 cores per node",
+        ),
+        (
+            "processors * * * grid twolevel 4 3 * 1\n",
+            "processors grid twolevel: the core grid 3 x * x 1 does not fit 4 cores per node",
         ),
         (
             "processors * * * part 1 2 multiple\n",

@@ -1,10 +1,11 @@
-//! `create_box` and `create_atoms`: the simulation box (and its processor grid) and
-//! particles on a lattice or at a point.
+//! `create_box`, `create_atoms` and `create_particles`: the simulation box (and its
+//! processor grid), particles on a lattice or at a point, and one particle of a template
+//! at a point.
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 use rdem::{Domain, NewParticle, World};
 
-use crate::args::{Args, CmdResult};
+use crate::args::{suggest, Args, CmdResult};
 use crate::sim::Sim;
 
 use super::region::scale_of;
@@ -151,6 +152,90 @@ pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
             .map_err(|e| a.error_cmd(e.to_string(), None))?;
     }
     w.extend_tags();
+    super::settings::disc_masses(sim);
+    sim.outputs.out.line(&format!("Created {n} atoms"));
+    Ok(())
+}
+
+/// `create_particles TEMPLATE single x y z [units box|lattice] [velocity vx vy vz]
+/// [omega wx wy wz] [orientation q1 q2 q3 q4] [rotate axis ax ay az angle deg] ...`
+/// (LIGGGHTS-INL): one particle of a `particletemplate/sphere` (at the point) or
+/// `particletemplate/multiplespheres` (its spheres with their bounding sphere's centre
+/// at the point, turned about it). As the fork does (measured): `units` defaults to
+/// `box` and scales the point only; `orientation` sets the turn (normalised), each
+/// `rotate` turns further (right-hand rule, the axis normalised); every sphere gets the
+/// velocity and the angular velocity; the new spheres take the next tags, in the
+/// template's order.
+pub(super) fn create_particles(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    let tid = a.word("template ID")?;
+    if !sim.defs.templates.contains_key(tid) {
+        let names: Vec<&str> = sim.defs.templates.keys().map(|s| s.as_str()).collect();
+        return Err(a.error_prev(
+            format!("create_particles: no particle template '{tid}'"),
+            Some(if names.is_empty() {
+                "define one first with fix ID all particletemplate/sphere or particletemplate/multiplespheres".into()
+            } else {
+                suggest(tid, &names)
+            }),
+        ));
+    }
+    a.keyword("create_particles style", &["single"])?;
+    let x = a.vec3("position")?;
+    let (mut lattice_units, mut v, mut omega, mut turn) =
+        (false, DVec3::ZERO, DVec3::ZERO, DQuat::IDENTITY);
+    while !a.is_done() {
+        match a.keyword(
+            "create_particles keyword",
+            &["units", "velocity", "omega", "orientation", "rotate"],
+        )? {
+            "units" => lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice",
+            "velocity" => v = a.vec3("velocity")?,
+            "omega" => omega = a.vec3("angular velocity")?,
+            "orientation" => {
+                let at = a.pos();
+                let q: [f64; 4] = [a.f64("q1")?, a.f64("q2")?, a.f64("q3")?, a.f64("q4")?];
+                let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
+                if !(q.length() > 0.0 && q.is_finite()) {
+                    return Err(a.error_at(
+                        at,
+                        "create_particles: the orientation quaternion must be finite and not zero",
+                        Some(
+                            "q1 q2 q3 q4 with q1 the scalar part, e.g. 'orientation 1 0 0 0'"
+                                .into(),
+                        ),
+                    ));
+                }
+                turn = q.normalize();
+            }
+            _ => {
+                a.keyword("rotate", &["axis"])?;
+                let at = a.pos();
+                let axis = a.vec3("rotation axis")?;
+                a.keyword("rotate", &["angle"])?;
+                let deg = a.f64("rotation angle (degrees)")?;
+                if !(axis.length() > 0.0 && axis.is_finite()) {
+                    return Err(a.error_at(
+                        at,
+                        "create_particles: the rotation axis must be finite and not zero",
+                        None,
+                    ));
+                }
+                turn =
+                    (DQuat::from_axis_angle(axis.normalize(), deg.to_radians()) * turn).normalize();
+            }
+        }
+    }
+    let x = x * scale_of(sim, a, lattice_units)?;
+    let t = sim.defs.templates.get_mut(tid).expect("checked");
+    let w = sim.world.as_mut().ok_or_else(|| {
+        a.error_cmd(
+            "create_particles before the simulation box is defined",
+            None,
+        )
+    })?;
+    let single = rdem::insert::Single { x, turn, v, omega };
+    let n =
+        rdem::insert::create_single(w, t, &single).map_err(|e| a.error_cmd(e.to_string(), None))?;
     super::settings::disc_masses(sim);
     sim.outputs.out.line(&format!("Created {n} atoms"));
     Ok(())

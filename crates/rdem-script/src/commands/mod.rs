@@ -86,8 +86,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("communicate", settings::communicate, "accepted").notes("tuning only"),
         sim("hard_particles", settings::hard_particles, "accepted").notes("tuning only"),
         sim("soft_particles", settings::hard_particles, "accepted").notes("tuning only"),
-        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each); `grid onelevel`; `map cart\\|cart/reorder\\|xyz`")
-            .notes("a grid that does not fit the number of processes is a warning (LIGGGHTS stops): rdem keeps the counts that fit and chooses the rest; ranks are placed in xyz order whatever `map` says (only which rank holds which part changes); `grid twolevel\\|numa\\|custom`, other maps, `part`, `file`: not supported"),
+        sim("processors", settings::processors, "`Px Py Pz`: the MPI processor grid (count or `*` each); `grid onelevel\\|twolevel Nc Cx Cy Cz\\|numa`; `map cart\\|cart/reorder\\|xyz`")
+            .notes("a grid that does not fit the number of processes is a warning (LIGGGHTS stops): rdem keeps the counts that fit and chooses the rest; ranks are placed in xyz order whatever `map` or `grid` says (only which rank holds which part changes, not the outcome): `twolevel` is read and its core grid checked against Nc, a process count that is not a multiple of Nc is a warning (LAMMPS stops); `grid custom`, other maps, `part`, `file`: not supported"),
         sim("region", region::region, "the region styles below; `side in\\|out`; `units box\\|lattice` (default `box`, as LIGGGHTS 3.8); `move v_x v_y v_z` (`NULL` allowed) and `rotate v_theta Px Py Pz Rx Ry Rz`: a moving region is placed by its equal-style variables each time it is used (`group`, `set`, `delete_atoms`, `create_atoms`, the region forms of `count()`, `mass()`, ...); insertion fixes, `create_box` and `ave/euler` refuse it, as LIGGGHTS 3.8 refuses it in insertion")
             .notes("`move` displacements are not scaled by `units lattice` (only the `rotate` point is), as the LIGGGHTS 3.8 manual says; LAMMPS' `open` is not a LIGGGHTS 3.8 keyword"),
         sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `custom` with `a1 a2 a3` along x, y, z and `basis`; `origin`")
@@ -95,6 +95,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("create_box", create::create_box, "`N region`"),
         sim("create_atoms", create::create_atoms, "`single`, `region`, `box`")
             .notes("new atoms have diameter 1 and density 1, as in LIGGGHTS; use `set`"),
+        sim("create_particles", create::create_particles, "`TEMPLATE single x y z` (LIGGGHTS-INL): one particle of a `particletemplate/sphere`, or the spheres of a `particletemplate/multiplespheres` with their bounding sphere's centre at the point; `units box\\|lattice` (default `box`), `velocity`, `omega` (each sphere's), `orientation q1 q2 q3 q4` (sets the turn), `rotate axis ax ay az angle deg` (turns further; repeatable); new tags follow the largest, in the template's order")
+            .notes("a rigid `particletemplate/multisphere` is refused (LIGGGHTS-INL has none); a sphere of the template outside a fixed face is an error"),
         sim("mass", crate::sph::mass, "`I value`: the mass of type I (`*`, `*n`, `n*`, `m*n` ranges)")
             .notes("atom_style sph only (per-type masses, as LIGGGHTS); granular particles have their own mass"),
         sim("read_data", data_files::read_data, "granular `Atoms` lines (`id type diameter density x y z [ix iy iz]`), `Velocities`")

@@ -319,6 +319,50 @@ pub(super) fn communicate(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
+/// `grid twolevel Nc Cx Cy Cz` (after the style word): the cores of a node and their
+/// grid, each a count or `*`. They only say how ranks group onto nodes, which changes the
+/// speed, not the outcome: rdem reads them, checks them as LAMMPS does where that needs
+/// no machine (the core grid must fit Nc), and lays the ranks out as `onelevel`; a
+/// count of processes that is not a multiple of Nc is a warning (LAMMPS stops).
+fn twolevel(a: &mut Args) -> CmdResult {
+    let nc = a.count("cores per node")? as usize;
+    let mut grid = [0usize; 3];
+    for (k, d) in ["Cx", "Cy", "Cz"].into_iter().enumerate() {
+        if a.peek() == Some("*") {
+            a.word(d)?;
+        } else {
+            grid[k] = a.count(d)? as usize;
+        }
+    }
+    let given: usize = grid.iter().filter(|&&c| c != 0).product();
+    let full = grid.iter().all(|&c| c != 0);
+    if (full && given != nc) || (!full && nc % given != 0) {
+        return Err(a.error_prev(
+            format!(
+                "processors grid twolevel: the core grid {} does not fit {nc} cores per node",
+                grid.map(|c| if c == 0 {
+                    "*".to_string()
+                } else {
+                    c.to_string()
+                })
+                .join(" x ")
+            ),
+            Some("Cx x Cy x Cz must be Nc (or divide it where one is '*')".into()),
+        ));
+    }
+    let nprocs = rdem::comm::process_rank_size().1;
+    if nprocs % nc != 0 {
+        a.warn_at(
+            0,
+            &format!(
+                "processors grid twolevel: {nprocs} {} not a multiple of {nc} cores per node (LAMMPS stops here): rdem lays the ranks out as grid onelevel",
+                if nprocs == 1 { "process is" } else { "processes are" }
+            ),
+        );
+    }
+    Ok(())
+}
+
 /// `processors Px Py Pz [grid onelevel] [map cart|cart/reorder|xyz]`: the MPI processor
 /// grid (each a count or `*`). A grid whose product does not fit the number of processes
 /// stops LIGGGHTS; rdem warns and keeps the counts that still fit (in x, y, z order),
@@ -342,11 +386,15 @@ pub(super) fn processors(sim: &mut Sim, a: &mut Args) -> CmdResult {
         match a.keyword("processors keyword", &["grid", "map", "part", "file"])? {
             "grid" => {
                 let g = a.keyword("grid style", &["onelevel", "twolevel", "numa", "custom"])?;
-                if g != "onelevel" {
-                    return Err(a.error_prev(
-                        format!("processors grid {g} is not supported yet"),
-                        Some("use 'grid onelevel' (the default) or leave the keyword out".into()),
-                    ));
+                match g {
+                    "twolevel" => twolevel(a)?,
+                    "custom" => {
+                        return Err(a.error_prev(
+                            "processors grid custom is not supported yet",
+                            Some("use 'grid onelevel' (the default), 'twolevel' or 'numa', or leave the keyword out".into()),
+                        ))
+                    }
+                    _ => {}
                 }
             }
             "map" => {

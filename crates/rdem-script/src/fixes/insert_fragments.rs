@@ -59,12 +59,13 @@ pub(super) const ROW: FixRow = style(
 struct Piece {
     offset: DVec3,
     radius: f64,
+    /// Atom type (the template's, or the sphere's own with `spheres_different_types`).
+    ty: u32,
 }
 
 /// The fix.
 struct InsertFragments {
     pieces: Vec<Piece>,
-    ty: u32,
     density: f64,
     /// Groups of the fragments: the fix's, the template's and the distribution's.
     mask: u32,
@@ -219,14 +220,15 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let pieces = tpl
         .spheres
         .iter()
-        .map(|s| Piece {
+        .enumerate()
+        .map(|(k, s)| Piece {
             offset: tpl.axes * (s.x - centre),
             radius: s.r,
+            ty: c.sphere_type(k).unwrap_or(t.ty),
         })
         .collect();
     Ok(Box::new(InsertFragments {
         pieces,
-        ty: t.ty,
         density: t.density,
         mask: 1 | head.groupbit | t.groupbit | dist.groupbit,
         random_bond_id: c.random_bond_id,
@@ -362,7 +364,7 @@ impl InsertFragments {
             for piece in &self.pieces {
                 let i = w.add_particle(&NewParticle {
                     tag: 0,
-                    ty: self.ty,
+                    ty: piece.ty,
                     mask: self.mask,
                     x: r.x + r.q * (piece.offset * r.scale),
                     v: r.v,

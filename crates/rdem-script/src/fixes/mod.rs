@@ -66,7 +66,7 @@ use crate::sim::Sim;
 pub use check_timestep_gran::timestep_limits;
 pub use insert::insertion_report;
 pub use modify::fix_modify;
-pub use particletemplate_multisphere::parse_spheres;
+pub use particletemplate_multisphere::{parse_spheres, parse_typed_spheres};
 pub use stage_ctx::StageCtx;
 
 /// The stages a fix takes part in (LAMMPS' `setmask`): the run loop calls each stage only

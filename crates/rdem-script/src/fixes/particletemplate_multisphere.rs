@@ -4,8 +4,9 @@
 //! insertion fixes draw from, as LIGGGHTS 3.8 defines it.
 //!
 //! The spheres come inline (`spheres x1 y1 z1 r1 x2 ...`) or from a file (`spheres file F`,
-//! a line `x y z r` per sphere, `#` starting a comment); `scale s` multiplies positions and
-//! radii (after either form). The clump's volume, centre of mass and inertia tensor come
+//! a line `x y z r` per sphere, `#` starting a comment; LIGGGHTS-INL's
+//! `spheres_different_types file F`, a line `x y z r type`); `scale s` multiplies
+//! positions and radii (after either form). The clump's volume, centre of mass and inertia tensor come
 //! from `ntry` Monte Carlo points (`rdem::multisphere::ClumpTemplate`), and its mass is the
 //! density times that volume. With `mass` and `inertia_tensor` (about the centre of mass,
 //! in the frame the spheres are given in) the mass and inertia are taken as given, and the
@@ -38,7 +39,7 @@ pub(super) const ROW_MULTIPLE: FixRow = style(
     Stages::NONE,
     "`atom_type`, `density constant`, `nspheres`, `ntry`, `spheres x y z r ...\\|file F`, `scale`, `bonded no`: the spheres are placed as a clump would be (about the Monte Carlo centre of mass, turned by the insertion's `orientation`) and inserted as separate particles, as LIGGGHTS 3.8 does",
 )
-.notes("`bonded yes\\|yes/implicit` (spheres closer than r_i + r_j + skin bonded) and `bonded yes/explicit nbond_pairs N i1 j1 ... [bond_type T]` (the pairs given): the forks' bonded templates, with `bond_style gran`; the bonds are made at insertion, their length L0 at their first evaluation. Without bond atoms, `bonded yes` is LIGGGHTS-INL's: each copy's spheres share a `bond_random_id` (fix `bond_random_id`, `f_bond_random_id`), by which `cohesion bond` bonds those closer than createDistanceBond at the step they appear. `relative yes` (LIGGGHTS-INL): sizes in bounding radii, for `fix insert/fragments` only. Inserted spheres join the template's and the distribution's groups, as in LIGGGHTS 3.8")
+.notes("`bonded yes\\|yes/implicit` (spheres closer than r_i + r_j + skin bonded) and `bonded yes/explicit nbond_pairs N i1 j1 ... [bond_type T]` (the pairs given): the forks' bonded templates, with `bond_style gran`; the bonds are made at insertion, their length L0 at their first evaluation. Without bond atoms, `bonded yes` is LIGGGHTS-INL's: each copy's spheres share a `bond_random_id` (fix `bond_random_id`, `f_bond_random_id`), by which `cohesion bond` bonds those closer than createDistanceBond at the step they appear. `relative yes` (LIGGGHTS-INL): sizes in bounding radii, for `fix insert/fragments` only. `spheres_different_types file F [scale s]` (LIGGGHTS-INL): a line `x y z r type` per sphere, each sphere of its own atom type (a file only, as the fork). `create_particles` puts the spheres about their bounding sphere's centre, as given (LIGGGHTS-INL). Inserted spheres join the template's and the distribution's groups, as in LIGGGHTS 3.8")
 .atoi();
 
 /// A defined clump template: it lives in `Sim::templates` under the fix ID.
@@ -82,7 +83,12 @@ impl ScriptFix for MultisphereTemplate {
 /// Where the spheres come from.
 enum Source {
     Inline(Vec<Sphere>),
-    File { path: String, at: usize },
+    /// `typed`: each line ends with the sphere's atom type (`spheres_different_types`).
+    File {
+        path: String,
+        at: usize,
+        typed: bool,
+    },
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
@@ -125,13 +131,14 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         "tflag",
         "relative",
     ];
-    const KEYS_MULTIPLE: [&str; 11] = [
+    const KEYS_MULTIPLE: [&str; 12] = [
         "atom_type",
         "density",
         "volume_limit",
         "nspheres",
         "ntry",
         "spheres",
+        "spheres_different_types",
         "scale",
         "relative",
         "bonded",
@@ -181,18 +188,22 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             }
             "nspheres" => nspheres = Some(a.count("number of spheres")? as usize),
             "ntry" => ntry = Some(a.count("number of Monte Carlo points")?),
-            "spheres" => {
+            key @ ("spheres" | "spheres_different_types") => {
+                let typed = key == "spheres_different_types";
                 let Some(n) = nspheres else {
                     return Err(a.error_prev(
-                        "'spheres' must come after 'nspheres N'",
-                        Some("LIGGGHTS reads nspheres first: '... nspheres 3 ntry 1000000 spheres ...'".into()),
+                        format!("'{key}' must come after 'nspheres N'"),
+                        Some(format!("LIGGGHTS reads nspheres first: '... nspheres 3 ntry 1000000 {key} ...'")),
                     ));
                 };
                 if a.peek() == Some("file") {
                     a.seek(a.pos() + 1);
                     let at = a.pos();
                     let path = a.word("sphere file name")?.to_string();
-                    source = Some(Source::File { path, at });
+                    source = Some(Source::File { path, at, typed });
+                } else if typed {
+                    // As LIGGGHTS-INL: the types come from a file only.
+                    a.keyword("spheres_different_types source", &["file"])?;
                 } else {
                     let mut v = Vec::with_capacity(n);
                     for k in 1..=n {
@@ -271,16 +282,46 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             ))
         }
     };
+    let mut sphere_types = Vec::new();
     let mut spheres = match source {
         Source::Inline(v) => v,
-        Source::File { path, at } => read_spheres(&path, nspheres)
-            .map_err(|e| a.error_at(at, format!("{path}: {e}"), None))?,
+        Source::File { path, at, typed } => {
+            let text =
+                std::fs::read(&path).map_err(|e| a.error_at(at, format!("{path}: {e}"), None))?;
+            let rows = parse_rows(&text, nspheres, typed)
+                .map_err(|e| a.error_at(at, format!("{path}: {e}"), None))?;
+            let ntypes = sim.ntypes();
+            let mut v = Vec::with_capacity(rows.len());
+            for (k, (sphere, t)) in rows.into_iter().enumerate() {
+                if let Some(t) = t {
+                    if t as usize > ntypes {
+                        return Err(a.error_at(
+                            at,
+                            format!(
+                                "{path}: sphere {} has atom type {t}, more than the box's {ntypes}",
+                                k + 1
+                            ),
+                            None,
+                        ));
+                    }
+                    sphere_types.push(t);
+                }
+                v.push(sphere);
+            }
+            v
+        }
     };
     for s in &mut spheres {
         s.x *= scale;
         s.r *= scale;
     }
     let bonds = template_bonds(sim, a, &spheres, bonded, &pairs, bond_type)?;
+    let bound_offsets = if rigid {
+        Vec::new()
+    } else {
+        let (c, _) = rdem::multisphere::template::enclosing_sphere(&spheres);
+        spheres.iter().map(|s| s.x - c).collect()
+    };
     let source = match (mass, inertia) {
         (None, None) => {
             let rho = density.ok_or_else(|| {
@@ -349,6 +390,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         bonds,
         random_bond_id,
         relative,
+        sphere_types,
+        bound_offsets,
     };
     let mut t = ParticleTemplate::clump(id, seed, ty, density, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
@@ -420,17 +463,29 @@ fn template_bonds(
     }
 }
 
-/// The spheres of a template file: a line `x y z r` per sphere, `#` starting a comment,
-/// blank lines skipped; exactly `n` spheres.
-fn read_spheres(path: &str, n: usize) -> Result<Vec<Sphere>, Error> {
-    let text = std::fs::read(path).map_err(|e| Error::Invalid(e.to_string()))?;
-    parse_spheres(&text, n)
-}
-
-/// The spheres of the bytes of a template file (see [`read_spheres`]); any bytes give the
+/// The spheres of the bytes of a template file: a line `x y z r` per sphere, `#`
+/// starting a comment, blank lines skipped; exactly `n` spheres. Any bytes give the
 /// spheres or an error.
 pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, Error> {
+    Ok(parse_rows(bytes, n, false)?
+        .into_iter()
+        .map(|(s, _)| s)
+        .collect())
+}
+
+/// The spheres of a `spheres_different_types` file (LIGGGHTS-INL): a line `x y z r type`
+/// per sphere, otherwise as [`parse_spheres`].
+pub fn parse_typed_spheres(bytes: &[u8], n: usize) -> Result<Vec<(Sphere, u32)>, Error> {
+    Ok(parse_rows(bytes, n, true)?
+        .into_iter()
+        .map(|(s, t)| (s, t.unwrap_or(1)))
+        .collect())
+}
+
+/// The rows of a template file, each with its atom type when `typed`.
+fn parse_rows(bytes: &[u8], n: usize, typed: bool) -> Result<Vec<(Sphere, Option<u32>)>, Error> {
     let text = String::from_utf8_lossy(bytes);
+    let cols = if typed { 5 } else { 4 };
     let mut out = Vec::with_capacity(n.min(bytes.len() / 8 + 1));
     for (k, line) in text.lines().enumerate() {
         let line = line.split('#').next().unwrap_or("").trim();
@@ -440,21 +495,39 @@ pub fn parse_spheres(bytes: &[u8], n: usize) -> Result<Vec<Sphere>, Error> {
         let v: Vec<&str> = line.split_whitespace().collect();
         let nums: Option<Vec<f64>> = v.iter().map(|w| crate::args::parse_f64(w)).collect();
         match nums {
-            Some(x) if x.len() == 4 => {
+            Some(x) if x.len() == cols => {
                 if x[3].is_nan() || x[3] <= 0.0 {
                     return Err(format!("line {}: radius {} must be > 0", k + 1, x[3]).into());
                 }
-                out.push(Sphere {
-                    x: glam::DVec3::new(x[0], x[1], x[2]),
-                    r: x[3],
-                });
+                let ty = if typed {
+                    let t = x[4];
+                    if !(t >= 1.0 && t.fract() == 0.0 && t <= u32::MAX as f64) {
+                        return Err(format!(
+                            "line {}: atom type {} must be a whole number from 1",
+                            k + 1,
+                            v[4]
+                        )
+                        .into());
+                    }
+                    Some(t as u32)
+                } else {
+                    None
+                };
+                out.push((
+                    Sphere {
+                        x: glam::DVec3::new(x[0], x[1], x[2]),
+                        r: x[3],
+                    },
+                    ty,
+                ));
             }
             _ => {
-                return Err(format!(
-                    "line {}: expected four numbers 'x y z r', got '{line}'",
-                    k + 1
-                )
-                .into())
+                let want = if typed {
+                    "five numbers 'x y z r type'"
+                } else {
+                    "four numbers 'x y z r'"
+                };
+                return Err(format!("line {}: expected {want}, got '{line}'", k + 1).into());
             }
         }
     }

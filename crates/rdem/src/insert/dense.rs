@@ -528,6 +528,7 @@ impl DensePack {
             radius: real,
             v: draw_velocity(self.velocity, &mut self.rng),
             q: glam::DQuat::IDENTITY,
+            about_bound: false,
         });
     }
 }

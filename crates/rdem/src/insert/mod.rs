@@ -8,12 +8,14 @@ pub mod dense;
 pub mod distribution;
 pub mod pack;
 mod place;
+pub mod single;
 pub mod stream;
 pub mod template;
 
 pub use dense::{DensePack, DenseReport};
 pub use distribution::{Distribution, Weighting};
 pub use pack::{FallFromTop, InsertPack, InsertReport, Orientation, PackTarget, VelocityLaw};
+pub use single::{create_single, Single};
 pub use stream::{InsertStream, StreamFace};
 pub use template::{ClumpShape, ParticleTemplate, RadiusDist};
 

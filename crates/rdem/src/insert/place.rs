@@ -8,7 +8,7 @@ use glam::{DQuat, DVec3};
 use rand::Rng;
 use rand_distr::{Distribution as _, Normal};
 
-use super::{ClumpShape, Distribution, InsertRng, Orientation, VelocityLaw};
+use super::{ClumpShape, Distribution, InsertRng, Orientation, ParticleTemplate, VelocityLaw};
 use crate::error::Result;
 use crate::multisphere::NewClump;
 use crate::particles::NewParticle;
@@ -75,6 +75,10 @@ pub(crate) struct Placed {
     pub v: DVec3,
     /// A clump's orientation (spheres: the identity).
     pub q: DQuat,
+    /// The spheres of a `multiplespheres` template go at `x + q * offset` with the
+    /// template's [`ClumpShape::bound_offsets`] (`x` the bounding sphere's centre, `q`
+    /// the turn from the frame they were given in), not about the centre of mass.
+    pub about_bound: bool,
 }
 
 /// Existing particles (of every rank) near an insertion volume, on a grid of cells two
@@ -243,6 +247,7 @@ pub(crate) fn choose(
                 radius: r,
                 v: draw_velocity(velocity, rng),
                 q,
+                about_bound: false,
             });
         }
     }
@@ -292,9 +297,22 @@ pub(crate) fn add_placed(
     omega: DVec3,
     groupbit: u32,
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
+    // The particles join the distribution's groups too (LIGGGHTS 3.8).
     let t = &dist.templates[pl.template];
-    // The particles join the template's and the distribution's groups too (LIGGGHTS 3.8).
-    let groupbit = groupbit | t.groupbit | dist.groupbit;
+    add_placed_of(world, t, pl, omega, groupbit | dist.groupbit)
+}
+
+/// [`add_placed`] for the template `t` itself (`pl.template` only keys a bonded copy's
+/// random bond ID).
+pub(crate) fn add_placed_of(
+    world: &mut World,
+    t: &ParticleTemplate,
+    pl: &Placed,
+    omega: DVec3,
+    groupbit: u32,
+) -> Result<(f64, Option<std::ops::Range<usize>>)> {
+    // The particles join the template's groups too (LIGGGHTS 3.8).
+    let groupbit = groupbit | t.groupbit;
     if let Some(c) = t.clump.as_ref().filter(|c| !c.rigid) {
         // Separate spheres: each goes to the rank that owns its centre; the spheres of a
         // bonded template share a new molecule ID.
@@ -326,14 +344,17 @@ pub(crate) fn add_placed(
             None
         };
         let mut at = Vec::with_capacity(c.template.spheres.len());
-        for s in &c.template.spheres {
-            let x = pl.x + pl.q * s.x;
+        for (k, s) in c.template.spheres.iter().enumerate() {
+            let x = match c.bound_offsets.get(k).filter(|_| pl.about_bound) {
+                Some(&o) => pl.x + pl.q * o,
+                None => pl.x + pl.q * s.x,
+            };
             if !world.owns_inserted(x) {
                 at.push(None);
                 continue;
             }
             let mut np = NewParticle::at(x, s.r, t.density)
-                .with_type(t.ty)
+                .with_type(c.sphere_type(k).unwrap_or(t.ty))
                 .with_omega(omega);
             np.v = pl.v;
             np.mask = 1 | groupbit;

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 use rand::Rng;
 use rand_distr::{Distribution as _, Normal};
 
@@ -46,9 +46,23 @@ pub struct ClumpShape {
     /// `relative yes` (LIGGGHTS-INL): positions and radii are in units of the bounding
     /// radius of what `fix insert/fragments` replaces; no other insertion takes it.
     pub relative: bool,
+    /// Each sphere's atom type (LIGGGHTS-INL's `spheres_different_types`), in the order
+    /// of [`crate::multisphere::ClumpTemplate::spheres`]; empty: the template's type.
+    pub sphere_types: Vec<u32>,
+    /// Each sphere's centre as given, from the centre of the spheres' bounding sphere
+    /// ([`crate::multisphere::template::enclosing_sphere`]), in the frame the spheres
+    /// were given in: where `create_particles` puts them about its point (LIGGGHTS-INL
+    /// computes them so; a zero stays exactly zero, so spheres given touching stay
+    /// exactly touching). Empty for a rigid template.
+    pub bound_offsets: Vec<DVec3>,
 }
 
 impl ClumpShape {
+    /// The atom type of sphere `k`, when the template gives each sphere its own.
+    pub fn sphere_type(&self, k: usize) -> Option<u32> {
+        self.sphere_types.get(k).copied()
+    }
+
     /// The orientation (body frame to space frame) that shows the clump as its spheres
     /// were given (`orientation template`).
     pub fn q_template(&self) -> DQuat {

@@ -135,16 +135,22 @@ impl ClumpTemplate {
     }
 }
 
+/// The most starts [`enclosing_sphere`] grows from.
+pub const ENCLOSING_STARTS: usize = 64;
+
 /// A sphere holding every one of `spheres` (centre, radius), near the smallest: from each
 /// sphere in turn, the sphere is grown to take in the one that sticks out farthest, until
 /// none does (each growth is the smallest sphere holding the old one and the new, so it
 /// keeps what it held); the smallest result wins. LIGGGHTS-INL grows its bounding sphere
 /// the same way, over random orders of the spheres; taking the farthest first makes the
 /// result independent of chance and at least as small for the templates users give
-/// (rows, rings, regular clusters: then it is the smallest sphere).
+/// (rows, rings, regular clusters: then it is the smallest sphere). Of a template of
+/// more than [`ENCLOSING_STARTS`] spheres (a voxel image), that many evenly spaced in its
+/// list are the starts, which keeps the cost to that many passes per growth.
 pub fn enclosing_sphere(spheres: &[Sphere]) -> (DVec3, f64) {
     let mut best = (DVec3::ZERO, f64::INFINITY);
-    for start in spheres {
+    let stride = spheres.len().div_ceil(ENCLOSING_STARTS).max(1);
+    for start in spheres.iter().step_by(stride) {
         let (mut c, mut r) = (start.x, start.r);
         loop {
             let out = spheres
@@ -168,6 +174,96 @@ pub fn enclosing_sphere(spheres: &[Sphere]) -> (DVec3, f64) {
         }
     }
     best
+}
+
+/// The spheres of a template on a grid of cells over their bounding box, each listed in
+/// every cell its own box meets, so that whether a point is inside any sphere is asked
+/// of the few in its cell (templates of many thousands of spheres: a voxel image).
+/// The answer is the one a test of every sphere gives.
+struct SphereCells {
+    lo: DVec3,
+    inv: DVec3,
+    dims: [usize; 3],
+    /// Where each cell's list starts in `list` (one more entry than cells).
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl SphereCells {
+    fn new(spheres: &[Sphere], lo: DVec3, hi: DVec3) -> Self {
+        let ext = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE));
+        let rmax = spheres.iter().map(|s| s.r).fold(0.0, f64::max);
+        // Cells about a sphere wide, no more of them than about eight per sphere.
+        let mut h = 2.0 * rmax;
+        let count = |h: f64| {
+            ext.to_array()
+                .map(|e| ((e / h).ceil() as usize).clamp(1, 1 << 10))
+        };
+        let most = 8 * spheres.len() + 1;
+        while count(h).iter().product::<usize>() > most {
+            h *= 1.5;
+        }
+        let dims = count(h);
+        let inv = DVec3::new(
+            dims[0] as f64 / ext.x,
+            dims[1] as f64 / ext.y,
+            dims[2] as f64 / ext.z,
+        );
+        let ncell = dims.iter().product::<usize>();
+        let cell_range = |s: &Sphere| {
+            let a = Self::index_of(lo, inv, dims, s.x - DVec3::splat(s.r));
+            let b = Self::index_of(lo, inv, dims, s.x + DVec3::splat(s.r));
+            (a, b)
+        };
+        let mut counts = vec![0u32; ncell + 1];
+        let each = |f: &mut dyn FnMut(usize, usize)| {
+            for (k, sp) in spheres.iter().enumerate() {
+                let (a, b) = cell_range(sp);
+                for z in a[2]..=b[2] {
+                    for y in a[1]..=b[1] {
+                        for x in a[0]..=b[0] {
+                            f(k, x + dims[0] * (y + dims[1] * z));
+                        }
+                    }
+                }
+            }
+        };
+        each(&mut |_, c| counts[c + 1] += 1);
+        for c in 0..ncell {
+            counts[c + 1] += counts[c];
+        }
+        let mut fill = counts.clone();
+        let mut list = vec![0u32; counts[ncell] as usize];
+        each(&mut |k, c| {
+            list[fill[c] as usize] = k as u32;
+            fill[c] += 1;
+        });
+        Self {
+            lo,
+            inv,
+            dims,
+            start: counts,
+            list,
+        }
+    }
+
+    fn index_of(lo: DVec3, inv: DVec3, dims: [usize; 3], p: DVec3) -> [usize; 3] {
+        let u = (p - lo) * inv;
+        let cell = |v: f64, d: usize| (v.max(0.0) as usize).min(d - 1);
+        [cell(u.x, dims[0]), cell(u.y, dims[1]), cell(u.z, dims[2])]
+    }
+
+    /// Whether `p` is inside any of `spheres` (the ones the cells were made of).
+    fn inside(&self, spheres: &[Sphere], p: DVec3) -> bool {
+        let [x, y, z] = Self::index_of(self.lo, self.inv, self.dims, p);
+        let c = x + self.dims[0] * (y + self.dims[1] * z);
+        self.list[self.start[c] as usize..self.start[c + 1] as usize]
+            .iter()
+            .any(|&k| {
+                let s = &spheres[k as usize];
+                (p - s.x).length_squared() < s.r * s.r
+            })
+    }
 }
 
 /// The Monte Carlo mass properties of the union of `spheres`.
@@ -197,13 +293,11 @@ pub fn monte_carlo(
     let mut s1sq = DVec3::ZERO;
     let mut s2 = [0.0f64; 6];
     let mut s2sq = [0.0f64; 6];
+    let cells = SphereCells::new(spheres, lo, hi);
     for _ in 0..ntry {
         let u = DVec3::new(rng.gen(), rng.gen(), rng.gen());
         let p = lo + u * ext;
-        if !spheres
-            .iter()
-            .any(|s| (p - s.x).length_squared() < s.r * s.r)
-        {
+        if !cells.inside(spheres, p) {
             continue;
         }
         n_in += 1;
@@ -535,6 +629,88 @@ mod tests {
 
     /// The bounding sphere of rows and of a sphere inside another is the smallest one,
     /// found from any order of the spheres.
+    #[test]
+    fn sphere_cells_answer_as_every_sphere_does() {
+        // A voxel block of 10 x 8 x 6 spheres of radius 1 at spacing 2 with a few
+        // random extra spheres: the cell grid's answer is the full test's at every point.
+        use rand::SeedableRng;
+        let mut rng = InsertRng::seed_from_u64(7);
+        let mut spheres = Vec::new();
+        for i in 0..10 {
+            for j in 0..8 {
+                for k in 0..6 {
+                    spheres.push(Sphere {
+                        x: DVec3::new(2.0 * i as f64, 2.0 * j as f64, 2.0 * k as f64),
+                        r: 1.0,
+                    });
+                }
+            }
+        }
+        for _ in 0..20 {
+            spheres.push(Sphere {
+                x: DVec3::new(
+                    rng.gen::<f64>() * 20.0,
+                    rng.gen::<f64>() * 16.0,
+                    rng.gen::<f64>() * 12.0,
+                ),
+                r: 0.2 + 2.0 * rng.gen::<f64>(),
+            });
+        }
+        let lo = spheres
+            .iter()
+            .map(|s| s.x - DVec3::splat(s.r))
+            .fold(DVec3::INFINITY, DVec3::min);
+        let hi = spheres
+            .iter()
+            .map(|s| s.x + DVec3::splat(s.r))
+            .fold(DVec3::NEG_INFINITY, DVec3::max);
+        let cells = SphereCells::new(&spheres, lo, hi);
+        assert!(
+            cells.dims.iter().product::<usize>() >= 64,
+            "{:?}",
+            cells.dims
+        );
+        let (mut inside, n) = (0, 200_000);
+        for _ in 0..n {
+            let u = DVec3::new(rng.gen(), rng.gen(), rng.gen());
+            // Also points a little outside the box, clamped to its edge cells.
+            let p = lo - DVec3::splat(0.5) + u * (hi - lo + DVec3::splat(1.0));
+            let all = spheres
+                .iter()
+                .any(|s| (p - s.x).length_squared() < s.r * s.r);
+            assert_eq!(cells.inside(&spheres, p), all, "{p}");
+            inside += all as usize;
+        }
+        assert!(inside > n / 4 && inside < n, "{inside}");
+    }
+
+    #[test]
+    fn enclosing_sphere_of_many_spheres_holds_them_all() {
+        // 1000 spheres on a 10 x 10 x 10 grid: 64 starts give the smallest sphere,
+        // centred on the grid's centre.
+        let mut spheres = Vec::new();
+        for i in 0..10 {
+            for j in 0..10 {
+                for k in 0..10 {
+                    spheres.push(Sphere {
+                        x: DVec3::new(i as f64, j as f64, k as f64),
+                        r: 0.5,
+                    });
+                }
+            }
+        }
+        let (c, r) = enclosing_sphere(&spheres);
+        let exact = 3.0f64.sqrt() * 4.5 + 0.5;
+        assert!((c - DVec3::splat(4.5)).length() < 1e-6 * exact, "{c}");
+        assert!(
+            r >= exact - 1e-12 && r < exact * (1.0 + 1e-6),
+            "{r} vs {exact}"
+        );
+        for s in &spheres {
+            assert!((s.x - c).length() + s.r <= r * (1.0 + 1e-12));
+        }
+    }
+
     #[test]
     fn enclosing_sphere_is_the_smallest_for_rows_and_nests() {
         let s = |x: f64, y: f64, r: f64| Sphere {
