@@ -434,12 +434,26 @@ fn ranks_give_the_serial_bonded_block() {
 /// spheres inserted by `insert/pack` hold 120 bonds, as in the fork (whose run of the
 /// same script prints 160 atoms and 120 bonds), each joining two consecutive spheres of
 /// a fibre at their template distance 2.5 mm (L₀ to 1e-12); `bonded yes` (spheres closer
-/// than r_i + r_j + skin) bonds the same pairs as the explicit list.
+/// than r_i + r_j + skin) bonds the same pairs as the explicit list. On two MPI ranks
+/// (the box cut at z = 25 mm, which 4 of the 120 bonds cross as they are inserted,
+/// measured), each rank makes the sides of the spheres it holds, knowing the other's
+/// tag: the same tags, bonds, lengths and thermo rows as one rank.
 #[test]
 fn bonded_templates_make_their_bonds() {
-    for bonded in ["yes/explicit", "yes"] {
+    let mut runs = vec![None];
+    if common::have_mpirun() {
+        runs.push(Some(2));
+    }
+    let mut serial = Vec::new();
+    for (bonded, ranks) in ["yes/explicit", "yes"]
+        .into_iter()
+        .flat_map(|b| runs.iter().map(move |&r| (b, r)))
+    {
         let script = with_vars("in.template", &[("bonded", bonded)]);
-        let (dir, out) = common::run_kept_ok("bond_template", &script, &[], None);
+        let (dir, out) = common::run_kept_ok("bond_template", &script, &[], ranks);
+        if ranks.is_some() {
+            assert!(out.contains("1 by 1 by 2 MPI processor grid"), "{out}");
+        }
         let rows = common::thermo_rows(&out[out.rfind("Step").unwrap()..]);
         let last = rows.last().unwrap();
         assert_eq!((last[1], last[2]), (160.0, 120.0), "{bonded}: {out}");
@@ -453,6 +467,17 @@ fn bonded_templates_make_their_bonds() {
                 "{bonded}: L0 {}",
                 r[2]
             );
+        }
+        let mut pairs: Vec<(u64, u64)> = rows.iter().map(|r| (r[0] as u64, r[1] as u64)).collect();
+        pairs.sort_unstable();
+        let all_rows = common::thermo_rows(&out[out.rfind("Step").unwrap()..]);
+        match ranks {
+            None => serial.push((pairs, all_rows)),
+            Some(_) => {
+                let (want_pairs, want_rows) = serial.last().unwrap();
+                assert_eq!(&pairs, want_pairs, "{bonded}: 2 ranks");
+                common::assert_columns(&all_rows, want_rows, 1, 1e-10, "2 ranks");
+            }
         }
         let _ = std::fs::remove_dir_all(&dir);
     }

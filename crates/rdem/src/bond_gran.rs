@@ -316,9 +316,9 @@ pub struct GranBonds {
     last_molecule: u64,
     /// Partner index per bond slot of each owned particle (`NONE`: none).
     links: Vec<u32>,
-    /// Bonds of inserted templates (local indices, bond type), made once the particles
-    /// have tags ([`GranBonds::make_pending`]).
-    pending: Vec<(usize, usize, u32)>,
+    /// Sides of the bonds of inserted templates (local index, partner's tag, bond type),
+    /// made by [`GranBonds::make_pending`].
+    pending: Vec<(usize, Tag, u32)>,
 }
 
 /// One sphere of a bond, as the force reads it.
@@ -589,10 +589,11 @@ impl GranBonds {
         Ok(())
     }
 
-    /// A bond of type `t` between the owned particles `i` and `j`, just inserted: made
-    /// by [`GranBonds::make_pending`] once they have tags.
-    pub fn add_pending(&mut self, i: usize, j: usize, t: u32) {
-        self.pending.push((i, j, t));
+    /// The side of owned particle `i` of a bond of type `t` to the particle tagged
+    /// `partner` (owned here, or on another rank, which adds the other side), just
+    /// inserted: made by [`GranBonds::make_pending`].
+    pub fn add_pending(&mut self, i: usize, partner: Tag, t: u32) {
+        self.pending.push((i, partner, t));
     }
 
     /// Makes the pending bonds of inserted templates (their particles have tags now);
@@ -603,15 +604,14 @@ impl GranBonds {
         }
         let Some(id) = self.prop else { return Ok(()) };
         let (m, w) = (self.per_atom, self.width());
-        for (i, j, t) in std::mem::take(&mut self.pending) {
+        for (me, tag, t) in std::mem::take(&mut self.pending) {
             if t == 0 || t as usize > self.ntypes {
                 return Err(Error::Invalid {
                     what: "bonded template",
                     reason: format!("bond type {t} is not within 1..={}", self.ntypes),
                 });
             }
-            for (me, other) in [(i, j), (j, i)] {
-                let tag = p.tag[other];
+            {
                 let row = &mut p.props[id.0].data[me * w..(me + 1) * w];
                 let s = Self::count(row);
                 if s >= m {

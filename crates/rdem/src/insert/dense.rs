@@ -31,7 +31,7 @@ use std::collections::VecDeque;
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{add_placed, draw_velocity, random_rotation, Placed};
+use super::place::{add_placed, draw_velocity, random_rotation, Placed, TagCursor};
 use super::{Distribution, InsertRng, VelocityLaw};
 use crate::error::{Error, Result};
 use crate::region::Region;
@@ -368,8 +368,9 @@ impl DensePack {
             }
         }
         let (mut inserted, mut mass, mut vol) = (0u64, 0.0, 0.0);
+        let mut tags = TagCursor::new(world);
         for pl in &placed {
-            mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit)?.0;
+            mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit, &mut tags)?.0;
             vol += 4.0 / 3.0 * std::f64::consts::PI * pl.radius.powi(3);
             inserted += 1;
         }

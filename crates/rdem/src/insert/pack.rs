@@ -7,7 +7,7 @@
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{add_placed, choose, OverlapGrid};
+use super::place::{add_placed, choose, OverlapGrid, TagCursor};
 use super::{Distribution, InsertRng};
 use crate::error::{check, Error, Result};
 use crate::region::Region;
@@ -313,8 +313,9 @@ impl InsertPack {
             }
         }
         let (mut inserted, mut mass) = (0u64, 0.0);
+        let mut tags = TagCursor::new(world);
         for pl in &placed {
-            mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit)?.0;
+            mass += add_placed(world, &self.dist, pl, self.omega, self.groupbit, &mut tags)?.0;
             inserted += 1;
         }
         world.extend_tags();

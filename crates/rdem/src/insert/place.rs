@@ -11,7 +11,7 @@ use rand_distr::{Distribution as _, Normal};
 use super::{ClumpShape, Distribution, InsertRng, Orientation, ParticleTemplate, VelocityLaw};
 use crate::error::Result;
 use crate::multisphere::NewClump;
-use crate::particles::NewParticle;
+use crate::particles::{NewParticle, Tag};
 use crate::world::World;
 
 /// A rotation drawn uniformly over all rotations (Shoemake's method: a uniform point on
@@ -254,13 +254,38 @@ pub(crate) fn choose(
     out
 }
 
+/// The tags of an insertion's particles: each copy placed takes the next block of tags,
+/// its spheres in the template's order, in the order the copies are placed. Every rank
+/// places every copy, so every rank knows every new tag (a bond of a template across two
+/// ranks' subdomains is made by both, each knowing the other sphere's tag), and the tags
+/// are the same on any number of ranks (serially, the order of
+/// [`World::extend_tags`]).
+pub(crate) struct TagCursor(Tag);
+
+impl TagCursor {
+    /// The first tag after the largest on any rank (collective).
+    pub(crate) fn new(world: &World) -> Self {
+        let (_, max) = world.particles.tag_extent();
+        Self(world.comm.max_count(max) + 1)
+    }
+
+    /// The first of the next `n` tags.
+    fn take(&mut self, n: usize) -> Tag {
+        let first = self.0;
+        self.0 += n as Tag;
+        first
+    }
+}
+
 /// The bonds of an inserted bonded template whose spheres were added at the local
-/// indices `at` (`None`: on another rank), made once the spheres have tags.
+/// indices `at` (`None`: on another rank) with the tags `first..`: each rank makes the
+/// sides of the spheres it holds.
 fn bond_template(
     world: &mut World,
     id: &str,
     bonds: &[(u32, u32, u32)],
     at: &[Option<usize>],
+    first: Tag,
 ) -> Result<()> {
     let Some(store) = world.bonds.as_mut() else {
         return Err(crate::error::Error::Invalid {
@@ -269,17 +294,9 @@ fn bond_template(
         });
     };
     for &(a, b, t) in bonds {
-        match (at[a as usize], at[b as usize]) {
-            (Some(i), Some(j)) => store.add_pending(i, j, t),
-            (None, None) => {}
-            _ => {
-                return Err(crate::error::Error::Invalid {
-                    what: "particletemplate/multiplespheres",
-                    reason: format!(
-                        "a bonded particle of template '{id}' was inserted across two ranks' subdomains; \
-                         that is not supported yet (run it on one rank)"
-                    ),
-                })
+        for (me, other) in [(a, b), (b, a)] {
+            if let Some(i) = at[me as usize] {
+                store.add_pending(i, first + other as Tag, t);
             }
         }
     }
@@ -296,10 +313,11 @@ pub(crate) fn add_placed(
     pl: &Placed,
     omega: DVec3,
     groupbit: u32,
+    tags: &mut TagCursor,
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     // The particles join the distribution's groups too (LIGGGHTS 3.8).
     let t = &dist.templates[pl.template];
-    add_placed_of(world, t, pl, omega, groupbit | dist.groupbit)
+    add_placed_of(world, t, pl, omega, groupbit | dist.groupbit, tags)
 }
 
 /// [`add_placed`] for the template `t` itself (`pl.template` only keys a bonded copy's
@@ -310,6 +328,7 @@ pub(crate) fn add_placed_of(
     pl: &Placed,
     omega: DVec3,
     groupbit: u32,
+    tags: &mut TagCursor,
 ) -> Result<(f64, Option<std::ops::Range<usize>>)> {
     // The particles join the template's groups too (LIGGGHTS 3.8).
     let groupbit = groupbit | t.groupbit;
@@ -343,6 +362,7 @@ pub(crate) fn add_placed_of(
         } else {
             None
         };
+        let first_tag = tags.take(c.template.spheres.len());
         let mut at = Vec::with_capacity(c.template.spheres.len());
         for (k, s) in c.template.spheres.iter().enumerate() {
             let x = match c.bound_offsets.get(k).filter(|_| pl.about_bound) {
@@ -355,7 +375,8 @@ pub(crate) fn add_placed_of(
             }
             let mut np = NewParticle::at(x, s.r, t.density)
                 .with_type(c.sphere_type(k).unwrap_or(t.ty))
-                .with_omega(omega);
+                .with_omega(omega)
+                .with_tag(first_tag + k as Tag);
             np.v = pl.v;
             np.mask = 1 | groupbit;
             let i = world.add_particle(&np)?;
@@ -368,7 +389,7 @@ pub(crate) fn add_placed_of(
             at.push(Some(i));
         }
         if !c.bonds.is_empty() {
-            bond_template(world, &t.id, &c.bonds, &at)?;
+            bond_template(world, &t.id, &c.bonds, &at, first_tag)?;
         }
         let last = world.particles.nlocal();
         return Ok((c.template.props.mass, (last > first).then_some(first..last)));
@@ -386,6 +407,7 @@ pub(crate) fn add_placed_of(
         // Every rank holds every body; the owner of its centre adds its spheres.
         let owned = world.owns_inserted(pl.x);
         let first = world.particles.nlocal();
+        let first_tag = tags.take(c.template.spheres.len());
         let tag = world.add_clump_on(
             &c.template,
             &NewClump {
@@ -407,11 +429,15 @@ pub(crate) fn add_placed_of(
         info.density = t.density;
         info.clump_type = c.clump_type;
         let last = world.particles.nlocal();
+        for (k, i) in (first..last).enumerate() {
+            world.particles.tag[i] = first_tag + k as Tag;
+        }
         return Ok((c.template.props.mass, owned.then_some(first..last)));
     }
     let mut np = NewParticle::at(pl.x, pl.radius, t.density)
         .with_type(t.ty)
-        .with_omega(omega);
+        .with_omega(omega)
+        .with_tag(tags.take(1));
     np.v = pl.v;
     np.mask = 1 | groupbit;
     let mass = crate::particles::sphere_mass(np.density, pl.radius);

@@ -5,7 +5,7 @@
 
 use glam::{DQuat, DVec3};
 
-use super::place::{add_placed_of, Placed};
+use super::place::{add_placed_of, Placed, TagCursor};
 use super::ParticleTemplate;
 use crate::error::{Error, Result};
 use crate::world::World;
@@ -57,27 +57,8 @@ pub fn create_single(world: &mut World, t: &mut ParticleTemplate, s: &Single) ->
     // The spheres take the tags after the largest in the template's order, whichever
     // rank holds them, so a script's `group ... id` finds the same ones on any number
     // of ranks.
-    let (_, max) = world.particles.tag_extent();
-    let first = world.comm.max_count(max) + 1;
-    let owned: Vec<u64> = match t.clump.as_ref() {
-        Some(c) => c
-            .bound_offsets
-            .iter()
-            .enumerate()
-            .filter(|&(_, &o)| world.owns_inserted(pl.x + pl.q * o))
-            .map(|(k, _)| k as u64)
-            .collect(),
-        None => vec![0]
-            .into_iter()
-            .filter(|_| world.owns_inserted(pl.x))
-            .collect(),
-    };
-    let (_, added) = add_placed_of(world, t, &pl, s.omega, 0)?;
-    let added = added.unwrap_or(0..0);
-    debug_assert_eq!(added.len(), owned.len());
-    for (i, k) in added.zip(owned) {
-        world.particles.tag[i] = first + k;
-    }
+    let mut tags = TagCursor::new(world);
+    add_placed_of(world, t, &pl, s.omega, 0, &mut tags)?;
     let n = match t.clump.as_ref() {
         Some(c) => c.bound_offsets.len() as u64,
         None => 1,

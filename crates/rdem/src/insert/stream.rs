@@ -19,7 +19,7 @@
 use glam::DVec3;
 use rand::Rng;
 
-use super::place::{add_placed, choose, OverlapGrid, Placed};
+use super::place::{add_placed, choose, OverlapGrid, Placed, TagCursor};
 use super::{Distribution, InsertReport, InsertRng, VelocityLaw};
 use crate::error::{Error, Result};
 use crate::mesh::TriMesh;
@@ -409,11 +409,19 @@ impl InsertStream {
         let (mut inserted, mut mass) = (0u64, 0.0);
         let step = world.step;
         let dt = world.dt;
+        let mut tags = TagCursor::new(world);
         for pl in &placed {
             // Held, it moves along the normal only; the rest comes at the face.
             let vn = pl.v.dot(n);
             let along = Placed { v: n * vn, ..*pl };
-            let (m, added) = add_placed(world, &self.dist, &along, self.omega, self.groupbit)?;
+            let (m, added) = add_placed(
+                world,
+                &self.dist,
+                &along,
+                self.omega,
+                self.groupbit,
+                &mut tags,
+            )?;
             mass += m;
             inserted += 1;
             if let Some(added) = added {
