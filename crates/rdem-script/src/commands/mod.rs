@@ -96,7 +96,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("create_atoms", create::create_atoms, "`single`, `region`, `box`")
             .notes("new atoms have diameter 1 and density 1, as in LIGGGHTS; use `set`"),
         sim("create_particles", create::create_particles, "`TEMPLATE single x y z` (LIGGGHTS-INL): one particle of a `particletemplate/sphere`, or the spheres of a `particletemplate/multiplespheres` with their bounding sphere's centre at the point; `units box\\|lattice` (default `box`), `velocity`, `omega` (each sphere's), `orientation q1 q2 q3 q4` (sets the turn), `rotate axis ax ay az angle deg` (turns further; repeatable); new tags follow the largest, in the template's order")
-            .notes("a rigid `particletemplate/multisphere` is refused (LIGGGHTS-INL has none); a sphere of the template outside a fixed face is an error"),
+            .notes("a rigid `particletemplate/multisphere` is refused (LIGGGHTS-INL has none); a sphere of the template outside a fixed face is an error. The bounding sphere is grown as LIGGGHTS-INL grows it, but taking the farthest sphere first instead of random orders: the same centre where that finds the smallest sphere (measured on an L of three spheres and a cluster of five), not always on large templates (INL's voxel example of 114704 spheres: rdem places it 0.36 higher in z than the fork, 0.3 % of its bounding radius 122)"),
         sim("mass", crate::sph::mass, "`I value`: the mass of type I (`*`, `*n`, `n*`, `m*n` ranges)")
             .notes("atom_style sph only (per-type masses, as LIGGGHTS); granular particles have their own mass"),
         sim("read_data", data_files::read_data, "granular `Atoms` lines (`id type diameter density x y z [ix iy iz]`), `Velocities`")
