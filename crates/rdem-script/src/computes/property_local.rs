@@ -13,7 +13,8 @@
 //!   until then, as `numbonds` counts it).
 //!
 //! The values are those of the last force evaluation, as in the fork. The pair
-//! attributes (`natom1`, `patom1`, ...) are not supported yet.
+//! attributes (`natom1`, `patom1`, ...) stop with an error, as LIGGGHTS 3.8 stops with
+//! `pair_style gran` ("Pair style does not support compute property/local", checked).
 
 use crate::error::Error;
 
@@ -27,7 +28,7 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
     parse,
     "the bonds of `bond_style gran`: `batom1 batom2 btype batom1x batom1y batom1z batom2x batom2y batom2z bforceX bforceY bforceZ btorqueX btorqueY btorqueZ beqdist bbondbroken` (`dump local`)",
 )
-.notes("the pair attributes (`natom1`, `patom1`, `ntype1`, ...) are not supported yet");
+.notes("the pair attributes (`natom1`, `patom1`, `ntype1`, ...) stop with an error, as in LIGGGHTS 3.8, whose `pair_style gran` does not support them (checked)");
 
 /// The bond attributes.
 const ATTRIBUTES: [&str; 17] = [
@@ -68,7 +69,9 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
                     "natom1", "natom2", "ntype1", "ntype2", "patom1", "patom2", "ptype1", "ptype2",
                 ];
                 let help = if pair.contains(&w) {
-                    "the pair attributes are not supported yet; rdem has the bond attributes"
+                    "the pair attributes are not supported: LIGGGHTS 3.8 stops here too \
+                     (\"Pair style does not support compute property/local\"); for the pairs \
+                     in contact use compute pair/gran/local; rdem has the bond attributes"
                         .to_string()
                 } else {
                     crate::args::suggest(w, &ATTRIBUTES)
