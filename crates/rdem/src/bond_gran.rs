@@ -611,23 +611,21 @@ impl GranBonds {
                     reason: format!("bond type {t} is not within 1..={}", self.ntypes),
                 });
             }
-            {
-                let row = &mut p.props[id.0].data[me * w..(me + 1) * w];
-                let s = Self::count(row);
-                if s >= m {
-                    return Err(Error::Invalid {
-                        what: "bonded template",
-                        reason: format!(
-                            "particle {} would get more than bonds_per_atom = {m} bonds",
-                            p.tag[me]
-                        ),
-                    });
-                }
-                let h = &mut row[s * SLOT..(s + 1) * SLOT];
-                h.fill(0.0);
-                h[TAG] = tag as f64;
-                h[TYPE] = t as f64;
+            let row = &mut p.props[id.0].data[me * w..(me + 1) * w];
+            let s = Self::count(row);
+            if s >= m {
+                return Err(Error::Invalid {
+                    what: "bonded template",
+                    reason: format!(
+                        "particle {} would get more than bonds_per_atom = {m} bonds",
+                        p.tag[me]
+                    ),
+                });
             }
+            let h = &mut row[s * SLOT..(s + 1) * SLOT];
+            h.fill(0.0);
+            h[TAG] = tag as f64;
+            h[TYPE] = t as f64;
         }
         Ok(())
     }
