@@ -868,13 +868,12 @@ impl Region {
                 hi,
                 ..
             } => {
-                // The whole cylinder's box.
-                let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-                let (mut l, mut h) = (DVec3::ZERO, DVec3::ZERO);
-                (l[axis], h[axis]) = (lo, hi);
-                (l[u], h[u]) = (cu - radius, cu + radius);
-                (l[v], h[v]) = (cv - radius, cv + radius);
-                finite(l, h)
+                // The whole cylinder's box; the wedge's centre is in cyclic order
+                // (axis + 1, axis + 2), `axial_box` takes it in axis order.
+                let mut c = DVec3::ZERO;
+                (c[(axis + 1) % 3], c[(axis + 2) % 3]) = (cu, cv);
+                let (a, b) = others(axis);
+                axial_box(axis, c[a], c[b], radius, lo, hi).and_then(|(l, h)| finite(l, h))
             }
             Shape::Plane { .. } => None,
             Shape::TetMesh(m) => Some(m.bounding_box()),
@@ -1146,6 +1145,22 @@ mod tests {
         assert!(!w.contains_sphere(v(1.5, 5.0, 5.0), 1.0));
         assert!(w.side_out().contains(v(5.0, 5.0, 5.0)));
         assert!(wedge(0.0, 180.0).is_ok());
+        // The box of the whole cylinder; about y the centre is (z, x) = (cu, cv).
+        let off = Region::new(Shape::Wedge {
+            axis: 1,
+            cu: 1.0,
+            cv: 2.0,
+            radius: 0.5,
+            lo: -1.0,
+            hi: 3.0,
+            start: 0.0,
+            span: 1.0,
+        })
+        .unwrap();
+        assert_eq!(
+            off.bounding_box(),
+            Some((v(1.5, -1.0, 0.5), v(2.5, 3.0, 1.5)))
+        );
         assert!(wedge(0.0, 200.0).is_err());
         assert!(wedge(0.0, 0.0).is_err());
     }
