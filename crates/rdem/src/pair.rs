@@ -248,12 +248,26 @@ impl Visitor for PairPass<'_> {
         debug_assert_eq!(self.pair.bond.is_some(), K::BONDS);
         // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
         if K::BONDS {
-            self.run::<K, true>()
+            self.run(
+                &|ph, h, t, f, tq| ph.serial::<K, true>(h, t, f, tq),
+                &|ph, b, r, h, t, o| ph.block::<K, true>(b, r, h, t, o),
+            )
         } else {
-            self.run::<K, false>()
+            self.run(
+                &|ph, h, t, f, tq| ph.serial::<K, false>(h, t, f, tq),
+                &|ph, b, r, h, t, o| ph.block::<K, false>(b, r, h, t, o),
+            )
         }
     }
 }
+
+/// The whole pass of one kernel on the calling thread: `(inputs, hist, touch, f, torque)`
+/// as [`Phase1::serial`] takes them.
+type SerialFn = dyn Fn(&Phase1, &mut [f64], &mut [u8], &mut [DVec3], &mut [DVec3]);
+
+/// One block of phase 1 with a given kernel: `(inputs, block, res, hist, touch, own)`
+/// as [`Phase1::block`] takes them.
+type BlockFn = dyn Fn(&Phase1, usize, &mut [PairOut], &mut [f64], &mut [u8], &mut [OwnSum]) + Sync;
 
 /// Phase 1's read-only inputs.
 struct Phase1<'a> {
@@ -297,8 +311,11 @@ struct Phase1<'a> {
 impl Phase1<'_> {
     /// Runs blocks `b0..b1`; `res` and `hist` start at the first pair and the first
     /// history value of block `b0`, `own` at its first particle.
+    /// Each block runs through `leaf` (the kernel's [`Phase1::block`]), so that the
+    /// fork–join is compiled once rather than once per kernel; the indirect call is one
+    /// per block of [`BLOCK`] particles.
     #[allow(clippy::too_many_arguments)]
-    fn blocks<K: ContactKernel, const BOND: bool>(
+    fn blocks(
         &self,
         b0: usize,
         b1: usize,
@@ -306,6 +323,7 @@ impl Phase1<'_> {
         hist: &mut [f64],
         touch: &mut [u8],
         own: &mut [OwnSum],
+        leaf: &BlockFn,
     ) {
         if b1 - b0 > 1 {
             let mid = (b0 + b1) / 2;
@@ -318,11 +336,11 @@ impl Phase1<'_> {
             let (ta, tb) = touch.split_at_mut(if touch.is_empty() { 0 } else { kp });
             let (oa, ob) = own.split_at_mut(m - lo);
             rayon::join(
-                || self.blocks::<K, BOND>(b0, mid, ra, ha, ta, oa),
-                || self.blocks::<K, BOND>(mid, b1, rb, hb, tb, ob),
+                || self.blocks(b0, mid, ra, ha, ta, oa, leaf),
+                || self.blocks(mid, b1, rb, hb, tb, ob, leaf),
             );
         } else {
-            self.block::<K, BOND>(b0, res, hist, touch, own);
+            leaf(self, b0, res, hist, touch, own);
         }
     }
 
@@ -813,11 +831,12 @@ impl Phase2<'_> {
 }
 
 impl PairPass<'_> {
-    /// The pass with kernel `K`, and with `BOND` the bonds; the contact virial goes into
-    /// `virial` when it is asked for (then in two phases whatever the thread count:
-    /// they give the serial pass's sums, bit for bit).
-    #[inline(always)]
-    fn run<K: ContactKernel, const BOND: bool>(self) {
+    /// The pass with a kernel, which `serial` (one thread) or `leaf` (phase 1's blocks)
+    /// runs; the contact virial goes into `virial` when it is asked for (then in two
+    /// phases whatever the thread count: they give the serial pass's sums, bit for bit).
+    /// Not generic over the kernel, so that the set-up and phase 2 are compiled once, not
+    /// once per kernel.
+    fn run(self, serial: &SerialFn, leaf: &BlockFn) {
         let PairPass {
             pair,
             p,
@@ -900,7 +919,7 @@ impl PairPass<'_> {
             let (f, torque) = (&mut p.f, &mut p.torque);
             let hist = &mut list.hist[h0..h1];
             let touch = touch_range(&mut list.touch, p0, p1);
-            ph1.serial::<K, BOND>(hist, touch, f, torque);
+            serial(&ph1, hist, touch, f, torque);
             return;
         }
         let npairs = ph1.near.partner.len();
@@ -909,7 +928,7 @@ impl PairPass<'_> {
         let nb_own = nlocal.div_ceil(BLOCK);
         if nb_own > 0 {
             let touch = touch_range(&mut list.touch, p0, p1);
-            ph1.blocks::<K, BOND>(0, nb_own, res, &mut list.hist[h0..h1], touch, own);
+            ph1.blocks(0, nb_own, res, &mut list.hist[h0..h1], touch, own, leaf);
         }
         if virial.is_some() {
             res_virial.resize(npairs, [0.0; 6]);

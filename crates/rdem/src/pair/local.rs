@@ -97,17 +97,42 @@ struct Records<'a> {
 impl Visitor for Records<'_> {
     type Output = PairContacts;
     fn visit<K: ContactKernel>(self) -> PairContacts {
+        if self.bonds {
+            // Only `cohesion bond` kernels have bonds (and only they compile this path).
+            debug_assert!(K::BONDS);
+            if K::BONDS {
+                let w = self.list.width;
+                return self.collect(w, &|ph1, pair, p, list, out| {
+                    bond_records::<K>(ph1, pair, p, list, out)
+                });
+            }
+            return PairContacts {
+                width: self.list.width,
+                ..PairContacts::default()
+            };
+        }
+        self.collect(K::HIST, &|ph1, pair, p, list, out| {
+            touching_records::<K>(ph1, pair, p, list, out)
+        })
+    }
+}
+
+/// A records loop of one kernel: `(inputs, pair style, particles, list, records so far)`.
+type RecordsFn =
+    dyn Fn(&Phase1, &PairGran, &Particles, &NeighborList, PairContacts) -> PairContacts;
+
+impl Records<'_> {
+    /// The records of `each` (the kernel's loop), `width` history values each, with
+    /// phase 1's inputs set up for an evaluation that leaves the history as it is. Not
+    /// generic over the kernel, so that the set-up is compiled once.
+    fn collect(self, width: usize, each: &RecordsFn) -> PairContacts {
         let Records {
-            pair,
-            p,
-            list,
-            dt,
-            bonds,
+            pair, p, list, dt, ..
         } = self;
         let nlocal = p.nlocal();
         let events = BondEvents::default();
-        let mut out = PairContacts {
-            width: if bonds { list.width } else { K::HIST },
+        let out = PairContacts {
+            width,
             ..PairContacts::default()
         };
         if !pair.near.has_rows(nlocal) {
@@ -145,42 +170,44 @@ impl Visitor for Records<'_> {
             mc: pair.multicontact.as_deref().zip(mc_state.as_deref()),
             tag: &p.tag,
         };
-        // The contact law's values sit after the bond's vectors when there are bonds.
-        let off = pair.bond.as_ref().map_or(0, |b| b.layout().vec);
-        let w = list.width;
-        if bonds {
-            // Only `cohesion bond` kernels have bonds (and only they compile this path).
-            debug_assert!(K::BONDS);
-            if K::BONDS {
-                return bond_records::<K>(&ph1, pair, p, list, out);
-            }
-            return out;
-        }
-        let mut scratch = vec![0.0; K::HIST];
-        let near = ph1.near;
-        for i in 0..nlocal {
-            let coeff_row = pair.table.row(p.ty[i]);
-            let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
-            for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
-                let d = p.x[i] - p.x[j];
-                let rsq = d.length_squared();
-                let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
-                scratch.copy_from_slice(h);
-                let Some(c) =
-                    ph1.contact::<K>(i, j, s + kk, coeff_row, &mut scratch, &mut 0, d, rsq)
-                else {
-                    continue;
-                };
-                out.i.push(i as u32);
-                out.j.push(j as u32);
-                out.f.push(c.f_i);
-                out.t_i.push(c.t_i);
-                out.delta.push(p.radius[i] + p.radius[j] - rsq.sqrt());
-                out.hist.extend_from_slice(h);
-            }
-        }
-        out
+        each(&ph1, pair, p, list, out)
     }
+}
+
+/// The touching pairs of the near list for [`PairGran::contacts`].
+fn touching_records<K: ContactKernel>(
+    ph1: &Phase1,
+    pair: &PairGran,
+    p: &Particles,
+    list: &NeighborList,
+    mut out: PairContacts,
+) -> PairContacts {
+    // The contact law's values sit after the bond's vectors when there are bonds.
+    let off = pair.bond.as_ref().map_or(0, |b| b.layout().vec);
+    let w = list.width;
+    let mut scratch = vec![0.0; K::HIST];
+    let near = ph1.near;
+    for i in 0..p.nlocal() {
+        let coeff_row = pair.table.row(p.ty[i]);
+        let (s, e) = (near.first[i] as usize, near.first[i + 1] as usize);
+        for (kk, (j, slot)) in near.pairs(s, e).enumerate() {
+            let d = p.x[i] - p.x[j];
+            let rsq = d.length_squared();
+            let h = &list.hist[slot * w + off..slot * w + off + K::HIST];
+            scratch.copy_from_slice(h);
+            let Some(c) = ph1.contact::<K>(i, j, s + kk, coeff_row, &mut scratch, &mut 0, d, rsq)
+            else {
+                continue;
+            };
+            out.i.push(i as u32);
+            out.j.push(j as u32);
+            out.f.push(c.f_i);
+            out.t_i.push(c.t_i);
+            out.delta.push(p.radius[i] + p.radius[j] - rsq.sqrt());
+            out.hist.extend_from_slice(h);
+        }
+    }
+    out
 }
 
 /// The bonded pairs of the near list for [`PairGran::bonds`].

@@ -630,11 +630,9 @@ impl Visitor for MeshPass<'_> {
     fn visit<K: ContactKernel>(self) {
         debug_assert_eq!(self.wall.bond.is_some(), K::BONDS);
         // `K::BONDS` is a constant: each kernel is compiled with or without bonds, not both.
-        if K::BONDS {
-            self.run::<K, true>()
-        } else {
-            self.run::<K, false>()
-        }
+        self.run(K::HIST, K::NECK, K::BONDS, &|c, pt, t, s, o, h, sk| {
+            lay_out::<K>(c, pt, t, s, o, h, sk)
+        })
     }
 }
 
@@ -818,10 +816,57 @@ fn touches_of(
     nk
 }
 
+/// For each contact of `touches`, the slot of the previous step's history `old` (slots of
+/// `stride` values, each led by its feature key) that it goes on from, or `usize::MAX`:
+/// the slot of the same feature, else a slot whose feature has ended and is adjacent to
+/// the contact's. Not generic over the contact law, so that it is compiled once, not
+/// once per kernel.
+fn match_slots(
+    wall: &MeshWall,
+    surfaces: &[MeshSurface],
+    touches: &[Touch],
+    old: &[f64],
+    stride: usize,
+) -> [usize; SLOTS] {
+    let mut taken = [false; SLOTS];
+    let mut slot_of = [usize::MAX; SLOTS];
+    for (c, t) in touches.iter().enumerate() {
+        let kk = key(t.mesh, t.feature);
+        if let Some(s) = (0..SLOTS).find(|&s| !taken[s] && old[s * stride] == kk) {
+            taken[s] = true;
+            slot_of[c] = s;
+        }
+    }
+    for (c, t) in touches.iter().enumerate() {
+        if slot_of[c] != usize::MAX {
+            continue;
+        }
+        let mesh = &surfaces[wall.meshes[t.mesh as usize]].mesh;
+        let near = (0..SLOTS).find(|&s| {
+            !taken[s]
+                && unkey(old[s * stride]).is_some_and(|(m, f)| {
+                    m == t.mesh
+                        && !touches
+                            .iter()
+                            .any(|o| key(o.mesh, o.feature) == old[s * stride])
+                        && adjacent(mesh, f, t.feature)
+                })
+        });
+        if let Some(s) = near {
+            taken[s] = true;
+            slot_of[c] = s;
+        }
+    }
+    slot_of
+}
+
 impl MeshPass<'_> {
-    /// The pass with kernel `K`, and with `BOND` the wall bonds.
-    #[inline(always)]
-    fn run<K: ContactKernel, const BOND: bool>(self) {
+    /// The pass with a kernel whose history has `hw` values, whose contacts hold apart
+    /// with `neck_law` (a JKR neck) and which has wall bonds with `bonds`; `lay` (the
+    /// kernel's [`lay_out`]) evaluates each particle's contacts. Not generic over the
+    /// contact law, so that the search for contacts and their slots is compiled once,
+    /// not once per kernel; the indirect call is one per particle near the wall.
+    fn run(self, hw: usize, neck_law: bool, bonds: bool, lay: &LayFn) {
         let MeshPass {
             wall,
             all: surfaces,
@@ -830,24 +875,22 @@ impl MeshPass<'_> {
             f,
             torque,
             hist,
-            touches: mut last_touch,
+            touches: last_touch,
             dt,
             update,
-            mut rec,
+            rec,
         } = self;
-        let hw = K::HIST;
         let extra = wall.extra;
         let stride = wall.stride;
         debug_assert_eq!(stride, 1 + hw + extra);
         let width = SLOTS * stride;
         let pw = width
-            + match (&wall.bond, BOND) {
+            + match (&wall.bond, bonds) {
                 (Some(b), true) => bond_block(b.layout()),
                 _ => 0,
             };
         let create_now =
-            BOND && update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
-        let flags = wall.model.kernel_flags();
+            bonds && update && wall.bond.as_ref().is_some_and(|b| b.creates_at(wall.step));
         // Fixed-size scratch: no allocation in the pass.
         let none = Touch {
             mesh: 0,
@@ -864,9 +907,27 @@ impl MeshPass<'_> {
             .as_ref()
             .filter(|_| update)
             .map(|(m, w)| (&**m, m.read(), *w));
+        let ctx = LayCtx {
+            wall,
+            surfaces,
+            p,
+            stride,
+            hw,
+            extra,
+            flags: wall.model.kernel_flags(),
+            mc: mc.as_ref().map(|(m, state, w)| (*m, &**state, *w)),
+            dt,
+            update,
+        };
+        let mut sink = LaySink {
+            f,
+            torque,
+            last_touch,
+            rec,
+        };
         let mut found = [none; MAX_TOUCH];
         let mut old = [0.0f64; MAX_WIDTH];
-        let hi = lo + f.len();
+        let hi = lo + sink.f.len();
         let a = wall.rows.partition_point(|&i| (i as usize) < lo);
         let b = a + wall.rows[a..].partition_point(|&i| (i as usize) < hi);
         for (c, &i) in wall.rows[a..b].iter().enumerate() {
@@ -876,11 +937,11 @@ impl MeshPass<'_> {
             let (h, bh) = hist[c * pw..(c + 1) * pw].split_at_mut(width);
             // An intact `bond/nonlinear` bond takes the place of the normal contact forces.
             let mut replace_normal = false;
-            if BOND {
+            if bonds {
                 let (bf, bt, holds) =
                     wall_bond(wall, surfaces, p, i, cands, bh, dt, update, create_now);
-                f[k] += bf;
-                torque[k] += bt;
+                sink.f[k] += bf;
+                sink.torque[k] += bt;
                 replace_normal = holds
                     && wall
                         .bond
@@ -888,7 +949,7 @@ impl MeshPass<'_> {
                         .is_some_and(|b| b.law().replaces_normal_contact());
             }
             let (x, r) = (p.x[i], p.radius[i]);
-            let neck = if K::NECK {
+            let neck = if neck_law {
                 wall.table.neck_reach(r)
             } else {
                 0.0
@@ -897,115 +958,168 @@ impl MeshPass<'_> {
             let touches = &found[..nk];
             // Match the contacts with the slots: same feature, else an ended neighbour.
             old[..width].copy_from_slice(h);
-            let mut taken = [false; SLOTS];
-            let mut slot_of = [usize::MAX; SLOTS];
-            for (c, t) in touches.iter().enumerate() {
-                let kk = key(t.mesh, t.feature);
-                if let Some(s) = (0..SLOTS).find(|&s| !taken[s] && old[s * stride] == kk) {
-                    taken[s] = true;
-                    slot_of[c] = s;
-                }
-            }
-            for (c, t) in touches.iter().enumerate() {
-                if slot_of[c] != usize::MAX {
-                    continue;
-                }
-                let mesh = &surfaces[wall.meshes[t.mesh as usize]].mesh;
-                let near = (0..SLOTS).find(|&s| {
-                    !taken[s]
-                        && unkey(old[s * stride]).is_some_and(|(m, f)| {
-                            m == t.mesh
-                                && !touches
-                                    .iter()
-                                    .any(|o| key(o.mesh, o.feature) == old[s * stride])
-                                && adjacent(mesh, f, t.feature)
-                        })
-                });
-                if let Some(s) = near {
-                    taken[s] = true;
-                    slot_of[c] = s;
-                }
-            }
+            let slot_of = match_slots(wall, surfaces, touches, &old[..width], stride);
             // Lay the slots out anew, in the order of the contacts.
             h.fill(0.0);
-            let mut ns = 0;
-            for (c, t) in touches.iter().enumerate() {
-                let surface = &surfaces[wall.meshes[t.mesh as usize]];
-                if K::NECK && t.dist >= r {
-                    // Apart: only a JKR neck that holds goes on.
-                    let s = slot_of[c];
-                    let coeff = wall.table.get(p.ty[i], surface.wall_type);
-                    let held = s != usize::MAX && {
-                        let hn = &mut old[s * stride + 1..s * stride + 1 + hw];
-                        K::holds(r - t.dist, r, coeff, hn, update)
-                    };
-                    if !held {
-                        continue;
-                    }
-                }
-                let hs = &mut h[ns * stride..(ns + 1) * stride];
-                ns += 1;
-                hs[0] = key(t.mesh, t.feature);
-                if slot_of[c] != usize::MAX {
-                    let s = slot_of[c];
-                    hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
-                }
-                let v_wall = surface.wall_velocity(t.tri, t.q);
-                let vr = p.v[i] - v_wall;
-                let mut g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);
-                let mc_key = mc
-                    .as_ref()
-                    .map(|(_, _, w)| MultiContact::wall_key(*w, t.mesh, t.tri));
-                if let (Some((_, state, _)), Some(key)) = (&mc, mc_key) {
-                    if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), key) {
-                        continue;
-                    }
-                }
-                let coeff = wall.table.get(p.ty[i], surface.wall_type);
-                let mut out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
-                if replace_normal {
-                    out.f_i -= out.fn_total * g.n;
-                    out.fn_total = 0.0;
-                }
-                last_touch.note(
+            lay(
+                &ctx,
+                Particle {
+                    i,
                     k,
-                    super::touch::pack_triangle(wall.meshes[t.mesh as usize], t.tri),
-                );
-                if let (Some((store, _, _)), Some(key)) = (&mc, mc_key) {
-                    store.record_wall((p.tag[i], p.x[i]), key, t.n, t.dist, out.fn_total);
-                }
-                f[k] += out.f_i;
-                torque[k] += out.t_i;
-                if let Some(rec) = rec.as_deref_mut() {
-                    rec.push(
-                        i,
-                        t.mesh,
-                        t.tri,
-                        t.q,
-                        t.n,
-                        t.dist,
-                        v_wall,
-                        &out,
-                        &hs[1..1 + hw],
-                    );
-                }
-                if extra > 0 {
-                    if let Some(st) = &surface.stress {
-                        crate::wall::mesh_stress::record(
-                            &mut hs[1 + hw..],
-                            st,
-                            t.tri,
-                            t.q,
-                            t.n,
-                            out.f_i,
-                            vr,
-                            dt,
-                        );
-                    }
-                }
-            }
+                    replace_normal,
+                },
+                touches,
+                &slot_of,
+                &mut old[..width],
+                h,
+                &mut sink,
+            );
             if !update {
                 h.copy_from_slice(&old[..width]);
+            }
+        }
+    }
+}
+
+/// What [`lay_out`] reads that stays the same over a mesh pass.
+struct LayCtx<'a> {
+    wall: &'a MeshWall,
+    surfaces: &'a [MeshSurface],
+    p: &'a View<'a>,
+    /// History values per slot: its key, the law's `hw` values and `extra` ones.
+    stride: usize,
+    hw: usize,
+    extra: usize,
+    flags: crate::contact::Flags,
+    /// With `surface multicontact`: the store, its last records and the wall's key.
+    mc: Option<(&'a MultiContact, &'a crate::multicontact::State, u64)>,
+    dt: f64,
+    update: bool,
+}
+
+/// Where [`lay_out`] writes over a mesh pass.
+struct LaySink<'a, 'b> {
+    f: &'a mut [DVec3],
+    torque: &'a mut [DVec3],
+    last_touch: super::Touches<'a>,
+    rec: Option<&'b mut super::mesh_local::WallContacts>,
+}
+
+/// The particle of a [`lay_out`] call: its index, its index in the pass's range, and
+/// whether an intact bond takes the place of its normal contact forces.
+struct Particle {
+    i: usize,
+    k: usize,
+    replace_normal: bool,
+}
+
+/// One kernel's [`lay_out`].
+type LayFn =
+    dyn Fn(&LayCtx, Particle, &[Touch], &[usize; SLOTS], &mut [f64], &mut [f64], &mut LaySink);
+
+/// The contacts `touches` of one particle with kernel `K`: each goes on from its slot of
+/// the previous history `old` (`slot_of`, from [`match_slots`]) into the next free slot
+/// of the cleared history `h`, in the order of the contacts; its force and torque go to
+/// the particle. A JKR contact apart goes on only while its neck holds.
+#[allow(clippy::too_many_arguments)]
+fn lay_out<K: ContactKernel>(
+    ctx: &LayCtx,
+    pt: Particle,
+    touches: &[Touch],
+    slot_of: &[usize; SLOTS],
+    old: &mut [f64],
+    h: &mut [f64],
+    sink: &mut LaySink,
+) {
+    let LayCtx {
+        wall,
+        surfaces,
+        p,
+        stride,
+        hw,
+        extra,
+        flags,
+        mc,
+        dt,
+        update,
+    } = *ctx;
+    let Particle {
+        i,
+        k,
+        replace_normal,
+    } = pt;
+    let r = p.radius[i];
+    let mut ns = 0;
+    for (c, t) in touches.iter().enumerate() {
+        let surface = &surfaces[wall.meshes[t.mesh as usize]];
+        if K::NECK && t.dist >= r {
+            // Apart: only a JKR neck that holds goes on.
+            let s = slot_of[c];
+            let coeff = wall.table.get(p.ty[i], surface.wall_type);
+            let held = s != usize::MAX && {
+                let hn = &mut old[s * stride + 1..s * stride + 1 + hw];
+                K::holds(r - t.dist, r, coeff, hn, update)
+            };
+            if !held {
+                continue;
+            }
+        }
+        let hs = &mut h[ns * stride..(ns + 1) * stride];
+        ns += 1;
+        hs[0] = key(t.mesh, t.feature);
+        if slot_of[c] != usize::MAX {
+            let s = slot_of[c];
+            hs[1..].copy_from_slice(&old[s * stride + 1..(s + 1) * stride]);
+        }
+        let v_wall = surface.wall_velocity(t.tri, t.q);
+        let vr = p.v[i] - v_wall;
+        let mut g = Geom::wall(t.n, t.dist, r, p.mcontact[i], vr, p.omega[i], dt, update);
+        let mc_key = mc.map(|(_, _, w)| MultiContact::wall_key(w, t.mesh, t.tri));
+        if let (Some((_, state, _)), Some(key)) = (mc, mc_key) {
+            if !state.shape_wall(&mut g, (p.tag[i], p.ty[i], p.x[i]), key) {
+                continue;
+            }
+        }
+        let coeff = wall.table.get(p.ty[i], surface.wall_type);
+        let mut out = K::contact(&g, coeff, flags, &mut hs[1..1 + hw]);
+        if replace_normal {
+            out.f_i -= out.fn_total * g.n;
+            out.fn_total = 0.0;
+        }
+        sink.last_touch.note(
+            k,
+            super::touch::pack_triangle(wall.meshes[t.mesh as usize], t.tri),
+        );
+        if let (Some((store, _, _)), Some(key)) = (mc, mc_key) {
+            store.record_wall((p.tag[i], p.x[i]), key, t.n, t.dist, out.fn_total);
+        }
+        sink.f[k] += out.f_i;
+        sink.torque[k] += out.t_i;
+        if let Some(rec) = sink.rec.as_deref_mut() {
+            rec.push(
+                i,
+                t.mesh,
+                t.tri,
+                t.q,
+                t.n,
+                t.dist,
+                v_wall,
+                &out,
+                &hs[1..1 + hw],
+            );
+        }
+        if extra > 0 {
+            if let Some(st) = &surface.stress {
+                crate::wall::mesh_stress::record(
+                    &mut hs[1 + hw..],
+                    st,
+                    t.tri,
+                    t.q,
+                    t.n,
+                    out.f_i,
+                    vr,
+                    dt,
+                );
             }
         }
     }

@@ -381,6 +381,63 @@ impl Visitor for WallPass<'_> {
     }
 }
 
+/// [`WallShape::distance`] for the force pass, compiled once rather than into each
+/// kernel's pass.
+#[inline(never)]
+fn shape_distance(shape: &WallShape, x: DVec3) -> (f64, DVec3) {
+    shape.distance(x)
+}
+
+/// The wall bond of owned particle `i` at distance and normal `dn` from the wall (bond
+/// history `vecs` and `tail`): created when `create_now` and close enough, then loaded;
+/// returns its force and torque on the particle, and whether it takes the place of the
+/// normal contact force. Not generic over the contact law, so that it is compiled once,
+/// not once per kernel.
+#[allow(clippy::too_many_arguments)]
+fn wall_bond(
+    wall: &PrimitiveWall,
+    p: &View,
+    i: usize,
+    (d, n): (f64, DVec3),
+    vecs: &mut [f64],
+    tail: &mut [f64],
+    create_now: bool,
+    dt: f64,
+    update: bool,
+) -> (DVec3, DVec3, bool) {
+    let table = wall.bond.as_ref().expect("bond table");
+    let c = table.get(p.ty[i], wall.wall_type);
+    let mut bonded = bond::is_bonded(tail);
+    if !bonded && bond::creates(c, create_now, 2.0 * d) {
+        bond::create(vecs, tail, d);
+        let anchor = p.x[i] - d * n;
+        tail[2..5].copy_from_slice(&anchor.to_array());
+        wall.bond_events.count(Event::Created);
+        bonded = true;
+    }
+    if !bonded {
+        return (DVec3::ZERO, DVec3::ZERO, false);
+    }
+    let mut anchor = DVec3::from_slice(&tail[2..5]);
+    if update {
+        anchor += wall.velocity * dt;
+        tail[2..5].copy_from_slice(&anchor.to_array());
+    }
+    let g = BondGeom::wall(
+        p.x[i] - anchor,
+        p.radius[i],
+        p.v[i] - wall.velocity,
+        p.omega[i],
+        dt,
+        update,
+        table.wall_reach,
+    );
+    let (b, e) = table.force(&g, p.ty[i], wall.wall_type, wall.model.bond, vecs, tail);
+    wall.bond_events.count(e);
+    let replace = e != Event::Broken && table.law().replaces_normal_contact();
+    (b.f_i, b.t_i, replace)
+}
+
 impl WallPass<'_> {
     /// The pass with kernel `K`, and with `BOND` the wall bonds.
     #[inline(always)]
@@ -416,7 +473,7 @@ impl WallPass<'_> {
             let i = i as usize;
             let k = i - lo;
             let r = p.radius[i];
-            let (d, n) = wall.shape.distance(p.x[i]);
+            let (d, n) = shape_distance(&wall.shape, p.x[i]);
             let hist: &mut [f64] = if w > 0 {
                 &mut hist_data[c * w..(c + 1) * w]
             } else {
@@ -432,38 +489,11 @@ impl WallPass<'_> {
             // An intact `bond/nonlinear` bond takes the place of the normal contact force.
             let mut replace_normal = false;
             if BOND {
-                let table = wall.bond.as_ref().expect("bond table");
-                let c = table.get(p.ty[i], wall.wall_type);
-                let mut bonded = bond::is_bonded(tail);
-                if !bonded && bond::creates(c, create_now, 2.0 * d) {
-                    bond::create(vecs, tail, d);
-                    let anchor = p.x[i] - d * n;
-                    tail[2..5].copy_from_slice(&anchor.to_array());
-                    wall.bond_events.count(Event::Created);
-                    bonded = true;
-                }
-                if bonded {
-                    let mut anchor = DVec3::from_slice(&tail[2..5]);
-                    if update {
-                        anchor += wall.velocity * dt;
-                        tail[2..5].copy_from_slice(&anchor.to_array());
-                    }
-                    let g = BondGeom::wall(
-                        p.x[i] - anchor,
-                        r,
-                        p.v[i] - wall.velocity,
-                        p.omega[i],
-                        dt,
-                        update,
-                        table.wall_reach,
-                    );
-                    let (b, e) =
-                        table.force(&g, p.ty[i], wall.wall_type, wall.model.bond, vecs, tail);
-                    wall.bond_events.count(e);
-                    replace_normal = e != Event::Broken && table.law().replaces_normal_contact();
-                    f[k] += b.f_i;
-                    torque[k] += b.t_i;
-                }
+                let (bf, bt, replace) =
+                    wall_bond(wall, p, i, (d, n), vecs, tail, create_now, dt, update);
+                replace_normal = replace;
+                f[k] += bf;
+                torque[k] += bt;
             }
             // Under `surface multicontact` the corrected radius decides (below); a JKR
             // neck holds apart down to δ = −δ_c.
