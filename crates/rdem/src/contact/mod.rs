@@ -25,10 +25,13 @@ pub use materials::{
 };
 
 /// The normal force laws, one row each: the kind, the law's type (a
-/// [`normal::Normal`]) and its script name. The kind enum, the names the script reads
-/// ([`names::NORMAL_MODELS`]) and the kernel dispatch all come from this table.
+/// [`normal::Normal`]), the type its kernels are compiled with, and its script name. The
+/// kind enum, the names the script reads ([`names::NORMAL_MODELS`]) and the kernel
+/// dispatch all come from this table. Laws that keep the same history and are seldom
+/// used share a kernel type that picks the law per contact from [`Flags::normal`] (a
+/// branch that goes the same way all run), so that rdem is compiled for fewer kernels.
 macro_rules! normal_laws {
-    ($($(#[$doc:meta])* $kind:ident => $law:ty, $name:literal;)*) => {
+    ($($(#[$doc:meta])* $kind:ident => $law:ty, kernel $kern:ty, $name:literal;)*) => {
         /// Normal force model (`model ...`).
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
         pub enum NormalKind {
@@ -51,7 +54,7 @@ macro_rules! normal_laws {
             /// [`ContactModel::dispatch`]'s first choice: the normal law.
             fn d_normal<V: Visitor>(&self, v: V) -> V::Output {
                 match self.normal {
-                    $(NormalKind::$kind => self.d_tan::<$law, V>(v),)*
+                    $(NormalKind::$kind => self.d_tan::<$kern, V>(v),)*
                 }
             }
         }
@@ -60,26 +63,26 @@ macro_rules! normal_laws {
 
 normal_laws! {
     /// `hertz`.
-    Hertz => normal::Hertz, "hertz";
+    Hertz => normal::Hertz, kernel normal::Hertz, "hertz";
     /// `hooke`.
-    Hooke => normal::Hooke, "hooke";
+    Hooke => normal::Hooke, kernel normal::Hooke, "hooke";
     /// `hooke/hysteresis` (Walton–Braun).
-    HookeHysteresis => normal::HookeHysteresis, "hooke/hysteresis";
+    HookeHysteresis => normal::HookeHysteresis, kernel normal::HookeHysteresis, "hooke/hysteresis";
     /// `hertz/stiffness`: the per-type-pair `kn`, `kt`, `gamman`, `gammat` given directly,
     /// each times √(R*δ) (the damping also times m*).
-    HertzStiffness => normal::HertzStiffness, "hertz/stiffness";
+    HertzStiffness => normal::HertzStiffness, kernel normal::Stiffness, "hertz/stiffness";
     /// `hooke/stiffness`: the per-type-pair `kn`, `kt` and damping given directly
     /// (`gamman`, `gammat` times m*, or with `absolute_damping on` `gamman_abs`, `gammat_abs`).
-    HookeStiffness => normal::HookeStiffness, "hooke/stiffness";
+    HookeStiffness => normal::HookeStiffness, kernel normal::Stiffness, "hooke/stiffness";
     /// `jkr` (LIGGGHTS_Flexible_Fibers, PICI): the JKR adhesive contact, which holds
     /// while the spheres are apart down to δ = −δ_c ([`jkr::Jkr`]).
-    Jkr => jkr::Jkr, "jkr";
+    Jkr => jkr::Jkr, kernel jkr::Jkr, "jkr";
     /// `hysteretic/nonlinear1` (LIGGGHTS-INL): elasto-plastic, loading α k₁ δ², linear
     /// unloading, an adhesive branch ([`hysteretic`]).
-    HystereticNonlinear1 => hysteretic::HystereticNonlinear, "hysteretic/nonlinear1";
+    HystereticNonlinear1 => hysteretic::HystereticNonlinear, kernel hysteretic::HystereticNonlinear, "hysteretic/nonlinear1";
     /// `hysteretic/nonlinear2` (LIGGGHTS-INL): as nonlinear1 with exponential unloading
     /// ([`hysteretic`]; the two share one kernel).
-    HystereticNonlinear2 => hysteretic::HystereticNonlinear, "hysteretic/nonlinear2";
+    HystereticNonlinear2 => hysteretic::HystereticNonlinear, kernel hysteretic::HystereticNonlinear, "hysteretic/nonlinear2";
 }
 
 impl NormalKind {
@@ -580,7 +583,12 @@ impl<N: normal::Normal, T: tangential::Tangential, R: rolling::Rolling, C: cohes
     const BONDS: bool = C::BONDS;
     const NECK: bool = N::NECK;
 
-    #[inline(always)]
+    // Inlined into each pass (the hot loops), except in this crate's unit-test build:
+    // there each kernel's law is compiled once and called, which computes the same bits
+    // (inlining does not change floating-point results in Rust) and builds in a fraction
+    // of the time. Every other build, the integration tests' among them, inlines it.
+    #[cfg_attr(not(test), inline(always))]
+    #[cfg_attr(test, inline(never))]
     fn contact(g: &Geom, c: &PairCoeff, flags: Flags, hist: &mut [f64]) -> ContactForce {
         contact::<N, T, R, C>(g, c, flags, hist)
     }

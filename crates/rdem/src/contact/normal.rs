@@ -256,3 +256,22 @@ impl Normal for HookeStiffness {
         }
     }
 }
+
+/// The kernel type of `hertz/stiffness` and `hooke/stiffness`, which keep no history:
+/// the law is picked per contact from [`Flags::normal`] (the same all run), so that the
+/// two seldom-used laws are compiled into one set of kernels instead of two. Its
+/// `TRAITS` are never read: each law's own are ([`super::NormalKind::traits`]).
+pub struct Stiffness;
+
+impl Normal for Stiffness {
+    const HIST: usize = 0;
+    const TRAITS: LawTraits = HertzStiffness::TRAITS;
+    #[inline(always)]
+    fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut {
+        if flags.normal == super::NormalKind::HookeStiffness {
+            HookeStiffness::normal(g, c, vn, flags, hist)
+        } else {
+            HertzStiffness::normal(g, c, vn, flags, hist)
+        }
+    }
+}
