@@ -119,7 +119,9 @@ impl Cohesion for Sjkr2 {
 
 /// The kernel of `cohesion sjkr` and `sjkr2`, which keep no history: it runs the law
 /// that [`Flags`] names ([`super::ContactModel::kernel_flags`]), so that one kernel serves
-/// both.
+/// both; with the seldom-used normal laws ([`super::normal::Normal::SELDOM`]) it serves
+/// `off` too, with no pull (the contact's normal force less 0.0 is that force, bit for
+/// bit).
 pub struct Pull;
 
 impl Cohesion for Pull {
@@ -127,6 +129,7 @@ impl Cohesion for Pull {
     fn force(g: &Geom, c: &PairCoeff, flags: Flags) -> f64 {
         match flags.cohesion {
             CohesionKind::Sjkr2 => Sjkr2::force(g, c, flags),
+            CohesionKind::Off => 0.0,
             _ => Sjkr::force(g, c, flags),
         }
     }

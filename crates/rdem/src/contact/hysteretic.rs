@@ -89,6 +89,7 @@ pub struct HystereticNonlinear;
 
 impl Normal for HystereticNonlinear {
     const HIST: usize = 10;
+    const SELDOM: bool = true;
     const TRAITS: LawTraits = LawTraits {
         stiffness: false,
         characteristic_velocity: false,

@@ -164,6 +164,7 @@ pub struct Jkr;
 
 impl Normal for Jkr {
     const HIST: usize = 1;
+    const SELDOM: bool = true;
     const TRAITS: LawTraits = LawTraits {
         stiffness: false,
         characteristic_velocity: false,

@@ -380,6 +380,8 @@ impl ContactModel {
         v: V,
     ) -> V::Output {
         match self.cohesion {
+            // `N::SELDOM` is a constant: only one of the two is compiled.
+            CohesionKind::Off if N::SELDOM => v.visit::<Kernel<N, T, R, cohesion::Pull>>(),
             CohesionKind::Off => v.visit::<Kernel<N, T, R, cohesion::Off>>(),
             CohesionKind::Sjkr | CohesionKind::Sjkr2 => {
                 v.visit::<Kernel<N, T, R, cohesion::Pull>>()

@@ -33,6 +33,10 @@ pub trait Normal {
     /// True for a law whose contact holds while the particles are apart (a JKR neck):
     /// the passes then ask [`Normal::holds`] of a listed pair that does not touch.
     const NECK: bool = false;
+    /// True for a seldom-used law: its kernels serve `cohesion off` with the `sjkr`/`sjkr2`
+    /// kernel ([`super::cohesion::Pull`], which pulls with nothing under `off`), so that
+    /// rdem is compiled for fewer kernels. The common laws keep kernels of their own.
+    const SELDOM: bool = false;
     /// Normal force for normal relative velocity `vn` (negative while approaching). With
     /// [`Normal::NECK`], `g.delta` may be negative (the contact holds apart).
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut;
@@ -143,6 +147,7 @@ pub struct HookeHysteresis;
 
 impl Normal for HookeHysteresis {
     const HIST: usize = 1;
+    const SELDOM: bool = true;
     const TRAITS: LawTraits = LawTraits {
         stiffness: false,
         characteristic_velocity: true,
@@ -265,6 +270,7 @@ pub struct Stiffness;
 
 impl Normal for Stiffness {
     const HIST: usize = 0;
+    const SELDOM: bool = true;
     const TRAITS: LawTraits = HertzStiffness::TRAITS;
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut {
