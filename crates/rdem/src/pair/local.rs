@@ -12,7 +12,7 @@ use glam::DVec3;
 
 use super::{PairGran, Phase1};
 use crate::bond::{self, BondEvents};
-use crate::contact::{ContactKernel, Visitor};
+use crate::contact::{ContactForce, ContactKernel, Visitor};
 use crate::neighbor::NeighborList;
 use crate::particles::Particles;
 
@@ -46,6 +46,17 @@ impl PairContacts {
     /// True without contacts.
     pub fn is_empty(&self) -> bool {
         self.i.is_empty()
+    }
+
+    /// Adds the pair of i and j (overlap `delta`, history row `hist`) with the force and
+    /// torque on i of `c`.
+    fn push(&mut self, i: usize, j: usize, c: &ContactForce, delta: f64, hist: &[f64]) {
+        self.i.push(i as u32);
+        self.j.push(j as u32);
+        self.f.push(c.f_i);
+        self.t_i.push(c.t_i);
+        self.delta.push(delta);
+        self.hist.extend_from_slice(hist);
     }
 }
 
@@ -199,12 +210,7 @@ fn touching_records<K: ContactKernel>(
             else {
                 continue;
             };
-            out.i.push(i as u32);
-            out.j.push(j as u32);
-            out.f.push(c.f_i);
-            out.t_i.push(c.t_i);
-            out.delta.push(p.radius[i] + p.radius[j] - rsq.sqrt());
-            out.hist.extend_from_slice(h);
+            out.push(i, j, &c, p.radius[i] + p.radius[j] - rsq.sqrt(), h);
         }
     }
     out
@@ -235,12 +241,7 @@ fn bond_records<K: ContactKernel>(
             else {
                 continue;
             };
-            out.i.push(i as u32);
-            out.j.push(j as u32);
-            out.f.push(c.f_i);
-            out.t_i.push(c.t_i);
-            out.delta.push(p.radius[i] + p.radius[j] - d.length());
-            out.hist.extend_from_slice(h);
+            out.push(i, j, &c, p.radius[i] + p.radius[j] - d.length(), h);
         }
     }
     out
