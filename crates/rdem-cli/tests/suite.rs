@@ -22,6 +22,7 @@ mod hopper;
 mod hysteretic;
 mod incremental_history;
 mod jkr;
+mod lebc;
 mod liggghts_restart;
 mod local_dump;
 mod mcg;

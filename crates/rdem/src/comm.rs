@@ -174,8 +174,9 @@ pub trait Comm: std::fmt::Debug + Send {
     /// periodic images), after the locals.
     fn borders(&mut self, p: &mut Particles, domain: &Domain, cutoff: f64);
     /// Refreshes ghost positions, velocities, angular velocities, radii and masses from
-    /// their owners (radii and masses change between re-neighborings under `fix adapt`).
-    fn forward(&mut self, p: &mut Particles);
+    /// their owners (radii and masses change between re-neighborings under `fix adapt`);
+    /// ghosts across a Lees–Edwards y face follow the offset of `domain`'s shear.
+    fn forward(&mut self, p: &mut Particles, domain: &Domain);
     /// Adds ghost forces and torques onto their owners.
     fn reverse(&mut self, p: &mut Particles);
     /// Adds the per-particle virial of ghosts (`virial[g]`, 6 components) onto their
@@ -250,6 +251,9 @@ pub trait Comm: std::fmt::Debug + Send {
 pub struct Serial {
     /// Shift of each ghost relative to its owner (index `g - nlocal`).
     shift: Vec<DVec3>,
+    /// Under Lees–Edwards shear, how many box lengths each ghost lies above its owner
+    /// along y (index `g - nlocal`; empty without shear).
+    ny: Vec<i32>,
 }
 
 impl Serial {
@@ -289,9 +293,17 @@ impl Comm for Serial {
     fn borders(&mut self, p: &mut Particles, domain: &Domain, cutoff: f64) {
         p.clear_ghosts();
         self.shift.clear();
+        self.ny.clear();
         let prd = domain.prd();
         let nlocal = p.nlocal();
-        for a in 0..3 {
+        let shear = domain.shear;
+        // Under shear, y first: the x images of the shifted y images follow.
+        let axes = if shear.is_some() {
+            [1, 0, 2]
+        } else {
+            [0, 1, 2]
+        };
+        for a in axes {
             if !domain.periodic(a) {
                 continue;
             }
@@ -299,36 +311,57 @@ impl Comm for Serial {
             let mut l = DVec3::ZERO;
             l[a] = prd[a];
             for i in 0..n {
-                let base = if i < nlocal {
-                    DVec3::ZERO
+                let (base, base_ny) = if i < nlocal {
+                    (DVec3::ZERO, 0)
                 } else {
-                    self.shift[i - nlocal]
+                    let g = i - nlocal;
+                    (self.shift[g], self.ny.get(g).copied().unwrap_or(0))
                 };
                 let xa = p.x[i][a];
                 // Image k (k = 1, 2, ...) lies within the cutoff beyond the upper face
                 // (shifted up) or the lower face (shifted down). Along a box shorter than
                 // the cutoff there are several layers.
-                let mut k = 1.0;
-                while xa < domain.boxlo[a] + cutoff - (k - 1.0) * prd[a] {
-                    p.push_ghost(i, k * l);
-                    self.shift.push(base + k * l);
-                    k += 1.0;
-                }
-                let mut k = 1.0;
-                while xa >= domain.boxhi[a] - cutoff + (k - 1.0) * prd[a] {
-                    p.push_ghost(i, -k * l);
-                    self.shift.push(base - k * l);
-                    k += 1.0;
+                for dir in [1.0, -1.0] {
+                    let mut k = 1.0;
+                    while if dir > 0.0 {
+                        xa < domain.boxlo[a] + cutoff - (k - 1.0) * prd[a]
+                    } else {
+                        xa >= domain.boxhi[a] - cutoff + (k - 1.0) * prd[a]
+                    } {
+                        let mut shift = dir * k * l;
+                        let mut ny = base_ny;
+                        if let (Some(s), 1) = (shear, a) {
+                            ny = (dir * k) as i32;
+                            shift.x = ny as f64 * s.offset;
+                        }
+                        let g = p.push_ghost(i, shift);
+                        if let (Some(s), 1) = (shear, a) {
+                            p.v[g].x += ny as f64 * s.jump(prd.y);
+                        }
+                        self.shift.push(base + shift);
+                        if shear.is_some() {
+                            self.ny.push(ny);
+                        }
+                        k += 1.0;
+                    }
                 }
             }
         }
     }
 
-    fn forward(&mut self, p: &mut Particles) {
+    fn forward(&mut self, p: &mut Particles, domain: &Domain) {
         let nlocal = p.nlocal();
         for (k, &s) in self.shift.iter().enumerate() {
             let g = nlocal + k;
             p.copy_forward(g, p.origin(g), s);
+        }
+        if let Some(s) = &domain.shear {
+            let prd = domain.prd();
+            let (slide, jump) = (s.current(prd.x) - s.built, s.jump(prd.y));
+            for (k, &ny) in self.ny.iter().enumerate() {
+                let g = nlocal + k;
+                crate::shear::shift_ghosts(p, g..g + 1, ny, slide, jump);
+            }
         }
     }
 

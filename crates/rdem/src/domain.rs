@@ -68,6 +68,8 @@ pub struct Domain {
     pub procgrid: [usize; 3],
     /// This process's position in the grid.
     pub myloc: [usize; 3],
+    /// Lees–Edwards shear of the periodic images (`fix lebc`), if any.
+    pub shear: Option<crate::shear::Shear>,
 }
 
 impl Domain {
@@ -106,6 +108,7 @@ impl Domain {
             subhi: hi,
             procgrid: [1, 1, 1],
             myloc: [0, 0, 0],
+            shear: None,
         })
     }
 
@@ -238,6 +241,14 @@ impl Domain {
                     x[a] = self.boxlo[a];
                 }
             }
+        }
+    }
+
+    /// Advances the Lees–Edwards offset by one step of `dt` (no-op without shear).
+    pub fn advance_shear(&mut self, dt: f64) {
+        let prd = self.prd();
+        if let Some(s) = &mut self.shear {
+            s.advance(dt, prd.x, prd.y);
         }
     }
 

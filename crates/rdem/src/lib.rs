@@ -33,6 +33,7 @@ pub mod particles;
 pub mod region;
 pub mod region_tet;
 pub mod restart;
+pub mod shear;
 pub mod sort;
 pub mod sph;
 mod stages;

@@ -39,6 +39,10 @@ struct Swap {
     shift: DVec3,
     first: usize,
     nrecv: usize,
+    /// Under Lees–Edwards shear, how many box lengths up along y the received ghosts lie
+    /// from the particles they copy (0 otherwise): they are shifted along x on arrival
+    /// ([`crate::shear::shift_ghosts`]).
+    ny: i32,
 }
 
 /// The MPI communicator of a run.
@@ -247,7 +251,16 @@ impl Comm for MpiComm {
         p.clear_ghosts();
         self.swaps.clear();
         let prd = domain.prd();
-        for a in 0..3 {
+        let shear = domain.shear;
+        // Under shear, y first: the x images of the shifted y images follow (one brick
+        // along x, see `World::check_settings`).
+        let axes = if shear.is_some() {
+            [1, 0, 2]
+        } else {
+            [0, 1, 2]
+        };
+        let (offset, jump) = shear.map_or((0.0, 0.0), |s| (s.offset, s.jump(prd.y)));
+        for a in axes {
             let np = domain.procgrid[a];
             let m = domain.myloc[a];
             let periodic = domain.periodic(a);
@@ -304,6 +317,12 @@ impl Comm for MpiComm {
                             p.push_ghost(i, k * shift);
                         }
                         let nrecv = send.len();
+                        let ny = if shear.is_some() && a == 1 {
+                            (k * shift[1] / prd[1]).round() as i32
+                        } else {
+                            0
+                        };
+                        crate::shear::shift_ghosts(p, first..first + nrecv, ny, offset, jump);
                         self.swaps.push(Swap {
                             send_to,
                             recv_from,
@@ -312,6 +331,7 @@ impl Comm for MpiComm {
                             shift: k * shift,
                             first,
                             nrecv,
+                            ny,
                         });
                         k += 1.0;
                     }
@@ -350,6 +370,15 @@ impl Comm for MpiComm {
                     nrecv += 1;
                 }
                 self.rbuf = rbuf;
+                // What arrived crossed the periodic y face when it came from the brick at
+                // the other end: from below into the lowest brick (shifted down), from
+                // above into the highest (shifted up).
+                let ny = match (shear.is_some() && a == 1 && periodic, up) {
+                    (true, true) if m == 0 => -1,
+                    (true, false) if m + 1 == np => 1,
+                    _ => 0,
+                };
+                crate::shear::shift_ghosts(p, first..first + nrecv, ny, offset, jump);
                 self.swaps.push(Swap {
                     send_to,
                     recv_from,
@@ -358,19 +387,25 @@ impl Comm for MpiComm {
                     shift,
                     first,
                     nrecv,
+                    ny,
                 });
             }
         }
     }
 
-    fn forward(&mut self, p: &mut Particles) {
+    fn forward(&mut self, p: &mut Particles, domain: &Domain) {
         let swaps = std::mem::take(&mut self.swaps);
         let len = p.forward_len();
+        let prd = domain.prd();
+        let (offset, jump) = domain
+            .shear
+            .map_or((0.0, 0.0), |s| (s.current(prd.x), s.jump(prd.y)));
         for s in &swaps {
             if s.here {
                 for (k, &i) in s.send.iter().enumerate() {
                     p.copy_forward(s.first + k, i, s.shift);
                 }
+                crate::shear::shift_ghosts(p, s.first..s.first + s.nrecv, s.ny, offset, jump);
                 continue;
             }
             let mut buf = std::mem::take(&mut self.buf);
@@ -390,6 +425,7 @@ impl Comm for MpiComm {
             for (k, c) in self.rbuf.chunks_exact(len).enumerate() {
                 p.unpack_forward(s.first + k, c);
             }
+            crate::shear::shift_ghosts(p, s.first..s.first + s.nrecv, s.ny, offset, jump);
         }
         self.swaps = swaps;
     }

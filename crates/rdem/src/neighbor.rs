@@ -98,6 +98,10 @@ pub struct Neighbor {
     /// Largest radius growth of any particle since the last build (`fix adapt`): it eats
     /// into the skin, so the distance check allows skin/2 − growth of motion.
     pub growth: f64,
+    /// How far the Lees–Edwards images have slid since the last build
+    /// ([`crate::shear::Shear::drift`]; 0 without shear): a pair across a y face closes
+    /// by that much more than its particles moved, so it too eats into the skin.
+    pub shear_drift: f64,
     /// Centre distance below which every pair is listed whatever its radii: the longest
     /// bond (`cohesion bond`), 0 without bonds.
     pub reach: f64,
@@ -249,8 +253,10 @@ impl Neighbor {
         if x.len() != self.xhold.len() {
             return true;
         }
-        self.xhold
-            .moved_beyond(x, 0.5 * self.settings.skin - self.growth)
+        self.xhold.moved_beyond(
+            x,
+            0.5 * (self.settings.skin - self.shear_drift) - self.growth,
+        )
     }
 
     /// Saves the contact history of the current list by tag pair (contacts whose history

@@ -15,7 +15,39 @@ impl World {
     /// Set-up 1: the timestep and the neighbor settings are valid.
     pub(crate) fn check_settings(&self) -> Result<()> {
         crate::error::check("timestep", self.dt, self.dt > 0.0, "must be > 0")?;
+        if self.domain.shear.is_some() {
+            self.check_shear()?;
+        }
         self.neighbor.settings.validate()
+    }
+
+    /// What Lees–Edwards shear (`fix lebc`) needs: a box periodic along every axis, one
+    /// brick along x with MPI (ghosts across a y face are shifted along x, and rdem
+    /// sends them to the brick above or below only), no rigid clumps.
+    fn check_shear(&self) -> Result<()> {
+        let invalid = |reason: &str| Error::Invalid {
+            what: "fix lebc",
+            reason: reason.to_string(),
+        };
+        if !(0..3).all(|a| self.domain.periodic(a)) {
+            return Err(invalid(
+                "Lees-Edwards shear needs a box periodic along x, y and z (boundary p p p)",
+            ));
+        }
+        if self.domain.procgrid[0] > 1 {
+            return Err(invalid(&format!(
+                "with MPI, Lees-Edwards shear needs one brick along x (this run has a {}x{}x{} grid); \
+                 write 'processors 1 * *'",
+                self.domain.procgrid[0], self.domain.procgrid[1], self.domain.procgrid[2]
+            )));
+        }
+        if self.multisphere.is_some() {
+            return Err(invalid(
+                "Lees-Edwards shear of rigid clumps (fix multisphere) is not supported; \
+                 the clumps' centres would need the shift across the y faces too",
+            ));
+        }
+        Ok(())
     }
 
     /// Set-up 1: every owned particle's type is in the material table, when a pair style
@@ -295,6 +327,10 @@ impl World {
         let p = &mut self.particles;
         for i in 0..nlocal {
             let mut im = p.image[i].get();
+            if let Some(s) = &self.domain.shear {
+                let (lo, prd) = (self.domain.boxlo, self.domain.prd());
+                crate::shear::wrap_y(s, lo, prd, &mut p.x[i], &mut p.v[i]);
+            }
             self.domain.remap(&mut p.x[i], &mut im);
             p.image[i] = im.into();
         }
@@ -729,6 +765,10 @@ impl World {
         let removed = std::mem::take(&mut self.rebuild_next);
         let added = std::mem::take(&mut self.needs_reneighbor);
         let comm = &self.comm;
+        self.neighbor.shear_drift = self
+            .domain
+            .shear
+            .map_or(0.0, |s| s.drift(self.domain.prd().x));
         let added = comm.any(added);
         let removed = comm.any(removed);
         let rebuild = added

@@ -239,6 +239,7 @@ impl World {
         let t0 = Instant::now();
         self.step += 1;
         self.initial_integrate();
+        self.domain.advance_shear(self.dt);
         self.move_meshes();
         self.move_servo_meshes();
         if mask.pre_exchange {
@@ -254,7 +255,7 @@ impl World {
             }
             self.reneighbor()?;
         } else {
-            self.comm.forward(&mut self.particles);
+            self.comm.forward(&mut self.particles, &self.domain);
             self.timers.lap(Stage::Comm, t1);
         }
         self.create_bonds()?;
@@ -363,6 +364,9 @@ impl World {
         self.sort_if_due();
         let cutoff = self.checked_cutoff()?;
         let t3 = self.timers.lap(Stage::Neigh, t2);
+        if let Some(s) = &mut self.domain.shear {
+            s.built = s.offset;
+        }
         self.comm.borders(&mut self.particles, &self.domain, cutoff);
         let t4 = self.timers.lap(Stage::Comm, t3);
         before_build(&mut self.particles);

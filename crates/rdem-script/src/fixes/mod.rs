@@ -29,6 +29,7 @@ pub mod insert;
 mod insert_dense;
 mod insert_fragments;
 mod insert_stream;
+mod lebc;
 pub(crate) mod liquid;
 mod massflow_mesh;
 mod mcg;
@@ -349,6 +350,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         multisphere::ROW,
         nve_nonspherical::ROW,
         mcg::ROW,
+        lebc::ROW,
         insert_fragments::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,

@@ -320,7 +320,7 @@ impl World {
                         f.groupbit,
                         &*self.comm,
                     );
-                    self.comm.forward(&mut self.particles);
+                    self.comm.forward(&mut self.particles, &self.domain);
                 }
                 SphFix::Shepard {
                     every,
@@ -334,7 +334,7 @@ impl World {
                         f.groupbit,
                         &*self.comm,
                     );
-                    self.comm.forward(&mut self.particles);
+                    self.comm.forward(&mut self.particles, &self.domain);
                 }
                 SphFix::Pressure(eos) => {
                     let p = &mut self.particles;
