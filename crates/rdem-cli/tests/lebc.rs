@@ -242,12 +242,13 @@ fn a_collision_across_the_y_face_is_the_collision_with_the_image() {
     }
 }
 
-/// The fork's own example form (`fix ID all lebc 100.0`, 4 words) on a dilute bed made
-/// by insert/pack: it runs, keeps every particle, prints the `stress:` line of each
-/// window, and writes the same dump on 1 and 2 threads.
-#[test]
-fn the_forks_example_form_runs_and_does_not_depend_on_threads() {
-    let script = "atom_style granular
+/// A bed of 1.5 mm spheres (density 2500, frictionless Hertz, ν 0.3) inserted by
+/// insert/pack at volume fraction 0.2 into a periodic 30 × 30 × 15 mm box, after its
+/// first step (`run 1`), as the fork's examples make theirs: skin, neighbor check,
+/// Young's modulus, restitution and timestep as given.
+fn sheared_bed(skin: f64, check: &str, young: f64, restitution: f64, dt: f64) -> String {
+    format!(
+        "atom_style granular
 atom_modify map array
 boundary p p p
 newton off
@@ -255,22 +256,40 @@ communicate single vel yes
 units si
 region reg block 0.0 0.03 0.0 0.03 0.0 0.015 units box
 create_box 1 reg
-neighbor 0.001 bin
-neigh_modify every 1 delay 0 check yes
+neighbor {skin} bin
+neigh_modify every 1 delay 0 check {check}
 hard_particles yes
-fix m1 all property/global youngsModulus peratomtype 8.70e+09
+fix m1 all property/global youngsModulus peratomtype {young}
 fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.95
+fix m3 all property/global coefficientRestitution peratomtypepair 1 {restitution}
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.0
 pair_style gran model hertz tangential history
 pair_coeff * *
-timestep 1.00e-7
+timestep {dt}
 fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0015
 fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
 fix ins all insert/pack seed 32452867 distributiontemplate pdd1 maxattempt 200 insert_every once overlapcheck yes all_in yes vel constant 0. 0. 0. region reg volumefraction_region 0.2
 fix integr all nve/sphere
 run 1
-fix leboundary all lebc 100.0 true gtemp 0.01 ave_reset 2000
+"
+    )
+}
+
+/// The values of each `stress:` line of `out`, in order.
+fn stress_windows(out: &str) -> Vec<Vec<f64>> {
+    out.lines()
+        .filter_map(|l| l.strip_prefix("stress: "))
+        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+        .collect()
+}
+
+/// The fork's own example form (`fix ID all lebc 100.0`, 4 words) on a dilute bed made
+/// by insert/pack: it runs, keeps every particle, prints the `stress:` line of each
+/// window, and writes the same dump on 1 and 2 threads.
+#[test]
+fn the_forks_example_form_runs_and_does_not_depend_on_threads() {
+    let script = sheared_bed(0.001, "yes", 8.7e9, 0.95, 1e-7)
+        + "fix leboundary all lebc 100.0 true gtemp 0.01 ave_reset 2000
 thermo 2000
 dump d all custom 4000 d.txt id x y z vx vy vz omegax omegay omegaz
 dump_modify d sort id
@@ -278,7 +297,7 @@ run 4000
 ";
     let run = |threads: usize| {
         let dir = common::scratch_dir("lebc-fork");
-        std::fs::write(dir.join("in.test"), script).unwrap();
+        std::fs::write(dir.join("in.test"), &script).unwrap();
         let out = common::rdem_in(&dir, "in.test", None)
             .env("RDEM_THREADS", threads.to_string())
             .output()
@@ -297,11 +316,10 @@ run 4000
         atoms.iter().all(|&n| n == atoms[0]),
         "particles lost: {atoms:?}"
     );
-    let windows: Vec<&str> = out.lines().filter(|l| l.starts_with("stress: ")).collect();
+    let windows = stress_windows(&out);
     assert_eq!(windows.len(), 2, "{out}");
     // The kinetic stress of the scatter is positive on the diagonal.
-    let s = printed(&out, "stress:");
-    assert!(s[0] > 0.0 && s[1] > 0.0, "{out}");
+    assert!(windows[0][0] > 0.0 && windows[0][1] > 0.0, "{out}");
     let (_, two) = run(2);
     assert!(one == two, "2 threads wrote another dump than 1");
 }
@@ -370,39 +388,13 @@ run 1
 /// averages rdem's windows 25000–75000 and allows 10 %.
 #[test]
 fn a_sheared_gas_has_the_forks_steady_stresses() {
-    let script = "atom_style granular
-atom_modify map array
-boundary p p p
-newton off
-communicate single vel yes
-units si
-region reg block 0.0 0.03 0.0 0.03 0.0 0.015 units box
-create_box 1 reg
-neighbor 0.0005 bin
-neigh_modify every 1 delay 0 check no
-hard_particles yes
-fix m1 all property/global youngsModulus peratomtype 1e7
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.8
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.0
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 2e-5
-fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0015
-fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
-fix ins all insert/pack seed 32452867 distributiontemplate pdd1 maxattempt 200 insert_every once overlapcheck yes all_in yes vel constant 0. 0. 0. region reg volumefraction_region 0.2
-fix integr all nve/sphere
-run 1
-thermo 25000
+    let script = sheared_bed(0.0005, "no", 1e7, 0.8, 2e-5)
+        + "thermo 25000
 fix leboundary all lebc 100.0 true gtemp 0.01 ave_reset 25000
 run 75000
 ";
-    let out = common::run_script(script, None);
-    let windows: Vec<Vec<f64>> = out
-        .lines()
-        .filter_map(|l| l.strip_prefix("stress: "))
-        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
-        .collect();
+    let out = common::run_script(&script, None);
+    let windows = stress_windows(&out);
     assert_eq!(windows.len(), 3, "{out}");
     let fork = [43.75, 33.07, -14.79, 47.86, 44.09, -15.86];
     for (k, want) in fork.iter().enumerate() {

@@ -297,19 +297,15 @@ impl Comm for Serial {
         let prd = domain.prd();
         let nlocal = p.nlocal();
         let shear = domain.shear;
-        // Under shear, y first: the x images of the shifted y images follow.
-        let axes = if shear.is_some() {
-            [1, 0, 2]
-        } else {
-            [0, 1, 2]
-        };
-        for a in axes {
+        for a in domain.ghost_axes() {
             if !domain.periodic(a) {
                 continue;
             }
             let n = p.len();
             let mut l = DVec3::ZERO;
             l[a] = prd[a];
+            // Under shear, the images across a y face slide along x.
+            let sheared = shear.filter(|_| a == 1);
             for i in 0..n {
                 let (base, base_ny) = if i < nlocal {
                     (DVec3::ZERO, 0)
@@ -330,12 +326,12 @@ impl Comm for Serial {
                     } {
                         let mut shift = dir * k * l;
                         let mut ny = base_ny;
-                        if let (Some(s), 1) = (shear, a) {
+                        if let Some(s) = sheared {
                             ny = (dir * k) as i32;
                             shift.x = ny as f64 * s.offset;
                         }
                         let g = p.push_ghost(i, shift);
-                        if let (Some(s), 1) = (shear, a) {
+                        if let Some(s) = sheared {
                             p.v[g].x += ny as f64 * s.jump(prd.y);
                         }
                         self.shift.push(base + shift);

@@ -244,6 +244,16 @@ impl Domain {
         }
     }
 
+    /// The order in which ghosts are made along the axes: x, y, z; under Lees–Edwards
+    /// shear y first, so that the x images of the shifted y images follow.
+    pub fn ghost_axes(&self) -> [usize; 3] {
+        if self.shear.is_some() {
+            [1, 0, 2]
+        } else {
+            [0, 1, 2]
+        }
+    }
+
     /// Advances the Lees–Edwards offset by one step of `dt` (no-op without shear).
     pub fn advance_shear(&mut self, dt: f64) {
         let prd = self.prd();

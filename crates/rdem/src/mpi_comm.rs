@@ -252,15 +252,9 @@ impl Comm for MpiComm {
         self.swaps.clear();
         let prd = domain.prd();
         let shear = domain.shear;
-        // Under shear, y first: the x images of the shifted y images follow (one brick
-        // along x, see `World::check_settings`).
-        let axes = if shear.is_some() {
-            [1, 0, 2]
-        } else {
-            [0, 1, 2]
-        };
+        // Under shear one brick along x (see `World::check_settings`).
         let (offset, jump) = shear.map_or((0.0, 0.0), |s| (s.offset, s.jump(prd.y)));
-        for a in axes {
+        for a in domain.ghost_axes() {
             let np = domain.procgrid[a];
             let m = domain.myloc[a];
             let periodic = domain.periodic(a);

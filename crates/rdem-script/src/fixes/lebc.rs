@@ -258,25 +258,30 @@ impl ScriptFix for Lebc {
             )
         })?;
         let (kinetic, contact) = self.stresses(w, virial);
-        let natoms = w.comm.sum_count(w.particles.nlocal() as u64);
-        let scale = self.scale(w);
         let n = self.avg.count as f64;
         for k in 0..6 {
             self.avg.kinetic[k] = (self.avg.kinetic[k] * n + kinetic[k]) / (n + 1.0);
             self.avg.contact[k] = (self.avg.contact[k] * n + contact[k]) / (n + 1.0);
         }
         self.avg.count += 1;
-        let v = self.printed(scale);
-        let show = v.map(|x| format!("{x}")).join(" ");
-        // The fork writes the window's line with printf's %f.
-        let fixed = v.map(|x| format!("{x:.6}")).join(" ");
-        if self.avg.count % PROGRESS_EVERY == 0 {
+        let progress = self.avg.count % PROGRESS_EVERY == 0;
+        let window = self.avg.count == self.ave_reset;
+        if !(progress || window) {
+            return Ok(());
+        }
+        // Only on the steps that print (every rank alike: the reductions are collective).
+        let natoms = w.comm.sum_count(w.particles.nlocal() as u64);
+        let v = self.printed(self.scale(w));
+        if progress {
+            let show = v.map(|x| format!("{x}")).join(" ");
             ctx.line(&format!(
                 "{step} {} atom_count: {natoms} {show}",
                 self.avg.count
             ));
         }
-        if self.avg.count == self.ave_reset {
+        if window {
+            // The fork writes the window's line with printf's %f.
+            let fixed = v.map(|x| format!("{x:.6}")).join(" ");
             ctx.line(&format!("stress: {fixed}"));
             self.avg = Averages::default();
         }
