@@ -6,8 +6,9 @@
 //! `in.bonds` (two bonded pairs and a bent chain of three in general motion, radii and
 //! densities unequal, for each damping style), `in.pull` (a pair pulled apart until the
 //! bond breaks by its normal or its shear stress), `in.create` (bond creation on a 3 × 3
-//! square), `in.cantilever` (wild/24's beam bent by a tip force, then released), and a
-//! shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
+//! square), `in.cantilever` (wild/24's beam bent by a tip force, then released),
+//! `in.soft` (a bond broken while its spheres overlap, break styles 3 to 5), `in.hot` (a
+//! bond broken by temperature, break style 2), and a shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
 //! is stored beside them (`fibers_*`).
 
 use crate::common;
@@ -548,6 +549,95 @@ fn break_style_0_breaks_apart_beyond_twice_the_radius() {
     assert_eq!(first_free, Some(7.0));
     let first_zero = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
     assert_eq!(first_zero, Some(152.0));
+}
+
+/// The thermo rows of every run of a screen output whose header is `header`, in order.
+fn all_rows(out: &str, header: &str) -> Vec<Vec<f64>> {
+    out.split(header)
+        .skip(1)
+        .flat_map(|run| pull_rows(&format!("{header}{run}"), header))
+        .collect()
+}
+
+/// Break styles 3 to 5 (`in.soft`): two bonded spheres that overlap by 0.11 mm are
+/// thrown at each other; the bond breaks by its normal stress at step 25 while they
+/// still overlap, leaves `numbonds` at once, and pushes them apart until they separate:
+/// weakly (style 3, force-free from step 1405), with the bond's stiffness from the
+/// length at the break (style 4, from step 105) or by Hertz (style 5, from step 635);
+/// style 4 also with the pair contact on (`disableNormalContact 0`: the bond breaks at
+/// step 30, free from step 450). Each of the 401 rows (numbonds, position, velocity,
+/// force and spin of the second sphere) within 1e-12 of its column's scale of the fork's
+/// (measured 1.2e-14).
+#[test]
+fn bonds_broken_while_overlapping_push_apart_as_the_forks() {
+    for (style, dnc, name, broken, free) in [
+        ("3", "1", "fibers_soft3.txt", 25.0, 1405.0),
+        ("4", "1", "fibers_soft4.txt", 25.0, 105.0),
+        ("5", "1", "fibers_soft5.txt", 25.0, 635.0),
+        ("4", "0", "fibers_soft4_contact.txt", 30.0, 450.0),
+    ] {
+        let out = common::run_script(
+            &with_vars("in.soft", &[("bstyle", style), ("dnc", dnc)]),
+            None,
+        );
+        let got = pull_rows(&out, "Step numbonds");
+        common::assert_columns(&got, &table(name), 1, 1e-12, name);
+        let first_zero = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
+        assert_eq!(first_zero, Some(broken), "{name}");
+        let first_free = got.iter().find(|r| r[5] == 0.0).map(|r| r[0]);
+        assert_eq!(first_free, Some(free), "{name}");
+    }
+}
+
+/// Break style 2 (`in.hot`): a bonded pair pulled gently apart holds at 300 K (T_break
+/// 500) for 20 steps; `set` raises the second sphere to 800 K and the bond breaks at the
+/// next run's set-up (step 21): free from step 22, `numbonds` 0 from the re-neighboring
+/// at step 163, as in the fork; the 222 rows within 1e-12 of the fork's (measured
+/// 4e-15). Without a per-particle `Temp` the run stops with the reason.
+#[test]
+fn break_style_2_breaks_by_temperature_as_the_fork() {
+    let out = common::run_script(&read("in.hot"), None);
+    let got = all_rows(&out, "Step numbonds");
+    common::assert_columns(&got, &table("fibers_hot.txt"), 1, 1e-12, "break style 2");
+    let first_free = got.iter().skip(1).find(|r| r[5] == 0.5).map(|r| r[0]);
+    assert_eq!(first_free, Some(22.0));
+    let first_zero = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
+    assert_eq!(first_zero, Some(163.0));
+
+    let cold = read("in.hot").replace("fix temp all property/atom Temp scalar yes no no 300\n", "");
+    let out = common::run_script_raw(&cold, None);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("break style 2") && err.contains("temperature 'Temp'"),
+        "{err}"
+    );
+    // Styles 3 to 5 are Flexible_Fibers' only; style 5 takes ν = Y/(2G) − 1 in (−1, 1).
+    for (coeff, says) in [
+        (
+            "bond_coeff 1 1.0 0.0 1.0 1.0e9 4.0e8 1.0e9 4.0e8 0.2 2.0 0.0 3 1.0e9 1.0e9",
+            "unknown break style 3 in LIGGGHTS-PFM's form",
+        ),
+        (
+            "bond_coeff 1 1.0 0.0 1.0e9 1.0e8 1 0.2 5 1.0e9 1.0e9",
+            "must lie within (-1, 1)",
+        ),
+        (
+            "bond_coeff 1 1.0 0.0 1.0e9 4.0e8 1 0.2 6 1.0e9 1.0e9",
+            "unknown break style 6",
+        ),
+    ] {
+        let bad = read("in.hot").replace(
+            "bond_coeff 1 1.0 0.0 1.0e9 4.0e8 1 0.2 2 1.0e9 1.0e9 500",
+            coeff,
+        );
+        let out = common::run_script_raw(&bad, None);
+        let err = String::from_utf8_lossy(&out.stderr).replace('\n', " ");
+        assert!(
+            !out.status.success() && err.contains(says),
+            "{coeff}: {err}"
+        );
+    }
 }
 
 /// wild/06 (CFDEMcoupling-PFM's red blood cell: a ring of ten spheres of one bonded

@@ -29,8 +29,21 @@
 //!
 //! Breaking: style 1, σ = |F_n|/A + 2|T_t|(r_o − r_i)/I_p above σ_c or
 //! τ = |F_t|/A + |T_n|(r_o − r_i)/I_p above τ_c; style 0, the centres farther apart
-//! than 2 r_b. A bond that breaks still acts at that step, no more from the next, and is
+//! than 2 r_b; style 2, as style 1 or the pair's mean temperature (`Temp`) above
+//! T_break. A bond that breaks still acts at that step, no more from the next, and is
 //! removed at the next re-neighboring (`numbonds` counts it until then).
+//!
+//! Styles 3 to 5 break as style 1, and a bond that breaks while its spheres overlap
+//! (r < R_a + R_b) turns into a *separating* bond: its loads are cleared, it no longer
+//! counts in `numbonds`, and until the spheres separate it pushes them apart along n
+//! with (no torque, no damping)
+//! - style 3: 0.001 K_n (R_a + R_b − r);
+//! - style 4: K_n (L₀ − r) while r < L₀, L₀ reset to r at the break;
+//! - style 5: (4/3) Y* √(r* (L₀ − r)) (L₀ − r) while r < L₀, L₀ reset to r at the
+//!   break, r* = r_o/2, Y* = Y/(2(1 − ν²)), ν = Y/(2G) − 1.
+//!
+//! A bond of styles 3 to 5 that breaks without overlap, or a separating bond whose
+//! spheres no longer overlap, leaves `numbonds` at once.
 //!
 //! LIGGGHTS-PFM's form of `bond_coeff` (see [`BondCoeff::pfm`]) is the same beam with a
 //! prescribed length L₀ = lb (R_a + R_b), moduli of its own for bending and twisting,
@@ -38,7 +51,9 @@
 //!
 //! Each figure above was measured against the fork (LIGGGHTS_Flexible_Fibers 0fc7c5b,
 //! built here): three bonded pairs in general motion follow it to 1e-10 over 1000 steps
-//! for each damping style (`crates/rdem-cli/tests/bond_gran.rs`).
+//! for each damping style; a pair broken while overlapping follows it to 1e-14 over 2000
+//! steps for break styles 3, 4 and 5, and a pair heated past T_break (style 2) breaks at
+//! its step (`crates/rdem-cli/tests/bond_gran.rs`).
 //!
 //! **Where the bonds live.** Each sphere holds its bonds in the dense per-particle
 //! property [`PROP`], [`SLOT`] values per bond: partner tag, bond type, broken flag, L₀,
@@ -82,6 +97,13 @@ const TORQUE: usize = 16;
 
 /// Marks a bond slot whose partner is not resolved.
 const NONE: u32 = u32::MAX;
+
+/// Values of a slot's `BROKEN`: the bond holds; it broke (dropped at the next
+/// re-neighboring); it broke while its spheres overlapped and pushes them apart (break
+/// styles 3 to 5).
+const INTACT: f64 = 0.0;
+const BROKE: f64 = 1.0;
+const SEPARATING: f64 = 2.0;
 
 /// The damping of a bond type (`bond_coeff`'s damping style and values).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -132,6 +154,37 @@ pub enum Breaking {
         /// τ_c.
         tau: f64,
     },
+    /// Style 2: as style 1, or when the mean temperature of the pair exceeds T_break.
+    Hot {
+        /// σ_c.
+        sigma: f64,
+        /// τ_c.
+        tau: f64,
+        /// T_break.
+        temp: f64,
+    },
+    /// Styles 3 to 5: as style 1; a bond that breaks while its spheres overlap pushes
+    /// them apart until they separate.
+    Separating {
+        /// σ_c.
+        sigma: f64,
+        /// τ_c.
+        tau: f64,
+        /// How the broken bond pushes.
+        push: Push,
+    },
+}
+
+/// How a bond of break styles 3 to 5 that broke while its spheres overlap pushes them
+/// apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Push {
+    /// Style 3: 0.001 K_n times the overlap.
+    Weak,
+    /// Style 4: K_n times the shortening from the length at the break.
+    Linear,
+    /// Style 5: a Hertz force on the shortening from the length at the break.
+    Hertz,
 }
 
 impl Breaking {
@@ -140,7 +193,28 @@ impl Breaking {
         match self {
             Breaking::Distance { .. } => 0,
             Breaking::Stress { .. } => 1,
+            Breaking::Hot { .. } => 2,
+            Breaking::Separating { push, .. } => match push {
+                Push::Weak => 3,
+                Push::Linear => 4,
+                Push::Hertz => 5,
+            },
         }
+    }
+
+    /// σ_c and τ_c of the styles that break by stress.
+    fn strength(&self) -> Option<(f64, f64)> {
+        match *self {
+            Breaking::Distance { .. } => None,
+            Breaking::Stress { sigma, tau }
+            | Breaking::Hot { sigma, tau, .. }
+            | Breaking::Separating { sigma, tau, .. } => Some((sigma, tau)),
+        }
+    }
+
+    /// Styles 3 to 5: a bond broken without overlap leaves at once.
+    fn leaves_at_once(&self) -> bool {
+        matches!(self, Breaking::Separating { .. })
     }
 }
 
@@ -213,16 +287,37 @@ impl BondCoeff {
         if !damping_ok {
             return bad("bond damping", format!("{damping:?}: values must be >= 0"));
         }
-        match breaking {
-            Breaking::Distance { rb } => positive("bond break radius", rb)?,
-            Breaking::Stress { sigma, tau } => {
-                if !(sigma > 0.0 && tau > 0.0) {
-                    return bad(
-                        "bond strength",
-                        format!("sigma {sigma} and tau {tau} must be > 0"),
-                    );
-                }
+        if let Breaking::Distance { rb } = breaking {
+            positive("bond break radius", rb)?;
+        }
+        if let Some((sigma, tau)) = breaking.strength() {
+            if !(sigma > 0.0 && tau > 0.0) {
+                return bad(
+                    "bond strength",
+                    format!("sigma {sigma} and tau {tau} must be > 0"),
+                );
             }
+        }
+        if let Breaking::Hot { temp, .. } = breaking {
+            if !temp.is_finite() {
+                return bad("bond break temperature", format!("{temp} is not finite"));
+            }
+        }
+        let nu = youngs / (2.0 * shear) - 1.0;
+        if matches!(
+            breaking,
+            Breaking::Separating {
+                push: Push::Hertz,
+                ..
+            }
+        ) && nu.abs() >= 1.0
+        {
+            return bad(
+                "break style 5",
+                format!(
+                    "its Poisson's ratio Y/(2G) - 1 = {nu} from Y {youngs} and G {shear} must lie within (-1, 1)"
+                ),
+            );
         }
         Ok(Self {
             ro,
@@ -312,6 +407,8 @@ pub struct GranBonds {
     pub disable_contact: bool,
     prop: Option<PropId>,
     molecule: Option<PropId>,
+    /// The temperature `Temp` (break style 2).
+    temp: Option<PropId>,
     /// The last molecule ID given.
     last_molecule: u64,
     /// Partner index per bond slot of each owned particle (`NONE`: none).
@@ -329,6 +426,20 @@ struct Side {
     w: DVec3,
     r: f64,
     m: f64,
+    /// Temperature (break style 2; 0 otherwise).
+    t: f64,
+}
+
+/// What became of a bond at a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Outcome {
+    /// It holds.
+    Holds,
+    /// It broke.
+    Breaks,
+    /// It broke while its spheres overlap (break styles 3 to 5): it pushes them apart
+    /// from the next step.
+    Separates,
 }
 
 /// What a bond gives its lower-tag sphere a: force, torque; and b's torque.
@@ -379,14 +490,16 @@ fn dry(l: DVec3, w: DVec3, k: f64, b0: f64, b1: f64, b2: f64) -> DVec3 {
 /// The bond between a (the lower tag) and b, history `h` (one slot) advanced, and
 /// whether it breaks: a bond whose stress exceeds its strength still acts at this step
 /// and acts no more from the next (the fork's order: a pair pulled apart by a constant
-/// force moves as the fork's to the digit and goes free at the same step).
+/// force moves as the fork's to the digit and goes free at the same step). A bond of
+/// break styles 3 to 5 that breaks while its spheres overlap has its loads cleared (and
+/// its length set to r for styles 4 and 5) for its separating phase ([`push`]).
 #[inline(always)]
-fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, bool) {
+fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, Outcome) {
     let d = b.x - a.x;
     let r = d.length();
     // Coincident centres (or a NaN): no direction, no force.
     if r.is_nan() || r <= 0.0 {
-        return (Load::default(), false);
+        return (Load::default(), Outcome::Holds);
     }
     let n = d / r;
     if h[LEN0] == 0.0 {
@@ -420,14 +533,18 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
     let fene = c.fene.map_or(1.0, |bn| (1.0 - l0 / bn) / (1.0 - r / bn));
     let fnorm = kn * (r - l0) * fene * n;
 
+    let stressed = |sigma: f64, tau: f64| {
+        let arm = ro - ri;
+        let s = fnorm.length() / area + 2.0 * tt.length() * arm / ip;
+        let t = ft.length() / area + tn.length() * arm / ip;
+        s > sigma || t > tau
+    };
     let broke = match c.breaking {
         Breaking::Distance { rb } => r > 2.0 * rb,
-        Breaking::Stress { sigma, tau } => {
-            let arm = ro - ri;
-            let s = fnorm.length() / area + 2.0 * tt.length() * arm / ip;
-            let t = ft.length() / area + tn.length() * arm / ip;
-            s > sigma || t > tau
+        Breaking::Stress { sigma, tau } | Breaking::Separating { sigma, tau, .. } => {
+            stressed(sigma, tau)
         }
+        Breaking::Hot { sigma, tau, temp } => stressed(sigma, tau) || 0.5 * (a.t + b.t) > temp,
     };
 
     let fe = fnorm + ft;
@@ -448,14 +565,62 @@ fn bond(a: &Side, b: &Side, c: &BondCoeff, h: &mut [f64], dt: f64) -> (Load, boo
         }
     }
     let lever = n.cross(ft);
-    let load = Load {
+    let mut load = Load {
         f,
         ta: a.r * lever + m,
         tb: b.r * lever - m,
         fe,
         me,
     };
-    (load, broke)
+    let outcome = match c.breaking {
+        _ if !broke => Outcome::Holds,
+        Breaking::Separating { push, .. } if r < a.r + b.r => {
+            h[FT..TT + 3].fill(0.0);
+            if push != Push::Weak {
+                h[LEN0] = r;
+            }
+            load.fe = DVec3::ZERO;
+            load.me = DVec3::ZERO;
+            Outcome::Separates
+        }
+        _ => Outcome::Breaks,
+    };
+    (load, outcome)
+}
+
+/// The force on a (the lower tag) of a separating bond (history `h`) of break style 3,
+/// 4 or 5 while its spheres a and b overlap (see the module's doc), or `None` once they
+/// no longer do: the bond is then broken.
+#[inline(always)]
+fn push(a: &Side, b: &Side, c: &BondCoeff, h: &[f64]) -> Option<DVec3> {
+    let Breaking::Separating { push, .. } = c.breaking else {
+        return None;
+    };
+    let d = b.x - a.x;
+    let r = d.length();
+    let gap = r - (a.r + b.r);
+    if gap > 0.0 {
+        return None;
+    }
+    if r.is_nan() || r <= 0.0 {
+        return Some(DVec3::ZERO);
+    }
+    let l0 = h[LEN0];
+    let rmin = a.r.min(b.r);
+    let (ro, ri) = (c.ro * rmin, c.ri * rmin);
+    let kn = c.youngs * std::f64::consts::PI * (ro * ro - ri * ri) / l0;
+    let short = l0 - r;
+    let f = match push {
+        Push::Weak => -0.001 * kn * gap,
+        Push::Linear => (kn * short).max(0.0),
+        Push::Hertz if short > 0.0 => {
+            let nu = c.youngs / (2.0 * c.shear) - 1.0;
+            let y = 0.5 * c.youngs / (1.0 - nu * nu);
+            4.0 / 3.0 * y * (0.5 * ro * short).sqrt() * short
+        }
+        Push::Hertz => 0.0,
+    };
+    Some(-f / r * d)
 }
 
 impl GranBonds {
@@ -475,6 +640,7 @@ impl GranBonds {
             coeffs: vec![None; ntypes],
             creators: Vec::new(),
             disable_contact: false,
+            temp: None,
             prop: None,
             molecule: None,
             last_molecule: 0,
@@ -494,10 +660,32 @@ impl GranBonds {
     }
 
     /// Adds [`PROP`] to `p` (idempotent).
+    /// Adds the per-particle properties of the bonds; with break style 2, finds the
+    /// temperature `Temp` (forwarded to the ghosts every step from now on), which must
+    /// exist (`fix property/atom Temp` or `fix heat/gran`).
     pub fn attach(&mut self, p: &mut Particles) -> Result<()> {
         let w = self.width();
         self.prop = Some(p.add_property(PROP, w, &vec![0.0; w])?);
         self.molecule = Some(p.add_property(MOLECULE, 1, &[0.0])?);
+        let hot = self
+            .coeffs
+            .iter()
+            .flatten()
+            .any(|c| matches!(c.breaking, Breaking::Hot { .. }));
+        self.temp = None;
+        if hot {
+            let id = p.property(crate::heat::TEMP).ok_or_else(|| Error::Invalid {
+                what: "bond_coeff",
+                reason: format!(
+                    "break style 2 breaks by the temperature, and there is no per-particle temperature '{}': \
+                     define it with `fix ID all property/atom {} scalar yes no no T0` or `fix heat/gran`",
+                    crate::heat::TEMP,
+                    crate::heat::TEMP
+                ),
+            })?;
+            p.set_forward(id);
+            self.temp = Some(id);
+        }
         Ok(())
     }
 
@@ -635,16 +823,24 @@ impl GranBonds {
         slots.chunks_exact(SLOT).filter(|s| s[TYPE] != 0.0).count()
     }
 
-    /// Bonds counted once each (by the sphere of the lower tag), broken ones included
-    /// until the next re-neighboring: thermo `numbonds` on this rank.
+    /// Bonds counted once each (by the sphere of the lower tag), broken ones of break
+    /// styles 0 to 2 included until the next re-neighboring, those of styles 3 to 5
+    /// (separating ones too) not: thermo `numbonds` on this rank.
     pub fn count_local(&self, p: &Particles) -> u64 {
         let Some(id) = self.prop else { return 0 };
         let data = &p.props[id.0];
+        let counts = |s: &[f64]| {
+            s[TYPE] != 0.0
+                && (s[BROKEN] == INTACT
+                    || s[BROKEN] == BROKE
+                        && !self.coeffs[s[TYPE] as usize - 1]
+                            .is_some_and(|c| c.breaking.leaves_at_once()))
+        };
         (0..p.nlocal())
             .map(|i| {
                 data.get(i)
                     .chunks_exact(SLOT)
-                    .filter(|s| s[TYPE] != 0.0 && p.tag[i] < s[TAG] as Tag)
+                    .filter(|s| counts(s) && p.tag[i] < s[TAG] as Tag)
                     .count() as u64
             })
             .sum()
@@ -660,7 +856,7 @@ impl GranBonds {
             let mut k = 0;
             for s in 0..m {
                 let slot = s * SLOT;
-                if row[slot + TYPE] != 0.0 && row[slot + BROKEN] == 0.0 {
+                if row[slot + TYPE] != 0.0 && row[slot + BROKEN] != BROKE {
                     if k != s {
                         row.copy_within(slot..slot + SLOT, k * SLOT);
                     }
@@ -696,7 +892,7 @@ impl GranBonds {
                 });
                 match best {
                     Some(j) => self.links[i * m + s] = j,
-                    None if h[BROKEN] != 0.0 => {}
+                    None if h[BROKEN] == BROKE => {}
                     None => {
                         return Err(Error::Invalid {
                             what: "bond/gran",
@@ -724,11 +920,23 @@ impl GranBonds {
         let coeffs = &self.coeffs;
         let links = &self.links;
         let (view, f, torque, props, _) = crate::par::View::split(p);
-        let data = &mut props[id.0].data[..nl * w];
+        let (data, temp) = match self.temp {
+            // Two distinct properties: the bonds written, the temperature read.
+            Some(t) => {
+                let (lo, hi) = props.split_at_mut(id.0.max(t.0));
+                let (b, t) = if id.0 < t.0 {
+                    (&mut lo[id.0], &hi[0])
+                } else {
+                    (&mut hi[0], &lo[t.0])
+                };
+                (&mut b.data[..nl * w], Some(&t.data[..]))
+            }
+            None => (&mut props[id.0].data[..nl * w], None),
+        };
         let one = |i: usize, fi: &mut DVec3, ti: &mut DVec3, row: &mut [f64]| {
             for s in 0..m {
                 let h = &mut row[s * SLOT..(s + 1) * SLOT];
-                if h[TYPE] == 0.0 || h[BROKEN] != 0.0 {
+                if h[TYPE] == 0.0 || h[BROKEN] == BROKE {
                     continue;
                 }
                 let j = links.get(i * m + s).copied().unwrap_or(NONE);
@@ -742,6 +950,7 @@ impl GranBonds {
                     w: view.omega[k],
                     r: view.radius[k],
                     m: view.rmass[k],
+                    t: temp.map_or(0.0, |t| t[k]),
                 };
                 let first = view.tag[i] < view.tag[j];
                 let (a, b) = if first {
@@ -752,7 +961,15 @@ impl GranBonds {
                 let Some(c) = coeffs[h[TYPE] as usize - 1].as_ref() else {
                     continue;
                 };
-                let (l, broke) = bond(&a, &b, c, h, dt);
+                if h[BROKEN] == SEPARATING {
+                    match push(&a, &b, c, h) {
+                        Some(fa) if first => *fi += fa,
+                        Some(fa) => *fi -= fa,
+                        None => h[BROKEN] = BROKE,
+                    }
+                    continue;
+                }
+                let (l, outcome) = bond(&a, &b, c, h, dt);
                 put3(h, FORCE, l.fe);
                 put3(h, TORQUE, l.me);
                 if first {
@@ -762,8 +979,10 @@ impl GranBonds {
                     *fi -= l.f;
                     *ti += l.tb;
                 }
-                if broke {
-                    h[BROKEN] = 1.0;
+                match outcome {
+                    Outcome::Holds => {}
+                    Outcome::Breaks => h[BROKEN] = BROKE,
+                    Outcome::Separates => h[BROKEN] = SEPARATING,
                 }
             }
         };
@@ -913,7 +1132,7 @@ impl GranBonds {
         for i in 0..p.nlocal() {
             for (s, h) in p.props[id.0].get(i).chunks_exact(SLOT).enumerate() {
                 let j = self.links.get(i * m + s).copied().unwrap_or(NONE);
-                if h[TYPE] == 0.0 || h[BROKEN] != 0.0 || j == NONE {
+                if h[TYPE] == 0.0 || h[BROKEN] != INTACT || j == NONE {
                     continue;
                 }
                 let Some(c) = self.coeffs[h[TYPE] as usize - 1].as_ref() else {
@@ -965,7 +1184,8 @@ impl GranBonds {
                     force: get3(h, FORCE),
                     torque: get3(h, TORQUE),
                     len0: h[LEN0],
-                    broken: h[BROKEN] != 0.0,
+                    broken: h[BROKEN] == BROKE,
+                    separating: h[BROKEN] == SEPARATING,
                 });
             }
         }
@@ -1010,12 +1230,12 @@ fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
     out
 }
 
-/// True when the bonds `row` of a sphere (its values of [`PROP`]) hold an unbroken bond
-/// to the sphere of tag `tag`.
+/// True when the bonds `row` of a sphere (its values of [`PROP`]) hold an unbroken (or
+/// separating) bond to the sphere of tag `tag`.
 #[inline]
 pub fn holds(row: &[f64], tag: Tag) -> bool {
     row.chunks_exact(SLOT)
-        .any(|s| s[TYPE] != 0.0 && s[BROKEN] == 0.0 && s[TAG] as Tag == tag)
+        .any(|s| s[TYPE] != 0.0 && s[BROKEN] != BROKE && s[TAG] as Tag == tag)
 }
 
 /// One bond as `compute property/local` reports it.
@@ -1044,6 +1264,9 @@ pub struct BondRow {
     pub len0: f64,
     /// Broken since the last re-neighboring.
     pub broken: bool,
+    /// Broken while its spheres overlap, pushing them apart (break styles 3 to 5; the
+    /// fork reports its type negative).
+    pub separating: bool,
 }
 
 #[cfg(test)]
@@ -1072,6 +1295,7 @@ mod tests {
             w,
             r: 1e-3,
             m: 4.18879e-6,
+            t: 0.0,
         }
     }
 
@@ -1141,6 +1365,6 @@ mod tests {
         h[LEN0] = 2e-3;
         let a = side(DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
         let b = side(DVec3::new(2.001e-3, 0.0, 0.0), DVec3::ZERO, DVec3::ZERO);
-        assert!(bond(&a, &b, &c, &mut h, 1e-7).1);
+        assert_eq!(bond(&a, &b, &c, &mut h, 1e-7).1, Outcome::Breaks);
     }
 }

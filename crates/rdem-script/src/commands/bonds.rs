@@ -1,7 +1,7 @@
 //! `bond_style gran` and `bond_coeff`: the flexible-fiber bonds of
 //! LIGGGHTS_Flexible_Fibers (see [`rdem::bond_gran`]).
 
-use rdem::bond_gran::{BondCoeff, Breaking, Damping};
+use rdem::bond_gran::{BondCoeff, Breaking, Damping, Push};
 
 use crate::args::{suggest, Args, CmdResult};
 use crate::sim::Sim;
@@ -43,8 +43,7 @@ pub(super) fn bond_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
 }
 
 /// `bond_coeff T ro ri Y G dstyle d... bstyle b...` (Flexible_Fibers' form): damping
-/// style 0 (one value, unused), 1 (β) or 2 (β₀ β₁ β₂); break style 0 (r_b) or 1
-/// (σ_c τ_c); or `bond_coeff T ro ri lb Sn St Sben Stor damp bn bt bstyle b...`
+/// style 0 (one value, unused), 1 (β) or 2 (β₀ β₁ β₂); break style 0 to 5 ([`breaking`]); or `bond_coeff T ro ri lb Sn St Sben Stor damp bn bt bstyle b...`
 /// (LIGGGHTS-PFM's form, [`BondCoeff::pfm`]).
 pub(super) fn bond_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let ntypes = sim.setup.bond_gran.map_or(0, |b| b.0);
@@ -83,35 +82,60 @@ pub(super) fn bond_coeff(sim: &mut Sim, a: &mut Args) -> CmdResult {
     Ok(())
 }
 
-/// The break style and its values (both dialects): 0 r_b (apart beyond 2 r_b) or
-/// 1 σ_c τ_c (by stress).
-fn breaking(a: &mut Args) -> CmdResult<Breaking> {
+/// The break style and its values: 0 r_b (apart beyond 2 r_b), 1 σ_c τ_c (by
+/// stress), 2 σ_c τ_c T_break (by stress or the pair's mean temperature); in
+/// Flexible_Fibers' form (`fibers`) also 3, 4 and 5 σ_c τ_c (by stress, a bond broken
+/// while its spheres overlap pushing them apart until they separate).
+fn breaking(a: &mut Args, fibers: bool) -> CmdResult<Breaking> {
     let bk = a.pos();
-    Ok(match a.u64("break style")? {
-        0 => Breaking::Distance {
+    let styles = if fibers {
+        "0 r_b (apart beyond 2 r_b), 1 sigma_c tau_c (by stress), 2 sigma_c tau_c T_break (by stress or temperature), \
+         3, 4 or 5 sigma_c tau_c (by stress; a bond broken while its spheres overlap pushes them apart)"
+    } else {
+        "0 r_b (apart beyond 2 r_b), 1 sigma_c tau_c (by stress) or 2 sigma_c tau_c T_break (by stress or temperature)"
+    };
+    let style = a.u64("break style")?;
+    if style > 5 || (!fibers && style > 2) {
+        let form = if fibers {
+            ""
+        } else {
+            " in LIGGGHTS-PFM's form of bond_coeff"
+        };
+        return Err(a.error_at(
+            bk,
+            format!("unknown break style {style}{form}"),
+            Some(styles.into()),
+        ));
+    }
+    if style == 0 {
+        return Ok(Breaking::Distance {
             rb: a.positive("bond break radius r_b")?,
+        });
+    }
+    let sigma = a.positive("bond normal strength sigma_c")?;
+    let tau = a.positive("bond shear strength tau_c")?;
+    Ok(match style {
+        1 => Breaking::Stress { sigma, tau },
+        2 => Breaking::Hot {
+            sigma,
+            tau,
+            temp: a.f64("bond break temperature T_break")?,
         },
-        1 => Breaking::Stress {
-            sigma: a.positive("bond normal strength sigma_c")?,
-            tau: a.positive("bond shear strength tau_c")?,
+        3 => Breaking::Separating {
+            sigma,
+            tau,
+            push: Push::Weak,
         },
-        b @ 2..=5 => {
-            return Err(a.error_at(
-                bk,
-                format!("break style {b} is not supported yet"),
-                Some(
-                    "0 r_b (apart beyond 2 r_b) or 1 sigma_c tau_c (by stress); a very large strength keeps the bond"
-                        .into(),
-                ),
-            ))
-        }
-        b => {
-            return Err(a.error_at(
-                bk,
-                format!("unknown break style {b}"),
-                Some("0 r_b or 1 sigma_c tau_c".into()),
-            ))
-        }
+        4 => Breaking::Separating {
+            sigma,
+            tau,
+            push: Push::Linear,
+        },
+        _ => Breaking::Separating {
+            sigma,
+            tau,
+            push: Push::Hertz,
+        },
     })
 }
 
@@ -127,7 +151,7 @@ fn pfm_coeff(a: &mut Args) -> CmdResult<BondCoeff> {
     let damp = a.non_negative("bond damping ratio damp")?;
     let bn = a.positive("bond maximum length bn")?;
     a.f64("bt (read; it has no effect in LIGGGHTS-PFM)")?;
-    let breaking = breaking(a)?;
+    let breaking = breaking(a, false)?;
     BondCoeff::pfm(ro, ri, lb, sn, st, sben, stor, damp, bn, breaking)
         .map_err(|e| a.error_cmd(e.to_string(), None))
 }
@@ -160,7 +184,7 @@ fn fibers_coeff(a: &mut Args) -> CmdResult<BondCoeff> {
             ))
         }
     };
-    let breaking = breaking(a)?;
+    let breaking = breaking(a, true)?;
     BondCoeff::new(ro, ri, youngs, shear, damping, breaking)
         .map_err(|e| a.error_cmd(e.to_string(), None))
 }

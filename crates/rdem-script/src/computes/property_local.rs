@@ -120,7 +120,9 @@ impl ScriptCompute for PropertyLocal {
                 out.push(match k {
                     0 => r.atom1 as f64,
                     1 => r.atom2 as f64,
-                    2 => r.btype as f64,
+                    // The fork negates a separating bond's type.
+                    2 if r.separating => -f64::from(r.btype),
+                    2 => f64::from(r.btype),
                     3..=5 => r.x1[k - 3],
                     6..=8 => r.x2[k - 6],
                     9..=11 => r.force[k - 9],
