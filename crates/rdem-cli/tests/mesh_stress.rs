@@ -167,6 +167,48 @@ run 0
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The reference point (`f_ID[7..9]`, the torque's pivot) moves with the mesh, as in
+/// LIGGGHTS 3.8: from (1, 2, 3) mm, 30 steps of `linear 0.1 0 -0.4` then 20 steps of a
+/// rotation about the z axis of period 1 s. LIGGGHTS 3.8 printed (1.3, 2, 1.8) mm, then
+/// (1.2747653, 2.0161779, 1.8) mm; here the closed forms within 1e-12.
+#[test]
+fn the_reference_point_moves_with_the_mesh() {
+    let dir = scratch_dir("mesh-refpoint");
+    let script = HEAD.replace(
+        "wear finnie\n",
+        "wear finnie reference_point 0.001 0.002 0.003\n",
+    ) + "timestep 1e-4
+create_atoms 1 single 0.05 0.05 0.1 units box
+set atom 1 diameter 0.004 density 2500
+fix lin all move/mesh mesh cad linear 0.1 0.0 -0.4
+variable a equal f_cad[7]
+variable b equal f_cad[8]
+variable c equal f_cad[9]
+thermo_style custom step v_a v_b v_c
+thermo_modify format float %.15g
+thermo 10
+run 30
+unfix lin
+fix rot all move/mesh mesh cad rotate origin 0 0 0 axis 0 0 1 period 1.0
+run 20
+";
+    let rows = thermo_rows(&run_in(&dir, &script, 1));
+    let at = |step: f64| rows.iter().rev().find(|r| r[0] == step).unwrap().clone();
+    let close = |got: &[f64], want: [f64; 3]| {
+        for k in 0..3 {
+            assert!((got[k + 1] - want[k]).abs() < 1e-12, "{got:?} {want:?}");
+        }
+    };
+    close(&at(30.0), [0.0013, 0.002, 0.0018]);
+    let phi = std::f64::consts::TAU * 20.0 * 1e-4;
+    let (s, c) = phi.sin_cos();
+    close(
+        &at(50.0),
+        [0.0013 * c - 0.002 * s, 0.0013 * s + 0.002 * c, 0.0018],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Triangles of an STL file (our reader, as fix mesh/surface reads it).
 fn rdem_io_read(path: &Path) -> usize {
     let text = std::fs::read_to_string(path).unwrap();

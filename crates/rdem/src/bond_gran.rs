@@ -379,8 +379,12 @@ pub struct Creator {
     pub itype: u32,
     /// See `itype`.
     pub jtype: u32,
-    /// Centre distance below which a pair bonds.
+    /// Centre distance below which a pair bonds; with `relative`, over the sum of the
+    /// two radii.
     pub cutoff: f64,
+    /// `doNorm yes`: `cutoff` is relative to R_a + R_b (a pair bonds when
+    /// r²/(R_a + R_b)² < cutoff²).
+    pub relative: bool,
     /// Bond type of the new bonds (1-based).
     pub btype: u32,
     /// Most new bonds per sphere at one step.
@@ -388,6 +392,26 @@ pub struct Creator {
     /// (step, bonds made) of each step that made bonds, for the front end's log; the
     /// front end drains it.
     pub made: Vec<(u64, u64)>,
+}
+
+impl Creator {
+    /// The largest centre distance that bonds, for spheres of radius at most `rmax`.
+    pub fn distance(&self, rmax: f64) -> f64 {
+        if self.relative {
+            self.cutoff * 2.0 * rmax
+        } else {
+            self.cutoff
+        }
+    }
+
+    /// Whether a pair of radii `ra`, `rb` at squared distance `rsq` is close enough.
+    fn close(&self, rsq: f64, ra: f64, rb: f64) -> bool {
+        if self.relative {
+            rsq / ((ra + rb) * (ra + rb)) < self.cutoff * self.cutoff
+        } else {
+            rsq < self.cutoff * self.cutoff
+        }
+    }
 }
 
 /// The bonds of a run: settings, coefficients, creators and the resolved partners.
@@ -744,9 +768,10 @@ impl GranBonds {
     }
 
     /// Checks before a run: every bond type has coefficients, every creator's bond type
-    /// exists and its cutoff lies within the neighbor cutoff `reach` (the ghosts' reach:
-    /// a pair across two ranks must be seen by both).
-    pub fn check(&self, reach: f64) -> Result<()> {
+    /// exists and its cutoff (a relative one times twice the largest radius `rmax`) lies
+    /// within the neighbor cutoff `reach` (the ghosts' reach: a pair across two ranks
+    /// must be seen by both).
+    pub fn check(&self, reach: f64, rmax: f64) -> Result<()> {
         if let Some(t) = self.coeffs.iter().position(Option::is_none) {
             return Err(Error::Invalid {
                 what: "bond_coeff",
@@ -763,13 +788,14 @@ impl GranBonds {
                     ),
                 });
             }
-            if c.every > 0 && c.cutoff > reach {
+            let cut = c.distance(rmax);
+            if c.every > 0 && cut > reach {
                 return Err(Error::Invalid {
                     what: "fix bond/create/gran",
                     reason: format!(
-                        "{}: the cutoff {} exceeds the neighbor cutoff {} (twice the largest radius plus the skin), \
+                        "{}: the cutoff {cut} exceeds the neighbor cutoff {reach} (twice the largest radius plus the skin), \
                          the reach of the ghost particles; raise the skin with `neighbor`",
-                        c.id, c.cutoff, reach
+                        c.id
                     ),
                 });
             }
@@ -1038,8 +1064,13 @@ impl GranBonds {
             let mut made = 0;
             // Candidates (lower tag, higher tag, index of lower, index of higher).
             let mut cand: Vec<(Tag, Tag, usize, usize)> = Vec::new();
-            for (i, j) in near_pairs(p, c.cutoff) {
+            let rmax = p.radius.iter().copied().fold(0.0, f64::max);
+            for (i, j) in near_pairs(p, c.distance(rmax)) {
                 let (i, j) = (i as usize, j as usize);
+                let rsq = (p.x[j] - p.x[i]).length_squared();
+                if !c.close(rsq, p.radius[i], p.radius[j]) {
+                    continue;
+                }
                 let (ti, tj) = (p.ty[i], p.ty[j]);
                 let types = (ti == c.itype && tj == c.jtype) || (ti == c.jtype && tj == c.itype);
                 if !types || p.mask[i] & c.groupbit == 0 || p.mask[j] & c.groupbit == 0 {

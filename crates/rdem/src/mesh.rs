@@ -285,6 +285,30 @@ impl TriMesh {
     /// corner), a cube, an open box, and every triangle of the tutorials' meshGran
     /// hopper (92) and chute_wear chute (1616).
     pub fn active_corner_counts(&self, coplanar_cos: f64) -> Vec<u32> {
+        let mut count = vec![0; self.tris.len()];
+        for t in self.corner_owners(coplanar_cos).into_iter().flatten() {
+            count[t as usize] += 1;
+        }
+        count
+    }
+
+    /// The triangle that holds each active edge ([`TriMesh::edge_is_active`]) in
+    /// LIGGGHTS 3.8, the last of its triangles, or `None` for an inactive edge: a sphere
+    /// whose nearest point on a triangle lies on an edge touches that edge only through
+    /// its holder.
+    pub fn edge_owners(&self, coplanar_cos: f64) -> Vec<Option<u32>> {
+        (0..self.edges.len() as u32)
+            .map(|e| {
+                self.edge_is_active(e, coplanar_cos)
+                    .then(|| *self.triangles_of_edge(e).iter().max().expect("a triangle"))
+            })
+            .collect()
+    }
+
+    /// The triangle that holds each active corner (see
+    /// [`TriMesh::active_corner_counts`]) in LIGGGHTS 3.8, the last of its triangles, or
+    /// `None` for an inactive corner (or a vertex of no triangle).
+    pub fn corner_owners(&self, coplanar_cos: f64) -> Vec<Option<u32>> {
         let nv = self.verts.len();
         // The edges at each vertex: (unit direction away from it, active).
         let mut at: Vec<Vec<(DVec3, bool)>> = vec![Vec::new(); nv];
@@ -300,21 +324,20 @@ impl TriMesh {
                 last[v as usize] = Some(t);
             }
         }
-        let mut count = vec![0; self.tris.len()];
-        for (v, edges) in at.iter().enumerate() {
-            let straight_on = |(i, &(d, _)): (usize, &(DVec3, bool))| {
-                edges
-                    .iter()
-                    .enumerate()
-                    .any(|(j, &(d2, _))| j != i && -d.dot(d2) >= coplanar_cos)
-            };
-            let mut active = edges.iter().enumerate().filter(|(_, &(_, a))| a);
-            let corner = active.clone().next().is_some() && !active.any(straight_on);
-            if let (true, Some(t)) = (corner, last[v]) {
-                count[t] += 1;
-            }
-        }
-        count
+        at.iter()
+            .enumerate()
+            .map(|(v, edges)| {
+                let straight_on = |(i, &(d, _)): (usize, &(DVec3, bool))| {
+                    edges
+                        .iter()
+                        .enumerate()
+                        .any(|(j, &(d2, _))| j != i && -d.dot(d2) >= coplanar_cos)
+                };
+                let mut active = edges.iter().enumerate().filter(|(_, &(_, a))| a);
+                let corner = active.clone().next().is_some() && !active.any(straight_on);
+                last[v].filter(|_| corner).map(|t| t as u32)
+            })
+            .collect()
     }
 
     /// The corners of triangle `t`.

@@ -213,6 +213,9 @@ pub struct MeshMotion {
     pub movers: Vec<(String, Motion, f64)>,
     /// Vertex positions when the first motion began (later removals bake into them).
     pub base: Vec<DVec3>,
+    /// Other points carried with the mesh (the stress's reference point), where they
+    /// were when the first motion began, as [`MeshMotion::base`].
+    pub carried: Vec<DVec3>,
     /// Vertex velocities at the last update (empty for a mesh at rest).
     pub vel: Vec<DVec3>,
     /// Vertex positions at the last candidate build (for the re-neighboring decision).
@@ -220,11 +223,20 @@ pub struct MeshMotion {
 }
 
 impl MeshMotion {
-    /// Adds motion `id` starting at time `t` on a mesh whose vertices are now `verts`.
-    pub fn add(&mut self, id: &str, motion: Motion, t: f64, verts: &[DVec3]) -> Result<()> {
+    /// Adds motion `id` starting at time `t` on a mesh whose vertices are now `verts`,
+    /// carrying `points` with it ([`MeshMotion::carry`]).
+    pub fn add(
+        &mut self,
+        id: &str,
+        motion: Motion,
+        t: f64,
+        verts: &[DVec3],
+        points: &[DVec3],
+    ) -> Result<()> {
         motion.validate()?;
         if self.movers.is_empty() {
             self.base = verts.to_vec();
+            self.carried = points.to_vec();
         }
         self.movers.push((id.to_string(), motion, t));
         Ok(())
@@ -247,7 +259,7 @@ impl MeshMotion {
         }
         let (_, m, t0) = self.movers.pop().expect("k is valid");
         let pose = m.pose(t - t0);
-        for b in &mut self.base {
+        for b in self.base.iter_mut().chain(&mut self.carried) {
             *b = pose.apply(*b);
         }
         if self.movers.is_empty() {
@@ -283,6 +295,21 @@ impl MeshMotion {
             *x = y;
             *v = u;
         }
+    }
+
+    /// Where the motions put the carried point `k` ([`MeshMotion::carried`]) at time
+    /// `t`; `None` without motions or such a point.
+    pub fn carry(&self, t: f64, k: usize) -> Option<DVec3> {
+        let b = *self.carried.get(k)?;
+        if self.movers.is_empty() {
+            return None;
+        }
+        Some(
+            self.movers
+                .iter()
+                .rev()
+                .fold(b, |y, (_, m, t0)| m.pose(t - t0).apply(y)),
+        )
     }
 
     /// The largest distance a vertex has moved since the last candidate build.
@@ -327,8 +354,14 @@ mod tests {
     fn linear_and_rotate() {
         let mut m = MeshMotion::default();
         let mut x = verts();
-        m.add("lin", Motion::Linear(DVec3::new(0.5, 0.0, -0.3)), 2.0, &x)
-            .unwrap();
+        m.add(
+            "lin",
+            Motion::Linear(DVec3::new(0.5, 0.0, -0.3)),
+            2.0,
+            &x,
+            &[],
+        )
+        .unwrap();
         m.update(2.0 + 0.4, &mut x);
         for (a, b) in x.iter().zip(verts()) {
             assert!((*a - (b + DVec3::new(0.2, 0.0, -0.12))).length() < 1e-15);
@@ -345,7 +378,7 @@ mod tests {
             axis: DVec3::Y,
             period: 2.0,
         };
-        m.add("rot", rot, 0.0, &x).unwrap();
+        m.add("rot", rot, 0.0, &x, &[]).unwrap();
         m.update(2.0, &mut x);
         for (a, b) in x.iter().zip(verts()) {
             assert!((*a - b).length() < 1e-12);
@@ -389,7 +422,7 @@ mod tests {
         ];
         for s in styles {
             let mut m = MeshMotion::default();
-            m.add("a", s.clone(), 0.1, &verts()).unwrap();
+            m.add("a", s.clone(), 0.1, &verts(), &[]).unwrap();
             let mut x = verts();
             m.update(0.37, &mut x);
             for (a, b) in m.vel.iter().zip(fd_velocity(&m, 0.37)) {
@@ -405,8 +438,8 @@ mod tests {
                 axis: DVec3::Z,
                 period: 1.3,
             };
-            m2.add("r", rot, 0.0, &verts()).unwrap();
-            m2.add("a", s.clone(), 0.1, &verts()).unwrap();
+            m2.add("r", rot, 0.0, &verts(), &[]).unwrap();
+            m2.add("a", s.clone(), 0.1, &verts(), &[]).unwrap();
             let mut x = verts();
             m2.update(0.37, &mut x);
             for (a, b) in m2.vel.iter().zip(fd_velocity(&m2, 0.37)) {
@@ -427,6 +460,7 @@ mod tests {
             },
             0.0,
             &verts(),
+            &[],
         )
         .unwrap();
         let mut x = verts();
@@ -440,13 +474,14 @@ mod tests {
     fn removal_bakes_the_motion() {
         let mut m = MeshMotion::default();
         let mut x = verts();
-        m.add("lin", Motion::Linear(DVec3::X), 0.0, &x).unwrap();
+        m.add("lin", Motion::Linear(DVec3::X), 0.0, &x, &[])
+            .unwrap();
         let rot = Motion::Rotate {
             origin: DVec3::ZERO,
             axis: DVec3::Z,
             period: 4.0,
         };
-        m.add("rot", rot.clone(), 0.5, &x).unwrap();
+        m.add("rot", rot.clone(), 0.5, &x, &[]).unwrap();
         assert!(m.remove("lin", 1.0).is_err());
         m.update(1.0, &mut x);
         let at = x.clone();
@@ -454,7 +489,7 @@ mod tests {
         m.remove("lin", 1.0).unwrap();
         assert!(!m.is_moving());
         let mut y = at.clone();
-        m.add("rot2", rot, 1.0, &y).unwrap();
+        m.add("rot2", rot, 1.0, &y, &[]).unwrap();
         m.update(1.0, &mut y);
         for (a, b) in y.iter().zip(&at) {
             assert!((*a - *b).length() < 1e-12);

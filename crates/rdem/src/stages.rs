@@ -158,7 +158,7 @@ impl World {
                 .copied()
                 .fold(0.0, f64::max),
         );
-        bonds.check(self.neighbor.cutoff_for(rmax))
+        bonds.check(self.neighbor.cutoff_for(rmax), rmax)
     }
 
     /// Bond creation of the creators due at this step (`fix bond/create/gran`). With

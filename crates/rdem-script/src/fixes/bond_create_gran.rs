@@ -6,7 +6,9 @@
 //! `bonds_per_atom`; the candidate pairs are taken in the order of their tags (lower tag,
 //! then higher), each where both spheres have room. That order gives the fork's bonds:
 //! on a 3 × 3 square of spheres with `newperts` 1, 2 and 3 it makes the same 4, 8 and 11
-//! bonds at the first step. `fix_modify ID every N` changes `Nevery`; `every 0` stops
+//! bonds at the first step. `doNorm yes` makes the cutoff relative: a pair bonds when
+//! r²/(R_a + R_b)² < cutoff² (the fork's test). `iparam`, `jparam` and `prob` are
+//! refused with a located error. `fix_modify ID every N` changes `Nevery`; `every 0` stops
 //! the creation. Bonds are made after the neighbor decision of a step, before its
 //! forces, never at a run's set-up (the fork's "Created N bonds at timestep 1" of a
 //! `run 1`); their length L₀ is the one of that step.
@@ -25,7 +27,7 @@ pub(super) const ROW: FixRow = style(
     "bond/create/gran",
     parse,
     Stages::END_OF_STEP,
-    "`Nevery itype jtype cutoff btype newperts` (LIGGGHTS_Flexible_Fibers): bonds between spheres closer than cutoff; `fix_modify ID every N` (0 stops it)",
+    "`Nevery itype jtype cutoff btype newperts [doNorm yes|no]` (LIGGGHTS_Flexible_Fibers): bonds between spheres closer than cutoff (`doNorm yes`: closer than cutoff × (R₁ + R₂)); `fix_modify ID every N` (0 stops it)",
 );
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
@@ -49,7 +51,18 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let bk = a.pos();
     let btype = a.count("bond type")? as u32;
     let per_step = a.count("newperts (new bonds per sphere and step)")? as usize;
-    a.done()?;
+    let mut relative = false;
+    while !a.is_done() {
+        if let Some(w @ ("iparam" | "jparam" | "prob")) = a.peek() {
+            return Err(a.error_at(
+                a.pos(),
+                format!("keyword '{w}' is not supported yet"),
+                Some("rdem takes 'doNorm yes|no'".into()),
+            ));
+        }
+        a.keyword("keyword", &["doNorm"])?;
+        relative = a.yes_no("doNorm")?;
+    }
     let w = sim.world_ref(a)?;
     let Some(bonds) = &w.bonds else {
         return Err(a.error_cmd(
@@ -74,6 +87,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         itype,
         jtype,
         cutoff,
+        relative,
         btype,
         per_step,
         made: Vec::new(),

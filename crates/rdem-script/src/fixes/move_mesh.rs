@@ -33,21 +33,32 @@ impl ScriptFix for MoveMesh {
         let t = w.step as f64 * w.dt;
         let m = &mut w.meshes[self.mesh];
         let verts = m.mesh.verts.clone();
+        let points: Vec<_> = m.stress.iter().map(|s| s.reference_point).collect();
         m.motion
-            .add(&head.id, motion, t, &verts)
+            .add(&head.id, motion, t, &verts, &points)
             .map_err(|e| a.error_at(style_at, e.to_string(), None))
     }
 
-    /// The motion's start time, and the vertex positions the mesh's motions start from.
+    /// The motion's start time, and the vertex positions (and carried points) the mesh's
+    /// motions start from.
     fn save_state(&self, sim: &Sim, head: &FixHead) -> Option<Vec<u8>> {
         let m = &sim.world.as_ref()?.meshes[self.mesh].motion;
         let t0 = m.movers.iter().find(|x| x.0 == head.id)?.2;
         let base: Vec<[f64; 3]> = m.base.iter().map(|v| v.to_array()).collect();
-        postcard::to_stdvec(&(t0, base)).ok()
+        let carried: Vec<[f64; 3]> = m.carried.iter().map(|v| v.to_array()).collect();
+        postcard::to_stdvec(&(t0, base, carried)).ok()
     }
 
     fn restore_state(&mut self, sim: &mut Sim, head: &FixHead, state: &[u8]) -> Result<(), Error> {
-        let (t0, base): (f64, Vec<[f64; 3]>) = super::decode_state(state)?;
+        // Restart files written before the carried points hold (t0, base).
+        let (t0, base, carried): (f64, Vec<[f64; 3]>, Vec<[f64; 3]>) =
+            match super::decode_state(state) {
+                Ok(s) => s,
+                Err(_) => {
+                    let (t0, base): (f64, Vec<[f64; 3]>) = super::decode_state(state)?;
+                    (t0, base, Vec::new())
+                }
+            };
         let w = sim.world.as_mut().ok_or("no simulation box")?;
         let m = &mut w.meshes[self.mesh].motion;
         if base.len() != m.base.len() {
@@ -62,6 +73,7 @@ impl ScriptFix for MoveMesh {
             x.2 = t0;
         }
         m.base = base.into_iter().map(rdem::DVec3::from_array).collect();
+        m.carried = carried.into_iter().map(rdem::DVec3::from_array).collect();
         Ok(())
     }
 

@@ -2,10 +2,15 @@
 //! meshes ([`crate::mesh::TriMesh`]), with the particle–particle contact law.
 //!
 //! Each step a particle's contacts are the closest points of the triangles it overlaps,
-//! each with its feature (face, edge or corner). A feature seen from several triangles
-//! (a shared edge or corner) counts once; an edge is dropped when a triangle that has
-//! it is touched on its face, and a corner when a face or edge that has it is touched, so
-//! a sphere rolling across a shared edge or corner feels exactly one contact.
+//! each with its feature (face, edge or corner), as LIGGGHTS 3.8 counts them: a face
+//! always; an edge or a corner only through the one triangle that holds it, the last of
+//! its triangles, and only when it is active (an edge between triangles that are not
+//! flat within the `curvature` angle, a corner where such an edge ends and does not run
+//! on straight: [`TriMesh::edge_owners`], [`TriMesh::corner_owners`]). So a shared edge
+//! or corner counts once, a flat seam never, and a sphere pressed on a face near a convex
+//! edge also touches that edge when the edge's holder is the neighbouring triangle, as
+//! in LIGGGHTS (measured: a sphere sliding down a 19-facet half cylinder picks up the
+//! second contact at LIGGGHTS' step).
 //!
 //! History: each particle with candidate triangles has [`SLOTS`] contact slots (a sparse
 //! per-particle property, [`crate::particles::SparseProperty`], so it travels with the
@@ -132,6 +137,11 @@ impl MeshSurface {
             self.motion.update(t, &mut verts);
             self.mesh.verts = verts;
             self.mesh.transform(|p| p);
+            // The stress's reference point moves with the mesh (LIGGGHTS 3.8: its
+            // `f_ID[7..9]` follow a move/mesh, and the torque is about it).
+            if let (Some(st), Some(r)) = (&mut self.stress, self.motion.carry(t, 0)) {
+                st.reference_point = r;
+            }
         }
     }
 
@@ -189,11 +199,18 @@ pub struct MeshWall {
     cand: Vec<(u32, u32)>,
     /// The owned particles with candidate triangles, ascending: they alone hold history
     /// rows, row `c` for particle `rows[c]`.
+    /// Per mesh of [`MeshWall::meshes`]: the holders of its edges and corners
+    /// ([`TriMesh::edge_owners`], [`TriMesh::corner_owners`]), set by
+    /// [`MeshWall::setup`].
+    owners: Vec<Holders>,
     rows: Vec<u32>,
     /// With `surface multicontact`: the contacts' store and this wall's number in it
     /// ([`crate::multicontact::MultiContact::wall_key`]).
     pub multicontact: Option<(std::sync::Arc<crate::multicontact::MultiContact>, u64)>,
 }
+
+/// The holders of a mesh's edges and of its corners (`None`: inactive).
+type Holders = (Vec<Option<u32>>, Vec<Option<u32>>);
 
 /// The key of a feature in a history slot: 0 is "empty".
 fn key(mesh: u32, f: Feature) -> f64 {
@@ -290,6 +307,7 @@ impl MeshWall {
             cand_first: Vec::new(),
             cand: Vec::new(),
             rows: Vec::new(),
+            owners: Vec::new(),
         })
     }
 
@@ -313,6 +331,17 @@ impl MeshWall {
                 });
             }
         }
+        self.owners = self
+            .meshes
+            .iter()
+            .map(|&k| {
+                let m = &all[k];
+                (
+                    m.mesh.edge_owners(m.coplanar_cos),
+                    m.mesh.corner_owners(m.coplanar_cos),
+                )
+            })
+            .collect();
         self.extra = if self.meshes.iter().any(|&k| all[k].stress.is_some()) {
             crate::wall::mesh_stress::EXTRA
         } else {
@@ -724,11 +753,27 @@ fn touches_of(
     cands: &[(u32, u32)],
     found: &mut [Touch; MAX_TOUCH],
 ) -> usize {
-    let mut keep = [true; MAX_TOUCH];
     let mut nt = 0;
     for &(mi, t) in cands {
         let mesh = &surfaces[wall.meshes[mi as usize]].mesh;
-        let (q, feature) = mesh.closest_point(t, x);
+        let (mut q, mut feature) = mesh.closest_point(t, x);
+        // Over the face within LIGGGHTS' tolerance: a face contact, the projection its
+        // point (a sphere exactly over a seam touches the faces beside it).
+        if !matches!(feature, Feature::Face(_)) && over_face(mesh, t, x) {
+            let nt = mesh.normals[t as usize];
+            q = x - (x - mesh.verts[mesh.tris[t as usize][0] as usize]).dot(nt) * nt;
+            feature = Feature::Face(t);
+        }
+        // An edge or corner counts only through its holder (LIGGGHTS 3.8).
+        let (edges, corners) = &wall.owners[mi as usize];
+        let held = match feature {
+            Feature::Face(_) => true,
+            Feature::Edge(e) => edges[e as usize] == Some(t),
+            Feature::Vertex(v) => corners[v as usize] == Some(t),
+        };
+        if !held {
+            continue;
+        }
         let (n, dist) = if let Feature::Face(t) = feature {
             // On the face: the plane distance (exact for axis-aligned planes).
             let nt = mesh.normals[t as usize];
@@ -755,8 +800,9 @@ fn touches_of(
             nt += 1;
         }
     }
-    // One contact per feature; edges and corners of touched faces (and corners of
-    // touched edges) do not count again.
+    // One contact per feature (a face touched from one triangle only, an edge or corner
+    // from its holder only: this keeps the first of equal keys should a face be listed
+    // twice).
     let all = &mut found[..nt];
     all.sort_unstable_by_key(|t| (t.mesh, t.feature));
     let mut nd = 0;
@@ -767,38 +813,16 @@ fn touches_of(
         }
     }
     let all = &found[..nd];
-    for (q, c) in all.iter().enumerate() {
-        let mesh = &surfaces[wall.meshes[c.mesh as usize]].mesh;
-        keep[q] = match c.feature {
-            Feature::Face(_) => true,
-            Feature::Edge(e) => !all.iter().any(|o| {
-                o.mesh == c.mesh
-                    && matches!(o.feature, Feature::Face(t) if mesh.tri_edges[t as usize].contains(&e))
-            }),
-            Feature::Vertex(v) => !all.iter().any(|o| {
-                o.mesh == c.mesh
-                    && match o.feature {
-                        Feature::Face(t) => mesh.tris[t as usize].contains(&v),
-                        Feature::Edge(e) => mesh.edge_has_vertex(e, v),
-                        Feature::Vertex(_) => false,
-                    }
-            }),
-        };
-    }
     // One contact per flat surface: of two contacts on neighbouring triangles of
     // one plane (a sphere over the corner of a hole touches its two rim edges),
     // the deeper counts.
     let mut shadowed = [false; MAX_TOUCH];
     for q in 0..nd {
-        if !keep[q] {
-            continue;
-        }
         let c = &all[q];
         let surface = &surfaces[wall.meshes[c.mesh as usize]];
         let deeper = |o: &Touch, oq: usize| o.dist < c.dist || (o.dist == c.dist && oq < q);
         if all.iter().enumerate().any(|(oq, o)| {
             oq != q
-                && keep[oq]
                 && o.mesh == c.mesh
                 && deeper(o, oq)
                 && same_surface(&surface.mesh, o.tri, c.tri, surface.coplanar_cos)
@@ -808,12 +832,27 @@ fn touches_of(
     }
     let mut nk = 0;
     for q in 0..nd {
-        if keep[q] && !shadowed[q] && nk < SLOTS {
+        if !shadowed[q] && nk < SLOTS {
             found[nk] = found[q];
             nk += 1;
         }
     }
     nk
+}
+
+/// True when the projection of `x` on the plane of triangle `t` lies on the triangle
+/// within LIGGGHTS 3.8's tolerance: each barycentric coordinate above −10⁻⁸ / (2 r_b), r_b
+/// the radius of the triangle's bounding sphere about its centroid (its mesh precision
+/// 10⁻⁸ over that diameter), so that LIGGGHTS counts it a face contact.
+fn over_face(mesh: &TriMesh, t: u32, x: DVec3) -> bool {
+    let [a, b, c] = mesh.corners(t);
+    let centre = (a + b + c) / 3.0;
+    let rb = [a, b, c]
+        .iter()
+        .map(|v| (*v - centre).length())
+        .fold(0.0, f64::max);
+    let tol = -1e-8 / (2.0 * rb);
+    barycentric(a, b, c, x).iter().all(|&l| l > tol)
 }
 
 /// For each contact of `touches`, the slot of the previous step's history `old` (slots of
