@@ -45,6 +45,10 @@
 //! A bond of styles 3 to 5 that breaks without overlap, or a separating bond whose
 //! spheres no longer overlap, leaves `numbonds` at once.
 //!
+//! Whatever the style, a bond (Flexible_Fibers' form) breaks without acting when the
+//! centre of one of its spheres comes within 0.75 of that sphere's radius of a box face
+//! that is not periodic, as the fork does before computing any bond force.
+//!
 //! LIGGGHTS-PFM's form of `bond_coeff` (see [`BondCoeff::pfm`]) is the same beam with a
 //! prescribed length L₀ = lb (R_a + R_b), moduli of its own for bending and twisting,
 //! damping style 1, and the normal force multiplied by (1 − L₀/bn)/(1 − r/bn).
@@ -99,11 +103,19 @@ const TORQUE: usize = 16;
 const NONE: u32 = u32::MAX;
 
 /// Values of a slot's `BROKEN`: the bond holds; it broke (dropped at the next
-/// re-neighboring); it broke while its spheres overlapped and pushes them apart (break
-/// styles 3 to 5).
+/// re-neighboring, counted in `numbonds` until then); it broke while its spheres
+/// overlapped and pushes them apart (break styles 3 to 5); it broke and left `numbonds`
+/// at once (break styles 3 to 5).
 const INTACT: f64 = 0.0;
 const BROKE: f64 = 1.0;
 const SEPARATING: f64 = 2.0;
+const GONE: f64 = 3.0;
+
+/// A `BROKEN` value of a broken bond.
+#[inline(always)]
+fn broken(v: f64) -> bool {
+    v == BROKE || v == GONE
+}
 
 /// The damping of a bond type (`bond_coeff`'s damping style and values).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -849,19 +861,13 @@ impl GranBonds {
         slots.chunks_exact(SLOT).filter(|s| s[TYPE] != 0.0).count()
     }
 
-    /// Bonds counted once each (by the sphere of the lower tag), broken ones of break
-    /// styles 0 to 2 included until the next re-neighboring, those of styles 3 to 5
-    /// (separating ones too) not: thermo `numbonds` on this rank.
+    /// Bonds counted once each (by the sphere of the lower tag), broken ones included
+    /// until the next re-neighboring except those of break styles 3 to 5 broken by
+    /// stress (and separating ones): thermo `numbonds` on this rank.
     pub fn count_local(&self, p: &Particles) -> u64 {
         let Some(id) = self.prop else { return 0 };
         let data = &p.props[id.0];
-        let counts = |s: &[f64]| {
-            s[TYPE] != 0.0
-                && (s[BROKEN] == INTACT
-                    || s[BROKEN] == BROKE
-                        && !self.coeffs[s[TYPE] as usize - 1]
-                            .is_some_and(|c| c.breaking.leaves_at_once()))
-        };
+        let counts = |s: &[f64]| s[TYPE] != 0.0 && (s[BROKEN] == INTACT || s[BROKEN] == BROKE);
         (0..p.nlocal())
             .map(|i| {
                 data.get(i)
@@ -882,7 +888,7 @@ impl GranBonds {
             let mut k = 0;
             for s in 0..m {
                 let slot = s * SLOT;
-                if row[slot + TYPE] != 0.0 && row[slot + BROKEN] != BROKE {
+                if row[slot + TYPE] != 0.0 && !broken(row[slot + BROKEN]) {
                     if k != s {
                         row.copy_within(slot..slot + SLOT, k * SLOT);
                     }
@@ -918,7 +924,7 @@ impl GranBonds {
                 });
                 match best {
                     Some(j) => self.links[i * m + s] = j,
-                    None if h[BROKEN] == BROKE => {}
+                    None if broken(h[BROKEN]) => {}
                     None => {
                         return Err(Error::Invalid {
                             what: "bond/gran",
@@ -936,8 +942,17 @@ impl GranBonds {
     }
 
     /// The bond forces and torques added to the owned particles' `f` and `torque`; each
-    /// bond's history advances (at a run's set-up too, as in the fork).
-    pub fn forces(&mut self, p: &mut Particles, dt: f64) {
+    /// bond's history advances (at a run's set-up too, as in the fork). A bond of
+    /// Flexible_Fibers' form one of whose spheres has its centre within 0.75 of its radius
+    /// of a face of the box `domain` that is not periodic breaks, without acting (the
+    /// fork's rule, before any force: a fibre hitting a floor on the box's face loses its
+    /// bonds there).
+    pub fn forces(&mut self, p: &mut Particles, dt: f64, domain: &crate::domain::Domain) {
+        let (lo, hi, periodic) = (domain.boxlo, domain.boxhi, domain.periodicity());
+        let near_face = move |x: DVec3, r: f64| {
+            let m = 0.75 * r;
+            (0..3).any(|k| !periodic[k] && (x[k] < lo[k] + m || x[k] > hi[k] - m))
+        };
         let Some(id) = self.prop else { return };
         let (m, nl, w) = (self.per_atom, p.nlocal(), self.width());
         if nl == 0 {
@@ -962,7 +977,7 @@ impl GranBonds {
         let one = |i: usize, fi: &mut DVec3, ti: &mut DVec3, row: &mut [f64]| {
             for s in 0..m {
                 let h = &mut row[s * SLOT..(s + 1) * SLOT];
-                if h[TYPE] == 0.0 || h[BROKEN] == BROKE {
+                if h[TYPE] == 0.0 || broken(h[BROKEN]) {
                     continue;
                 }
                 let j = links.get(i * m + s).copied().unwrap_or(NONE);
@@ -987,11 +1002,18 @@ impl GranBonds {
                 let Some(c) = coeffs[h[TYPE] as usize - 1].as_ref() else {
                     continue;
                 };
+                if c.length_ratio.is_none()
+                    && (near_face(view.x[i], view.radius[i])
+                        || near_face(view.x[j], view.radius[j]))
+                {
+                    h[BROKEN] = BROKE;
+                    continue;
+                }
                 if h[BROKEN] == SEPARATING {
                     match push(&a, &b, c, h) {
                         Some(fa) if first => *fi += fa,
                         Some(fa) => *fi -= fa,
-                        None => h[BROKEN] = BROKE,
+                        None => h[BROKEN] = GONE,
                     }
                     continue;
                 }
@@ -1007,6 +1029,7 @@ impl GranBonds {
                 }
                 match outcome {
                     Outcome::Holds => {}
+                    Outcome::Breaks if c.breaking.leaves_at_once() => h[BROKEN] = GONE,
                     Outcome::Breaks => h[BROKEN] = BROKE,
                     Outcome::Separates => h[BROKEN] = SEPARATING,
                 }
@@ -1215,7 +1238,7 @@ impl GranBonds {
                     force: get3(h, FORCE),
                     torque: get3(h, TORQUE),
                     len0: h[LEN0],
-                    broken: h[BROKEN] == BROKE,
+                    broken: broken(h[BROKEN]),
                     separating: h[BROKEN] == SEPARATING,
                 });
             }
@@ -1266,7 +1289,7 @@ fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
 #[inline]
 pub fn holds(row: &[f64], tag: Tag) -> bool {
     row.chunks_exact(SLOT)
-        .any(|s| s[TYPE] != 0.0 && s[BROKEN] != BROKE && s[TAG] as Tag == tag)
+        .any(|s| s[TYPE] != 0.0 && !broken(s[BROKEN]) && s[TAG] as Tag == tag)
 }
 
 /// One bond as `compute property/local` reports it.

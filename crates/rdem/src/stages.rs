@@ -188,7 +188,7 @@ impl World {
     /// The bond forces (`bond_style gran`), after the pair forces.
     pub(crate) fn bond_forces(&mut self) {
         if let Some(bonds) = &mut self.bonds {
-            bonds.forces(&mut self.particles, self.dt);
+            bonds.forces(&mut self.particles, self.dt, &self.domain);
         }
     }
 
