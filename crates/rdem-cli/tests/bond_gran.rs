@@ -8,7 +8,8 @@
 //! bond breaks by its normal or its shear stress), `in.create` (bond creation on a 3 × 3
 //! square), `in.cantilever` (wild/24's beam bent by a tip force, then released),
 //! `in.soft` (a bond broken while its spheres overlap, break styles 3 to 5), `in.hot` (a
-//! bond broken by temperature, break style 2), and a shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
+//! bond broken by temperature, break style 2), `in.molecule` (spheres of one molecule
+//! deeper than half their radii sum), and a shortened wild/24 (deflection 2 mm, 1 ms of waiting and of vibration). Their output
 //! is stored beside them (`fibers_*`).
 
 use crate::common;
@@ -831,4 +832,117 @@ fn wild_06_shortened_holds_the_forks_ring() {
         ["3000", "10", "10"]
     );
     let _ = std::fs::remove_dir_all(&top);
+}
+
+/// Spheres of one molecule (`in.molecule`): as in the fork's pair style, a sphere
+/// closer to a sphere of its molecule that holds a bond than half their radii sum has
+/// no contact with it. Sphere 3, 0.8 mm from bonded sphere 2 (radii 1 mm), moves off
+/// at 0.5 m/s untouched until the pair is 1 mm apart (step 390, as the fork), then is
+/// pushed; sphere 4, 1.2 mm from bonded sphere 1, is pushed from the first step. The
+/// 151 rows agree with the fork's within 1e-10 of the column scale (measured 2e-12).
+#[test]
+fn spheres_of_one_molecule_deeper_than_half_have_no_contact_as_the_fork() {
+    let out = common::run_script(&read("in.molecule"), None);
+    let got = pull_rows(&out, "Step numbonds");
+    common::assert_columns(&got, &table("fibers_molecule.txt"), 1, 1e-10, "molecule");
+    let first_pushed = got.iter().find(|r| r[3] != 0.5).map(|r| r[0]);
+    assert_eq!(first_pushed, Some(390.0));
+    assert!(
+        got[1][6] < -0.03,
+        "sphere 4 is pushed at once: {:?}",
+        got[1]
+    );
+}
+
+/// The rows of `width` numbers of the last thermo table headed by `header`, skipping
+/// the "Created N bonds" lines within it.
+fn rows_of_width(out: &str, header: &str, width: usize) -> Vec<Vec<f64>> {
+    let tail = out.rsplit(header).next().unwrap();
+    tail.lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with("Loop time"))
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
+            (v.len() == width && l.split_whitespace().count() == width).then_some(v)
+        })
+        .collect()
+}
+
+/// `iparam` and `jparam` of `fix bond/create/gran` (`in.limit`): spheres of type 1 take
+/// at most 2 bonds of the creator's type, those of type 2 at most 1. Two rows of
+/// touching spheres bond all 11 pairs at the first creation, the limits counted at the
+/// step's start, as in the fork; a lone sphere of type 1 with one bond then bonds with a
+/// passing sphere of type 2 (step 700: 12 bonds) and not with the next one (13 without
+/// the limits, in the fork too). With `newtype` 3 and 4 the spheres turn into those
+/// types as each new bond brings them to their limit, by their type at that moment;
+/// with 1 and 2 they keep their types. `numbonds` and eight spheres' types equal the
+/// fork's at each of the 31 rows, for both.
+#[test]
+fn bond_creation_limits_and_new_types_as_the_fork() {
+    for (inew, jnew, name) in [
+        ("3", "4", "fibers_limit34.txt"),
+        ("1", "2", "fibers_limit12.txt"),
+    ] {
+        let out = common::run_script(
+            &with_vars("in.limit", &[("inew", inew), ("jnew", jnew)]),
+            None,
+        );
+        let got = rows_of_width(&out, "Step numbonds", 10);
+        assert_eq!(got, table(name), "{name}");
+    }
+    let bad = read("in.limit").replace("1 2 0.00105 1 6 iparam", "1 1 0.00105 1 6 iparam");
+    let out = common::run_script_raw(&bad, None);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("inconsistent iparam and jparam"), "{err}");
+}
+
+/// `prob fraction seed` of `fix bond/create/gran` (`in.prob`, 7080 neighbour pairs): a
+/// pair bonds when the mean of its spheres' draws is below the fraction, so 2f² of the
+/// pairs for f ≤ 1/2: 566 for f = 0.2 and 3540 for f = 0.5. rdem's draws are its own
+/// (a hash of seed, tag and step); over seeds 1 and 2 it makes 545 and 596, 3413 and
+/// 3649 bonds: means within 3 % of those figures (each draw is shared by a sphere's four
+/// pairs, so one run scatters by about 40 and 120). The fork over three seeds made 573,
+/// 601, 494 and 3589, 3506, 3410. f = 1 bonds every pair.
+#[test]
+fn bond_creation_probability_bonds_the_forks_share_of_pairs() {
+    let bonds = |frac: &str, seed: &str| {
+        let out = common::run_script(
+            &with_vars("in.prob", &[("frac", frac), ("seed", seed)]),
+            None,
+        );
+        rows_of_width(&out, "Step Atoms numbonds", 3)[1][2]
+    };
+    for (frac, want) in [("0.2", 7080.0 * 2.0 * 0.04), ("0.5", 7080.0 * 0.5)] {
+        let mean = (bonds(frac, "1") + bonds(frac, "2")) / 2.0;
+        assert!(
+            (mean - want).abs() < 0.03 * want,
+            "f = {frac}: {mean} against {want}"
+        );
+    }
+    assert_eq!(bonds("1.0", "1"), 7080.0);
+}
+
+/// The box-face rule in LIGGGHTS-PFM's form (`in.pfm_face`): a bonded pair thrown at
+/// 5 m/s towards the box's upper x face breaks, without acting, once a sphere's centre
+/// is within the neighbor skin of it (skin 2 mm: between steps 970 and 980, as the
+/// fork; `numbond` 0 from the re-neighboring at step 1210); with a skin of 0.5 mm no
+/// centre gets that close before a wall plane turns the pair back, and the bond holds.
+/// Both runs' 182 rows within 1e-10 of the fork's column scale (measured 2e-14); the
+/// fork (LIGGGHTS-PFM d075b97) takes the skin where Flexible_Fibers takes 0.75 R.
+#[test]
+fn pfm_bonds_break_within_the_skin_of_a_box_face() {
+    for (skin, name) in [("0.002", "pfm_face.txt"), ("0.0005", "pfm_face_small.txt")] {
+        let out = common::run_script(&with_vars("in.pfm_face", &[("skin", skin)]), None);
+        let got = rows_of_width(&out, "v2             y2", 7);
+        common::assert_columns(&got, &table(name), 1, 1e-10, name);
+        // Free (constant velocity) from the break on.
+        let free = got.windows(2).find(|w| w[0][3] == w[1][3]).map(|w| w[0][0]);
+        let bonds = got.last().unwrap()[1];
+        if skin == "0.002" {
+            assert_eq!((free, bonds), (Some(980.0), 0.0), "{name}");
+        } else {
+            assert_eq!((free, bonds), (None, 1.0), "{name}");
+        }
+    }
 }

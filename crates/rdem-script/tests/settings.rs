@@ -445,3 +445,38 @@ run 10
     assert!(before < 0.0, "{before}");
     assert_eq!(before, after);
 }
+
+/// `region ... volume_limit V` (LIGGGHTS 3.8 accepts it without documenting it; the
+/// scripts of LIGGGHTS_CFDRC give it for their micrometre boxes): LIGGGHTS 3.8 needs it,
+/// and the template's, to fill a 3.7e-11 m³ block to 20 % with 20 µm spheres (without
+/// them it stops: "Unable to calculate region volume", "Volume expectancy too small"),
+/// and inserts 221 of the 221.1 asked for; rdem checks the value and fills the block
+/// the same (221 or 222: the fraction rounds up at random, as in LIGGGHTS).
+#[test]
+fn region_volume_limit_is_read() {
+    let script = |limit: &str| {
+        format!(
+            "units si\natom_style granular\nboundary p p p\n\
+             region domain block 0 4.2e-4 0 4.2e-4 0 2.1e-4 units box volume_limit {limit}\n\
+             create_box 1 domain\nneighbor 1.9e-5 bin\nhard_particles yes\n\
+             fix m1 all property/global youngsModulus peratomtype 8.7e9\n\
+             fix m2 all property/global poissonsRatio peratomtype 0.3\n\
+             fix m3 all property/global coefficientRestitution peratomtypepair 1 0.95\n\
+             fix m4 all property/global coefficientFriction peratomtypepair 1 0.0\n\
+             pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 1e-9\n\
+             fix pts1 all particletemplate/sphere 15485863 atom_type 1 volume_limit 1e-18 \
+             density constant 2500 radius constant 2e-5\n\
+             fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0\n\
+             fix ins all insert/pack seed 49979687 distributiontemplate pdd1 insert_every once \
+             overlapcheck yes all_in yes region domain volumefraction_region 0.2\n\
+             fix integr all nve/sphere\nrun 1\n"
+        )
+    };
+    let (i, r, out) = run(&script("1e-16"));
+    r.unwrap();
+    let n = i.sim.world.as_ref().unwrap().particles.nlocal();
+    assert!(n == 221 || n == 222, "{n} particles\n{out}");
+    let (_, r, _) = run(&script("-1"));
+    let e = r.unwrap_err();
+    assert!(e.contains("volume_limit"), "{e}");
+}

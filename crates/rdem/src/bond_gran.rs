@@ -45,9 +45,10 @@
 //! A bond of styles 3 to 5 that breaks without overlap, or a separating bond whose
 //! spheres no longer overlap, leaves `numbonds` at once.
 //!
-//! Whatever the style, a bond (Flexible_Fibers' form) breaks without acting when the
-//! centre of one of its spheres comes within 0.75 of that sphere's radius of a box face
-//! that is not periodic, as the fork does before computing any bond force.
+//! Whatever the style, a bond breaks without acting when the centre of one of its
+//! spheres comes near a box face that is not periodic, as the forks do before computing
+//! any bond force: within 0.75 of that sphere's radius in Flexible_Fibers' form, within
+//! the neighbor skin in LIGGGHTS-PFM's (d075b97's `bond_gran.cpp` takes the skin).
 //!
 //! LIGGGHTS-PFM's form of `bond_coeff` (see [`BondCoeff::pfm`]) is the same beam with a
 //! prescribed length L₀ = lb (R_a + R_b), moduli of its own for bending and twisting,
@@ -401,12 +402,96 @@ pub struct Creator {
     pub btype: u32,
     /// Most new bonds per sphere at one step.
     pub per_step: usize,
+    /// `iparam` and `jparam`: for spheres of `itype` and of `jtype`, the bonds of type
+    /// `btype` a sphere may hold before it takes no more from this fix (0: no limit),
+    /// and the atom type it turns into on reaching that count.
+    pub limits: [Limit; 2],
+    /// `prob fraction seed`: each sphere with a candidate draws u in [0, 1) at each
+    /// creation step, and a pair bonds only when (u_a + u_b)/2 < fraction (1: always).
+    pub fraction: f64,
+    /// The seed of `prob`.
+    pub seed: u64,
     /// (step, bonds made) of each step that made bonds, for the front end's log; the
     /// front end drains it.
     pub made: Vec<(u64, u64)>,
 }
 
+/// One of `fix bond/create/gran`'s `iparam` and `jparam`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limit {
+    /// Most bonds of the creator's type; 0: no limit.
+    pub max: usize,
+    /// The atom type a sphere turns into when it reaches `max`.
+    pub new_type: u32,
+}
+
 impl Creator {
+    /// A creator without `iparam`, `jparam` or `prob`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        id: &str,
+        groupbit: u32,
+        every: u64,
+        itype: u32,
+        jtype: u32,
+        cutoff: f64,
+        btype: u32,
+        per_step: usize,
+    ) -> Self {
+        Self {
+            id: id.to_string(),
+            groupbit,
+            every,
+            itype,
+            jtype,
+            cutoff,
+            relative: false,
+            btype,
+            per_step,
+            limits: [
+                Limit {
+                    max: 0,
+                    new_type: itype,
+                },
+                Limit {
+                    max: 0,
+                    new_type: jtype,
+                },
+            ],
+            fraction: 1.0,
+            seed: 0,
+            made: Vec::new(),
+        }
+    }
+
+    /// The limit of a sphere of type `ty` (`iparam` for `itype`, else `jparam`, as the
+    /// fork tells them apart).
+    fn limit(&self, ty: u32) -> Limit {
+        self.limits[usize::from(ty != self.itype)]
+    }
+
+    /// Whether a sphere of type `ty` holding `held` bonds of the creator's type may take
+    /// another.
+    fn room(&self, ty: u32, held: usize) -> bool {
+        let l = self.limit(ty);
+        l.max == 0 || held < l.max
+    }
+
+    /// The draw of `prob` for the sphere of tag `tag` at `step`: uniform in [0, 1), the
+    /// same on every rank and thread.
+    fn draw(&self, tag: Tag, step: u64) -> f64 {
+        let mut z = self
+            .seed
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .wrapping_add(tag.wrapping_mul(0xD1B5_4A32_D192_ED03))
+            .wrapping_add(step.wrapping_mul(0xBF58_476D_1CE4_E5B9));
+        // splitmix64's finalizer.
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
     /// The largest centre distance that bonds, for spheres of radius at most `rmax`.
     pub fn distance(&self, rmax: f64) -> f64 {
         if self.relative {
@@ -725,6 +810,15 @@ impl GranBonds {
         Ok(())
     }
 
+    /// True when a bond type has Flexible_Fibers' form of `bond_coeff` (not
+    /// LIGGGHTS-PFM's).
+    pub fn fibers_form(&self) -> bool {
+        self.coeffs
+            .iter()
+            .flatten()
+            .any(|c| c.length_ratio.is_none())
+    }
+
     /// The handle of [`MOLECULE`] once attached.
     pub fn molecule_id(&self) -> Option<PropId> {
         self.molecule
@@ -942,15 +1036,20 @@ impl GranBonds {
     }
 
     /// The bond forces and torques added to the owned particles' `f` and `torque`; each
-    /// bond's history advances (at a run's set-up too, as in the fork). A bond of
-    /// Flexible_Fibers' form one of whose spheres has its centre within 0.75 of its radius
-    /// of a face of the box `domain` that is not periodic breaks, without acting (the
-    /// fork's rule, before any force: a fibre hitting a floor on the box's face loses its
-    /// bonds there).
-    pub fn forces(&mut self, p: &mut Particles, dt: f64, domain: &crate::domain::Domain) {
+    /// bond's history advances (at a run's set-up too, as in the fork). A bond one of
+    /// whose spheres has its centre near a face of the box `domain` that is not periodic
+    /// breaks, without acting (the forks' rule, before any force: a fibre hitting a floor
+    /// on the box's face loses its bonds there): within 0.75 of the sphere's radius in
+    /// Flexible_Fibers' form, within the neighbor `skin` in LIGGGHTS-PFM's.
+    pub fn forces(
+        &mut self,
+        p: &mut Particles,
+        dt: f64,
+        domain: &crate::domain::Domain,
+        skin: f64,
+    ) {
         let (lo, hi, periodic) = (domain.boxlo, domain.boxhi, domain.periodicity());
-        let near_face = move |x: DVec3, r: f64| {
-            let m = 0.75 * r;
+        let near_face = move |x: DVec3, m: f64| {
             (0..3).any(|k| !periodic[k] && (x[k] < lo[k] + m || x[k] > hi[k] - m))
         };
         let Some(id) = self.prop else { return };
@@ -1002,10 +1101,11 @@ impl GranBonds {
                 let Some(c) = coeffs[h[TYPE] as usize - 1].as_ref() else {
                     continue;
                 };
-                if c.length_ratio.is_none()
-                    && (near_face(view.x[i], view.radius[i])
-                        || near_face(view.x[j], view.radius[j]))
-                {
+                let margin = |k: usize| match c.length_ratio {
+                    None => 0.75 * view.radius[k],
+                    Some(_) => skin,
+                };
+                if near_face(view.x[i], margin(i)) || near_face(view.x[j], margin(j)) {
                     h[BROKEN] = BROKE;
                     continue;
                 }
@@ -1129,6 +1229,13 @@ impl GranBonds {
             };
             let mut plan: Vec<(usize, usize)> = Vec::new();
             let mut held: Vec<usize> = (0..p.len()).map(|k| Self::count(row(k))).collect();
+            // Bonds of the creator's type at the step's start, for `iparam`/`jparam`.
+            let typed = |k: usize| {
+                row(k)
+                    .chunks_exact(SLOT)
+                    .filter(|s| s[TYPE] == c.btype as f64)
+                    .count()
+            };
             for &(_, _, a, b) in &cand {
                 let (oa, ob) = (owner(a), owner(b));
                 if oa == ob || bonded(a, p.tag[b]) {
@@ -1140,6 +1247,15 @@ impl GranBonds {
                 if held[oa] >= m || held[ob] >= m {
                     continue;
                 }
+                if !c.room(p.ty[oa], typed(oa)) || !c.room(p.ty[ob], typed(ob)) {
+                    continue;
+                }
+                if c.fraction < 1.0 {
+                    let (ua, ub) = (c.draw(p.tag[oa], step), c.draw(p.tag[ob], step));
+                    if 0.5 * (ua + ub) >= c.fraction {
+                        continue;
+                    }
+                }
                 fresh[oa] += 1;
                 fresh[ob] += 1;
                 held[oa] += 1;
@@ -1149,6 +1265,7 @@ impl GranBonds {
                     made += 1;
                 }
             }
+            let limited = c.limits.iter().any(|l| l.max > 0);
             for (oa, ob) in plan {
                 let (ta, tb) = (p.tag[oa], p.tag[ob]);
                 for (me, other) in [(oa, tb), (ob, ta)] {
@@ -1161,6 +1278,19 @@ impl GranBonds {
                     h.fill(0.0);
                     h[TAG] = other as f64;
                     h[TYPE] = c.btype as f64;
+                    if limited {
+                        // As the fork: after each new bond, a sphere whose count of the
+                        // creator's bonds reaches its limit (by its type at that moment)
+                        // turns into the limit's new type.
+                        let n = r
+                            .chunks_exact(SLOT)
+                            .filter(|s| s[TYPE] == c.btype as f64)
+                            .count();
+                        let l = c.limit(p.ty[me]);
+                        if n == l.max {
+                            p.ty[me] = l.new_type;
+                        }
+                    }
                 }
             }
             if made > 0 {
@@ -1282,6 +1412,12 @@ fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
         }
     }
     out
+}
+
+/// True when a sphere's bond slots `row` (its [`PROP`] values) hold a bond, broken or
+/// not, until it is dropped at a re-neighboring.
+pub fn holds_any(row: &[f64]) -> bool {
+    row.chunks_exact(SLOT).any(|s| s[TYPE] != 0.0)
 }
 
 /// True when the bonds `row` of a sphere (its values of [`PROP`]) hold an unbroken (or

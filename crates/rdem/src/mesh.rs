@@ -411,20 +411,6 @@ impl TriMesh {
             |(lo, hi), &v| (lo.min(v), hi.max(v)),
         )
     }
-
-    /// True if feature `f` is, or lies on the boundary of, triangle `t`.
-    pub fn feature_of_triangle(&self, f: Feature, t: u32) -> bool {
-        match f {
-            Feature::Face(u) => u == t,
-            Feature::Edge(e) => self.tri_edges[t as usize].contains(&e),
-            Feature::Vertex(v) => self.tris[t as usize].contains(&v),
-        }
-    }
-
-    /// True if edge `e` has vertex `v` as an end.
-    pub fn edge_has_vertex(&self, e: u32, v: u32) -> bool {
-        self.edges[e as usize].contains(&v)
-    }
 }
 
 fn bbox_diagonal(v: &[DVec3]) -> f64 {

@@ -65,6 +65,47 @@ pub struct PairGran {
     /// contact with a frozen particle takes the other particle's mass as its effective
     /// mass, as if the frozen one were infinitely heavy, as LIGGGHTS does.
     pub(crate) freeze: u32,
+    /// With `bond_style gran` in Flexible_Fibers' form: the molecule IDs and the bonds
+    /// of [`crate::bond_gran`] (set by the world's set-up). Two spheres of one molecule,
+    /// one of which holds a bond, have no contact while their centres are closer than
+    /// half their radii sum, as in the fork's pair style.
+    pub(crate) same_molecule: Option<SameMolecule>,
+}
+
+/// Where [`PairGran::same_molecule`] reads the molecule IDs and the bonds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct SameMolecule {
+    /// [`crate::bond_gran::MOLECULE`].
+    pub molecule: crate::particles::PropId,
+    /// [`crate::bond_gran::PROP`].
+    pub bonds: crate::particles::PropId,
+}
+
+/// [`SameMolecule`]'s values in a pass.
+#[derive(Clone, Copy)]
+struct MoleculeRule<'a> {
+    molecule: &'a [f64],
+    bonds: &'a [f64],
+    width: usize,
+}
+
+impl<'a> MoleculeRule<'a> {
+    /// The rule of `pair` on the particles `p`, if it has one.
+    fn of(rule: Option<SameMolecule>, props: &'a [crate::particles::Property]) -> Option<Self> {
+        rule.map(|r| MoleculeRule {
+            molecule: &props[r.molecule.0].data,
+            bonds: &props[r.bonds.0].data,
+            width: props[r.bonds.0].width,
+        })
+    }
+
+    /// True when `i` and `j` are of one molecule and either holds a bond.
+    #[cold]
+    fn skips(&self, i: usize, j: usize) -> bool {
+        let w = self.width;
+        let holds = |k: usize| crate::bond_gran::holds_any(&self.bonds[k * w..(k + 1) * w]);
+        self.molecule[i] == self.molecule[j] && (holds(i) || holds(j))
+    }
 }
 
 impl PairGran {
@@ -85,6 +126,7 @@ impl PairGran {
             whole_fraction: WHOLE_FRACTION,
             multicontact: None,
             freeze: 0,
+            same_molecule: None,
         }
     }
 
@@ -306,6 +348,8 @@ struct Phase1<'a> {
     /// Group masks of all particles, and the frozen group's bit ([`PairGran::freeze`]).
     mask: &'a [u32],
     freeze: u32,
+    /// [`PairGran::same_molecule`]'s values.
+    molecule_rule: Option<MoleculeRule<'a>>,
 }
 
 impl Phase1<'_> {
@@ -512,6 +556,12 @@ impl Phase1<'_> {
                 // The history stays, as in LIGGGHTS 3.8: a pair that touches again
                 // before the next neighbor build goes on from it (see
                 // `NeighborList::touch`).
+                return None;
+            }
+        }
+        if let Some(rule) = self.molecule_rule {
+            // Left alone, history and all, as the fork skips the pair.
+            if rsq < 0.25 * radsum * radsum && rule.skips(i, j) {
                 return None;
             }
         }
@@ -864,6 +914,7 @@ impl PairPass<'_> {
             whole_fraction: _,
             multicontact,
             freeze,
+            same_molecule,
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
@@ -914,6 +965,7 @@ impl PairPass<'_> {
             tag: &p.tag,
             mask: &p.mask,
             freeze: *freeze,
+            molecule_rule: MoleculeRule::of(*same_molecule, &p.props),
         };
         if !two_phase {
             let (f, torque) = (&mut p.f, &mut p.torque);

@@ -144,6 +144,14 @@ impl World {
         bonds.attach(&mut self.particles)?;
         self.neighbor.exclude.bonded = bonds.disable_contact.then(|| bonds.prop_id()).flatten();
         self.neighbor.exclude.molecule = bonds.molecule_id();
+        if let Some(pair) = &mut self.pair {
+            pair.same_molecule = match (bonds.fibers_form(), bonds.molecule_id(), bonds.prop_id()) {
+                (true, Some(molecule), Some(bonds)) => {
+                    Some(crate::pair::SameMolecule { molecule, bonds })
+                }
+                _ => None,
+            };
+        }
         let n = self.particles.nlocal();
         if let Some(id) = bonds.molecule_id() {
             let local = self.particles.props[id.0].data[..n]
@@ -188,7 +196,8 @@ impl World {
     /// The bond forces (`bond_style gran`), after the pair forces.
     pub(crate) fn bond_forces(&mut self) {
         if let Some(bonds) = &mut self.bonds {
-            bonds.forces(&mut self.particles, self.dt, &self.domain);
+            let skin = self.neighbor.settings.skin;
+            bonds.forces(&mut self.particles, self.dt, &self.domain, skin);
         }
     }
 

@@ -113,8 +113,19 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let (mut outside, mut lattice_units) = (false, false); // LIGGGHTS 3.8: units box
     let mut motion: Option<Motion> = None;
     while !a.is_done() {
-        match a.keyword("region keyword", &["side", "units", "move", "rotate"])? {
+        match a.keyword(
+            "region keyword",
+            &["side", "units", "move", "rotate", "volume_limit"],
+        )? {
             "side" => outside = a.keyword("side", &["in", "out"])? == "out",
+            "volume_limit" => {
+                // LIGGGHTS 3.8 (undocumented) stops with "Unable to calculate region
+                // volume" below this limit, whose default is too large for a box of
+                // micrometre particles (measured: a 3.7e-11 m³ block needs it); rdem's
+                // volumes need no such limit, so the value is checked and has no other
+                // effect.
+                a.positive("volume_limit")?;
+            }
             "units" => lattice_units = a.keyword("units", &["box", "lattice"])? == "lattice",
             k => {
                 if matches!(style, "union" | "intersect") {

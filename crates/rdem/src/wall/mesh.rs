@@ -197,12 +197,12 @@ pub struct MeshWall {
     /// as (mesh, triangle).
     cand_first: Vec<u32>,
     cand: Vec<(u32, u32)>,
-    /// The owned particles with candidate triangles, ascending: they alone hold history
-    /// rows, row `c` for particle `rows[c]`.
     /// Per mesh of [`MeshWall::meshes`]: the holders of its edges and corners
     /// ([`TriMesh::edge_owners`], [`TriMesh::corner_owners`]), set by
     /// [`MeshWall::setup`].
     owners: Vec<Holders>,
+    /// The owned particles with candidate triangles, ascending: they alone hold history
+    /// rows, row `c` for particle `rows[c]`.
     rows: Vec<u32>,
     /// With `surface multicontact`: the contacts' store and this wall's number in it
     /// ([`crate::multicontact::MultiContact::wall_key`]).
