@@ -248,6 +248,24 @@ run 700
             .join("tests/data/mesh_topology/half_cylinder_liggghts.txt"),
     );
     common::assert_columns(&got, &want, 1, 1e-9, "half cylinder");
+    // `precision 1e-4` widens each face by 1e-4/(2 r_b) in barycentric terms, as in
+    // LIGGGHTS 3.8: another path (fz differs by 6 % of its scale), followed to 1e-9
+    // (measured 1e-12).
+    let wide = script.replace("type 1\nfix wall", "type 1 precision 1e-4\nfix wall");
+    assert_ne!(wide, script);
+    let out = run_with_files_raw(&wide, &[("rod.stl", &half_cylinder_stl())], None);
+    let got = thermo_rows(&String::from_utf8_lossy(&out.stdout));
+    let want = common::reference_rows(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/mesh_topology/half_cylinder_precision_liggghts.txt"),
+    );
+    common::assert_columns(&got, &want, 1, 1e-9, "half cylinder, precision 1e-4");
+    let narrow = common::reference_rows(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/mesh_topology/half_cylinder_liggghts.txt"),
+    );
+    let moved = want.iter().zip(&narrow);
+    assert!(moved.map(|(a, b)| (a[4] - b[4]).abs()).fold(0.0, f64::max) > 3e-5);
 }
 
 /// Bad mesh input stops with the line and the reason.

@@ -36,6 +36,10 @@ pub struct TriMesh {
     pub edge_tris: Vec<u32>,
     /// Offsets into `edge_tris`, one per edge plus one.
     pub edge_first: Vec<u32>,
+    /// The distance within which corners merge (`fix mesh/surface ... precision`, 1e-8
+    /// by default); LIGGGHTS also widens each face by it for contacts (see
+    /// `wall::mesh`).
+    pub precision: f64,
 }
 
 /// What [`TriMesh::from_triangles`] found and did.
@@ -192,6 +196,7 @@ impl TriMesh {
             verts,
             tris,
             normals,
+            precision: merge_tol,
             ..Default::default()
         };
         mesh.build_edges();
