@@ -946,3 +946,24 @@ fn pfm_bonds_break_within_the_skin_of_a_box_face() {
         }
     }
 }
+
+/// `disableNormalContact 1` after a bond of break style 3 leaves (`in.gone`): two
+/// spheres bonded 0.1 mm apart and thrown together break the bond by its normal stress
+/// within the first 10 steps, before they touch; the bond leaves at once (`numbonds` 0
+/// at step 10) and the pair collides from step 170 with its contact, as in the fork,
+/// long before the next re-neighboring (skin 2 mm). The 162 rows within 1e-10 of the
+/// fork's column scale (measured 1e-16); before, the pair stayed out of the neighbor
+/// list until that re-neighboring and passed through itself.
+#[test]
+fn a_bond_that_leaves_gives_the_contact_back_at_once() {
+    let out = common::run_script(&read("in.gone"), None);
+    let got = rows_of_width(&out, "numbonds             x2", 5);
+    common::assert_columns(&got, &table("fibers_gone.txt"), 1, 1e-10, "gone");
+    let free = got.iter().find(|r| r[1] == 0.0).map(|r| r[0]);
+    let first_touch = got
+        .iter()
+        .skip_while(|r| r[1] != 0.0)
+        .find(|r| r[4] != 0.0)
+        .map(|r| r[0]);
+    assert_eq!((free, first_touch), (Some(10.0), Some(170.0)));
+}

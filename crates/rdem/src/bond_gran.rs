@@ -522,9 +522,9 @@ pub struct GranBonds {
     pub coeffs: Vec<Option<BondCoeff>>,
     /// Bond creation fixes, in definition order.
     pub creators: Vec<Creator>,
-    /// `disableNormalContact 1`: bonded spheres have no pair contact (the pair is left
-    /// out of the neighbor list from the re-neighboring after the bond is made to the one
-    /// after it breaks, as in the fork).
+    /// `disableNormalContact 1`: bonded spheres have no pair contact, from the step the
+    /// bond is made to the re-neighboring after it breaks (or the step after it leaves,
+    /// break styles 3 to 5), as in the fork (see `pair::BondRules`).
     pub disable_contact: bool,
     prop: Option<PropId>,
     molecule: Option<PropId>,
@@ -1414,18 +1414,20 @@ fn near_pairs(p: &Particles, cut: f64) -> Vec<(u32, u32)> {
     out
 }
 
+/// True when the bonds `row` of a sphere (its values of [`PROP`]) hold a bond to the
+/// sphere of tag `tag` that keeps their contact off under `disableNormalContact 1`: one
+/// that has not left (intact, separating, or broken and not yet dropped at a
+/// re-neighboring), as the fork's pair style tests the bond's type.
+#[inline]
+pub fn keeps_apart(row: &[f64], tag: Tag) -> bool {
+    row.chunks_exact(SLOT)
+        .any(|s| s[TYPE] != 0.0 && s[BROKEN] != GONE && s[TAG] as Tag == tag)
+}
+
 /// True when a sphere's bond slots `row` (its [`PROP`] values) hold a bond, broken or
 /// not, until it is dropped at a re-neighboring.
 pub fn holds_any(row: &[f64]) -> bool {
     row.chunks_exact(SLOT).any(|s| s[TYPE] != 0.0)
-}
-
-/// True when the bonds `row` of a sphere (its values of [`PROP`]) hold an unbroken (or
-/// separating) bond to the sphere of tag `tag`.
-#[inline]
-pub fn holds(row: &[f64], tag: Tag) -> bool {
-    row.chunks_exact(SLOT)
-        .any(|s| s[TYPE] != 0.0 && !broken(s[BROKEN]) && s[TAG] as Tag == tag)
 }
 
 /// One bond as `compute property/local` reports it.

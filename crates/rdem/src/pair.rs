@@ -65,46 +65,74 @@ pub struct PairGran {
     /// contact with a frozen particle takes the other particle's mass as its effective
     /// mass, as if the frozen one were infinitely heavy, as LIGGGHTS does.
     pub(crate) freeze: u32,
-    /// With `bond_style gran` in Flexible_Fibers' form: the molecule IDs and the bonds
-    /// of [`crate::bond_gran`] (set by the world's set-up). Two spheres of one molecule,
-    /// one of which holds a bond, have no contact while their centres are closer than
-    /// half their radii sum, as in the fork's pair style.
-    pub(crate) same_molecule: Option<SameMolecule>,
+    /// With `bond_style gran`: the pairs it takes out of contact (set by the world's
+    /// set-up), see [`BondRules`].
+    pub(crate) bond_rules: Option<BondRules>,
 }
 
-/// Where [`PairGran::same_molecule`] reads the molecule IDs and the bonds.
+/// The pairs `bond_style gran` takes out of contact, as the forks' pair style tests them
+/// at every step (a skipped pair keeps its contact history as it is):
+///
+/// - with `disableNormalContact 1`, a pair whose first sphere holds a bond to the second
+///   that has not left (intact, broken but not yet dropped at a re-neighboring, or
+///   separating); a bond of break styles 3 to 5 that leaves gives the contact back at
+///   the next step;
+/// - in Flexible_Fibers' form, two spheres of one molecule, one of which holds a bond,
+///   while their centres are closer than half their radii sum (the fork tests the bond
+///   of the pair's first sphere in its neighbor list, rdem of either sphere).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct SameMolecule {
-    /// [`crate::bond_gran::MOLECULE`].
-    pub molecule: crate::particles::PropId,
+pub(crate) struct BondRules {
     /// [`crate::bond_gran::PROP`].
     pub bonds: crate::particles::PropId,
+    /// `disableNormalContact 1`.
+    pub disable_contact: bool,
+    /// [`crate::bond_gran::MOLECULE`], for the molecule rule (Flexible_Fibers' form).
+    pub molecule: Option<crate::particles::PropId>,
 }
 
-/// [`SameMolecule`]'s values in a pass.
+/// [`BondRules`]' values in a pass.
 #[derive(Clone, Copy)]
-struct MoleculeRule<'a> {
-    molecule: &'a [f64],
+struct BondRulesIn<'a> {
     bonds: &'a [f64],
     width: usize,
+    disable_contact: bool,
+    molecule: Option<&'a [f64]>,
 }
 
-impl<'a> MoleculeRule<'a> {
-    /// The rule of `pair` on the particles `p`, if it has one.
-    fn of(rule: Option<SameMolecule>, props: &'a [crate::particles::Property]) -> Option<Self> {
-        rule.map(|r| MoleculeRule {
-            molecule: &props[r.molecule.0].data,
+impl<'a> BondRulesIn<'a> {
+    /// The rules `rules` on the per-particle properties `props`.
+    fn of(rules: Option<BondRules>, props: &'a [crate::particles::Property]) -> Option<Self> {
+        rules.map(|r| BondRulesIn {
             bonds: &props[r.bonds.0].data,
             width: props[r.bonds.0].width,
+            disable_contact: r.disable_contact,
+            molecule: r.molecule.map(|m| &props[m.0].data[..]),
         })
     }
 
-    /// True when `i` and `j` are of one molecule and either holds a bond.
-    #[cold]
-    fn skips(&self, i: usize, j: usize) -> bool {
+    /// True when the touching pair (i, j), `rsq` = |x_i − x_j|² and `radsum` = r_i + r_j,
+    /// has no contact.
+    #[inline(always)]
+    fn skips(
+        &self,
+        i: usize,
+        j: usize,
+        tag_j: crate::particles::Tag,
+        rsq: f64,
+        radsum: f64,
+    ) -> bool {
         let w = self.width;
-        let holds = |k: usize| crate::bond_gran::holds_any(&self.bonds[k * w..(k + 1) * w]);
-        self.molecule[i] == self.molecule[j] && (holds(i) || holds(j))
+        let row = |k: usize| &self.bonds[k * w..(k + 1) * w];
+        if self.disable_contact && crate::bond_gran::keeps_apart(row(i), tag_j) {
+            return true;
+        }
+        match self.molecule {
+            Some(m) if rsq < 0.25 * radsum * radsum => {
+                m[i] == m[j]
+                    && (crate::bond_gran::holds_any(row(i)) || crate::bond_gran::holds_any(row(j)))
+            }
+            _ => false,
+        }
     }
 }
 
@@ -126,7 +154,7 @@ impl PairGran {
             whole_fraction: WHOLE_FRACTION,
             multicontact: None,
             freeze: 0,
-            same_molecule: None,
+            bond_rules: None,
         }
     }
 
@@ -348,8 +376,8 @@ struct Phase1<'a> {
     /// Group masks of all particles, and the frozen group's bit ([`PairGran::freeze`]).
     mask: &'a [u32],
     freeze: u32,
-    /// [`PairGran::same_molecule`]'s values.
-    molecule_rule: Option<MoleculeRule<'a>>,
+    /// [`PairGran::bond_rules`]' values.
+    bond_rules: Option<BondRulesIn<'a>>,
 }
 
 impl Phase1<'_> {
@@ -559,9 +587,9 @@ impl Phase1<'_> {
                 return None;
             }
         }
-        if let Some(rule) = self.molecule_rule {
-            // Left alone, history and all, as the fork skips the pair.
-            if rsq < 0.25 * radsum * radsum && rule.skips(i, j) {
+        if let Some(rules) = self.bond_rules {
+            // Left alone, history and all, as the forks skip the pair.
+            if rules.skips(i, j, self.tag[j], rsq, radsum) {
                 return None;
             }
         }
@@ -914,7 +942,7 @@ impl PairPass<'_> {
             whole_fraction: _,
             multicontact,
             freeze,
-            same_molecule,
+            bond_rules,
         } = pair;
         let mc_state = multicontact.as_ref().map(|m| m.read());
         let create_now = update && bond.as_ref().is_some_and(|b| b.creates_at(*step));
@@ -965,7 +993,7 @@ impl PairPass<'_> {
             tag: &p.tag,
             mask: &p.mask,
             freeze: *freeze,
-            molecule_rule: MoleculeRule::of(*same_molecule, &p.props),
+            bond_rules: BondRulesIn::of(*bond_rules, &p.props),
         };
         if !two_phase {
             let (f, torque) = (&mut p.f, &mut p.torque);

@@ -142,12 +142,16 @@ impl World {
             return Ok(());
         };
         bonds.attach(&mut self.particles)?;
-        self.neighbor.exclude.bonded = bonds.disable_contact.then(|| bonds.prop_id()).flatten();
         self.neighbor.exclude.molecule = bonds.molecule_id();
         if let Some(pair) = &mut self.pair {
-            pair.same_molecule = match (bonds.fibers_form(), bonds.molecule_id(), bonds.prop_id()) {
-                (true, Some(molecule), Some(bonds)) => {
-                    Some(crate::pair::SameMolecule { molecule, bonds })
+            let molecule = bonds.molecule_id().filter(|_| bonds.fibers_form());
+            pair.bond_rules = match bonds.prop_id() {
+                Some(b) if bonds.disable_contact || molecule.is_some() => {
+                    Some(crate::pair::BondRules {
+                        bonds: b,
+                        disable_contact: bonds.disable_contact,
+                        molecule,
+                    })
                 }
                 _ => None,
             };
@@ -169,15 +173,19 @@ impl World {
         bonds.check(self.neighbor.cutoff_for(rmax), rmax)
     }
 
-    /// Bond creation of the creators due at this step (`fix bond/create/gran`). With
-    /// `disableNormalContact 1` new bonds re-neighbor at once, so that their pairs leave
-    /// the neighbor list before this step's forces (as the fork's creation does).
+    /// Bond creation of the creators due at this step (`fix bond/create/gran`). New bonds
+    /// re-neighbor at once, before this step's forces, as the fork's creation does (which
+    /// also drops the bonds broken since the last re-neighboring).
     pub(crate) fn create_bonds(&mut self) -> Result<()> {
         let Some(bonds) = &mut self.bonds else {
             return Ok(());
         };
         let made = bonds.create(&mut self.particles, self.step, &self.neighbor.exclude)?;
-        let renew = bonds.disable_contact && self.comm.sum_count(made) > 0;
+        let due = bonds
+            .creators
+            .iter()
+            .any(|c| c.every > 0 && self.step % c.every == 0);
+        let renew = due && self.comm.sum_count(made) > 0;
         if renew {
             self.reneighbor()?;
         }

@@ -80,9 +80,6 @@ pub struct Exclusions {
     /// spheres of one rigid clump ([`crate::multisphere`]; LIGGGHTS' `fix multisphere`
     /// excludes them so).
     pub same_body: Option<crate::particles::PropId>,
-    /// Pairs joined by an unbroken bond of this per-particle bond property
-    /// ([`crate::bond_gran`] with `disableNormalContact 1`).
-    pub bonded: Option<crate::particles::PropId>,
     /// `exclude molecule G` as group bit masks: both particles in G with the same
     /// molecule ID (LAMMPS' rule: ID 0 included).
     pub molecule_groups: Vec<u32>,
@@ -97,7 +94,6 @@ impl Exclusions {
         self.types.is_empty()
             && self.groups.is_empty()
             && self.same_body.is_none()
-            && self.bonded.is_none()
             && self.molecule_groups.is_empty()
     }
 
@@ -106,11 +102,6 @@ impl Exclusions {
         if let Some(id) = self.same_body {
             let b = &p.props[id.0].data;
             if b[i] != 0.0 && b[i] == b[j] {
-                return true;
-            }
-        }
-        if let Some(id) = self.bonded {
-            if crate::bond_gran::holds(p.props[id.0].get(i), p.tag[j]) {
                 return true;
             }
         }

@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::{MoleculeRule, PairGran, Phase1};
+use super::{BondRulesIn, PairGran, Phase1};
 use crate::bond::{self, BondEvents};
 use crate::contact::{ContactForce, ContactKernel, Visitor};
 use crate::neighbor::NeighborList;
@@ -180,7 +180,7 @@ impl Records<'_> {
             breaks: None,
             mc: pair.multicontact.as_deref().zip(mc_state.as_deref()),
             tag: &p.tag,
-            molecule_rule: MoleculeRule::of(pair.same_molecule, &p.props),
+            bond_rules: BondRulesIn::of(pair.bond_rules, &p.props),
         };
         each(&ph1, pair, p, list, out)
     }
