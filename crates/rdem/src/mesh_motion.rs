@@ -279,11 +279,24 @@ impl MeshMotion {
         if self.movers.is_empty() {
             return;
         }
-        let poses: Vec<Pose> = self
-            .movers
-            .iter()
-            .map(|(_, m, t0)| m.pose(t - t0))
-            .collect();
+        // The motions' transforms, on the stack for the usual few motions (no allocation
+        // per step).
+        const STACK: usize = 8;
+        let mut buf = [Pose::translation(DVec3::ZERO, DVec3::ZERO); STACK];
+        let heap: Vec<Pose>;
+        let poses: &[Pose] = if self.movers.len() <= STACK {
+            for (b, (_, m, t0)) in buf.iter_mut().zip(&self.movers) {
+                *b = m.pose(t - t0);
+            }
+            &buf[..self.movers.len()]
+        } else {
+            heap = self
+                .movers
+                .iter()
+                .map(|(_, m, t0)| m.pose(t - t0))
+                .collect();
+            &heap
+        };
         self.vel.resize(verts.len(), DVec3::ZERO);
         for ((x, v), &b) in verts.iter_mut().zip(&mut self.vel).zip(&self.base) {
             let (mut y, mut u) = (b, DVec3::ZERO);
