@@ -492,6 +492,19 @@ impl Creator {
         (z >> 11) as f64 / (1u64 << 53) as f64
     }
 
+    /// Whether this creator makes bonds at `step`.
+    pub fn due(&self, step: u64) -> bool {
+        self.every > 0 && step % self.every == 0
+    }
+
+    /// The bonds of this creator's type among a sphere's bond slots `slots`.
+    fn typed(&self, slots: &[f64]) -> usize {
+        slots
+            .chunks_exact(SLOT)
+            .filter(|s| s[TYPE] == self.btype as f64)
+            .count()
+    }
+
     /// The largest centre distance that bonds, for spheres of radius at most `rmax`.
     pub fn distance(&self, rmax: f64) -> f64 {
         if self.relative {
@@ -1172,10 +1185,7 @@ impl GranBonds {
     ) -> Result<u64> {
         let Some(id) = self.prop else { return Ok(0) };
         let due: Vec<usize> = (0..self.creators.len())
-            .filter(|&k| {
-                let c = &self.creators[k];
-                c.every > 0 && step % c.every == 0
-            })
+            .filter(|&k| self.creators[k].due(step))
             .collect();
         if due.is_empty() {
             return Ok(0);
@@ -1230,12 +1240,7 @@ impl GranBonds {
             let mut plan: Vec<(usize, usize)> = Vec::new();
             let mut held: Vec<usize> = (0..p.len()).map(|k| Self::count(row(k))).collect();
             // Bonds of the creator's type at the step's start, for `iparam`/`jparam`.
-            let typed = |k: usize| {
-                row(k)
-                    .chunks_exact(SLOT)
-                    .filter(|s| s[TYPE] == c.btype as f64)
-                    .count()
-            };
+            let typed = |k: usize| c.typed(row(k));
             for &(_, _, a, b) in &cand {
                 let (oa, ob) = (owner(a), owner(b));
                 if oa == ob || bonded(a, p.tag[b]) {
@@ -1282,12 +1287,8 @@ impl GranBonds {
                         // As the fork: after each new bond, a sphere whose count of the
                         // creator's bonds reaches its limit (by its type at that moment)
                         // turns into the limit's new type.
-                        let n = r
-                            .chunks_exact(SLOT)
-                            .filter(|s| s[TYPE] == c.btype as f64)
-                            .count();
                         let l = c.limit(p.ty[me]);
-                        if n == l.max {
+                        if c.typed(r) == l.max {
                             p.ty[me] = l.new_type;
                         }
                     }

@@ -206,6 +206,34 @@ impl Motion {
     }
 }
 
+/// Calls `f` with the transforms of `movers` at time `t`, in their order: on the stack
+/// for the usual few motions (no allocation per step), in a `Vec` beyond.
+fn with_poses<R>(movers: &[(String, Motion, f64)], t: f64, f: impl FnOnce(&[Pose]) -> R) -> R {
+    const STACK: usize = 8;
+    if movers.len() <= STACK {
+        let mut buf = [Pose::translation(DVec3::ZERO, DVec3::ZERO); STACK];
+        for (b, (_, m, t0)) in buf.iter_mut().zip(movers) {
+            *b = m.pose(t - t0);
+        }
+        f(&buf[..movers.len()])
+    } else {
+        let poses: Vec<Pose> = movers.iter().map(|(_, m, t0)| m.pose(t - t0)).collect();
+        f(&poses)
+    }
+}
+
+/// The place and velocity of the point at `b` when the motions began, carried by the
+/// transforms `poses` (innermost motion first, each carrying the point and its velocity).
+fn carry_through(poses: &[Pose], b: DVec3) -> (DVec3, DVec3) {
+    let (mut y, mut u) = (b, DVec3::ZERO);
+    for pose in poses.iter().rev() {
+        u = pose.rot * u;
+        y = pose.apply(y);
+        u += pose.velocity_at(y);
+    }
+    (y, u)
+}
+
 /// The motions of one mesh and the positions they act on.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshMotion {
@@ -279,50 +307,24 @@ impl MeshMotion {
         if self.movers.is_empty() {
             return;
         }
-        // The motions' transforms, on the stack for the usual few motions (no allocation
-        // per step).
-        const STACK: usize = 8;
-        let mut buf = [Pose::translation(DVec3::ZERO, DVec3::ZERO); STACK];
-        let heap: Vec<Pose>;
-        let poses: &[Pose] = if self.movers.len() <= STACK {
-            for (b, (_, m, t0)) in buf.iter_mut().zip(&self.movers) {
-                *b = m.pose(t - t0);
-            }
-            &buf[..self.movers.len()]
-        } else {
-            heap = self
-                .movers
-                .iter()
-                .map(|(_, m, t0)| m.pose(t - t0))
-                .collect();
-            &heap
-        };
         self.vel.resize(verts.len(), DVec3::ZERO);
-        for ((x, v), &b) in verts.iter_mut().zip(&mut self.vel).zip(&self.base) {
-            let (mut y, mut u) = (b, DVec3::ZERO);
-            for pose in poses.iter().rev() {
-                u = pose.rot * u;
-                y = pose.apply(y);
-                u += pose.velocity_at(y);
+        with_poses(&self.movers, t, |poses| {
+            for ((x, v), &b) in verts.iter_mut().zip(&mut self.vel).zip(&self.base) {
+                (*x, *v) = carry_through(poses, b);
             }
-            *x = y;
-            *v = u;
-        }
+        });
     }
 
     /// Where the motions put the carried point `k` ([`MeshMotion::carried`]) at time
-    /// `t`; `None` without motions or such a point.
+    /// `t`, as they put the vertices; `None` without motions or such a point.
     pub fn carry(&self, t: f64, k: usize) -> Option<DVec3> {
         let b = *self.carried.get(k)?;
         if self.movers.is_empty() {
             return None;
         }
-        Some(
-            self.movers
-                .iter()
-                .rev()
-                .fold(b, |y, (_, m, t0)| m.pose(t - t0).apply(y)),
-        )
+        Some(with_poses(&self.movers, t, |poses| {
+            carry_through(poses, b).0
+        }))
     }
 
     /// The largest distance a vertex has moved since the last candidate build.

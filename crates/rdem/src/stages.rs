@@ -181,10 +181,7 @@ impl World {
             return Ok(());
         };
         let made = bonds.create(&mut self.particles, self.step, &self.neighbor.exclude)?;
-        let due = bonds
-            .creators
-            .iter()
-            .any(|c| c.every > 0 && self.step % c.every == 0);
+        let due = bonds.creators.iter().any(|c| c.due(self.step));
         let renew = due && self.comm.sum_count(made) > 0;
         if renew {
             self.reneighbor()?;
