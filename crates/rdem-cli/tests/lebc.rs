@@ -242,6 +242,183 @@ fn a_collision_across_the_y_face_is_the_collision_with_the_image() {
     }
 }
 
+/// A rigid dumbbell (two 1 mm spheres 1.6 mm apart along y, centre of mass 1.9 mm above
+/// the lower y face) moving down at 2 m/s: its lower sphere leaves through that face after
+/// 0.55 ms and comes back on the upper image, shifted along x by the offset and moving
+/// 10 m/s faster (γ̇ = 500 /s, L_y = 0.02 m). That image then hits a sphere at rest under
+/// the upper face off-centre (contact from about 0.65 ms), which spins the dumbbell.
+/// The offset wraps by L_x at step 2000, with the lower sphere on the upper image. `thermo`
+/// prints the body's centre of mass, velocity and angular momentum at the end (step 2501).
+fn clump_script(ly: f64, y: f64, vx: f64, x: f64, sheared: bool) -> String {
+    let shear = if sheared {
+        "fix le free lebc 500.0 gtemp 0.0\n"
+    } else {
+        ""
+    };
+    let d = 1e-9;
+    head(ly)
+        + &format!(
+            "create_atoms 1 single 0.0115 0.018 0.005 units box
+set atom 1 diameter 0.002 density 2500
+group free id 1
+fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.001 0 0.0016 0 0.001 type 1
+fix pdd all particledistribution/discrete 15485867 1 pts 1.0
+fix ms all multisphere
+region r block {x} {} {y} {} 0.005 {} units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd vel constant {vx} -2 0 orientation constant 1 0 0 0 insert_every once overlapcheck yes all_in no region r particles_in_region 1
+fix integr free nve/sphere
+{shear}compute x all multisphere/single id 1 property xcm
+compute v all multisphere/single id 1 property vcm
+compute l all multisphere/single id 1 property angmom
+thermo_style custom step atoms c_x[1] c_x[2] c_x[3] c_v[1] c_v[2] c_v[3] c_l[1] c_l[2] c_l[3]
+thermo_modify format float %24.17g
+thermo 2501
+dump d free custom 2501 d.txt id x y z vx vy vz omegax omegay omegaz
+dump_modify d format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+run 2501
+",
+            x + d,
+            y + d,
+            0.005 + d
+        )
+}
+
+/// Runs [`clump_script`]; the body's last thermo row and the free sphere's last row.
+fn clump_run(script: &str, threads: usize, ranks: Option<usize>) -> (Vec<f64>, Vec<f64>) {
+    let dir = common::scratch_dir("lebc-clump");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = common::rdem_in(&dir, "in.test", ranks)
+        .env("RDEM_THREADS", threads.to_string())
+        .output()
+        .unwrap();
+    let text = common::success("lebc clump", &out);
+    // The last thermo row (fix lebc's own lines interrupt the table).
+    let body: Vec<f64> = text
+        .lines()
+        .rev()
+        .find(|l| l.trim_start().starts_with("2501 "))
+        .expect("the thermo row of step 2501")
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    let free = last_frame(&dir).remove(0);
+    let _ = std::fs::remove_dir_all(&dir);
+    (body, free)
+}
+
+/// The dumbbell of [`clump_script`] across the lower y face of the sheared box against
+/// the same dumbbell placed where its upper image is (0.02 m higher, 10 µm further along
+/// x: the offset when it is inserted at step 1) moving 10 m/s faster along x, in a box
+/// 0.04 m high without shear. The free sphere ends alike within 1e-9 (relative, or
+/// absolute below 1). The dumbbell's centre of mass has crossed the face too (at about
+/// step 2160), so that `compute multisphere/single` gives it where the box holds it: on
+/// the upper image, at the reference's place (modulo L_x), velocity and angular momentum
+/// within 1e-9 relative.
+/// On 1 and 2 threads (bit for bit) and 2 MPI ranks (`processors 1 2 1`: the dumbbell's
+/// spheres and the free sphere on different ranks).
+#[test]
+fn a_clump_across_the_y_face_is_the_clump_with_the_image() {
+    let (body_ref, free_ref) =
+        clump_run(&clump_script(0.04, 0.0219, 10.0, 0.00401, false), 1, None);
+    // The collision spun the dumbbell and knocked the sphere off.
+    assert!(free_ref[5].abs() > 0.05, "no collision: {free_ref:?}");
+    assert!(body_ref[10].abs() > 1e-9, "no spin: {body_ref:?}");
+    let check = |(body, free): (Vec<f64>, Vec<f64>), what: &str| {
+        for (k, (&g, &w)) in free.iter().zip(&free_ref).enumerate() {
+            assert!(
+                (g - w).abs() < 1e-9 * (1.0 + w.abs()),
+                "{what}: free sphere column {k}: {g} against {w}"
+            );
+        }
+        for k in 2..11 {
+            let (mut g, w) = (body[k], body_ref[k]);
+            if k == 2 {
+                // Wrapped into the box along x; the offset is one box length apart.
+                g -= ((g - w) / 0.02).round() * 0.02;
+            }
+            assert!(
+                (g - w).abs() < 1e-9 * w.abs().max(1e-6),
+                "{what}: body column {k}: {g} (shifted) against {w}"
+            );
+        }
+    };
+    let sheared = clump_script(0.02, 0.0019, 0.0, 0.004, true);
+    let one = clump_run(&sheared, 1, None);
+    check(one.clone(), "1 thread");
+    assert_eq!(clump_run(&sheared, 2, None), one, "2 threads differ from 1");
+    if common::have_mpirun() {
+        let mpi = clump_run(&format!("processors 1 2 1\n{sheared}"), 1, Some(2));
+        check(mpi, "2 ranks");
+    }
+}
+
+/// Two rigid dumbbells (as in [`clump_script`], at rest, centres of mass at heights 5 and
+/// 12 mm of the 20 mm box, y_c = 10 mm) take the shear profile at their centres of mass
+/// when the run starts (γ̇ = 500 /s, gtemp 0), less the mean velocity v̄ = γ̇ (8.5 mm −
+/// y_c) = −0.75 m/s: −1.75 and +1.75 m/s along x, as `compute multisphere/single` gives
+/// them. The kinetic stress counts each by its centre of mass, as the fork does: xx =
+/// (M₁ + M₂) v̄² / V while they fly apart without touching (counted by sphere, the spheres'
+/// heights ±0.8 mm off the centre would add 2 M γ̇² (0.8 mm)², 28 % more). Relative 1e-12.
+#[test]
+fn clumps_take_the_profile_and_count_by_their_centres_of_mass() {
+    let mut script = head(0.02)
+        + "fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.001 0 0.0016 0 0.001 type 1
+fix pdd all particledistribution/discrete 15485867 1 pts 1.0
+fix ms all multisphere
+";
+    for (k, (x, y)) in [(0.005, 0.005), (0.012, 0.012)].into_iter().enumerate() {
+        let d = 1e-9;
+        script += &format!(
+            "region r{k} block {x} {} {y} {} 0.005 {} units box
+fix i{k} all insert/pack seed {} distributiontemplate pdd vel constant 0 0 0 orientation constant 1 0 0 0 insert_every once overlapcheck yes all_in no region r{k} particles_in_region 1
+run 1
+unfix i{k}
+",
+            x + d,
+            y + d,
+            0.005 + d,
+            [32452843, 49979687][k]
+        );
+    }
+    script += "fix le all lebc 500.0 gtemp 0.0
+compute v1 all multisphere/single id 1 property vcm
+compute v2 all multisphere/single id 2 property vcm
+compute m1 all multisphere/single id 1 property masstotal
+compute m2 all multisphere/single id 2 property masstotal
+compute y1 all multisphere/single id 1 property xcm
+compute y2 all multisphere/single id 2 property xcm
+thermo_style custom step atoms f_le[1] c_v1[1] c_v2[1] c_m1 c_m2 c_y1[2] c_y2[2] c_v1[2]
+thermo_modify format float %24.17g
+thermo 10
+run 10
+";
+    let out = common::run_script(&script, None);
+    let row = common::thermo_rows(&out).pop().unwrap();
+    let (kxx, v1, v2, m1, m2, y1, y2, vy) = (
+        row[2], row[3], row[4], row[5], row[6], row[7], row[8], row[9],
+    );
+    let close = |got: f64, want: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= 1e-12 * want.abs(),
+            "{what}: {got} against {want}\n{out}"
+        )
+    };
+    // Inserted with the centre of mass in the regions (1e-9 wide).
+    assert!(
+        (y1 - 0.005).abs() < 2e-9 && (y2 - 0.012).abs() < 2e-9,
+        "{y1} {y2}"
+    );
+    assert_eq!(vy, 0.0);
+    let vbar = 500.0 * ((m1 * y1 + m2 * y2) / (m1 + m2) - 0.01);
+    close(v1, 500.0 * (y1 - 0.01) - vbar, "v1");
+    close(v2, 500.0 * (y2 - 0.01) - vbar, "v2");
+    close(
+        kxx,
+        (m1 + m2) * vbar * vbar / (0.02 * 0.02 * 0.01),
+        "kinetic xx",
+    );
+}
+
 /// A bed of 1.5 mm spheres (density 2500, frictionless Hertz, ν 0.3) inserted by
 /// insert/pack at volume fraction 0.2 into a periodic 30 × 30 × 15 mm box, after its
 /// first step (`run 1`), as the fork's examples make theirs: skin, neighbor check,

@@ -254,11 +254,13 @@ impl Domain {
         }
     }
 
-    /// Advances the Lees–Edwards offset by one step of `dt` (no-op without shear).
-    pub fn advance_shear(&mut self, dt: f64) {
+    /// Advances the Lees–Edwards offset by one step of `dt` (no-op without shear);
+    /// returns the box lengths the offset wrapped by ([`crate::shear::Shear::advance`]).
+    pub fn advance_shear(&mut self, dt: f64) -> i32 {
         let prd = self.prd();
-        if let Some(s) = &mut self.shear {
-            s.advance(dt, prd.x, prd.y);
+        match &mut self.shear {
+            Some(s) => s.advance(dt, prd.x, prd.y),
+            None => 0,
         }
     }
 

@@ -14,6 +14,12 @@
 //!
 //! The neighbor list's distance check counts the drift of the offset since the build
 //! ([`Shear::drift`]): an image slides past its partners even when no particle moves.
+//!
+//! Image counts: a particle's unwrapped position is x + n ⊙ L + n_y d x̂, which stays
+//! continuous: the wrap through a y face changes n_y and x together, and when the offset
+//! wraps by k box lengths, n_x grows by k n_y ([`crate::World`] does it after the step's
+//! advance). A rigid clump's sphere is placed from its body by the same relation
+//! (`crate::multisphere`), with v_x less n_y γ̇ L_y.
 
 use glam::DVec3;
 
@@ -45,13 +51,18 @@ impl Shear {
         self.rate * ly
     }
 
-    /// Advances the offset by one step of `dt` (box lengths `lx`, `ly`).
-    pub fn advance(&mut self, dt: f64, lx: f64, ly: f64) {
+    /// Advances the offset by one step of `dt` (box lengths `lx`, `ly`); returns k, the
+    /// number of box lengths taken off to keep it in [0, L_x) (0 on most steps; −1 when
+    /// a negative rate wraps it up).
+    pub fn advance(&mut self, dt: f64, lx: f64, ly: f64) -> i32 {
         self.offset += self.rate * ly * dt;
-        self.offset -= (self.offset / lx).floor() * lx;
+        let mut k = (self.offset / lx).floor();
+        self.offset -= k * lx;
         if self.offset >= lx {
             self.offset = 0.0;
+            k += 1.0;
         }
+        k as i32
     }
 
     /// The offset as the ghosts made at the last build see it now: the value congruent to
@@ -108,12 +119,12 @@ mod tests {
         let mut s = Shear::new(10.0);
         // γ̇ L_y dt = 10 · 2 · 0.01 = 0.2 per step, L_x = 1.
         for _ in 0..4 {
-            s.advance(0.01, 1.0, 2.0);
+            assert_eq!(s.advance(0.01, 1.0, 2.0), 0);
         }
         assert!((s.offset - 0.8).abs() < 1e-12);
         s.built = s.offset;
-        s.advance(0.01, 1.0, 2.0);
-        s.advance(0.01, 1.0, 2.0);
+        assert_eq!(s.advance(0.01, 1.0, 2.0), 1);
+        assert_eq!(s.advance(0.01, 1.0, 2.0), 0);
         // Wrapped to 0.2, seen from the build as 1.2.
         assert!((s.offset - 0.2).abs() < 1e-12);
         assert!((s.current(1.0) - 1.2).abs() < 1e-12);

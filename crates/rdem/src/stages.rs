@@ -41,12 +41,6 @@ impl World {
                 self.domain.procgrid[0], self.domain.procgrid[1], self.domain.procgrid[2]
             )));
         }
-        if self.multisphere.is_some() {
-            return Err(invalid(
-                "Lees-Edwards shear of rigid clumps (fix multisphere) is not supported; \
-                 the clumps' centres would need the shift across the y faces too",
-            ));
-        }
         Ok(())
     }
 
@@ -332,6 +326,22 @@ impl World {
             let out = self.neighbor.take_remote(self.comm.size());
             let got = self.comm.all_to_all(out);
             self.neighbor.append_history(&got);
+        }
+    }
+
+    /// Step 1: the Lees–Edwards offset advanced by one step; when it wraps by k box
+    /// lengths, every owned particle's n_x grows by k n_y, so that its unwrapped
+    /// position stays where it was ([`crate::shear`]).
+    pub(crate) fn advance_shear(&mut self) {
+        let k = self.domain.advance_shear(self.dt);
+        if k == 0 {
+            return;
+        }
+        let p = &mut self.particles;
+        for i in 0..p.nlocal() {
+            let mut im = p.image[i].get();
+            im[0] += k * im[1];
+            p.image[i] = im.into();
         }
     }
 

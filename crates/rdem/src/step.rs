@@ -238,8 +238,9 @@ impl World {
         }
         let t0 = Instant::now();
         self.step += 1;
+        // The offset first: a clump's spheres are placed with this step's.
+        self.advance_shear();
         self.initial_integrate();
-        self.domain.advance_shear(self.dt);
         self.move_meshes();
         self.move_servo_meshes();
         if mask.pre_exchange {

@@ -9,6 +9,7 @@ mod domain_predicates;
 mod energy_gas;
 mod fixes;
 mod history_persistence;
+mod lees_edwards;
 mod liggghts_golden;
 mod mesh_walls;
 mod neighbor_lists;

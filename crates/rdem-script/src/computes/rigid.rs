@@ -7,7 +7,8 @@
 //! LIGGGHTS. Every rank holds every clump: on several ranks the first gives the rows.
 //!
 //! The properties and their widths: `xcm` 3 (the centre of mass, wrapped into the
-//! periodic box), `vcm` 3, `fcm` 3 (the total force of the last step, gravity included),
+//! periodic box), `vcm` 3 (under Lees–Edwards shear both as the box holds the body,
+//! [`rdem::World::body_in_box`]), `fcm` 3 (the total force of the last step, gravity included),
 //! `torque` 3 (about the centre of mass), `quat` 4 (w, x, y, z: body frame to space
 //! frame), `angmom` 3, `omega` 3, `density` 1, `atomtype` 1, `clumptype` 1 (the
 //! template's `type`), `id_multisphere` 1, `masstotal` 1, `inertia` 3 (the principal
@@ -117,13 +118,8 @@ impl BodyProperty {
         let v3 = |v: DVec3| [v.x, v.y, v.z, 0.0];
         let one = |x: f64| [x, 0.0, 0.0, 0.0];
         match PROPERTIES[self.prop].0 {
-            "xcm" => {
-                let mut x = b.x;
-                let mut image = [0; 3];
-                w.domain.remap(&mut x, &mut image);
-                v3(x)
-            }
-            "vcm" => v3(b.v),
+            "xcm" => v3(w.body_in_box(k).map_or(b.x, |(x, _)| x)),
+            "vcm" => v3(w.body_in_box(k).map_or(b.v, |(_, v)| v)),
             "fcm" => v3(b.force),
             "torque" => v3(b.torque),
             "quat" => [b.q.w, b.q.x, b.q.y, b.q.z],

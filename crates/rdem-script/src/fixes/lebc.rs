@@ -25,12 +25,19 @@
 //!   divides by 2500 · 100² · d², its particles' density and its examples' rate, fixed in
 //!   its code: the two agree for those values.
 //!
+//! Rigid clumps (`fix multisphere`, as four of the fork's examples use) shear as the
+//! fork's do: a clump in the group takes the profile and the scatter at its centre of
+//! mass (its angular velocity kept), and counts in the kinetic stress and the mean
+//! velocity by its centre of mass's velocity, translation only. The engine places a
+//! clump's spheres on the sliding images ([`rdem::shear`]).
+//!
 //! The fork's own code requires the 7-word form `lebc RATE true gtemp G` and stops on
 //! the 4-word form `lebc RATE` that its examples use; rdem takes both. Its README's
-//! `body_data NAME N` (clump data written every N steps) is refused: rdem's fix lebc does
-//! not run with rigid clumps. Lees–Edwards needs `boundary p p p` and, with MPI, one
+//! `body_data NAME N` (clump data written every N steps, in a layout the fork does not
+//! document) is refused. Lees–Edwards needs `boundary p p p` and, with MPI, one
 //! brick along x (`processors 1 * *`); both are checked when a run starts.
 
+use glam::DVec3;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
@@ -47,12 +54,14 @@ pub(super) const ROW: FixRow = style(
     Stages::PRE_STEP.and(Stages::END_OF_STEP).and(Stages::VALUES),
     "`RATE [true\\|false] [gtemp G] [ave_reset N]` (LIGGGHTS_CFDRC): Lees-Edwards shear at rate RATE, flow along x, gradient along y; velocities set to the profile (scatter G·RATE·Ly) at the first run's set-up; kinetic and contact stress averaged, `stress:` lines every N steps (50000)",
 )
-.notes("the fork resets the velocities at every run, rdem at the first only; needs boundary p p p, and one MPI brick along x; not with fix multisphere (`body_data` is refused); the scatter is drawn per particle from its tag, not from the fork's single generator");
+.notes("the fork resets the velocities at every run, rdem at the first only; needs boundary p p p, and one MPI brick along x; rigid clumps shear by their centres of mass (`body_data` is refused); the scatter is drawn per particle from its tag, not from the fork's single generator");
 
 /// Steps between the progress lines.
 const PROGRESS_EVERY: u64 = 2500;
 /// Seed of the velocity scatter (mixed with each particle's tag).
 const SEED: u64 = 0x6c65_6263;
+/// Seed of a rigid clump's velocity scatter (mixed with its body's tag).
+const BODY_SEED: u64 = 0x6c65_6263_626f_6479;
 
 /// The fix's settings and running averages.
 struct Lebc {
@@ -96,8 +105,8 @@ fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptF
             "ave_reset" => ave_reset = a.count("ave_reset")?,
             _ => {
                 return Err(a.error_prev(
-                    "fix lebc: body_data (rigid clump data) is not supported",
-                    Some("rdem's fix lebc does not run with fix multisphere; the keywords it takes are gtemp and ave_reset".into()),
+                    "fix lebc: body_data (the fork's file of clump data) is not supported",
+                    Some("the keywords rdem takes are gtemp and ave_reset (the file's layout is not documented: compute multisphere gives the clumps' data for dump local)".into()),
                 ))
             }
         }
@@ -112,66 +121,127 @@ fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptF
     }))
 }
 
+/// Rigid clump `k`'s mass.
+fn body_mass(w: &rdem::World, k: usize) -> Option<f64> {
+    Some(w.multisphere.as_ref()?.bodies.get(k)?.mass)
+}
+
 impl Lebc {
     /// Sets the group's velocities to the shear profile plus the scatter, less the mean.
+    /// A clump in the group (any of its spheres is) moves as one: its centre of mass
+    /// takes the profile at its height and the scatter, as the fork sets its bodies'
+    /// velocities, and its angular velocity is kept. The mean is mass-weighted over the
+    /// free spheres and the clumps.
     fn set_velocities(&self, w: &mut rdem::World, groupbit: u32) {
         let (lo, prd) = (w.domain.boxlo, w.domain.prd());
         let yc = lo.y + 0.5 * prd.y;
         let sigma = self.gtemp * prd.y * self.rate.abs();
-        let p = &mut w.particles;
-        let mut momentum = [0.0; 4];
-        for i in 0..p.nlocal() {
-            if p.mask[i] & groupbit == 0 {
-                continue;
-            }
-            let mut rng = rdem::insert::rng(SEED ^ p.tag[i]);
-            let mut draw = |mean: f64| match Normal::new(mean, sigma) {
+        let draw = |seed: u64, y: f64| {
+            let mut rng = rdem::insert::rng(seed);
+            let mut one = |mean: f64| match Normal::new(mean, sigma) {
                 Ok(n) if sigma > 0.0 => n.sample(&mut rng),
                 _ => mean,
             };
-            let vx = draw(self.rate * (p.x[i].y - yc));
-            let (vy, vz) = (draw(0.0), draw(0.0));
-            p.v[i] = glam::DVec3::new(vx, vy, vz);
+            let vx = one(self.rate * (y - yc));
+            DVec3::new(vx, one(0.0), one(0.0))
+        };
+        let nbodies = w.multisphere.as_ref().map_or(0, |ms| ms.bodies.len());
+        // Which clumps are in the group, over all ranks.
+        let mut grouped = vec![0.0; nbodies];
+        let clump: Vec<Option<usize>> = {
+            let of = w.clump_of();
+            (0..w.particles.nlocal()).map(&of).collect()
+        };
+        let p = &mut w.particles;
+        let mut momentum = [0.0; 4];
+        for (i, &c) in clump.iter().enumerate() {
+            if p.mask[i] & groupbit == 0 {
+                continue;
+            }
+            if let Some(k) = c {
+                grouped[k] = 1.0;
+                continue;
+            }
+            let v = draw(SEED ^ p.tag[i], p.x[i].y);
+            p.v[i] = v;
             let m = p.rmass[i];
-            momentum[0] += m * vx;
-            momentum[1] += m * vy;
-            momentum[2] += m * vz;
+            momentum[0] += m * v.x;
+            momentum[1] += m * v.y;
+            momentum[2] += m * v.z;
             momentum[3] += m;
         }
         w.comm.sum_slice(&mut momentum);
+        w.comm.sum_slice(&mut grouped);
+        if let Some(ms) = w.multisphere.as_mut() {
+            for k in (0..nbodies).filter(|&k| grouped[k] > 0.0) {
+                let seed = BODY_SEED ^ ms.tags[k];
+                let b = &mut ms.bodies[k];
+                b.v = draw(seed, b.x.y);
+            }
+        }
+        // Every rank holds every body: each adds them alike, after the reduction.
+        for k in (0..nbodies).filter(|&k| grouped[k] > 0.0) {
+            if let Some((m, (_, v))) = body_mass(w, k).zip(w.body_in_box(k)) {
+                momentum[0] += m * v.x;
+                momentum[1] += m * v.y;
+                momentum[2] += m * v.z;
+                momentum[3] += m;
+            }
+        }
         if momentum[3] > 0.0 {
-            let mean = glam::DVec3::new(momentum[0], momentum[1], momentum[2]) / momentum[3];
+            let mean = DVec3::new(momentum[0], momentum[1], momentum[2]) / momentum[3];
             let p = &mut w.particles;
-            for i in 0..p.nlocal() {
-                if p.mask[i] & groupbit != 0 {
+            for (i, c) in clump.iter().enumerate() {
+                if p.mask[i] & groupbit != 0 && c.is_none() {
                     p.v[i] -= mean;
                 }
             }
+            if let Some(ms) = w.multisphere.as_mut() {
+                for k in (0..nbodies).filter(|&k| grouped[k] > 0.0) {
+                    ms.bodies[k].v -= mean;
+                }
+            }
+        }
+        if nbodies > 0 {
+            w.refresh_clump_velocities();
         }
     }
 
-    /// This step's kinetic and contact stress (xx yy zz xy xz yz, over all ranks).
+    /// This step's kinetic and contact stress (xx yy zz xy xz yz, over all ranks). The
+    /// kinetic part counts a free sphere by its velocity and a rigid clump by its centre
+    /// of mass's (translation only, as the fork counts its bodies), each less the mean
+    /// velocity and the profile at its height.
     fn stresses(&self, w: &rdem::World, virial: &[[f64; 6]]) -> ([f64; 6], [f64; 6]) {
         let (lo, prd) = (w.domain.boxlo, w.domain.prd());
         let yc = lo.y + 0.5 * prd.y;
         let volume = w.domain.volume();
         let p = &w.particles;
         let n = p.nlocal();
+        let clump = w.clump_of();
+        let nbodies = w.multisphere.as_ref().map_or(0, |ms| ms.bodies.len());
+        let bodies: Vec<(f64, DVec3, DVec3)> = (0..nbodies)
+            .filter_map(|k| Some((body_mass(w, k)?, w.body_in_box(k)?)))
+            .map(|(m, (x, v))| (m, x, v))
+            .collect();
         let mut mean = [0.0; 4];
-        for (&m, v) in p.rmass[..n].iter().zip(&p.v[..n]) {
+        for i in (0..n).filter(|&i| clump(i).is_none()) {
+            let (m, v) = (p.rmass[i], p.v[i]);
             mean[0] += m * v.x;
             mean[1] += m * v.y;
             mean[2] += m * v.z;
             mean[3] += m;
         }
         w.comm.sum_slice(&mut mean);
-        let vbar = glam::DVec3::new(mean[0], mean[1], mean[2]) / mean[3].max(f64::MIN_POSITIVE);
-        // Kinetic then contact, 12 sums reduced at once.
-        let mut s = [0.0; 12];
-        for (i, w) in virial[..n].iter().enumerate() {
-            let mut u = p.v[i] - vbar;
-            u.x -= self.rate * (p.x[i].y - yc);
-            let m = p.rmass[i];
+        for &(m, _, v) in &bodies {
+            mean[0] += m * v.x;
+            mean[1] += m * v.y;
+            mean[2] += m * v.z;
+            mean[3] += m;
+        }
+        let vbar = DVec3::new(mean[0], mean[1], mean[2]) / mean[3].max(f64::MIN_POSITIVE);
+        let kinetic_of = |m: f64, v: DVec3, y: f64, s: &mut [f64]| {
+            let mut u = v - vbar;
+            u.x -= self.rate * (y - yc);
             let t = [
                 u.x * u.x,
                 u.y * u.y,
@@ -182,10 +252,22 @@ impl Lebc {
             ];
             for k in 0..6 {
                 s[k] += m * t[k];
+            }
+        };
+        // Kinetic then contact, 12 sums reduced at once.
+        let mut s = [0.0; 12];
+        for (i, w) in virial[..n].iter().enumerate() {
+            if clump(i).is_none() {
+                kinetic_of(p.rmass[i], p.v[i], p.x[i].y, &mut s);
+            }
+            for k in 0..6 {
                 s[6 + k] += w[k];
             }
         }
         w.comm.sum_slice(&mut s);
+        for &(m, x, v) in &bodies {
+            kinetic_of(m, v, x.y, &mut s);
+        }
         let mut kinetic = [0.0; 6];
         let mut contact = [0.0; 6];
         for k in 0..6 {

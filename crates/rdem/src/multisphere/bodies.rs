@@ -351,6 +351,27 @@ impl World {
         self.place_members(true);
     }
 
+    /// Body `k`'s centre of mass and velocity as the box holds it: wrapped into the
+    /// periodic box, and under Lees–Edwards shear moved by the offset along x and by
+    /// γ̇ L_y in v_x for each box length it was wrapped along y ([`crate::shear`]). The
+    /// body itself keeps both unwrapped.
+    pub fn body_in_box(&self, k: usize) -> Option<(DVec3, DVec3)> {
+        let b = self.multisphere.as_ref()?.bodies.get(k)?;
+        let (mut x, mut v) = (b.x, b.v);
+        if let Some(s) = &self.domain.shear {
+            crate::shear::wrap_y(s, self.domain.boxlo, self.domain.prd(), &mut x, &mut v);
+        }
+        let mut image = [0; 3];
+        self.domain.remap(&mut x, &mut image);
+        Some((x, v))
+    }
+
+    /// Every clump's spheres moving with their body again (after a body's velocity was
+    /// set from outside the step).
+    pub fn refresh_clump_velocities(&mut self) {
+        self.place_members(false);
+    }
+
     /// Step 13 (after the integrating fixes): every body's force and torque from its
     /// spheres, its second half kick, and its spheres' velocities.
     pub(crate) fn final_integrate_bodies(&mut self) {
@@ -458,6 +479,9 @@ impl World {
     /// The spheres of every body where it says (with `positions`) and moving with it. The
     /// centre of mass is unwrapped; a sphere is put at the periodic image its own image
     /// counts say, x = X + R d − n ⊙ L, so that it stays where re-neighboring wrapped it.
+    /// Under Lees–Edwards shear the image n_y boxes up is also shifted by n_y times the
+    /// offset along x and moves n_y γ̇ L_y faster ([`crate::shear`]): x_x less n_y d,
+    /// v_x less n_y γ̇ L_y.
     fn place_members(&mut self, positions: bool) {
         let Some((body_id, offset_id)) = self.members() else {
             return;
@@ -467,6 +491,7 @@ impl World {
         };
         let periodic = self.domain.periodicity().iter().any(|&p| p);
         let prd = self.domain.prd();
+        let shear = self.domain.shear.map(|s| (s.offset, s.jump(prd.y)));
         let p = &mut self.particles;
         ms.omegas.clear();
         ms.omegas.extend(ms.bodies.iter().map(RigidBody::omega));
@@ -486,6 +511,13 @@ impl World {
             }
             p.v[i] = b.v + ms.omegas[k].cross(r);
             p.omega[i] = ms.omegas[k];
+            if let Some((offset, jump)) = shear {
+                let ny = p.image[i].get()[1] as f64;
+                if positions {
+                    p.x[i].x -= ny * offset;
+                }
+                p.v[i].x -= ny * jump;
+            }
         }
     }
 }
