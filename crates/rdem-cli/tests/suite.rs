@@ -38,6 +38,7 @@ mod mpi_dumps;
 mod mpi_io_failure;
 mod mpi_restart;
 mod multicontact;
+mod nve_limit;
 mod pour;
 mod region_wedge;
 mod restart_exact;

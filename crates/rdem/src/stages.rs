@@ -632,10 +632,13 @@ impl World {
         if let Some(heat) = &self.heat {
             heat.reset_flux(&mut self.particles);
         }
-        for fix in &self.fixes {
-            match &fix.kind {
+        for fix in &mut self.fixes {
+            match &mut fix.kind {
                 FixKind::NveSphere => {
                     integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt)
+                }
+                FixKind::NveLimit(l) => {
+                    l.integrate(&mut self.particles, fix.groupbit, self.dt, true)
                 }
                 FixKind::Sph(s @ (SphFix::Nve | SphFix::NveStationary)) => {
                     if let Some(props) = crate::sph::SphProps::find(&self.particles) {
@@ -914,10 +917,13 @@ impl World {
         if let Some(heat) = &self.heat {
             heat.integrate(&mut self.particles, self.dt);
         }
-        for fix in &self.fixes {
-            match &fix.kind {
+        for fix in &mut self.fixes {
+            match &mut fix.kind {
                 FixKind::NveSphere => {
                     integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt)
+                }
+                FixKind::NveLimit(l) => {
+                    l.integrate(&mut self.particles, fix.groupbit, self.dt, false)
                 }
                 FixKind::Sph(SphFix::Nve) => {
                     crate::sph::final_integrate(&mut self.particles, fix.groupbit, self.dt)

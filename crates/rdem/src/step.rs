@@ -107,6 +107,7 @@
 use std::time::Instant;
 
 use crate::error::Result;
+use crate::fix::FixKind;
 use crate::timers::Stage;
 use crate::world::World;
 use crate::Particles;
@@ -208,6 +209,7 @@ pub fn set_up<H: StepHost>(host: &mut H) -> std::result::Result<(), H::Error> {
     host.pre_step(step, true)?;
     let w = host.world();
     w.start_servos();
+    w.start_counts();
     w.setup()?;
     host.end_of_step(step, true)
 }
@@ -216,6 +218,7 @@ impl World {
     /// Runs `n` timesteps after a set-up.
     pub fn run(&mut self, n: u64) -> Result<()> {
         self.start_servos();
+        self.start_counts();
         self.setup()?;
         for _ in 0..n {
             self.advance()?;
@@ -310,6 +313,16 @@ impl World {
         }
         self.timers.lap(Stage::Other, t4);
         Ok(())
+    }
+
+    /// A run's start: the counts the fixes keep per run (`fix nve/limit`'s resets) back
+    /// to zero.
+    pub fn start_counts(&mut self) {
+        for f in &mut self.fixes {
+            if let FixKind::NveLimit(l) = &mut f.kind {
+                l.resets = 0;
+            }
+        }
     }
 
     /// Prepares a run (set-up 1–6 of [`crate::step`]): checks, coefficient tables,

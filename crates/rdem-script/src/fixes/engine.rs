@@ -1,5 +1,5 @@
 //! The fixes the engine runs every step, which the script only parses: `nve/sphere`
-//! (integration), `freeze`, `viscous`, `setforce`, `aveforce`, `enforce2d` (post-force);
+//! and `nve/limit` (integration), `freeze`, `viscous`, `setforce`, `aveforce`, `enforce2d` (post-force);
 //! `addforce` with numbers (its file: [`super::addforce`]).
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
@@ -18,6 +18,13 @@ pub(super) const ROW_NVE: FixRow = style(
     nve_sphere,
     Stages::ENGINE,
     "velocity Verlet for spheres (translation and rotation)",
+);
+/// The registry row of `nve/limit`.
+pub(super) const ROW_NVE_LIMIT: FixRow = style(
+    "nve/limit",
+    nve_limit,
+    Stages::ENGINE.and(Stages::VALUES),
+    "`absolute|radius_ratio xmax`: velocity Verlet for translation only, the speed capped after each half kick at xmax/dt (xmax·r/dt with radius_ratio); `f_ID` the resets since the run's start",
 );
 /// The registry row of `freeze`.
 pub(super) const ROW_FREEZE: FixRow = style(
@@ -90,6 +97,7 @@ impl ScriptFix for InEngine {
         let w = sim.world.as_ref().ok_or(Error::NoBox)?;
         match w.fixes.iter().find(|f| f.id == head.id).map(|f| &f.kind) {
             Some(FixKind::AveForce { total, .. }) => Ok(total.to_array().to_vec()),
+            Some(FixKind::NveLimit(l)) => Ok(vec![w.comm.sum_count(l.resets) as f64]),
             _ => Err("computes no global values".into()),
         }
     }
@@ -123,6 +131,18 @@ fn nve_sphere(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scri
         ));
     }
     engine_fix(sim, a, head, FixKind::NveSphere)
+}
+
+/// `fix ID group nve/limit absolute|radius_ratio xmax` ([`rdem::fix::integrate::NveLimit`]).
+fn nve_limit(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    let style = a.keyword("nve/limit limit style", &["absolute", "radius_ratio"])?;
+    let xmax = a.positive("xmax")?;
+    a.done()?;
+    let kind = FixKind::NveLimit(rdem::fix::integrate::NveLimit::new(
+        xmax,
+        style == "radius_ratio",
+    ));
+    engine_fix(sim, a, head, kind)
 }
 
 /// `fix ID group freeze`. One only, as in LIGGGHTS 3.8 ("More than one fix freeze"):

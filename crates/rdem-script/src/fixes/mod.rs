@@ -362,6 +362,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         pour::ROW,
         massflow_mesh::ROW,
         engine::ROW_NVE,
+        engine::ROW_NVE_LIMIT,
         gravity::ROW,
         engine::ROW_FREEZE,
         engine::ROW_VISCOUS,

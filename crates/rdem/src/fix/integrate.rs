@@ -1,4 +1,5 @@
-//! `fix nve/sphere`: velocity Verlet for translation and rotation of solid spheres.
+//! `fix nve/sphere`: velocity Verlet for translation and rotation of solid spheres; and
+//! `fix nve/limit` ([`NveLimit`]), translation only with a cap on the speed.
 //! Initial half step: v += dt/2 · f/m, x += dt · v, ω += dt/2 · τ/(0.4 m r²);
 //! final half step: v += dt/2 · f/m, ω += dt/2 · τ/(0.4 m r²).
 //!
@@ -135,4 +136,59 @@ pub fn final_integrate(p: &mut Particles, groupbit: u32, dt: f64) {
             let lo = c * CHUNK;
             run(inp.at(lo, lo + v.len()), v, omega);
         });
+}
+
+/// `fix nve/limit absolute|radius_ratio xmax` (LIGGGHTS 3.8, from LAMMPS): velocity Verlet
+/// for translation only (the angular velocity is left as it is), with the speed capped
+/// after each half kick so that no particle moves more than `xmax` in one step (`xmax`
+/// times its radius with `radius_ratio`): a velocity faster than xmax/dt is scaled down
+/// to it, and each such reset is counted. The loops are serial: the fix relaxes
+/// overlapped packings and is not on any hot path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NveLimit {
+    /// The largest displacement per step (a length, or a multiple of the radius).
+    pub xmax: f64,
+    /// `radius_ratio`: `xmax` is relative to each particle's radius.
+    pub radius_ratio: bool,
+    /// The velocity resets on this rank since the run's set-up (the fix's scalar, summed
+    /// over the ranks).
+    pub resets: u64,
+}
+
+impl NveLimit {
+    /// A fix with no resets counted yet.
+    pub fn new(xmax: f64, radius_ratio: bool) -> Self {
+        Self {
+            xmax,
+            radius_ratio,
+            resets: 0,
+        }
+    }
+
+    /// Half a kick of the group's velocities with the cap; with `drift`, then the
+    /// positions' full step.
+    pub fn integrate(&mut self, p: &mut Particles, groupbit: u32, dt: f64, drift: bool) {
+        let dtf = 0.5 * dt;
+        let vmax = self.xmax / dt;
+        for i in 0..p.nlocal() {
+            if p.mask[i] & groupbit == 0 {
+                continue;
+            }
+            let mut v = p.v[i] + (dtf / p.rmass[i]) * p.f[i];
+            let limit = if self.radius_ratio {
+                vmax * p.radius[i]
+            } else {
+                vmax
+            };
+            let vsq = v.length_squared();
+            if vsq > limit * limit {
+                self.resets += 1;
+                v *= (limit * limit / vsq).sqrt();
+            }
+            p.v[i] = v;
+            if drift {
+                p.x[i] += dt * v;
+            }
+        }
+    }
 }

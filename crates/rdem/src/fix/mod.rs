@@ -19,6 +19,8 @@ use crate::wall::{PrimitiveWall, TOUCH_WIDTH};
 pub enum FixKind {
     /// `fix nve/sphere`: velocity Verlet for translation and rotation.
     NveSphere,
+    /// `fix nve/limit`: velocity Verlet for translation with a speed cap.
+    NveLimit(integrate::NveLimit),
     /// `fix gravity g vector x y z`: force m·g along the unit vector.
     Gravity {
         /// Acceleration vector (magnitude × unit direction).
@@ -183,6 +185,9 @@ impl Fix {
                 check("wall/region/sph r0", w.r0, w.r0 > 0.0, "must be > 0")?;
                 check("wall/region/sph D", w.d, true, "must be finite")?;
             }
+            FixKind::NveLimit(l) => {
+                check("nve/limit xmax", l.xmax, l.xmax > 0.0, "must be > 0")?;
+            }
             FixKind::NveSphere
             | FixKind::Freeze
             | FixKind::Enforce2d
@@ -293,6 +298,7 @@ impl Fix {
             }
             FixKind::Force(fix) => fix.apply(p, lo, f, torque, bit, dt),
             FixKind::NveSphere
+            | FixKind::NveLimit(_)
             | FixKind::AveForce { .. }
             | FixKind::Enforce2d
             | FixKind::Move(_)
