@@ -501,6 +501,36 @@ run 4000
     assert!(one == two, "2 threads wrote another dump than 1");
 }
 
+/// The dimensional flag as a number, as scripts of the fork's older versions give it
+/// (`lebc 100.0 1`): `1` prints what `true` prints, `0` what `false` prints, and the two
+/// differ by the factor ρ γ̇² d² (2500 · 500² · 0.002²).
+#[test]
+fn the_dimensional_flag_may_be_a_number() {
+    let stress = |flag: &str| {
+        let script = head(0.02)
+            + &format!(
+                "create_atoms 1 single 0.0085 0.0195 0.005 units box
+create_atoms 1 single 0.00851 0.0003 0.005 units box
+set atom * diameter 0.002 density 2500
+fix integr all nve/sphere
+fix le all lebc 500.0 {flag} gtemp 0.0
+thermo_style custom step f_le[1] f_le[4]
+thermo_modify format float %24.17g
+run 1
+"
+            );
+        let out = common::run_script(&script, None);
+        common::thermo_rows(&out).pop().unwrap()
+    };
+    let (t, one) = (stress("true"), stress("1"));
+    let (f, zero) = (stress("false"), stress("0"));
+    assert_eq!(one, t);
+    assert_eq!(zero, f);
+    let scale = 2500.0 * 500.0 * 500.0 * 0.002 * 0.002;
+    assert!(t[1] > 0.0, "{t:?}");
+    assert!((f[1] * scale - t[1]).abs() < 1e-12 * t[1], "{f:?} {t:?}");
+}
+
 /// What fix lebc refuses, each with the reason.
 #[test]
 fn fix_lebc_errors_name_the_reason() {

@@ -20,10 +20,11 @@
 //!   cxy` is printed; every `ave_reset` steps (default 50000, the fork's fixed window)
 //!   the line `stress: kxx kyy kxy cxx cyy cxy` goes to the screen and the log and the
 //!   averages restart. `f_ID[1..6]` are the current averages in that order.
-//! - `false` (the second word) prints the stresses divided by ρ γ̇² d² (ρ the particles'
-//!   mass per volume, d their mean diameter); `true`, the default, as they are. The fork
-//!   divides by 2500 · 100² · d², its particles' density and its examples' rate, fixed in
-//!   its code: the two agree for those values.
+//! - `false` (the second word; also `no` or `0`) prints the stresses divided by ρ γ̇² d²
+//!   (ρ the particles' mass per volume, d their mean diameter); `true` (`yes`, `1`), the
+//!   default, as they are. The fork divides by 2500 · 100² · d², its particles' density
+//!   and its examples' rate, fixed in its code: the two agree for those values. Its code
+//!   reads any second word but `false` as `true`; scripts of its older versions give `1`.
 //!
 //! Rigid clumps (`fix multisphere`, as four of the fork's examples use) shear as the
 //! fork's do: a clump in the group takes the profile and the scatter at its centre of
@@ -52,7 +53,7 @@ pub(super) const ROW: FixRow = style(
     "lebc",
     parse,
     Stages::PRE_STEP.and(Stages::END_OF_STEP).and(Stages::VALUES),
-    "`RATE [true\\|false] [gtemp G] [ave_reset N]` (LIGGGHTS_CFDRC): Lees-Edwards shear at rate RATE, flow along x, gradient along y; velocities set to the profile (scatter G·RATE·Ly) at the first run's set-up; kinetic and contact stress averaged, `stress:` lines every N steps (50000)",
+    "`RATE [true\\|false\\|1\\|0] [gtemp G] [ave_reset N]` (LIGGGHTS_CFDRC): Lees-Edwards shear at rate RATE, flow along x, gradient along y; velocities set to the profile (scatter G·RATE·Ly) at the first run's set-up; kinetic and contact stress averaged, `stress:` lines every N steps (50000)",
 )
 .notes("the fork resets the velocities at every run, rdem at the first only; needs boundary p p p, and one MPI brick along x; rigid clumps shear by their centres of mass (`body_data` is refused); the scatter is drawn per particle from its tag, not from the fork's single generator");
 
@@ -94,8 +95,10 @@ struct LebcState {
 fn parse(_sim: &Sim, a: &mut Args, _head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let rate = a.f64("shear rate")?;
     let mut dimensional = true;
-    if let Some(w @ ("true" | "false")) = a.peek() {
-        dimensional = w == "true";
+    // The flag as a word (`true`, `false`) or a number (`1`, `0`), which scripts of the
+    // fork's older versions give (`lebc 100.0 1`).
+    if let Some(w @ ("true" | "false" | "yes" | "no" | "1" | "0")) = a.peek() {
+        dimensional = matches!(w, "true" | "yes" | "1");
         a.word("true or false")?;
     }
     let (mut gtemp, mut ave_reset) = (1e-6, 50000);
