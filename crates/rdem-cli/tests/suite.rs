@@ -45,6 +45,7 @@ mod restart_exact;
 mod rolling_cdt;
 mod servo_modes;
 mod servo_wall;
+mod slowinit;
 mod sph;
 mod stream_insert;
 mod threads;

@@ -193,6 +193,7 @@ pub fn steps(sim: &mut Sim, nsteps: u64) -> Result<(), RunError> {
 fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     let nsteps = chunk.nsteps;
     sim.script.halted = false;
+    sim.script.stop_requested = false;
     // `pre no` is overridden before anything ran (LAMMPS' `first_update`).
     let setup = chunk.setup || !sim.script.set_up;
     let m = crate::materials::materials(sim)?;
@@ -342,6 +343,16 @@ fn step_loop(
             if let Some(p) = &mut sim.outputs.progress {
                 p(k + 1, nsteps);
             }
+        }
+        if std::mem::take(&mut sim.script.stop_requested) {
+            // A fix ended the run (its output of this step is written).
+            done = k + 1;
+            sim.script.run_last = step;
+            sim.script.halted = true;
+            if !(every > 0 && step % every == 0) {
+                thermo_row(sim)?;
+            }
+            break;
         }
         if let Some(mut hook) = sim.outputs.step_hook.take() {
             let asked = hook(sim, step);

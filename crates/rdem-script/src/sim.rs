@@ -240,8 +240,10 @@ pub struct ScriptState {
     /// (step, simulated time) when the timestep last changed: `time` is
     /// t0 + (step − step0)·dt, continuous across `timestep` changes as in LIGGGHTS.
     pub time_origin: (u64, f64),
-    /// The last run was ended early by [`Outputs::step_hook`].
+    /// The last run was ended early by [`Outputs::step_hook`] or a fix.
     pub halted: bool,
+    /// A fix asked the current run to end after this step ([`crate::fixes::StageCtx::end_run`]).
+    pub stop_requested: bool,
 }
 
 /// Everything a script defines, each fact in one place: the set-up before the box
@@ -292,6 +294,7 @@ impl Sim {
                 run_started: Instant::now(),
                 time_origin: (0, 0.0),
                 halted: false,
+                stop_requested: false,
             },
         }
     }

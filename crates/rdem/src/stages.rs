@@ -44,6 +44,15 @@ impl World {
         Ok(())
     }
 
+    /// The pair style's coefficients mixed again from [`World::materials`] (after a fix
+    /// changed a material property during a run).
+    pub fn refresh_pair_table(&mut self) -> Result<()> {
+        if let Some(pair) = &mut self.pair {
+            pair.setup(&self.materials)?;
+        }
+        Ok(())
+    }
+
     /// Set-up 1: every owned particle's type is in the material table, when a pair style
     /// or a wall uses the table.
     pub(crate) fn check_types(&self) -> Result<()> {

@@ -49,6 +49,7 @@ mod print;
 mod property_atom;
 mod property_global;
 mod sampling;
+mod slowinit;
 mod speedcontrol;
 mod sph;
 mod stage_ctx;
@@ -351,6 +352,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         nve_nonspherical::ROW,
         mcg::ROW,
         lebc::ROW,
+        slowinit::ROW,
         insert_fragments::ROW,
         particledistribution_discrete::ROW,
         particledistribution_discrete::ROW_MASS,

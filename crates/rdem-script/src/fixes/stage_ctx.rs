@@ -83,6 +83,17 @@ impl<'a> StageCtx<'a> {
         self.sim.time()
     }
 
+    /// Sets the timestep from the next step on (the simulated time goes on from now).
+    pub fn set_timestep(&mut self, dt: f64) -> Result<(), Error> {
+        self.sim.set_timestep(dt)
+    }
+
+    /// Ends the current run after this step, as if it had been asked for no more steps;
+    /// the script goes on with its next command.
+    pub fn end_run(&mut self) {
+        self.sim.script.stop_requested = true;
+    }
+
     /// True under `rdem -check` (the stages run at the set-up only).
     pub fn checking(&self) -> bool {
         self.sim.script.check
