@@ -16,6 +16,7 @@ mod create_particles;
 mod dense_insert;
 mod examples;
 mod fragments;
+mod general_walls;
 mod heat;
 mod heat_local;
 mod hopper;

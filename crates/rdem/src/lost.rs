@@ -83,9 +83,33 @@ pub fn show(v: DVec3) -> String {
 }
 
 /// The distance `s > 0` at which the ray `x + s d` (`d` a unit vector) meets the
-/// primitive wall `shape`, if it does.
+/// primitive wall `shape`, if it does. For a general cone the report names no wall.
 fn ray_shape(shape: &WallShape, x: DVec3, d: DVec3) -> Option<f64> {
     match *shape {
+        WallShape::GeneralPlane { point, normal } => {
+            let s = (point - x).dot(normal) / d.dot(normal);
+            (s > 0.0 && s.is_finite()).then_some(s)
+        }
+        WallShape::GeneralCylinder {
+            radius,
+            point,
+            axis,
+        } => {
+            // The components normal to the axis: |p + s q|² = R².
+            let w = x - point;
+            let p = w - w.dot(axis) * axis;
+            let q = d - d.dot(axis) * axis;
+            let (a, b, c) = (q.dot(q), 2.0 * p.dot(q), p.dot(p) - radius * radius);
+            let disc = b * b - 4.0 * a * c;
+            if a == 0.0 || disc < 0.0 {
+                return None;
+            }
+            let root = disc.sqrt();
+            [(-b - root) / (2.0 * a), (-b + root) / (2.0 * a)]
+                .into_iter()
+                .find(|&s| s > 0.0)
+        }
+        WallShape::GeneralCone { .. } => None,
         WallShape::Plane { axis, pos } => {
             let s = (pos - x[axis]) / d[axis];
             (s > 0.0 && s.is_finite()).then_some(s)

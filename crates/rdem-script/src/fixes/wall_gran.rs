@@ -17,7 +17,7 @@ pub(super) const ROW: FixRow = style(
     "wall/gran",
     parse,
     Stages::ENGINE,
-    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`; `shear DIM V`; `store_force yes` (the wall's force on each particle as `f_force_ID[1..3]`); `temperature T` (a wall at fixed temperature for `fix heat/gran`); `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
+    "`primitive type T xplane\\|yplane\\|zplane POS`, `xcylinder\\|ycylinder\\|zcylinder R C1 C2`, `general_plane PX PY PZ NX NY NZ`, `general_cylinder R PX PY PZ AX AY AZ`, `general_cone R1 X1 Y1 Z1 X2 Y2 Z2 R2` (LIGGGHTS-PFM); `shear DIM V`; `store_force yes` (the wall's force on each particle as `f_force_ID[1..3]`); `temperature T` (a wall at fixed temperature for `fix heat/gran`); `mesh n_meshes k meshes ID...`; the model words of `pair_style gran` (switches before or after the wall)",
 )
 .notes("with `cohesion bond`, particle–wall bonds (on mesh walls anchored to a triangle, so they go with `fix move/mesh` and `surface_vel`); mesh walls: contacts counted as LIGGGHTS 3.8 counts them (a face always; an active edge or corner once, through the last of its triangles, so a sphere on a face next to a convex edge may touch the edge too; one contact per flat surface, `curvature`), history that follows a sphere to the next triangle; the wall's velocity at the contact point (`surface_vel`, `surface_ang_vel`, `fix move/mesh`) enters the contact");
 
@@ -170,7 +170,8 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
             return Ok(Wall::Mesh(wall));
         }
         Some(
-            w @ ("type" | "xplane" | "yplane" | "zplane" | "xcylinder" | "ycylinder" | "zcylinder"),
+            w @ ("type" | "xplane" | "yplane" | "zplane" | "xcylinder" | "ycylinder" | "zcylinder"
+            | "general_plane" | "general_cylinder" | "general_cone"),
         ) => {
             return Err(a.error_at(
                 style_at,
@@ -200,6 +201,18 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
         }
         match w {
             "shear" => {
+                if matches!(
+                    shape,
+                    WallShape::GeneralPlane { .. }
+                        | WallShape::GeneralCylinder { .. }
+                        | WallShape::GeneralCone { .. }
+                ) {
+                    return Err(a.error_at(
+                        a.pos(),
+                        "wall/gran: 'shear' with a general_plane, general_cylinder or general_cone wall is not supported",
+                        Some("shear moves xplane, yplane, zplane and the axis-aligned cylinders; a moving wall of another shape can be a mesh with fix move/mesh".into()),
+                    ));
+                }
                 a.seek(a.pos() + 1);
                 let d = a.keyword("shear direction", &["x", "y", "z"])?;
                 let v = a.f64("shear velocity")?;
@@ -244,8 +257,76 @@ pub(super) fn primitive_shape(a: &mut Args) -> CmdResult<(WallShape, String)> {
             "xcylinder",
             "ycylinder",
             "zcylinder",
+            "general_plane",
+            "general_cylinder",
+            "general_cone",
         ],
     )?;
+    let vector = |a: &mut Args, what: &str| -> CmdResult<DVec3> {
+        Ok(DVec3::new(
+            a.f64(&format!("{what} x"))?,
+            a.f64(&format!("{what} y"))?,
+            a.f64(&format!("{what} z"))?,
+        ))
+    };
+    let direction = |a: &mut Args, what: &str| -> CmdResult<DVec3> {
+        let at = a.pos();
+        let v = vector(a, what)?;
+        let n = v.length();
+        if !(n > 0.0 && n.is_finite()) {
+            return Err(a.error_at(
+                at,
+                format!(
+                    "{style}: the {what} ({}, {}, {}) has no direction",
+                    v.x, v.y, v.z
+                ),
+                Some("give a vector of non-zero length (it need not be a unit vector)".into()),
+            ));
+        }
+        Ok(v / n)
+    };
+    match style {
+        "general_plane" => {
+            let point = vector(a, "point")?;
+            let normal = direction(a, "normal")?;
+            let words = format!(
+                "{style} {} {} {} {} {} {}",
+                point.x, point.y, point.z, normal.x, normal.y, normal.z
+            );
+            return Ok((WallShape::GeneralPlane { point, normal }, words));
+        }
+        "general_cylinder" => {
+            let radius = a.positive("cylinder radius")?;
+            let point = vector(a, "axis point")?;
+            let axis = direction(a, "axis")?;
+            let words = format!("{style} {radius}");
+            return Ok((
+                WallShape::GeneralCylinder {
+                    radius,
+                    point,
+                    axis,
+                },
+                words,
+            ));
+        }
+        "general_cone" => {
+            let r1 = a.non_negative("cone radius 1")?;
+            let p1 = vector(a, "first rim centre")?;
+            let at = a.pos();
+            let p2 = vector(a, "second rim centre")?;
+            let r2 = a.non_negative("cone radius 2")?;
+            if p1 == p2 || r1 + r2 == 0.0 {
+                return Err(a.error_at(
+                    at,
+                    "general_cone: the two rim centres must differ and the radii must not both be 0",
+                    Some("general_cone R1 X1 Y1 Z1 X2 Y2 Z2 R2: the circles of radius R1 about (X1, Y1, Z1) and R2 about (X2, Y2, Z2)".into()),
+                ));
+            }
+            let words = format!("{style} {r1} {r2}");
+            return Ok((WallShape::GeneralCone { r1, p1, p2, r2 }, words));
+        }
+        _ => {}
+    }
     let axis = (style.as_bytes()[0] - b'x') as usize;
     Ok(if style.ends_with("plane") {
         let pos = a.f64("plane position")?;

@@ -286,21 +286,21 @@ fn read_shear(a: &mut Args, walls: &[Wall]) -> CmdResult<(usize, f64)> {
             None,
         ));
     };
-    let axis = match shape {
-        WallShape::Plane { axis, .. } => *axis,
-        WallShape::Cylinder { axis, .. } => *axis,
+    let why = match shape {
+        WallShape::Plane { axis, .. } if d == *axis => {
+            Some("a plane wall can only shear in its own plane")
+        }
+        WallShape::Cylinder { axis, .. } if d != *axis => Some(
+            "a cylinder spinning about its axis (shear across the axis) is not supported: only shear along the axis",
+        ),
+        WallShape::Plane { .. } | WallShape::Cylinder { .. } => None,
+        WallShape::GeneralPlane { .. }
+        | WallShape::GeneralCylinder { .. }
+        | WallShape::GeneralCone { .. } => Some(
+            "shear moves xplane, yplane, zplane and the axis-aligned cylinders, not a general_plane, general_cylinder or general_cone wall",
+        ),
     };
-    let ok = match shape {
-        WallShape::Plane { .. } => d != axis,
-        WallShape::Cylinder { .. } => d == axis,
-    };
-    if !ok {
-        let why = match shape {
-            WallShape::Plane { .. } => "a plane wall can only shear in its own plane",
-            WallShape::Cylinder { .. } => {
-                "a cylinder spinning about its axis (shear across the axis) is not supported: only shear along the axis"
-            }
-        };
+    if let Some(why) = why {
         return Err(a.error_at(at, why, None));
     }
     Ok((d, v))

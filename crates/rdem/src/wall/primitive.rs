@@ -40,6 +40,38 @@ pub enum WallShape {
         /// Second other coordinate of the axis.
         c2: f64,
     },
+    /// `general_plane` (LIGGGHTS-PFM): the plane through `point` normal to `normal` (a unit
+    /// vector); particles on either side.
+    GeneralPlane {
+        /// A point of the plane.
+        point: DVec3,
+        /// Unit normal.
+        normal: DVec3,
+    },
+    /// `general_cylinder` (LIGGGHTS-PFM): the cylinder of `radius` about the line through
+    /// `point` along `axis` (a unit vector); particles inside or outside.
+    GeneralCylinder {
+        /// Radius.
+        radius: f64,
+        /// A point of the axis.
+        point: DVec3,
+        /// Unit axis direction.
+        axis: DVec3,
+    },
+    /// `general_cone` (LIGGGHTS-PFM): the mantle of the frustum between the circle of
+    /// radius `r1` about `p1` and that of radius `r2` about `p2` (both normal to p2 − p1),
+    /// without its end discs; particles on either side. Beyond the ends the nearest point
+    /// is on the rim circle.
+    GeneralCone {
+        /// Radius at `p1`.
+        r1: f64,
+        /// Centre of the first rim.
+        p1: DVec3,
+        /// Centre of the second rim.
+        p2: DVec3,
+        /// Radius at `p2`.
+        r2: f64,
+    },
 }
 
 impl WallShape {
@@ -77,6 +109,29 @@ impl WallShape {
                     (d - radius, u)
                 }
             }
+            WallShape::GeneralPlane { point, normal } => {
+                let d = (x - point).dot(normal);
+                (d.abs(), if d >= 0.0 { normal } else { -normal })
+            }
+            WallShape::GeneralCylinder {
+                radius,
+                point,
+                axis,
+            } => {
+                let w = x - point;
+                let r = w - w.dot(axis) * axis;
+                let d = r.length();
+                if d == 0.0 {
+                    return (f64::INFINITY, DVec3::ZERO);
+                }
+                let u = r / d;
+                if d <= radius {
+                    (radius - d, -u)
+                } else {
+                    (d - radius, u)
+                }
+            }
+            WallShape::GeneralCone { r1, p1, p2, r2 } => cone_distance(x, r1, p1, p2, r2),
         }
     }
 
@@ -110,9 +165,84 @@ impl WallShape {
                     });
                 }
             }
+            WallShape::GeneralPlane { point, normal } => {
+                if !point.is_finite()
+                    || !normal.is_finite()
+                    || (normal.length() - 1.0).abs() > 1e-12
+                {
+                    return Err(Error::Invalid {
+                        what: "wall general_plane",
+                        reason: format!("needs a finite point and a unit normal (point {point}, normal {normal})"),
+                    });
+                }
+            }
+            WallShape::GeneralCylinder {
+                radius,
+                point,
+                axis,
+            } => {
+                let ok = radius > 0.0
+                    && radius.is_finite()
+                    && point.is_finite()
+                    && axis.is_finite()
+                    && (axis.length() - 1.0).abs() <= 1e-12;
+                if !ok {
+                    return Err(Error::Invalid {
+                        what: "wall general_cylinder",
+                        reason: format!("needs a finite radius > 0, a finite point and a unit axis (radius {radius}, point {point}, axis {axis})"),
+                    });
+                }
+            }
+            WallShape::GeneralCone { r1, p1, p2, r2 } => {
+                let radii_ok =
+                    r1 >= 0.0 && r2 >= 0.0 && r1.is_finite() && r2.is_finite() && r1 + r2 > 0.0;
+                if !radii_ok || !p1.is_finite() || !p2.is_finite() || p1 == p2 {
+                    return Err(Error::Invalid {
+                        what: "wall general_cone",
+                        reason: format!("needs radii >= 0, not both 0, and two different finite rim centres (radii {r1} {r2}, centres {p1} {p2})"),
+                    });
+                }
+            }
         }
         Ok(())
     }
+}
+
+/// Distance from `x` to the mantle of the frustum of [`WallShape::GeneralCone`] and the
+/// unit normal from the mantle towards `x`. In the plane of the axis and `x` (radial
+/// coordinate ρ, axial coordinate ζ from `p1`), the mantle is the segment from (r1, 0)
+/// to (r2, L); the nearest point is `x`'s projection on the segment's line, clamped to
+/// its ends (the rims). On the axis (ρ = 0) there is no radial direction: no contact.
+fn cone_distance(x: DVec3, r1: f64, p1: DVec3, p2: DVec3, r2: f64) -> (f64, DVec3) {
+    let axis = p2 - p1;
+    let len = axis.length();
+    let t = axis / len;
+    let w = x - p1;
+    let zeta = w.dot(t);
+    let radial = w - zeta * t;
+    let rho = radial.length();
+    if rho == 0.0 {
+        return (f64::INFINITY, DVec3::ZERO);
+    }
+    let e = radial / rho;
+    // The generator's unit direction in (ρ, ζ), and x's projection onto it.
+    let (gr, gz) = (r2 - r1, len);
+    let glen = (gr * gr + gz * gz).sqrt();
+    let (gr, gz) = (gr / glen, gz / glen);
+    let s = (rho - r1) * gr + zeta * gz;
+    let (mut cr, mut cz) = (r1 + s * gr, s * gz);
+    if cz > len {
+        (cr, cz) = (r2, len);
+    } else if cz <= 0.0 {
+        (cr, cz) = (r1, 0.0);
+    }
+    // From the nearest point to x.
+    let v = (rho - cr) * e + (zeta - cz) * t;
+    let d = v.length();
+    if d == 0.0 {
+        return (0.0, DVec3::ZERO);
+    }
+    (d, v / d)
 }
 
 /// A primitive granular wall.
@@ -532,6 +662,101 @@ impl WallPass<'_> {
             }
             f[k] += out.f_i;
             torque[k] += out.t_i;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: (f64, DVec3), b: (f64, DVec3)) {
+        assert!(
+            (a.0 - b.0).abs() < 1e-14,
+            "distance {} against {}",
+            a.0,
+            b.0
+        );
+        assert!(
+            (a.1 - b.1).length() < 1e-14,
+            "normal {} against {}",
+            a.1,
+            b.1
+        );
+    }
+
+    #[test]
+    fn general_shapes_along_the_axes_are_the_plain_ones() {
+        let plane = WallShape::Plane { axis: 2, pos: 0.1 };
+        let general = WallShape::GeneralPlane {
+            point: DVec3::new(0.3, -0.2, 0.1),
+            normal: DVec3::Z,
+        };
+        let cyl = WallShape::Cylinder {
+            axis: 2,
+            radius: 0.05,
+            c1: 0.01,
+            c2: 0.02,
+        };
+        let gcyl = WallShape::GeneralCylinder {
+            radius: 0.05,
+            point: DVec3::new(0.01, 0.02, -0.7),
+            axis: -DVec3::Z,
+        };
+        for x in [
+            DVec3::new(0.02, 0.03, 0.13),
+            DVec3::new(-0.04, 0.06, 0.05),
+            DVec3::new(0.09, -0.05, 0.3),
+        ] {
+            close(general.distance(x), plane.distance(x));
+            close(gcyl.distance(x), cyl.distance(x));
+        }
+    }
+
+    #[test]
+    fn a_cone_mantle_and_its_rims() {
+        // A 45° frustum: radius 0.1 at z = 0 to 0.2 at z = 0.1, about the z axis.
+        let cone = WallShape::GeneralCone {
+            r1: 0.1,
+            p1: DVec3::ZERO,
+            p2: DVec3::new(0.0, 0.0, 0.1),
+            r2: 0.2,
+        };
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        // Outside the mantle, level with its foot: 0.1/√2 from it, normal outwards-down.
+        close(
+            cone.distance(DVec3::new(0.2, 0.0, 0.0)),
+            (0.1 * s, DVec3::new(s, 0.0, -s)),
+        );
+        // Inside, on the other side of the axis.
+        close(
+            cone.distance(DVec3::new(0.0, -0.1, 0.05)),
+            (0.05 * s, DVec3::new(0.0, s, s)),
+        );
+        // Below the foot rim: the rim circle is nearest.
+        close(
+            cone.distance(DVec3::new(0.1, 0.0, -0.1)),
+            (0.1, DVec3::new(0.0, 0.0, -1.0)),
+        );
+        // Above the top rim.
+        close(
+            cone.distance(DVec3::new(0.0, 0.3, 0.2)),
+            ((0.02f64).sqrt(), DVec3::new(0.0, s, s)),
+        );
+        // Equal radii: the finite cylinder, as the general cylinder along its extent.
+        let tube = WallShape::GeneralCone {
+            r1: 0.05,
+            p1: DVec3::new(0.0, 0.0, -1.0),
+            p2: DVec3::new(0.0, 0.0, 1.0),
+            r2: 0.05,
+        };
+        let cyl = WallShape::GeneralCylinder {
+            radius: 0.05,
+            point: DVec3::ZERO,
+            axis: DVec3::Z,
+        };
+        for x in [DVec3::new(0.02, 0.01, 0.3), DVec3::new(0.1, -0.07, -0.5)] {
+            close(tube.distance(x), cyl.distance(x));
         }
     }
 }
