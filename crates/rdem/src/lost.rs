@@ -95,19 +95,8 @@ fn ray_shape(shape: &WallShape, x: DVec3, d: DVec3) -> Option<f64> {
             point,
             axis,
         } => {
-            // The components normal to the axis: |p + s q|² = R².
             let w = x - point;
-            let p = w - w.dot(axis) * axis;
-            let q = d - d.dot(axis) * axis;
-            let (a, b, c) = (q.dot(q), 2.0 * p.dot(q), p.dot(p) - radius * radius);
-            let disc = b * b - 4.0 * a * c;
-            if a == 0.0 || disc < 0.0 {
-                return None;
-            }
-            let root = disc.sqrt();
-            [(-b - root) / (2.0 * a), (-b + root) / (2.0 * a)]
-                .into_iter()
-                .find(|&s| s > 0.0)
+            ray_cylinder(w - w.dot(axis) * axis, d - d.dot(axis) * axis, radius)
         }
         WallShape::GeneralCone { .. } => None,
         WallShape::Plane { axis, pos } => {
@@ -121,22 +110,26 @@ fn ray_shape(shape: &WallShape, x: DVec3, d: DVec3) -> Option<f64> {
             c2,
         } => {
             let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
-            let (p1, p2) = (x[a1] - c1, x[a2] - c2);
-            let (q1, q2) = (d[a1], d[a2]);
-            // |p + s q|² = R²: a s² + b s + c = 0.
-            let a = q1 * q1 + q2 * q2;
-            let b = 2.0 * (p1 * q1 + p2 * q2);
-            let c = p1 * p1 + p2 * p2 - radius * radius;
-            let disc = b * b - 4.0 * a * c;
-            if a == 0.0 || disc < 0.0 {
-                return None;
-            }
-            let root = disc.sqrt();
-            [(-b - root) / (2.0 * a), (-b + root) / (2.0 * a)]
-                .into_iter()
-                .find(|&s| s > 0.0)
+            let (mut p, mut q) = (DVec3::ZERO, DVec3::ZERO);
+            (p[a1], p[a2]) = (x[a1] - c1, x[a2] - c2);
+            (q[a1], q[a2]) = (d[a1], d[a2]);
+            ray_cylinder(p, q, radius)
         }
     }
+}
+
+/// The smallest `s > 0` with |p + s q|² = R²: where a ray meets a cylinder of `radius`,
+/// `p` and `q` being the ray's start and direction less their components along the axis.
+fn ray_cylinder(p: DVec3, q: DVec3, radius: f64) -> Option<f64> {
+    let (a, b, c) = (q.dot(q), 2.0 * p.dot(q), p.dot(p) - radius * radius);
+    let disc = b * b - 4.0 * a * c;
+    if a == 0.0 || disc < 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    [(-b - root) / (2.0 * a), (-b + root) / (2.0 * a)]
+        .into_iter()
+        .find(|&s| s > 0.0)
 }
 
 /// The distance `s > 0` at which the ray `x + s d` meets the triangle `a b c`, if it does

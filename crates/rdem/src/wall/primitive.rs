@@ -97,17 +97,7 @@ impl WallShape {
                 let mut r = DVec3::ZERO;
                 r[a1] = x[a1] - o1;
                 r[a2] = x[a2] - o2;
-                let d = r.length();
-                if d == 0.0 {
-                    // Exactly on the axis: no direction, no contact (as LIGGGHTS).
-                    return (f64::INFINITY, DVec3::ZERO);
-                }
-                let u = r / d;
-                if d <= radius {
-                    (radius - d, -u)
-                } else {
-                    (d - radius, u)
-                }
+                cylinder_distance(r, radius)
             }
             WallShape::GeneralPlane { point, normal } => {
                 let d = (x - point).dot(normal);
@@ -119,17 +109,7 @@ impl WallShape {
                 axis,
             } => {
                 let w = x - point;
-                let r = w - w.dot(axis) * axis;
-                let d = r.length();
-                if d == 0.0 {
-                    return (f64::INFINITY, DVec3::ZERO);
-                }
-                let u = r / d;
-                if d <= radius {
-                    (radius - d, -u)
-                } else {
-                    (d - radius, u)
-                }
+                cylinder_distance(w - w.dot(axis) * axis, radius)
             }
             WallShape::GeneralCone { r1, p1, p2, r2 } => cone_distance(x, r1, p1, p2, r2),
         }
@@ -205,6 +185,22 @@ impl WallShape {
             }
         }
         Ok(())
+    }
+}
+
+/// Distance to a cylinder of `radius` from a point `r` away from its axis (normal to
+/// it), and the unit normal towards the point: inwards inside, outwards outside. Exactly
+/// on the axis there is no direction: no contact (as LIGGGHTS).
+fn cylinder_distance(r: DVec3, radius: f64) -> (f64, DVec3) {
+    let d = r.length();
+    if d == 0.0 {
+        return (f64::INFINITY, DVec3::ZERO);
+    }
+    let u = r / d;
+    if d <= radius {
+        (radius - d, -u)
+    } else {
+        (d - radius, u)
     }
 }
 
