@@ -19,6 +19,7 @@ mod fragments;
 mod general_walls;
 mod heat;
 mod heat_local;
+mod heat_radiation;
 mod hopper;
 mod hysteretic;
 mod incremental_history;

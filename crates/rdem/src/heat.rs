@@ -103,6 +103,11 @@ impl HeatProps {
 pub struct HeatConduction {
     /// Group whose temperatures change (bit mask).
     pub groupbit: u32,
+    /// Whether contacts conduct. False when only radiation
+    /// ([`crate::heat_radiation`]) is defined: the heat flows are still zeroed and the
+    /// temperatures integrated (LIGGGHTS' scalar transport equation, which outlives the
+    /// fix that made it).
+    pub conducts: bool,
     /// Contact area of particle pairs.
     pub area: ContactArea,
     /// `area_correction yes`: the overlap scaling `(Y*/Y*_orig)^(1/p)` per type pair,
@@ -136,6 +141,7 @@ impl HeatConduction {
         }
         Ok(Self {
             groupbit,
+            conducts: true,
             area,
             deltan_ratio: None,
             conductivity: Vec::new(),
@@ -302,6 +308,9 @@ impl HeatConduction {
         meshes: &[MeshSurface],
         comm: &dyn Comm,
     ) {
+        if !self.conducts {
+            return;
+        }
         let n = p.nlocal();
         let len = p.len();
         let mut flow = std::mem::take(&mut self.flow);

@@ -16,6 +16,7 @@ pub mod error;
 pub mod euler;
 pub mod fix;
 pub mod heat;
+pub mod heat_radiation;
 pub mod insert;
 pub mod lost;
 pub mod massflow;

@@ -562,8 +562,9 @@ impl World {
         self.next_sort = (self.step / self.sort.every) * self.sort.every + self.sort.every;
     }
 
-    /// Re-neighboring 8: the ghost cutoff for the largest particle, checked against the
-    /// periodic box (at least twice the contact distance) and the subdomain; notes a
+    /// Re-neighboring 8: the ghost cutoff for the largest particle (further when radiation
+    /// rays reach further: [`crate::heat_radiation::HeatRadiation::ghost_reach`]), checked
+    /// against the periodic box (at least twice the contact distance) and the subdomain; notes a
     /// periodic length below twice the cutoff for the build
     /// ([`crate::neighbor::Neighbor::short_periodic`]).
     pub(crate) fn checked_cutoff(&mut self) -> Result<f64> {
@@ -576,9 +577,14 @@ impl World {
         let cutoff = self.neighbor.cutoff_for(rmax);
         self.domain
             .check_periodic_contact(self.neighbor.contact_for(rmax))?;
-        self.domain.check_subdomain_cutoff(cutoff)?;
+        // Radiation's rays reach further than contacts: ghosts out to their reach.
+        let ghosts = self
+            .radiation
+            .as_ref()
+            .map_or(cutoff, |r| cutoff.max(r.ghost_reach(rmax)));
+        self.domain.check_subdomain_cutoff(ghosts)?;
         self.neighbor.short_periodic = self.domain.short_periodic_half(cutoff);
-        Ok(cutoff)
+        Ok(ghosts)
     }
 
     /// Re-neighboring 11: the moving meshes' positions at this build (for the drift
@@ -891,7 +897,8 @@ impl World {
     }
 
     /// Step 9b: the heat flows of this step's contacts (pairs and walls at a fixed
-    /// temperature), not at a run's set-up (`update` false), as in LIGGGHTS.
+    /// temperature) and of radiation, not at a run's set-up (`update` false), as in
+    /// LIGGGHTS.
     pub(crate) fn conduct_heat(&mut self, update: bool) {
         if !update {
             return;
@@ -904,6 +911,9 @@ impl World {
                 &self.meshes,
                 &*self.comm,
             );
+        }
+        if let Some(rad) = &mut self.radiation {
+            rad.radiate(&mut self.particles, &*self.comm);
         }
     }
 

@@ -108,6 +108,9 @@ pub struct World {
     pub virial_step: Option<u64>,
     /// Heat conduction through contacts (`fix heat/gran/conduction`), if any.
     pub heat: Option<crate::heat::HeatConduction>,
+    /// Heat radiation between particles (`fix heat/gran/radiation`), if any; the
+    /// temperatures it changes are integrated by [`World::heat`].
+    pub radiation: Option<crate::heat_radiation::HeatRadiation>,
     /// Rigid clumps (`fix multisphere`), if any.
     pub multisphere: Option<crate::multisphere::Multisphere>,
     /// `fix multicontact/halfspace`, if any: the store that the pair style and the walls
@@ -148,6 +151,7 @@ impl World {
             virial: Vec::new(),
             virial_step: None,
             heat: None,
+            radiation: None,
             multisphere: None,
             multicontact: None,
             bonds: None,

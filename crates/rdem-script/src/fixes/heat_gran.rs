@@ -29,7 +29,7 @@ use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
 
 const HELP: &str = "`initial_temperature T0`, `contact_area overlap\\|projection\\|constant A`, `area_correction yes\\|no`, `store_contact_data no`: conduction through the contacts and from walls with a `temperature`; per-type `thermalConductivity`, `thermalCapacity`; `Temp`, `heatFlux`, `heatSource`, `directionalHeatFlux` per particle; `f_ID` the thermal energy Σ m c T";
-const NOTES: &str = "an unknown keyword is an error, as in LIGGGHTS 3.8; `store_contact_data yes` is not supported yet; `projection` uses the larger radius, as LIGGGHTS 3.8's code (its manual says the smaller); `unfix` stops conduction and the temperature update (LIGGGHTS keeps integrating the heat sources)";
+const NOTES: &str = "an unknown keyword is an error, as in LIGGGHTS 3.8; `store_contact_data yes` is not supported yet; `projection` uses the larger radius, as LIGGGHTS 3.8's code (its manual says the smaller); `unfix` stops conduction and the temperature update (LIGGGHTS keeps integrating the heat sources); with `heat/gran/radiation` defined the temperatures go on";
 
 /// The registry row of `heat/gran/conduction`.
 pub(super) const ROW: FixRow = style(
@@ -140,7 +140,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         ));
     }
     // Only one heat conduction per script (a redefinition of the same ID replaces it).
-    if w.heat.is_some() && sim.fix_index(&head.id).is_none() {
+    if w.heat.as_ref().is_some_and(|h| h.conducts) && sim.fix_index(&head.id).is_none() {
         let other = sim
             .defs
             .fixes
@@ -192,30 +192,25 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 
 impl ScriptFix for HeatGran {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
-        for (name, width, forward) in PROPS {
-            let defaults = if name == heat::TEMP {
-                vec![self.t0]
-            } else {
-                vec![0.0; width]
-            };
-            property_atom::redefine(
-                sim,
-                a,
-                PropertyAtom {
-                    name: name.to_string(),
-                    vector: width > 1,
-                    defaults,
-                    forward,
-                    restart: true,
-                },
-            )?;
-        }
+        // Radiation defined before made the temperatures already (LIGGGHTS' scalar
+        // transport equation exists then, and conduction takes it as it is).
+        let radiating = sim
+            .world_ref(a)?
+            .heat
+            .as_ref()
+            .filter(|h| !h.conducts)
+            .map(|h| h.props);
+        let props = match radiating {
+            Some(props) => props,
+            None => define_properties(sim, a, self.t0)?,
+        };
         let w = sim.world_mut(a)?;
-        let props = HeatProps::register(&mut w.particles, self.t0)
-            .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))?;
         let heat = HeatConduction::new(head.groupbit, self.area, props)
             .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))?;
         w.heat = Some(heat);
+        if let Some(rad) = &mut w.radiation {
+            rad.props = props;
+        }
         Ok(())
     }
 
@@ -279,15 +274,46 @@ impl ScriptFix for HeatGran {
         Ok(t[..w.particles.nlocal()].to_vec())
     }
 
+    /// Conduction stops; with radiation defined the temperatures go on being integrated.
     fn unfix(&mut self, sim: &mut Sim, _head: &FixHead) {
         if let Some(w) = &mut sim.world {
-            w.heat = None;
+            match (&mut w.heat, &w.radiation) {
+                (Some(heat), Some(_)) => heat.conducts = false,
+                _ => w.heat = None,
+            }
         }
     }
 }
 
+/// Defines the per-particle properties of heat transfer (`Temp` at `t0`, `heatFlux`,
+/// `heatSource`, `directionalHeatFlux`, each a `fix property/atom` whose ID is its name)
+/// and registers them with the engine.
+pub(super) fn define_properties(sim: &mut Sim, a: &Args, t0: f64) -> CmdResult<HeatProps> {
+    for (name, width, forward) in PROPS {
+        let defaults = if name == heat::TEMP {
+            vec![t0]
+        } else {
+            vec![0.0; width]
+        };
+        property_atom::redefine(
+            sim,
+            a,
+            PropertyAtom {
+                name: name.to_string(),
+                vector: width > 1,
+                defaults,
+                forward,
+                restart: true,
+            },
+        )?;
+    }
+    let w = sim.world_mut(a)?;
+    HeatProps::register(&mut w.particles, t0)
+        .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))
+}
+
 /// The first `n` values of the `peratomtype` property `name`.
-fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, Error> {
+pub(super) fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, Error> {
     let p = sim.defs.properties.get(name).ok_or_else(|| {
         format!("heat/gran needs 'fix ID all property/global {name} peratomtype' with {n} value(s) (one per atom type)")
     })?;

@@ -25,6 +25,7 @@ mod couple_cfd;
 mod engine;
 mod gravity;
 mod heat_gran;
+mod heat_radiation;
 pub mod insert;
 mod insert_dense;
 mod insert_fragments;
@@ -390,6 +391,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
+        heat_radiation::ROW,
         multicontact::ROW,
         couple_cfd::ROW,
         couple_cfd::ROW_FORCE,
