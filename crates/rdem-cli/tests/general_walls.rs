@@ -5,6 +5,11 @@
 //! walls' geometry (distance and normal) is all that differs. The normals and axes are
 //! given unnormalised, as the manual allows. The cone's geometry is checked against
 //! closed forms in `rdem::wall::primitive`'s unit tests.
+//!
+//! Against the fork: LIGGGHTS-PFM d075b97, built here (FFT_NONE), ran
+//! `tests/data/general_walls/in.{plane,cylinder,cone}` (an oblique spinning impact on a
+//! tilted plane, inside a tilted cylinder and inside a tilted cone, 20000 steps); its dumps
+//! are stored beside them as `pfm.dump.*`.
 
 use glam::{DMat3, DVec3};
 
@@ -129,4 +134,52 @@ fn general_walls_reject_what_they_cannot_be() {
     );
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("'shear' with a general_plane"), "{err}");
+}
+
+#[test]
+fn general_walls_match_liggghts_pfm() {
+    let data = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/general_walls"
+    ));
+    for wall in ["plane", "cylinder", "cone"] {
+        let script = format!("in.{wall}");
+        let (dir, _) = common::run_data_script("general-walls-pfm", data, &script, &[]);
+        let got = common::dump_frames(
+            &std::fs::read_to_string(dir.join(format!("dump.{wall}"))).unwrap(),
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+        let want = common::dump_frames(
+            &std::fs::read_to_string(data.join(format!("pfm.dump.{wall}"))).unwrap(),
+        );
+        assert_eq!(got.len(), 11, "{wall}: frames");
+        assert_eq!(got.len(), want.len(), "{wall}: frames");
+        let rows = |f: &[(u64, Vec<Vec<f64>>)]| -> Vec<Vec<f64>> {
+            f.iter()
+                .map(|(step, r)| {
+                    std::iter::once(*step as f64)
+                        .chain(r[0][1..].iter().copied())
+                        .collect()
+                })
+                .collect()
+        };
+        let (g, w) = (rows(&got), rows(&want));
+        // Positions, velocities and spins within 1e-12 of each column's scale (measured:
+        // 2e-14); the impact turned the velocity round.
+        common::assert_columns(
+            &g,
+            &w,
+            1,
+            1e-12,
+            &format!("general_{wall} against LIGGGHTS-PFM"),
+        );
+        let (v0, v1) = (
+            glam::DVec3::new(w[0][4], w[0][5], w[0][6]),
+            glam::DVec3::new(w[10][4], w[10][5], w[10][6]),
+        );
+        assert!(
+            v0.dot(v1) < 0.5 * v0.length_squared(),
+            "{wall}: {v0} then {v1}"
+        );
+    }
 }
