@@ -322,3 +322,81 @@ fn two_ranks_write_the_serial_files_after_ten_steps() {
     }
     compare(10);
 }
+
+/// `dump decomposition/vtk` on 2 ranks (`processors 1 1 2`) and serially: the file
+/// LIGGGHTS 3.8 wrote for the same script on 2 ranks (byte for byte), and the grid as
+/// VTK's own reader sees it: one cell per subdomain, the cut at the middle of z.
+#[test]
+fn the_decomposition_dump_is_the_processor_grid() {
+    let script = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+processors 1 1 2
+region reg block -0.05 0.05 -0.05 0.05 0 0.1 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.7
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+create_atoms 1 single 0 0 0.05
+set type 1 diameter 0.01 density 2500
+fix integr all nve/sphere
+dump d all decomposition/vtk 100 d*.vtk
+run 200
+";
+    let liggghts = "# vtk DataFile Version 2.0
+LIGGGHTS mesh/gran/VTK export
+ASCII
+DATASET RECTILINEAR_GRID
+DIMENSIONS 2 2 3
+X_COORDINATES 2 float
+-0.050000 0.050000 
+Y_COORDINATES 2 float
+-0.050000 0.050000 
+Z_COORDINATES 3 float
+0.000000 0.050000 0.100000 
+";
+    const READER: &str = "import sys, vtk
+r = vtk.vtkRectilinearGridReader()
+r.SetFileName(sys.argv[1])
+r.Update()
+g = r.GetOutput()
+z = g.GetZCoordinates()
+print(g.GetNumberOfCells(), ' '.join('%g' % z.GetValue(i) for i in range(z.GetNumberOfTuples())))
+";
+    let read = |p: &Path| {
+        let out = std::process::Command::new("python3")
+            .args(["-c", READER])
+            .arg(p)
+            .output()
+            .expect("python3 runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap().trim().to_string()
+    };
+    let serial = script.replace("processors 1 1 2\n", "");
+    let (dir, _) = common::run_kept_ok("decomposition", &serial, &[], None);
+    assert_eq!(read(&dir.join("d100.vtk")), "1 0 0.1");
+    let _ = std::fs::remove_dir_all(&dir);
+    if !have_mpirun() {
+        return;
+    }
+    let (dir, _) = common::run_kept_ok("decomposition", script, &[], Some(2));
+    for step in [0, 100, 200] {
+        let text = std::fs::read_to_string(dir.join(format!("d{step}.vtk"))).unwrap();
+        assert_eq!(text, liggghts, "step {step}");
+    }
+    assert_eq!(read(&dir.join("d100.vtk")), "2 0 0.05 0.1");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,6 +7,7 @@
 mod atom_vtk;
 mod custom;
 mod custom_vtk;
+mod decomposition_vtk;
 mod euler_vtk;
 mod local;
 mod local_gran_vtk;
@@ -142,6 +143,7 @@ pub static REGISTRY: Registry<DumpParse> = Registry {
         euler_vtk::ROW,
         mesh_stl::ROW,
         mesh_stl::ROW_OLD_NAME,
+        decomposition_vtk::ROW,
         mesh_vtk::ROW,
         mesh_vtk::ROW_OLD_NAME,
         Row::not_yet("mesh/vtm", ""),
