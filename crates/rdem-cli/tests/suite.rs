@@ -41,6 +41,7 @@ mod mpi_io_failure;
 mod mpi_restart;
 mod multicontact;
 mod nve_limit;
+mod omp_styles;
 mod pour;
 mod region_wedge;
 mod restart_exact;

@@ -18,6 +18,9 @@ pub enum Support<H: 'static> {
     /// A LIGGGHTS name that rdem does not run (yet): what it is, for the error
     /// ("fix heat/gran (heat conduction) is not supported by rdem yet").
     Not(&'static str),
+    /// Another name of a row rdem runs (LIGGGHTS-PFM's `/omp` variants): it runs as
+    /// that row, under that row's name.
+    Alias(&'static str),
 }
 
 /// One row of a registry.
@@ -54,6 +57,21 @@ impl<H> Row<H> {
         }
     }
 
+    /// Another name of the row `base`, which it runs as (`help` says what it is).
+    pub const fn alias(name: &'static str, base: &'static str, help: &'static str) -> Self {
+        Self {
+            name,
+            support: Support::Alias(base),
+            help,
+            notes: "",
+        }
+    }
+
+    /// Whether rdem runs it (itself or as the row it is another name of).
+    pub fn runs_here(&self) -> bool {
+        !matches!(self.support, Support::Not(_))
+    }
+
     /// The same row with notes (docs/commands.md).
     pub const fn notes(mut self, notes: &'static str) -> Self {
         self.notes = notes;
@@ -64,7 +82,7 @@ impl<H> Row<H> {
     pub fn handler(&self) -> Option<&H> {
         match &self.support {
             Support::Runs(h) => Some(h),
-            Support::Not(_) => None,
+            Support::Not(_) | Support::Alias(_) => None,
         }
     }
 }
@@ -90,7 +108,7 @@ impl<H> Registry<H> {
     pub fn names(&self) -> Vec<&'static str> {
         self.rows
             .iter()
-            .filter(|r| r.handler().is_some())
+            .filter(|r| r.runs_here())
             .map(|r| r.name)
             .collect()
     }
@@ -115,6 +133,10 @@ impl<H> Registry<H> {
                 support: Support::Runs(h),
                 ..
             }) => Ok((name, h)),
+            Some(Row {
+                support: Support::Alias(base),
+                ..
+            }) => self.lookup_at(a, k, base),
             Some(Row {
                 support: Support::Not(what),
                 ..
@@ -157,7 +179,7 @@ impl<H> Registry<H> {
     pub fn readme_rows(&self) -> Vec<String> {
         self.rows
             .iter()
-            .filter(|r| r.handler().is_some())
+            .filter(|r| r.runs_here())
             .map(|r| {
                 format!(
                     "| `{}{}` | {} | {} |",

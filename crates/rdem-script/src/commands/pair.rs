@@ -10,7 +10,8 @@ use crate::sim::Sim;
 pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let style = a.word("pair style")?;
     match style {
-        "gran" => {}
+        // LIGGGHTS-PFM's OpenMP variant: the same model, on rdem's threads.
+        "gran" | "gran/omp" => {}
         "none" => {
             a.done()?;
             let w = sim.world_mut(a)?;

@@ -16,7 +16,8 @@ pub(super) fn atom_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.setup.sph = s == "sph";
     sim.setup.bond_gran = None;
     match s {
-        "granular" | "sphere" | "sph" => a.done(),
+        // `granular/omp`: LIGGGHTS-PFM's OpenMP variant of `granular`.
+        "granular" | "granular/omp" | "sphere" | "sph" => a.done(),
         "bond/gran" => bond_gran_style(sim, a),
         "hybrid" => {
             // `hybrid granular bond/gran ...` (LIGGGHTS_Flexible_Fibers, LIGGGHTS-PFM).
@@ -596,6 +597,61 @@ pub(super) fn reset_timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let n = a.u64("timestep")?;
     a.done()?;
     sim.world_mut(a)?.step = n;
+    Ok(())
+}
+
+/// `package omp N|* [force/neigh|force] [thread-binding] [verbose]` (LIGGGHTS-PFM's hybrid
+/// parallelization, which its `/omp` styles need): rdem runs every style on its own
+/// threads (`--threads`, `RDEM_THREADS`), whose count does not change the results; a
+/// count N other than rdem's is a warning saying so. Other packages (`gpu`, `cuda`,
+/// `kokkos`) are LAMMPS accelerators that granular LIGGGHTS has not: an error.
+pub(super) fn package(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    a.keyword("package", &["omp"])?;
+    let at = a.pos();
+    // `*`: the OpenMP default, which rdem's own count stands for.
+    let n = if a.peek() == Some("*") {
+        a.seek(at + 1);
+        None
+    } else {
+        Some(a.u64("number of OpenMP threads (or *)")?)
+    };
+    while !a.is_done() {
+        a.keyword(
+            "package omp keyword",
+            &["force/neigh", "force", "thread-binding", "verbose"],
+        )?;
+    }
+    let threads = sim.script.threads;
+    if let Some(n) = n.filter(|&n| n as usize != threads) {
+        a.warn_at(
+            at,
+            &format!(
+                "package omp {n}: rdem runs on its {threads} thread(s) (set with --threads or RDEM_THREADS); the count does not change the results"
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// `partitioner_style zoltan [KEY VALUE ...]` (LIGGGHTS-PFM): how the fork shares the
+/// particles of a process between its OpenMP threads (the Zoltan library's options).
+/// rdem shares the work between its threads itself, so the options have nothing to set:
+/// a warning says so once.
+pub(super) fn partitioner_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    a.keyword("partitioner style", &["zoltan"])?;
+    while !a.is_done() {
+        a.word("Zoltan option name")?;
+        if a.is_done() {
+            return Err(a.error_prev(
+                "partitioner_style zoltan: an option without its value",
+                Some("Zoltan options come in pairs, e.g. RCB_REUSE 1".into()),
+            ));
+        }
+        a.word("Zoltan option value")?;
+    }
+    sim.outputs.warn_once(
+        "partitioner_style zoltan: rdem shares the particles between its threads itself; the Zoltan options are not used",
+    );
     Ok(())
 }
 

@@ -303,7 +303,7 @@ impl FixRow {
                 support: Support::Runs(FixStyle { atoi: true, ..h }),
                 ..self
             },
-            Support::Not(_) => self,
+            Support::Not(_) | Support::Alias(_) => self,
         }
     }
 }
@@ -392,6 +392,11 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
         heat_radiation::ROW,
+        Row::alias("gravity/omp", "gravity", OMP),
+        Row::alias("nve/sphere/omp", "nve/sphere", OMP),
+        Row::alias("mesh/surface/omp", "mesh/surface", OMP),
+        Row::alias("mesh/surface/planar/omp", "mesh/surface/planar", OMP),
+        Row::alias("wall/gran/omp", "wall/gran", OMP),
         multicontact::ROW,
         couple_cfd::ROW,
         couple_cfd::ROW_FORCE,
@@ -402,6 +407,9 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         Row::not_yet("bond/gran", "bonds"),
     ],
 };
+
+/// The help of LIGGGHTS-PFM's OpenMP variants of fix styles.
+const OMP: &str = "LIGGGHTS-PFM's OpenMP variant (its hybrid parallelization): runs as the style without `/omp`, on rdem's threads";
 
 /// Index of the style word in `fix ID group style ...` (errors about the whole fix point
 /// at it).
