@@ -333,3 +333,62 @@ print(max(abs(f.GetComponent(k, c) - n.GetComponent(k, c) - t.GetComponent(k, c)
     // Each value has 11 significant digits; forces are below 0.5 N.
     assert!(resid < 1e-10, "force != normal + tangential by {resid}");
 }
+
+/// `dump_modify label` (as LIGGGHTS_SEAICE's scripts write `label 'BONDS'`): the header
+/// lines of a local dump name the label instead of ENTRIES; LIGGGHTS 3.8 wrote this file
+/// for the same script (two spheres overlapping by 0.1 mm, `pos force` columns 1 and 2).
+/// Other dump styles refuse the keyword, as LIGGGHTS 3.8 applies it to dump local only.
+#[test]
+fn the_label_names_the_entries() {
+    let head = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block -0.05 0.05 -0.05 0.05 0 0.1 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.7
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+create_atoms 1 single 0 0 0.05
+create_atoms 1 single 0.0099 0 0.05
+set type 1 diameter 0.01 density 2500
+fix integr all nve/sphere
+compute pl all pair/gran/local pos force
+";
+    let script = format!(
+        "{head}dump d all local 10 d*.local c_pl[1] c_pl[2]
+dump_modify d pad 3 label 'BONDS' first yes
+run 10
+"
+    );
+    let (dir, _) = common::run_kept_ok("label", &script, &[], None);
+    let got = std::fs::read_to_string(dir.join("d010.local")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let liggghts = "ITEM: TIMESTEP
+10
+ITEM: NUMBER OF BONDS
+1
+ITEM: BOX BOUNDS ff ff ff
+-0.05 0.05
+-0.05 0.05
+0 0.1
+ITEM: BONDS c_pl[1] c_pl[2] 
+-7.85012e-07 0 
+";
+    assert_eq!(got, liggghts);
+    let out = common::run_script_raw(
+        &format!("{head}dump d all custom 10 d.txt id x\ndump_modify d label BONDS\n"),
+        None,
+    );
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("label applies to dump local only"), "{err}");
+}

@@ -138,7 +138,7 @@ pub static REGISTRY: Registry<Command> = Registry {
             .notes("`stop` is checked but changes nothing: no rdem style ramps over a run (no `ramp()`); `elaplong` counts from `start`; under `rdem -check` the chunks are one checked run and the commands run once"),
         sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
         sim("dump", dumps::dump, "the dump styles below"),
-        sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`"),
+        sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`, `label L` (dump local)"),
         sim("undump", dumps::undump, "`ID`"),
         sim("write_dump", dumps::write_dump, "`custom`, `custom/vtk`, `atom/vtk` with `modify`"),
         sim("write_restart", data_files::write_restart, "file name (`*` = the step)")

@@ -19,7 +19,7 @@ pub(super) const ROW: DumpRow = DumpRow::runs(
     parse,
     "per-contact values of local computes (`c_ID[k]`) as text, LIGGGHTS' layout",
 )
-.notes("`dump_modify format` as for `dump custom` (a `%d` column prints the value as an integer, where LIGGGHTS 3.8 prints the bits of a double); `f_ID` columns and `dump_modify label` are not supported yet");
+.notes("`dump_modify format` as for `dump custom` (a `%d` column prints the value as an integer, where LIGGGHTS 3.8 prints the bits of a double); `dump_modify label L` names the entries `L` in the header, as LIGGGHTS 3.8; `f_ID` columns are not supported yet");
 
 /// A column: compute ID and 1-based column (`None`: a compute with one column).
 #[derive(Debug, Clone)]
@@ -87,6 +87,7 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
             name: DumpFileName::new(file),
             single: None,
             formats: Vec::new(),
+            label: "ENTRIES".into(),
         }),
         cols,
     ))
@@ -98,6 +99,9 @@ struct Local {
     single: Option<AppendFile>,
     /// `dump_modify format`: one per column (`None`: `%g`).
     formats: Vec<Option<Printf>>,
+    /// `dump_modify label`: the word of the header lines `ITEM: NUMBER OF <label>` and
+    /// `ITEM: <label> ...` (default `ENTRIES`).
+    label: String,
 }
 
 fn letter(b: Boundary) -> char {
@@ -159,8 +163,9 @@ impl DumpStyle for Local {
         let w = super::super::computes::world(sim)?;
         let d = &w.domain;
         let g = Printf::default_float();
+        let label = &self.label;
         let mut out =
-            format!("ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n{nrows}\nITEM: BOX BOUNDS");
+            format!("ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF {label}\n{nrows}\nITEM: BOX BOUNDS");
         for faces in d.boundary {
             out.push_str(&format!(" {}{}", letter(faces[0]), letter(faces[1])));
         }
@@ -171,7 +176,7 @@ impl DumpStyle for Local {
             g.write(&mut out, Value::Float(d.boxhi[a]));
             out.push('\n');
         }
-        out.push_str("ITEM: ENTRIES ");
+        out.push_str(&format!("ITEM: {label} "));
         for c in columns {
             out.push_str(c);
             out.push(' ');
@@ -221,6 +226,11 @@ impl DumpStyle for Local {
             "sort does not apply to dump local (it has no atom IDs)",
             None,
         ))
+    }
+
+    fn set_label(&mut self, label: &str) -> Result<(), NotHere> {
+        self.label = label.to_string();
+        Ok(())
     }
 
     fn set_format(&mut self, f: &str, ncols: usize) -> Result<Option<String>, NotHere> {

@@ -103,6 +103,11 @@ pub trait DumpStyle {
         false
     }
 
+    /// `dump_modify label` (LIGGGHTS 3.8: dump local only).
+    fn set_label(&mut self, _label: &str) -> Result<(), NotHere> {
+        Err(("label applies to dump local only, as in LIGGGHTS 3.8", None))
+    }
+
     /// `dump_modify format`: `Ok(Some(error))` for a bad format string.
     fn set_format(&mut self, _f: &str, _ncols: usize) -> Result<Option<String>, NotHere> {
         Err(("format applies to dump custom and dump local only", None))
@@ -394,6 +399,7 @@ pub fn dump_modify(sim: &mut Sim, a: &mut Args) -> CmdResult {
             "region",
             "binary",
             "compressor",
+            "label",
         ],
         &regions,
     )
@@ -457,6 +463,10 @@ fn modify(d: &mut Dump, a: &mut Args, valid: &[&'static str], regions: &[String]
             }
             "first" => {
                 d.first = a.yes_no("first")?;
+            }
+            "label" => {
+                let label = a.word("label")?;
+                d.style.set_label(label).map_err(|e| not_here(a, e))?;
             }
             other => unreachable!("dump_modify keyword {other} is not in the valid list"),
         }
