@@ -24,6 +24,7 @@ mod hopper;
 mod hysteretic;
 mod incremental_history;
 mod jkr;
+mod lattice;
 mod lebc;
 mod liggghts_restart;
 mod local_dump;

@@ -1,5 +1,5 @@
-//! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`
-//! (and the 2d `sq`, `sq2`, `hex`)
+//! The `lattice` command for SI units: cubic lattices `sc`, `bcc`, `fcc` and `diamond`,
+//! the hexagonal close packing `hcp` (and the 2d `sq`, `sq2`, `hex`)
 //! whose `scale` is the lattice constant in metres, and `custom` lattices with
 //! axis-aligned cell vectors `a1 a2 a3` (in units of the scale) and `basis` atoms, with an
 //! `origin` shift. `units
@@ -28,8 +28,8 @@ pub struct Lattice {
 
 /// Valid lattice styles.
 /// (`sq`, `sq2` and `hex` are the 2d lattices: `dimension 2` only.)
-pub const STYLES: [&str; 9] = [
-    "none", "sc", "bcc", "fcc", "diamond", "custom", "sq", "sq2", "hex",
+pub const STYLES: [&str; 10] = [
+    "none", "sc", "bcc", "fcc", "hcp", "diamond", "custom", "sq", "sq2", "hex",
 ];
 
 /// The 2d lattice styles.
@@ -51,6 +51,13 @@ impl Lattice {
                 v(0.5, 0.0, 0.5),
                 v(0.0, 0.5, 0.5),
             ],
+            // LAMMPS' hcp: a1 = 1 0 0, a2 = 0 √3 0, a3 = 0 0 √(8/3).
+            "hcp" => vec![
+                v(0.0, 0.0, 0.0),
+                v(0.5, 0.5, 0.0),
+                v(0.5, 5.0 / 6.0, 0.5),
+                v(0.0, 1.0 / 3.0, 0.5),
+            ],
             "diamond" => vec![
                 v(0.0, 0.0, 0.0),
                 v(0.0, 0.5, 0.5),
@@ -65,10 +72,10 @@ impl Lattice {
         };
         // LAMMPS' 2d lattices: a square cell (sq, sq2), or a1 = 1 0 0, a2 = 0 √3 0 (hex);
         // a3 = 0 0 1.
-        let cell = if style == "hex" {
-            v(1.0, 3f64.sqrt(), 1.0)
-        } else {
-            DVec3::ONE
+        let cell = match style {
+            "hex" => v(1.0, 3f64.sqrt(), 1.0),
+            "hcp" => v(1.0, 3f64.sqrt(), (8.0f64 / 3.0).sqrt()),
+            _ => DVec3::ONE,
         };
         Some(Self {
             style: style.to_string(),
@@ -124,6 +131,6 @@ mod tests {
         assert_eq!(Lattice::new("sc", 0.01).unwrap().points(lo, hi).len(), 27);
         assert_eq!(Lattice::new("fcc", 0.01).unwrap().points(lo, hi).len(), 108);
         assert_eq!(Lattice::new("bcc", 0.01).unwrap().points(lo, hi).len(), 54);
-        assert!(Lattice::new("hcp", 1.0).is_none(), "hcp is not offered");
+        assert!(Lattice::new("hcp2", 1.0).is_none());
     }
 }

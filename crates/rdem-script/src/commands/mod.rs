@@ -93,7 +93,7 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("partitioner_style", settings::partitioner_style, "`zoltan [KEY VALUE ...]` (LIGGGHTS-PFM): accepted with a warning").notes("rdem shares the work between its threads itself; the Zoltan options are not used"),
         sim("region", region::region, "the region styles below; `side in\\|out`; `units box\\|lattice` (default `box`, as LIGGGHTS 3.8); `volume_limit V` (LIGGGHTS 3.8's undocumented limit of its region-volume estimate; checked, no other effect); `move v_x v_y v_z` (`NULL` allowed) and `rotate v_theta Px Py Pz Rx Ry Rz`: a moving region is placed by its equal-style variables each time it is used (`group`, `set`, `delete_atoms`, `create_atoms`, the region forms of `count()`, `mass()`, ...); insertion fixes, `create_box` and `ave/euler` refuse it, as LIGGGHTS 3.8 refuses it in insertion")
             .notes("`move` displacements are not scaled by `units lattice` (only the `rotate` point is), as the LIGGGHTS 3.8 manual says; LAMMPS' `open` is not a LIGGGHTS 3.8 keyword"),
-        sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `diamond` with a lattice constant; `custom` with `a1 a2 a3` along x, y, z and `basis`; `origin`")
+        sim("lattice", region::lattice_cmd, "`sc`, `bcc`, `fcc`, `hcp`, `diamond` with a lattice constant; `custom` with `a1 a2 a3` along x, y, z and `basis`; `origin`")
             .notes("no `orient`/`spacing`"),
         sim("create_box", create::create_box, "`N region`"),
         sim("create_atoms", create::create_atoms, "`single`, `region`, `box`")
