@@ -44,6 +44,7 @@ mod multicontact;
 mod nve_limit;
 mod omp_styles;
 mod pour;
+mod random_function;
 mod region_wedge;
 mod restart_exact;
 mod rolling_cdt;

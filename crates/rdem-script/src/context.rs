@@ -216,6 +216,49 @@ pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, Er
 }
 
 impl Ctx<'_> {
+    /// `random(lo, hi, seed)`: the next number of the script's RANMAR generator (seeded
+    /// by the first call's seed), scaled to [lo, hi), as LIGGGHTS' equal-style formulas
+    /// give it. Atom-style formulas (one number per atom) are not supported yet.
+    fn random(&mut self, raw: &[String]) -> Result<f64, Error> {
+        if self.atom.is_some() {
+            return Err(
+                "random() in an atom-style variable is not supported yet (equal-style only)".into(),
+            );
+        }
+        let [lo, hi, seed] = raw else {
+            return Err(format!(
+                "random() takes 3 arguments (lower, upper, seed), not {}",
+                raw.len()
+            )
+            .into());
+        };
+        let mut value = |s: &String| -> Result<f64, Error> {
+            let e = expr::parse(s.trim()).map_err(|e| Error::from(e.message.clone()))?;
+            expr::eval(&e, self).map_err(|e| Error::from(e.message.clone()))
+        };
+        let (lo, hi, seed) = (value(lo)?, value(hi)?, value(seed)?);
+        let mut rng = self
+            .sim
+            .script
+            .random_equal
+            .lock()
+            .map_err(|_| "random(): the generator is poisoned")?;
+        if rng.is_none() {
+            let s = seed as i64;
+            if seed.fract() != 0.0 || s <= 0 {
+                return Err(
+                    format!("random(): the seed must be a positive integer, not {seed}").into(),
+                );
+            }
+            *rng = Some(
+                crate::ranmars::RanMars::new(s)
+                    .ok_or_else(|| format!("random(): the seed {s} must be below 900000000"))?,
+            );
+        }
+        let u = rng.as_mut().map_or(0.0, |r| r.uniform());
+        Ok(u * (hi - lo) + lo)
+    }
+
     fn group(&self, g: &str) -> Result<u32, Error> {
         self.sim
             .defs
@@ -369,6 +412,9 @@ impl Context for Ctx<'_> {
     }
 
     fn function(&mut self, name: &str, raw: &[String]) -> Result<Option<f64>, Error> {
+        if name == "random" {
+            return self.random(raw).map(Some);
+        }
         const GROUP_FNS: [&str; 6] = ["count", "mass", "xcm", "vcm", "bound", "ke"];
         if !GROUP_FNS.contains(&name) {
             return Ok(None);

@@ -463,10 +463,10 @@ pub fn eval(e: &Expr, ctx: &mut dyn Context) -> Result<f64, ExprError> {
                 None => match ctx.function(name, raw).or_else(|m| err(m, span.clone()))? {
                     Some(v) => v,
                     None => {
-                        const KNOWN: [&str; 21] = [
+                        const KNOWN: [&str; 22] = [
                             "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos",
                             "atan", "atan2", "ceil", "floor", "round", "count", "mass", "xcm",
-                            "vcm", "bound", "ke",
+                            "vcm", "bound", "ke", "random",
                         ];
                         let hint = crate::args::nearest(name, &KNOWN)
                             .map(|n| format!(" (did you mean '{n}'?)"))

@@ -28,6 +28,7 @@ pub mod materials;
 pub mod models;
 pub mod old_gran;
 pub mod output;
+pub mod ranmars;
 pub mod regions;
 pub mod registry;
 pub mod restart_state;

@@ -217,6 +217,9 @@ impl Outputs {
 pub struct ScriptState {
     /// Variables.
     pub vars: Variables,
+    /// The generator of `random()` in equal-style formulas: one for the whole script,
+    /// seeded by the first call's seed (later seeds are not used), as LIGGGHTS does.
+    pub random_equal: std::sync::Mutex<Option<crate::ranmars::RanMars>>,
     /// The file of the command being run (see [`Sim::origin`]).
     pub here: Option<crate::diagnostic::SourceFile>,
     /// `rdem -check`: runs no step and writes no file (see `crate::check`).
@@ -283,6 +286,7 @@ impl Sim {
             },
             script: ScriptState {
                 vars: Variables::new(),
+                random_equal: std::sync::Mutex::new(None),
                 here: None,
                 check: false,
                 threads: 1,
