@@ -7,6 +7,7 @@ mod bonds;
 mod bonds_cantilever;
 mod bonds_counter;
 mod bonds_local;
+mod buoyancy;
 mod check;
 mod cli_errors;
 mod cli_run;

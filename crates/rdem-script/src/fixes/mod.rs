@@ -19,6 +19,7 @@ mod ave_histo;
 mod ave_time;
 mod balance;
 mod bond_create_gran;
+mod buoyancy;
 mod check_timestep_bond;
 mod check_timestep_gran;
 mod couple_cfd;
@@ -374,6 +375,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
         speedcontrol::ROW,
+        buoyancy::ROW,
         sph::ROW_CONTINUITY,
         sph::ROW_SUMMATION,
         sph::ROW_CORR,
