@@ -231,7 +231,7 @@ write_restart restart.out
         assert!(stderr.contains("unknown command 'neighbr'"), "{stderr}");
         assert!(stderr.contains("in.test:9:1"), "{stderr}");
         assert!(
-            stderr.contains("unknown fix style 'heat/gran/radiation'"),
+            stderr.contains("heat/gran/radiation needs the keyword 'cutoff'"),
             "{stderr}"
         );
         assert!(stderr.contains("in.test:14:"), "{stderr}");
