@@ -11,6 +11,7 @@ mod buoyancy;
 mod check;
 mod cli_errors;
 mod cli_run;
+mod com;
 mod common;
 mod contact_history;
 mod create_particles;

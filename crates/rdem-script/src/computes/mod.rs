@@ -5,6 +5,7 @@
 //! [`ScriptCompute`]: what it gives ([`Shape`]) and how to evaluate it.
 
 mod bond_counter;
+mod com;
 mod contact_atom;
 mod coord_atom;
 mod displace_atom;
@@ -161,6 +162,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         rigid::ROW_SINGLE,
         energy_atom::ROW_EROTATE,
         ke::ROW,
+        com::ROW,
         energy_atom::ROW_KE,
         pe::ROW,
         pressure::ROW,
@@ -177,7 +179,6 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         pair_gran_local_bond::ROW,
         property_local::ROW,
         wall_gran_local::ROW,
-        Row::not_yet("com", ""),
         Row::not_yet("msd", ""),
         Row::not_yet("rdf", ""),
     ],
