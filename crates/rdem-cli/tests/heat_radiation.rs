@@ -159,6 +159,22 @@ fn radiation_refuses_what_the_fork_refuses_with_located_errors() {
         err.contains("thermalEmissivity") && err.contains("1.5"),
         "{err}"
     );
+    // Without the per-type emissivity, the message names the radiation fix.
+    let script = format!(
+        "{}fix rad all heat/gran/radiation initial_temperature 600. cutoff 0.1 seed 1\nrun 10\n",
+        head("0.5")
+    )
+    .replace(
+        "fix m5 all property/global thermalEmissivity peratomtype 0.5\n",
+        "",
+    );
+    let out = common::run_script_raw(&script, None);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("heat/gran/radiation needs 'fix ID all property/global thermalEmissivity"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -221,23 +221,23 @@ impl ScriptFix for HeatGran {
         }
         let sim = ctx.view();
         let n = sim.ntypes();
-        let k = per_type(sim, "thermalConductivity", n)?;
+        let k = per_type(sim, "heat/gran", "thermalConductivity", n)?;
         if let Some(bad) = k.iter().find(|k| **k < 0.0) {
             return Err(format!(
                 "heat/gran: thermal conductivity must not be < 0 (thermalConductivity has {bad})"
             )
             .into());
         }
-        let c = per_type(sim, "thermalCapacity", n)?;
+        let c = per_type(sim, "heat/gran", "thermalCapacity", n)?;
         let Some(pair) = &ctx.world_ref().pair else {
             return Err("heat/gran needs a granular pair style (pair_style gran ...)".into());
         };
         let ratio = if self.area_correction {
             // The stress–strain exponent of the contact model: δ ~ F^(1/p).
             let p = pair.model.normal.traits().force_exponent;
-            let y = per_type(sim, "youngsModulus", n)?;
-            let nu = per_type(sim, "poissonsRatio", n)?;
-            let yo = per_type(sim, "youngsModulusOriginal", n)?;
+            let y = per_type(sim, "heat/gran", "youngsModulus", n)?;
+            let nu = per_type(sim, "heat/gran", "poissonsRatio", n)?;
+            let yo = per_type(sim, "heat/gran", "youngsModulusOriginal", n)?;
             let mut r = Vec::with_capacity(n * n);
             for i in 0..n {
                 for j in 0..n {
@@ -312,10 +312,10 @@ pub(super) fn define_properties(sim: &mut Sim, a: &Args, t0: f64) -> CmdResult<H
         .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))
 }
 
-/// The first `n` values of the `peratomtype` property `name`.
-pub(super) fn per_type(sim: &Sim, name: &str, n: usize) -> Result<Vec<f64>, Error> {
+/// The first `n` values of the `peratomtype` property `name`, which fix style `who` needs.
+pub(super) fn per_type(sim: &Sim, who: &str, name: &str, n: usize) -> Result<Vec<f64>, Error> {
     let p = sim.defs.properties.get(name).ok_or_else(|| {
-        format!("heat/gran needs 'fix ID all property/global {name} peratomtype' with {n} value(s) (one per atom type)")
+        format!("{who} needs 'fix ID all property/global {name} peratomtype' with {n} value(s) (one per atom type)")
     })?;
     if p.style != "peratomtype" || p.values.len() < n {
         return Err(format!(

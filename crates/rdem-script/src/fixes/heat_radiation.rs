@@ -168,10 +168,15 @@ impl ScriptFix for HeatRadiationFix {
         }
         let sim = ctx.view();
         let n = sim.ntypes();
-        let eps = per_type(sim, "thermalEmissivity", n)?;
+        let eps = per_type(sim, "heat/gran/radiation", "thermalEmissivity", n)?;
         let alone = ctx.world_ref().heat.as_ref().is_some_and(|h| !h.conducts);
         let capacity = if alone {
-            Some(per_type(ctx.view(), "thermalCapacity", n)?)
+            Some(per_type(
+                ctx.view(),
+                "heat/gran/radiation",
+                "thermalCapacity",
+                n,
+            )?)
         } else {
             None
         };
