@@ -61,8 +61,6 @@ pub struct HeatRadiation {
     pub max_bounces: u32,
     /// Reach of a ray from its origin.
     pub cutoff: f64,
-    /// The per-particle properties (shared with heat conduction).
-    pub props: HeatProps,
     rng: rand_pcg::Pcg64,
     grid: Grid,
     flow: Vec<f64>,
@@ -73,7 +71,6 @@ impl HeatRadiation {
     /// reaching `cutoff`, random numbers from `seed + rank`; the emissivities are set
     /// by [`HeatRadiation::set_emissivity`].
     pub fn new(
-        props: HeatProps,
         background: f64,
         max_bounces: u32,
         cutoff: f64,
@@ -97,7 +94,6 @@ impl HeatRadiation {
             background,
             max_bounces,
             cutoff,
-            props,
             rng: rand_pcg::Pcg64::seed_from_u64(seed.wrapping_add(rank as u64)),
             grid: Grid::default(),
             flow: Vec::new(),
@@ -130,14 +126,16 @@ impl HeatRadiation {
 
     /// One step of radiation: every owned particle emits one ray; the heat flows it
     /// causes are added to the particles' `heatFlux` (ghosts' shares to their owners).
-    pub fn radiate(&mut self, p: &mut Particles, comm: &dyn Comm) {
+    /// `props` are the heat properties, which the heat integration
+    /// ([`crate::heat::HeatConduction`]) holds.
+    pub fn radiate(&mut self, p: &mut Particles, props: &HeatProps, comm: &dyn Comm) {
         let n = p.nlocal();
         let len = p.len();
         let mut flow = std::mem::take(&mut self.flow);
         flow.clear();
         flow.resize(len, 0.0);
         self.grid.build(&p.x[..len], &p.radius[..len]);
-        let temp = &p.props[self.props.temp.0].data;
+        let temp = &p.props[props.temp.0].data;
         let tb4 = self.background.powi(4);
         for i in 0..n {
             let r = p.radius[i];
@@ -180,7 +178,7 @@ impl HeatRadiation {
             }
         }
         comm.reverse_scalar(p, &mut flow);
-        let fl = &mut p.props[self.props.flux.0].data;
+        let fl = &mut p.props[props.flux.0].data;
         for (f, q) in fl[..n].iter_mut().zip(&flow) {
             *f += q;
         }

@@ -912,8 +912,10 @@ impl World {
                 &*self.comm,
             );
         }
-        if let Some(rad) = &mut self.radiation {
-            rad.radiate(&mut self.particles, &*self.comm);
+        // Radiation is only ever defined with the heat integration, which holds the
+        // temperatures.
+        if let (Some(rad), Some(heat)) = (&mut self.radiation, &self.heat) {
+            rad.radiate(&mut self.particles, &heat.props, &*self.comm);
         }
     }
 

@@ -109,7 +109,8 @@ pub struct World {
     /// Heat conduction through contacts (`fix heat/gran/conduction`), if any.
     pub heat: Option<crate::heat::HeatConduction>,
     /// Heat radiation between particles (`fix heat/gran/radiation`), if any; the
-    /// temperatures it changes are integrated by [`World::heat`].
+    /// temperatures it changes are held and integrated by [`World::heat`], which exists
+    /// whenever it does.
     pub radiation: Option<crate::heat_radiation::HeatRadiation>,
     /// Rigid clumps (`fix multisphere`), if any.
     pub multisphere: Option<crate::multisphere::Multisphere>,

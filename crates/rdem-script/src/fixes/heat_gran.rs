@@ -208,9 +208,6 @@ impl ScriptFix for HeatGran {
         let heat = HeatConduction::new(head.groupbit, self.area, props)
             .map_err(|e| a.error_at(STYLE_WORD, e.to_string(), None))?;
         w.heat = Some(heat);
-        if let Some(rad) = &mut w.radiation {
-            rad.props = props;
-        }
         Ok(())
     }
 
@@ -257,9 +254,7 @@ impl ScriptFix for HeatGran {
     }
 
     fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
-        let w = sim.world.as_ref().ok_or("no simulation box")?;
-        let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
-        Ok(vec![w.comm.sum(heat.thermal_energy(&w.particles))])
+        thermal_energy(sim)
     }
 
     /// One value per atom (the temperature), at every step.
@@ -268,10 +263,7 @@ impl ScriptFix for HeatGran {
     }
 
     fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
-        let w = sim.world.as_ref().ok_or("no simulation box")?;
-        let heat = w.heat.as_ref().ok_or("heat conduction is gone")?;
-        let t = &w.particles.props[heat.props.temp.0].data;
-        Ok(t[..w.particles.nlocal()].to_vec())
+        temperatures(sim)
     }
 
     /// Conduction stops; with radiation defined the temperatures go on being integrated.
@@ -283,6 +275,22 @@ impl ScriptFix for HeatGran {
             }
         }
     }
+}
+
+/// `f_ID` of the heat fixes: the thermal energy Σ m c T of all particles, summed over
+/// ranks.
+pub(super) fn thermal_energy(sim: &Sim) -> Result<Vec<f64>, Error> {
+    let w = sim.world.as_ref().ok_or("no simulation box")?;
+    let heat = w.heat.as_ref().ok_or("heat transfer is gone")?;
+    Ok(vec![w.comm.sum(heat.thermal_energy(&w.particles))])
+}
+
+/// `f_ID` per atom of the heat fixes: the owned particles' temperatures.
+pub(super) fn temperatures(sim: &Sim) -> Result<Vec<f64>, Error> {
+    let w = sim.world.as_ref().ok_or("no simulation box")?;
+    let heat = w.heat.as_ref().ok_or("heat transfer is gone")?;
+    let t = &w.particles.props[heat.props.temp.0].data;
+    Ok(t[..w.particles.nlocal()].to_vec())
 }
 
 /// Defines the per-particle properties of heat transfer (`Temp` at `t0`, `heatFlux`,

@@ -17,7 +17,7 @@ use crate::error::Error;
 use rdem::heat::{ContactArea, HeatConduction};
 use rdem::heat_radiation::HeatRadiation;
 
-use super::heat_gran::{define_properties, per_type};
+use super::heat_gran::{define_properties, per_type, temperatures, thermal_energy};
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages, STYLE_WORD};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
@@ -115,17 +115,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 
 impl ScriptFix for HeatRadiationFix {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
-        let existing = {
-            let w = sim.world_ref(a)?;
-            w.heat.as_ref().map(|h| h.props).or_else(|| {
-                w.radiation
-                    .as_ref()
-                    .filter(|_| sim.fix_index(&head.id).is_some())
-                    .map(|r| r.props)
-            })
-        };
         // Temperatures that exist (from conduction, defined or unfixed before) are kept.
-        let props = match existing {
+        // (A redefinition of this fix's ID was unfixed before this install.)
+        let props = match sim.world_ref(a)?.heat.as_ref().map(|h| h.props) {
             Some(p) => p,
             None if sim
                 .world_ref(a)?
@@ -148,7 +140,6 @@ impl ScriptFix for HeatRadiationFix {
         }
         let rank = w.comm.rank();
         let rad = HeatRadiation::new(
-            props,
             self.background.unwrap_or(self.t0),
             self.max_bounces,
             self.cutoff,
@@ -198,9 +189,7 @@ impl ScriptFix for HeatRadiationFix {
     }
 
     fn values(&self, sim: &Sim, _head: &FixHead) -> Result<Vec<f64>, Error> {
-        let w = sim.world.as_ref().ok_or("no simulation box")?;
-        let heat = w.heat.as_ref().ok_or("heat radiation is gone")?;
-        Ok(vec![w.comm.sum(heat.thermal_energy(&w.particles))])
+        thermal_energy(sim)
     }
 
     /// One value per atom (the temperature), at every step.
@@ -209,10 +198,7 @@ impl ScriptFix for HeatRadiationFix {
     }
 
     fn peratom(&self, sim: &Sim, _head: &FixHead, _col: Option<usize>) -> Result<Vec<f64>, Error> {
-        let w = sim.world.as_ref().ok_or("no simulation box")?;
-        let rad = w.radiation.as_ref().ok_or("heat radiation is gone")?;
-        let t = &w.particles.props[rad.props.temp.0].data;
-        Ok(t[..w.particles.nlocal()].to_vec())
+        temperatures(sim)
     }
 
     /// Radiation stops; the temperatures go on being integrated only with conduction.
