@@ -346,20 +346,23 @@ impl Domain {
 
     /// Recomputes the subdomain from the box (after the box changed: shrink-wrap).
     pub fn update_subdomain(&mut self) {
-        let prd = self.prd();
         for a in 0..3 {
-            let p = self.procgrid[a];
             let m = self.myloc[a];
-            self.sublo[a] = if m == 0 {
-                self.boxlo[a]
-            } else {
-                self.boxlo[a] + prd[a] * m as f64 / p as f64
-            };
-            self.subhi[a] = if m + 1 == p {
-                self.boxhi[a]
-            } else {
-                self.boxlo[a] + prd[a] * (m + 1) as f64 / p as f64
-            };
+            self.sublo[a] = self.cut(a, m);
+            self.subhi[a] = self.cut(a, m + 1);
+        }
+    }
+
+    /// The `m`-th cut of the processor grid along axis `a` (0 ..= Pa): the box faces at
+    /// the ends, an equal share of the box between.
+    pub fn cut(&self, a: usize, m: usize) -> f64 {
+        let p = self.procgrid[a];
+        if m == 0 {
+            self.boxlo[a]
+        } else if m == p {
+            self.boxhi[a]
+        } else {
+            self.boxlo[a] + (self.boxhi[a] - self.boxlo[a]) * m as f64 / p as f64
         }
     }
 
@@ -374,7 +377,7 @@ impl Domain {
                 continue;
             }
             // The same boundaries `update_subdomain` computes, searched from the estimate.
-            let bound = |m: usize| self.boxlo[a] + prd[a] * m as f64 / p as f64;
+            let bound = |m: usize| self.cut(a, m);
             let est = ((x[a] - self.boxlo[a]) / prd[a] * p as f64).floor();
             let mut m = if est.is_nan() {
                 0

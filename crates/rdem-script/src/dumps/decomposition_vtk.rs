@@ -75,17 +75,8 @@ impl DumpStyle for Decomposition {
             return Ok(Vec::new());
         }
         let d = &w.domain;
-        let prd = d.boxhi - d.boxlo;
-        let cuts: [Vec<f64>; 3] = std::array::from_fn(|a| {
-            let p = d.procgrid[a];
-            (0..=p)
-                .map(|m| match m {
-                    0 => d.boxlo[a],
-                    m if m == p => d.boxhi[a],
-                    m => d.boxlo[a] + prd[a] * m as f64 / p as f64,
-                })
-                .collect()
-        });
+        let cuts: [Vec<f64>; 3] =
+            std::array::from_fn(|a| (0..=d.procgrid[a]).map(|m| d.cut(a, m)).collect());
         let path = self.0.path(step, 0);
         rdem_io::write_atomic(&path, grid_text(&cuts).as_bytes())?;
         Ok(Vec::new())
