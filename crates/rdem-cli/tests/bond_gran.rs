@@ -967,3 +967,258 @@ fn a_bond_that_leaves_gives_the_contact_back_at_once() {
         .map(|r| r[0]);
     assert_eq!((free, first_touch), (Some(10.0), Some(170.0)));
 }
+
+/// Runs `in.pfm_data` (with `vars` set first and `extra` appended) on `ranks` MPI
+/// ranks; returns the directory (kept) and the screen output.
+fn pfm_data(vars: &[(&str, &str)], extra: &str, ranks: Option<usize>) -> (PathBuf, String) {
+    let mut script = with_vars("in.pfm_data", vars);
+    if ranks.is_some() {
+        script = script.replace(
+            "read_data pairs.data",
+            "processors 2 1 1\nread_data pairs.data",
+        );
+    }
+    script.push_str(extra);
+    common::run_kept_ok(
+        "bond_gran_data",
+        &script,
+        &[("pairs.data", &read("pairs.data"))],
+        ranks,
+    )
+}
+
+/// Dump frames: (step, rows).
+type Frames = Vec<(u64, Vec<Vec<f64>>)>;
+
+/// The frames of a dump of `id mol x y z ...`: the (id, molecule ID) rows of the first
+/// frame, and the frames without the molecule IDs.
+fn frames_and_molecules(text: &str) -> (Vec<Vec<f64>>, Frames) {
+    let mut frames = common::dump_frames(text);
+    let mol = frames[0].1.iter().map(|r| r[..2].to_vec()).collect();
+    for f in &mut frames {
+        for r in &mut f.1 {
+            r.remove(1);
+        }
+    }
+    (mol, frames)
+}
+
+/// `read_data` of a data file of `atom_style hybrid granular bond/gran` (atom lines
+/// `id type x y z diameter density molecule`, a `Velocities` and a `Bonds` section)
+/// and `delete_bonds`, against LIGGGHTS-PFM 24.01 (built here) running `in.pfm_data`:
+/// the bond of atom 7 (type 2) to atom 1 removed (`delete_bonds all atom 2 remove`,
+/// then atom 7 deleted) or turned off (`delete_bonds all atom 2`, atom 7 kept). The
+/// molecule IDs equal the file's, every sphere follows the fork's every 50 of 1000
+/// steps within 1e-8 of each column's scale (measured 2e-10), `numbond` and the counts
+/// `delete_bonds` prints equal the fork's, and `compute property/local` lists the three
+/// bonds turned on with the fork's forces (the fork also lists the turned-off one, with
+/// its type negative and the force of the bond listed before it; rdem leaves it out).
+#[test]
+fn read_data_bonds_and_delete_bonds_follow_liggghts_pfm() {
+    for (name, rm, gone, counts, numbond) in [
+        (
+            "remove",
+            "remove",
+            "1",
+            "3 total bonds, 3 turned on, 0 turned off",
+            3.0,
+        ),
+        (
+            "off",
+            "",
+            "0",
+            "4 total bonds, 3 turned on, 1 turned off",
+            4.0,
+        ),
+    ] {
+        let (dir, out) = pfm_data(&[("rm", rm), ("gone", gone)], "", None);
+        assert!(out.contains("  7 velocities\n  4 bonds\n"), "{name}: {out}");
+        assert!(
+            out.contains(&format!("Deleting bonds ...\n  {counts}\n")),
+            "{name}: {out}"
+        );
+        let rows = common::thermo_rows(&out);
+        assert_eq!(rows.len(), 11, "{name}: {out}");
+        assert!(rows.iter().all(|r| r[2] == numbond), "{name}: {rows:?}");
+        let (mol, got) =
+            frames_and_molecules(&std::fs::read_to_string(dir.join("atoms.txt")).unwrap());
+        let (want_mol, want) = frames_and_molecules(&read(&format!("pfm_data_{name}.dump")));
+        assert_eq!(mol, want_mol, "{name}: molecule IDs");
+        assert_frames(&got, &want, 1e-8, name);
+        let bonds = common::dump_frames(&std::fs::read_to_string(dir.join("bonds.txt")).unwrap());
+        let last = &bonds.last().unwrap().1;
+        // The fork's rows at step 1000 (its dump rounds to 6 digits).
+        let want = [
+            [1.0, 2.0, 1.0, 0.16087, -0.00019938, 0.000150347],
+            [3.0, 4.0, 1.0, 0.0482615, 0.0336814, 0.0120287],
+            [5.0, 6.0, 1.0, -1.75872e-06, 8.14418e-05, -0.0620375],
+        ];
+        assert_eq!(last.len(), 3, "{name}: {last:?}");
+        for (g, w) in last.iter().zip(want) {
+            assert_eq!(g.as_slice(), w.as_slice(), "{name}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// `delete_bonds ... undo` turns a bond on again (atom 7, 4 cm from atom 1, is then
+/// pulled towards it), `remove` drops every bond turned off before, and `stats`
+/// changes nothing.
+#[test]
+fn delete_bonds_undo_remove_and_stats() {
+    let ke = |extra: &str| {
+        let (dir, out) = pfm_data(&[("rm", ""), ("gone", "0")], extra, None);
+        let _ = std::fs::remove_dir_all(&dir);
+        (out.clone(), common::thermo_rows(&out).last().unwrap()[3])
+    };
+    let (out, on) = ke("delete_bonds all atom 2 undo\nrun 10\n");
+    assert!(
+        out.contains("Deleting bonds ...\n  4 total bonds, 4 turned on, 0 turned off\n"),
+        "{out}"
+    );
+    let (_, off) = ke("run 10\n");
+    // Off: the three pairs alone (3.32e-6 J); on: atom 7 pulled towards atom 1.
+    assert!((off - 3.3191775e-06).abs() < 1e-12, "{off}");
+    assert!(on > 3.0 * off, "the bond 1-7 pulls: {on} against {off}");
+    // Nothing selected in group dummy (atom 7 alone), yet `remove` drops the bond 1-7
+    // turned off before; `undo` finds nothing to turn on; `multi` turns all off.
+    let later = "delete_bonds all stats\ndelete_bonds dummy multi remove\n\
+                 delete_bonds all multi undo\ndelete_bonds all multi\n";
+    let (dir, out) = pfm_data(&[("rm", ""), ("gone", "0")], later, None);
+    let tail = out.rsplit("Dangerous builds").next().unwrap();
+    let want = [
+        "4 total bonds, 3 turned on, 1 turned off",
+        "3 total bonds, 3 turned on, 0 turned off",
+        "3 total bonds, 3 turned on, 0 turned off",
+        "3 total bonds, 0 turned on, 3 turned off",
+    ]
+    .map(|c| format!("Deleting bonds ...\n  {c}\n"))
+    .concat();
+    assert!(tail.contains(&want), "{tail}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `read_data` with bonds and `delete_bonds` on two MPI ranks (`processors 2 1 1`:
+/// the bond 1-7 joins spheres of different ranks) give the serial run's dump.
+#[test]
+fn read_data_bonds_on_two_ranks_give_the_serial_run() {
+    if !common::have_mpirun() {
+        eprintln!("skipped: no mpirun");
+        return;
+    }
+    for (rm, gone) in [("remove", "1"), ("", "0")] {
+        let vars = [("rm", rm), ("gone", gone)];
+        let (d1, _) = pfm_data(&vars, "", None);
+        let (d2, out) = pfm_data(&vars, "", Some(2));
+        assert!(out.contains("Deleting bonds"), "{out}");
+        for f in ["atoms.txt", "bonds.txt"] {
+            let a = std::fs::read_to_string(d1.join(f)).unwrap();
+            let b = std::fs::read_to_string(d2.join(f)).unwrap();
+            assert_eq!(a, b, "{f} with rm '{rm}'");
+        }
+        let _ = std::fs::remove_dir_all(&d1);
+        let _ = std::fs::remove_dir_all(&d2);
+    }
+}
+
+/// `write_data` under `hybrid granular bond/gran` writes the hybrid columns with the
+/// molecule IDs and the bonds turned on (LIGGGHTS-PFM 24.01 reads the file back and
+/// runs on), and `read_data` reads it back: the same particles and bonds.
+#[test]
+fn write_data_keeps_molecules_and_bonds() {
+    let (dir, out) = pfm_data(&[("rm", ""), ("gone", "0")], "write_data back.data\n", None);
+    assert!(out.contains("Deleting bonds"), "{out}");
+    let text = std::fs::read_to_string(dir.join("back.data")).unwrap();
+    assert!(
+        text.contains("\n7 atoms\n2 atom types\n3 bonds\n1 bond types\n"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("\nBonds\n\n1 1 1 2\n2 1 3 4\n3 1 5 6\n"),
+        "{text}"
+    );
+    let atoms: Vec<Vec<&str>> = text
+        .split("\nAtoms\n\n")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .take_while(|l| !l.is_empty())
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(atoms.len(), 7);
+    // id type x y z diameter density molecule ix iy iz
+    assert!(atoms.iter().all(|a| a.len() == 11), "{atoms:?}");
+    let mols: Vec<&str> = atoms.iter().map(|a| a[7]).collect();
+    assert_eq!(mols, ["1", "1", "2", "2", "3", "3", "4"]);
+    assert_eq!((atoms[3][5], atoms[3][6]), ("0.0012", "1500"));
+    let back = read("in.pfm_data")
+        .replace("read_data pairs.data", "read_data back.data")
+        .replace("delete_bonds all atom 2 ${rm}\n", "")
+        .replace("run 1000", "run 0\nwrite_data again.data");
+    let script = format!("variable rm index \"\"\nvariable gone index 0\n{back}");
+    std::fs::write(dir.join("in.back"), script).unwrap();
+    let o = common::rdem_in(&dir, "in.back", None).output().unwrap();
+    let o = common::success("read back", &o);
+    assert!(o.contains("  7 atoms\n  7 velocities\n  3 bonds\n"), "{o}");
+    let again = std::fs::read_to_string(dir.join("again.data")).unwrap();
+    let body = |t: &str| t.split_once('\n').unwrap().1.to_string();
+    assert_eq!(body(&again), body(&text));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `read_data` refuses what the atom style cannot hold, each error pointing at the
+/// file's line: more bonds on an atom than `bonds_per_atom`, a bond type beyond
+/// `n_bondtypes`, bonds under `atom_style granular`, and plain `atom_style bond/gran`
+/// (whose lines have no diameter).
+#[test]
+fn read_data_refuses_bonds_the_style_cannot_hold() {
+    let data = read("pairs.data");
+    let script = read("in.pfm_data");
+    for (what, s, d, msg) in [
+        (
+            "per atom",
+            script.replace("bonds_per_atom 6", "bonds_per_atom 1"),
+            data.clone(),
+            "atom 1 has more than the atom style's bonds_per_atom = 1 bonds",
+        ),
+        (
+            "types",
+            script.clone(),
+            data.replace("1 bond types", "2 bond types")
+                .replace("4 1 7 1\n", "4 2 7 1\n"),
+            "bond 4 has type 2, beyond the atom style's n_bondtypes 1",
+        ),
+        (
+            "granular",
+            script.replace(
+                "atom_style hybrid granular bond/gran n_bondtypes 1 bonds_per_atom 6",
+                "atom_style granular",
+            ),
+            data.clone(),
+            "'bonds' is not supported by atom_style",
+        ),
+        (
+            "plain",
+            script.replace(
+                "atom_style hybrid granular bond/gran",
+                "atom_style bond/gran",
+            ),
+            data.clone(),
+            "use atom_style hybrid granular bond/gran",
+        ),
+        (
+            "missing atom",
+            script.clone(),
+            data.replace("4 1 7 1\n", "4 1 8 1\n"),
+            "atom-ID 8 is not in the Atoms section",
+        ),
+    ] {
+        let s = format!("variable rm index \"\"\nvariable gone index 0\n{s}");
+        let (dir, out) = common::run_kept("bond_gran_bad", &s, &[("pairs.data", &d)], None);
+        assert!(!out.status.success(), "{what}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(msg), "{what}: {err}");
+        assert!(err.contains("read_data pairs.data"), "{what}: {err}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

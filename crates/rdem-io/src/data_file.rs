@@ -10,9 +10,18 @@
 //!   lines or on none);
 //! * `Velocities` (after `Atoms`): `atom-ID vx vy vz omegax omegay omegaz`.
 //!
+//! Under `atom_style hybrid` ([`AtomLayout::Hybrid`]) an atom line is
+//! `atom-ID atom-type x y z` followed by each sub-style's own values in the order the
+//! style names them (`granular`/`sphere`: `diameter density`; `bond/gran`: `molecule-ID`),
+//! then optionally `ix iy iz`; a velocity line is `atom-ID vx vy vz` and, for
+//! `granular`/`sphere`, `omegax omegay omegaz`. With `bond/gran` the header may give
+//! `N bonds`, `N bond types` and `N extra bond per atom`, and a `Bonds` section (after
+//! `Atoms`) lists `bond-ID bond-type atom-1 atom-2`, as LIGGGHTS-PFM,
+//! LIGGGHTS_Flexible_Fibers and LIGGGHTS_SEAICE read them.
+//!
 //! `#` starts a comment anywhere; blank lines are skipped outside sections. Anything a
-//! granular simulation cannot use (bonds, a triclinic tilt, `Masses`, zero diameters)
-//! is refused with a [`DataError`] that gives the 1-based line and the byte range of the
+//! granular simulation cannot use (bonds without `bond/gran`, a triclinic tilt,
+//! `Masses`, zero diameters) is refused with a [`DataError`] that gives the 1-based line and the byte range of the
 //! offending word, so the front end can underline it. The reader never panics.
 //!
 //! The writer puts every number in the shortest form that reads back to the same `f64`
@@ -26,6 +35,76 @@ use std::path::{Path, PathBuf};
 use rdem::{DVec3, Domain, NewParticle, Particles, Tag};
 
 use crate::atomic::{write_atomic, IoError};
+
+/// A sub-style of `atom_style hybrid`, which adds its own values to the data lines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SubStyle {
+    /// `granular` or `sphere`: `diameter density` on atom lines, `omegax omegay omegaz`
+    /// on velocity lines.
+    Sphere,
+    /// `bond/gran`: `molecule-ID` on atom lines; bonds.
+    BondGran,
+}
+
+/// The column layout of the `Atoms` and `Velocities` lines, which the atom style sets.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub enum AtomLayout {
+    /// `atom_style granular` (or `sphere`): `atom-ID atom-type diameter density x y z`.
+    #[default]
+    Granular,
+    /// `atom_style hybrid` of these sub-styles, in order (one of them [`SubStyle::Sphere`]).
+    Hybrid(Vec<SubStyle>),
+}
+
+impl AtomLayout {
+    /// True when the style holds bonds (a `bond/gran` sub-style).
+    pub fn has_bonds(&self) -> bool {
+        matches!(self, AtomLayout::Hybrid(s) if s.contains(&SubStyle::BondGran))
+    }
+
+    /// The names of an atom line's values, without image flags.
+    fn atom_names(&self) -> Vec<&'static str> {
+        match self {
+            AtomLayout::Granular => {
+                vec!["atom-ID", "atom-type", "diameter", "density", "x", "y", "z"]
+            }
+            AtomLayout::Hybrid(s) => {
+                let mut v = vec!["atom-ID", "atom-type", "x", "y", "z"];
+                for k in s {
+                    match k {
+                        SubStyle::Sphere => v.extend(["diameter", "density"]),
+                        SubStyle::BondGran => v.push("molecule-ID"),
+                    }
+                }
+                v
+            }
+        }
+    }
+
+    /// The names of a velocity line's values.
+    fn velocity_names(&self) -> Vec<&'static str> {
+        let mut v = vec!["atom-ID", "vx", "vy", "vz"];
+        let spheres = match self {
+            AtomLayout::Granular => 1,
+            AtomLayout::Hybrid(s) => s.iter().filter(|&&k| k == SubStyle::Sphere).count(),
+        };
+        for _ in 0..spheres {
+            v.extend(["omegax", "omegay", "omegaz"]);
+        }
+        v
+    }
+}
+
+/// One line of the `Bonds` section.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DataBond {
+    /// Bond-ID.
+    pub id: u64,
+    /// Bond type (1..=`nbondtypes`).
+    pub ty: u32,
+    /// The two atoms' IDs.
+    pub atoms: [Tag; 2],
+}
 
 /// One line of the `Atoms` section.
 #[derive(Debug, Clone)]
@@ -42,6 +121,8 @@ pub struct DataAtom {
     pub x: DVec3,
     /// Image flags (0 when the file has none).
     pub image: [i32; 3],
+    /// Molecule-ID (`bond/gran`; 0 without).
+    pub molecule: u64,
     /// 1-based line in the file (0 for atoms not read from a file); not compared by `==`.
     pub line: usize,
 }
@@ -55,6 +136,7 @@ impl PartialEq for DataAtom {
             && self.density.to_bits() == o.density.to_bits()
             && self.x.to_array().map(f64::to_bits) == o.x.to_array().map(f64::to_bits)
             && self.image == o.image
+            && self.molecule == o.molecule
     }
 }
 
@@ -96,6 +178,12 @@ pub struct DataFile {
     pub atoms: Vec<DataAtom>,
     /// The `Velocities` section, in file order (empty without one).
     pub velocities: Vec<DataVelocity>,
+    /// The column layout (the atom style).
+    pub layout: AtomLayout,
+    /// `N bond types` (0 without bonds).
+    pub nbondtypes: u32,
+    /// The `Bonds` section, in file order (empty without one).
+    pub bonds: Vec<DataBond>,
 }
 
 /// A data file that cannot be used, with the place to point at.
@@ -170,6 +258,8 @@ struct Parser<'a> {
     lines: Vec<&'a str>,
     /// Index of the next line to read.
     next: usize,
+    /// `N bonds` of the header.
+    nbonds: u64,
 }
 
 fn err(line: usize, col_range: Range<usize>, message: impl Into<String>) -> DataError {
@@ -353,13 +443,30 @@ impl<'a> Parser<'a> {
                     f.lo[a] = lo;
                     f.hi[a] = hi;
                 }
+                "bonds" if f.layout.has_bonds() => {
+                    self.nbonds = parse_int(ln, &ws[0], "the number of bonds")?;
+                }
+                "bond types" if f.layout.has_bonds() => {
+                    f.nbondtypes = parse_int(ln, &ws[0], "the number of bond types")?;
+                }
+                "extra bond per atom" if f.layout.has_bonds() => {
+                    // Room for bonds made later: `bonds_per_atom` of the atom style.
+                    let _: u64 = parse_int(ln, &ws[0], "the extra bonds per atom")?;
+                }
                 _ => {
                     let n: u64 = parse_int(ln, &ws[0], &format!("'{keyword}'"))?;
                     if n != 0 {
+                        let style = match &f.layout {
+                            AtomLayout::Granular => "atom_style granular",
+                            AtomLayout::Hybrid(_) if keyword.contains("bond") => {
+                                "atom_style hybrid without bond/gran"
+                            }
+                            AtomLayout::Hybrid(_) => "atom_style hybrid granular bond/gran",
+                        };
                         return Err(err(
                             ln,
                             kw_range,
-                            format!("'{keyword}' is not supported by atom_style granular"),
+                            format!("'{keyword}' is not supported by {style}"),
                         ));
                     }
                 }
@@ -406,7 +513,10 @@ impl<'a> Parser<'a> {
             return Err(err(
                 ln,
                 0..line.len(),
-                format!("'{name}' has {done} lines here, but the header announces {n} atoms"),
+                format!(
+                    "'{name}' has {done} lines here, but the header announces {n} {}",
+                    if name == "Bonds" { "bonds" } else { "atoms" }
+                ),
             ));
         }
         self.next += 1;
@@ -416,16 +526,27 @@ impl<'a> Parser<'a> {
     fn atoms(&mut self, f: &mut DataFile) -> Result<(), DataError> {
         let mut ncols = None;
         let mut ids = std::collections::HashMap::new();
+        let names = f.layout.atom_names();
+        let nv = names.len();
+        // Where each value sits on the line.
+        let col = |name: &str| names.iter().position(|&n| n == name).unwrap_or(0);
+        let (cd, cr, cx, cm) = (
+            col("diameter"),
+            col("density"),
+            col("x"),
+            col("molecule-ID"),
+        );
         for done in 0..f.natoms {
             let (ln, ws) = self.section_line("Atoms", done, f.natoms)?;
-            if ws.len() != 7 && ws.len() != 10 {
-                let w = ws.get(7).unwrap_or(&ws[ws.len() - 1]);
+            if ws.len() != nv && ws.len() != nv + 3 {
+                let w = ws.get(nv).unwrap_or(&ws[ws.len() - 1]);
                 return Err(word_err(
                     ln,
                     w,
                     format!(
-                        "an atom line has 7 values (atom-ID atom-type diameter density x y z) \
-                         or 10 (with ix iy iz), found {}",
+                        "an atom line has {nv} values ({}) or {} (with ix iy iz), found {}",
+                        names.join(" "),
+                        nv + 3,
                         ws.len()
                     ),
                 ));
@@ -468,26 +589,31 @@ impl<'a> Parser<'a> {
                     ),
                 ));
             }
-            let diameter = parse_float(ln, &ws[2], "the diameter")?;
+            let diameter = parse_float(ln, &ws[cd], "the diameter")?;
             if diameter <= 0.0 {
                 return Err(word_err(
                     ln,
-                    &ws[2],
+                    &ws[cd],
                     "the diameter must be > 0 (point particles are not supported)",
                 ));
             }
-            let density = parse_float(ln, &ws[3], "the density")?;
+            let density = parse_float(ln, &ws[cr], "the density")?;
             if density <= 0.0 {
-                return Err(word_err(ln, &ws[3], "the density must be > 0"));
+                return Err(word_err(ln, &ws[cr], "the density must be > 0"));
             }
             let mut x = DVec3::ZERO;
             for a in 0..3 {
-                x[a] = parse_float(ln, &ws[4 + a], ["x", "y", "z"][a])?;
+                x[a] = parse_float(ln, &ws[cx + a], ["x", "y", "z"][a])?;
             }
+            let molecule = if f.layout.has_bonds() {
+                parse_int(ln, &ws[cm], "the molecule-ID")?
+            } else {
+                0
+            };
             let mut image = [0; 3];
-            if ws.len() == 10 {
+            if ws.len() == nv + 3 {
                 for a in 0..3 {
-                    image[a] = parse_int(ln, &ws[7 + a], ["ix", "iy", "iz"][a])?;
+                    image[a] = parse_int(ln, &ws[nv + a], ["ix", "iy", "iz"][a])?;
                 }
             }
             f.atoms.push(DataAtom {
@@ -497,6 +623,7 @@ impl<'a> Parser<'a> {
                 density,
                 x,
                 image,
+                molecule,
                 line: ln,
             });
         }
@@ -506,16 +633,18 @@ impl<'a> Parser<'a> {
     fn velocities(&mut self, f: &mut DataFile) -> Result<(), DataError> {
         let ids: std::collections::HashSet<Tag> = f.atoms.iter().map(|a| a.id).collect();
         let mut seen = std::collections::HashMap::new();
+        let names = f.layout.velocity_names();
+        let nv = names.len();
         for done in 0..f.natoms {
             let (ln, ws) = self.section_line("Velocities", done, f.natoms)?;
-            if ws.len() != 7 {
-                let w = ws.get(7).unwrap_or(&ws[ws.len() - 1]);
+            if ws.len() != nv {
+                let w = ws.get(nv).unwrap_or(&ws[ws.len() - 1]);
                 return Err(word_err(
                     ln,
                     w,
                     format!(
-                        "a velocity line has 7 values (atom-ID vx vy vz omegax omegay omegaz), \
-                         found {}",
+                        "a velocity line has {nv} values ({}), found {}",
+                        names.join(" "),
                         ws.len()
                     ),
                 ));
@@ -536,12 +665,8 @@ impl<'a> Parser<'a> {
                 ));
             }
             let mut vals = [0.0; 6];
-            for k in 0..6 {
-                vals[k] = parse_float(
-                    ln,
-                    &ws[1 + k],
-                    ["vx", "vy", "vz", "omegax", "omegay", "omegaz"][k],
-                )?;
+            for k in 0..nv - 1 {
+                vals[k] = parse_float(ln, &ws[1 + k], names[1 + k])?;
             }
             f.velocities.push(DataVelocity {
                 id,
@@ -553,9 +678,61 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    fn bonds(&mut self, f: &mut DataFile) -> Result<(), DataError> {
+        let ids: std::collections::HashSet<Tag> = f.atoms.iter().map(|a| a.id).collect();
+        for done in 0..self.nbonds {
+            let (ln, ws) = self.section_line("Bonds", done, self.nbonds)?;
+            if ws.len() != 4 {
+                let w = ws.get(4).unwrap_or(&ws[ws.len() - 1]);
+                return Err(word_err(
+                    ln,
+                    w,
+                    format!(
+                        "a bond line has 4 values (bond-ID bond-type atom-1 atom-2), found {}",
+                        ws.len()
+                    ),
+                ));
+            }
+            let id: u64 = parse_int(ln, &ws[0], "the bond-ID")?;
+            let ty: u32 = parse_int(ln, &ws[1], "the bond type")?;
+            if ty == 0 || ty > f.nbondtypes {
+                return Err(word_err(
+                    ln,
+                    &ws[1],
+                    format!(
+                        "bond type {ty} is outside 1..{} (the header's 'bond types')",
+                        f.nbondtypes
+                    ),
+                ));
+            }
+            let mut atoms = [0; 2];
+            for k in 0..2 {
+                let t: Tag = parse_int(ln, &ws[2 + k], "an atom-ID")?;
+                if !ids.contains(&t) {
+                    return Err(word_err(
+                        ln,
+                        &ws[2 + k],
+                        format!("atom-ID {t} is not in the Atoms section"),
+                    ));
+                }
+                atoms[k] = t;
+            }
+            if atoms[0] == atoms[1] {
+                return Err(word_err(
+                    ln,
+                    &ws[3],
+                    format!("a bond of atom {} to itself", atoms[0]),
+                ));
+            }
+            f.bonds.push(DataBond { id, ty, atoms });
+        }
+        Ok(())
+    }
+
     fn body(&mut self, f: &mut DataFile) -> Result<(), DataError> {
         let mut have_atoms = false;
         let mut have_vel = false;
+        let mut have_bonds = false;
         while self.next < self.lines.len() {
             let ln = Self::lineno(self.next);
             let ws = words(self.lines[self.next]);
@@ -590,6 +767,21 @@ impl<'a> Parser<'a> {
                     self.velocities(f)?;
                     have_vel = true;
                 }
+                "Bonds" if f.layout.has_bonds() => {
+                    if !have_atoms {
+                        return Err(err(
+                            ln,
+                            range,
+                            "'Bonds' must come after the 'Atoms' section",
+                        ));
+                    }
+                    if have_bonds {
+                        return Err(err(ln, range, "a second 'Bonds' section"));
+                    }
+                    self.skip_after_keyword("Bonds")?;
+                    self.bonds(f)?;
+                    have_bonds = true;
+                }
                 "Masses" => {
                     return Err(err(
                         ln,
@@ -599,11 +791,18 @@ impl<'a> Parser<'a> {
                     ))
                 }
                 k if OTHER_SECTIONS.contains(&k) => {
+                    let style = match &f.layout {
+                        AtomLayout::Granular => "atom_style granular",
+                        AtomLayout::Hybrid(_) if k == "Bonds" => {
+                            "atom_style hybrid without bond/gran"
+                        }
+                        AtomLayout::Hybrid(_) => "atom_style hybrid granular bond/gran",
+                    };
                     return Err(err(
                         ln,
                         range,
-                        format!("section '{k}' is not supported by atom_style granular"),
-                    ))
+                        format!("section '{k}' is not supported by {style}"),
+                    ));
                 }
                 _ if ws[0].text.parse::<f64>().is_ok() => {
                     return Err(err(
@@ -625,6 +824,16 @@ impl<'a> Parser<'a> {
                 }
             }
         }
+        if self.nbonds > 0 && !have_bonds {
+            return Err(err(
+                Self::lineno(self.lines.len()),
+                0..0,
+                format!(
+                    "the header announces {} bonds but there is no 'Bonds' section",
+                    self.nbonds
+                ),
+            ));
+        }
         if f.natoms > 0 && !have_atoms {
             return Err(err(
                 Self::lineno(self.lines.len()),
@@ -639,8 +848,13 @@ impl<'a> Parser<'a> {
     }
 }
 
-/// Parses the text of a data file.
+/// Parses the text of a data file of `atom_style granular`.
 pub fn parse_data(text: &str) -> Result<DataFile, DataError> {
+    parse_data_as(text, &AtomLayout::Granular)
+}
+
+/// Parses the text of a data file whose lines have the columns of `layout`.
+pub fn parse_data_as(text: &str, layout: &AtomLayout) -> Result<DataFile, DataError> {
     let lines: Vec<&str> = text.lines().collect();
     let mut f = DataFile {
         title: lines
@@ -653,11 +867,18 @@ pub fn parse_data(text: &str) -> Result<DataFile, DataError> {
         hi: DVec3::splat(0.5),
         atoms: Vec::new(),
         velocities: Vec::new(),
+        layout: layout.clone(),
+        nbondtypes: 0,
+        bonds: Vec::new(),
     };
     if lines.is_empty() {
         return Err(err(1, 0..0, "the data file is empty"));
     }
-    let mut p = Parser { lines, next: 1 };
+    let mut p = Parser {
+        lines,
+        next: 1,
+        nbonds: 0,
+    };
     p.header(&mut f)?;
     if f.natoms > 0 && f.ntypes == 0 {
         let ln = Parser::lineno(p.next);
@@ -671,8 +892,14 @@ pub fn parse_data(text: &str) -> Result<DataFile, DataError> {
     Ok(f)
 }
 
-/// Reads and parses a data file (`read_data`). Gzipped files are not supported.
+/// Reads and parses a data file of `atom_style granular` (`read_data`).
 pub fn read_data(path: &Path) -> Result<DataFile, ReadDataError> {
+    read_data_as(path, &AtomLayout::Granular)
+}
+
+/// Reads and parses a data file whose lines have the columns of `layout` (`read_data`).
+/// Gzipped files are not supported.
+pub fn read_data_as(path: &Path, layout: &AtomLayout) -> Result<DataFile, ReadDataError> {
     if path.extension().is_some_and(|e| e == "gz") {
         return Err(IoError::new(
             path,
@@ -685,7 +912,7 @@ pub fn read_data(path: &Path) -> Result<DataFile, ReadDataError> {
         .into());
     }
     let text = std::fs::read_to_string(path).map_err(|e| IoError::new(path, "read", e))?;
-    parse_data(&text).map_err(|error| ReadDataError::Parse {
+    parse_data_as(&text, layout).map_err(|error| ReadDataError::Parse {
         path: path.to_path_buf(),
         error,
     })
@@ -722,6 +949,7 @@ impl DataFile {
                     density: p.density[i],
                     x: p.x[i],
                     image: p.image[i].get(),
+                    molecule: 0,
                     line: 0,
                 })
                 .collect(),
@@ -734,6 +962,9 @@ impl DataFile {
                     line: 0,
                 })
                 .collect(),
+            layout: AtomLayout::Granular,
+            nbondtypes: 0,
+            bonds: Vec::new(),
         }
     }
 
@@ -757,12 +988,17 @@ impl DataFile {
     }
 }
 
-/// The text of a data file that LIGGGHTS' `read_data` and [`parse_data`] read back.
-/// The `Velocities` section is written only when the file has one.
+/// The text of a data file that LIGGGHTS' `read_data` and [`parse_data_as`] (with the
+/// file's layout) read back. The `Velocities` section is written only when the file has
+/// one; bond counts and the `Bonds` section only under a layout with bonds.
 pub fn format_data(f: &DataFile) -> String {
     let mut s = String::new();
     s.push_str(f.title.lines().next().unwrap_or(""));
-    let _ = write!(s, "\n\n{} atoms\n{} atom types\n\n", f.natoms, f.ntypes);
+    let _ = write!(s, "\n\n{} atoms\n{} atom types\n", f.natoms, f.ntypes);
+    if f.layout.has_bonds() {
+        let _ = write!(s, "{} bonds\n{} bond types\n", f.bonds.len(), f.nbondtypes);
+    }
+    s.push('\n');
     for (a, kw) in ["xlo xhi", "ylo yhi", "zlo zhi"].iter().enumerate() {
         num(&mut s, f.lo[a]);
         s.push(' ');
@@ -773,9 +1009,32 @@ pub fn format_data(f: &DataFile) -> String {
         s.push_str("\nAtoms\n\n");
         for a in &f.atoms {
             let _ = write!(s, "{} {} ", a.id, a.ty);
-            for v in [a.diameter, a.density, a.x.x, a.x.y, a.x.z] {
-                num(&mut s, v);
-                s.push(' ');
+            match &f.layout {
+                AtomLayout::Granular => {
+                    for v in [a.diameter, a.density, a.x.x, a.x.y, a.x.z] {
+                        num(&mut s, v);
+                        s.push(' ');
+                    }
+                }
+                AtomLayout::Hybrid(subs) => {
+                    for v in a.x.to_array() {
+                        num(&mut s, v);
+                        s.push(' ');
+                    }
+                    for k in subs {
+                        match k {
+                            SubStyle::Sphere => {
+                                for v in [a.diameter, a.density] {
+                                    num(&mut s, v);
+                                    s.push(' ');
+                                }
+                            }
+                            SubStyle::BondGran => {
+                                let _ = write!(s, "{} ", a.molecule);
+                            }
+                        }
+                    }
+                }
             }
             let _ = writeln!(s, "{} {} {}", a.image[0], a.image[1], a.image[2]);
         }
@@ -789,6 +1048,12 @@ pub fn format_data(f: &DataFile) -> String {
                 num(&mut s, x);
             }
             s.push('\n');
+        }
+    }
+    if f.layout.has_bonds() && !f.bonds.is_empty() {
+        s.push_str("\nBonds\n\n");
+        for b in &f.bonds {
+            let _ = writeln!(s, "{} {} {} {}", b.id, b.ty, b.atoms[0], b.atoms[1]);
         }
     }
     s

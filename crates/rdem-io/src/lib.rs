@@ -47,8 +47,8 @@ pub use atom_vtk::{AtomVtkDump, Compressor};
 pub use atomic::{write_atomic, AppendFile, IoError};
 pub use chains_vtk::ForceChains;
 pub use data_file::{
-    format_data, parse_data, read_data, write_data, DataAtom, DataError, DataFile, DataVelocity,
-    ReadDataError,
+    format_data, parse_data, parse_data_as, read_data, read_data_as, write_data, AtomLayout,
+    DataAtom, DataBond, DataError, DataFile, DataVelocity, ReadDataError, SubStyle,
 };
 pub use dump_text::{
     format_text_snapshot, parse_line_format, Sort, SortError, TextDump, TextOptions,

@@ -122,6 +122,9 @@ pub struct Setup {
     /// `atom_style ... bond/gran n_bondtypes N bonds_per_atom M [disableNormalContact
     /// 0|1]`: (N, M, disableNormalContact).
     pub bond_gran: Option<(usize, usize, bool)>,
+    /// The columns of data files (`read_data`, `write_data`) under the atom style;
+    /// `None` for plain `atom_style bond/gran`, whose lines have no diameter.
+    pub data_layout: Option<rdem_io::AtomLayout>,
     /// `pair_style gran ...` given before the box (LIGGGHTS 3.8 takes it there): the box
     /// gets it.
     pub pair: Option<rdem::ContactModel>,
@@ -142,6 +145,7 @@ impl Default for Setup {
             dimension: 3,
             sph: false,
             bond_gran: None,
+            data_layout: Some(rdem_io::AtomLayout::Granular),
             pair: None,
         }
     }

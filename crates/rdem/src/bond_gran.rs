@@ -79,6 +79,9 @@ use crate::bond::turn_tangent;
 use crate::error::{Error, Result};
 use crate::particles::{Particles, PropId, Tag, REMOTE_GHOST};
 
+mod delete;
+pub use delete::{BondSelect, BondTally, DeleteBonds};
+
 /// Name of the per-particle property holding the bonds.
 pub const PROP: &str = "bond/gran";
 
@@ -963,6 +966,20 @@ impl GranBonds {
         Ok(())
     }
 
+    /// The intact bonds of particle `i` that are turned on, as (partner's tag, type), in
+    /// slot order (for data files).
+    pub fn intact(&self, p: &Particles, i: usize) -> Vec<(Tag, u32)> {
+        let Some(id) = self.prop else {
+            return Vec::new();
+        };
+        p.props[id.0]
+            .get(i)
+            .chunks_exact(SLOT)
+            .filter(|s| s[TYPE] > 0.0 && s[BROKEN] == INTACT)
+            .map(|s| (s[TAG] as Tag, s[TYPE] as u32))
+            .collect()
+    }
+
     /// Bonds held by owned particle `i`: its slots with a partner.
     fn count(slots: &[f64]) -> usize {
         slots.chunks_exact(SLOT).filter(|s| s[TYPE] != 0.0).count()
@@ -1031,7 +1048,8 @@ impl GranBonds {
                 });
                 match best {
                     Some(j) => self.links[i * m + s] = j,
-                    None if broken(h[BROKEN]) => {}
+                    // A turned-off bond (`delete_bonds`) needs no partner.
+                    None if broken(h[BROKEN]) || h[TYPE] < 0.0 => {}
                     None => {
                         return Err(Error::Invalid {
                             what: "bond/gran",
@@ -1089,7 +1107,8 @@ impl GranBonds {
         let one = |i: usize, fi: &mut DVec3, ti: &mut DVec3, row: &mut [f64]| {
             for s in 0..m {
                 let h = &mut row[s * SLOT..(s + 1) * SLOT];
-                if h[TYPE] == 0.0 || broken(h[BROKEN]) {
+                // Empty, turned off (`delete_bonds`) or broken.
+                if h[TYPE] <= 0.0 || broken(h[BROKEN]) {
                     continue;
                 }
                 let j = links.get(i * m + s).copied().unwrap_or(NONE);
@@ -1317,7 +1336,7 @@ impl GranBonds {
         for i in 0..p.nlocal() {
             for (s, h) in p.props[id.0].get(i).chunks_exact(SLOT).enumerate() {
                 let j = self.links.get(i * m + s).copied().unwrap_or(NONE);
-                if h[TYPE] == 0.0 || h[BROKEN] != INTACT || j == NONE {
+                if h[TYPE] <= 0.0 || h[BROKEN] != INTACT || j == NONE {
                     continue;
                 }
                 let Some(c) = self.coeffs[h[TYPE] as usize - 1].as_ref() else {
@@ -1341,7 +1360,8 @@ impl GranBonds {
         t.is_finite().then_some(t)
     }
 
-    /// The bonds for output, each once (held by the lower tag): (tag a, tag b, type,
+    /// The bonds for output, each once (held by the lower tag), without those turned off
+    /// by `delete_bonds`: (tag a, tag b, type,
     /// position of a, position of b, force on a, bending and twisting torque on a, L₀,
     /// broken).
     pub fn local_rows(&self, p: &Particles) -> Vec<BondRow> {
@@ -1353,7 +1373,8 @@ impl GranBonds {
         let mut out = Vec::new();
         for i in 0..p.nlocal() {
             for (s, h) in data.get(i).chunks_exact(SLOT).enumerate() {
-                if h[TYPE] == 0.0 || (h[TAG] as Tag) < p.tag[i] {
+                // Empty, turned off (`delete_bonds`), or held by the lower tag.
+                if h[TYPE] <= 0.0 || (h[TAG] as Tag) < p.tag[i] {
                     continue;
                 }
                 let j = self.links.get(i * m + s).copied().unwrap_or(NONE);

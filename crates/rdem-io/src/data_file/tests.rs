@@ -204,3 +204,111 @@ fn round_trip_is_exact() {
     assert!(text.contains("\n1 1 0.1 2500 0.30000000000000004 0.3333333333333333 -0 0 0 0\n"));
     assert!(text.contains("-1e-7 1 xlo xhi"));
 }
+
+fn hybrid() -> AtomLayout {
+    AtomLayout::Hybrid(vec![SubStyle::Sphere, SubStyle::BondGran])
+}
+
+const HYBRID: &str = "hybrid\n\n3 atoms\n1 atom types\n2 bonds\n1 bond types\n\
+    2 extra bond per atom\n0 1 xlo xhi\n\nAtoms\n\n\
+    1 1 0.2 0.3 0.5 0.1 2500 7 0 0 1\n2 1 0.4 0.3 0.5 0.12 2600 7 0 0 0\n\
+    3 1 0.6 0.3 0.5 0.1 2500 8 0 0 0\n\nVelocities\n\n1 0.1 0 0 0 0 1\n2 0 0 0 0 0 0\n\
+    3 0 0 0 0 0 0\n\nBonds\n\n1 1 1 2\n2 1 3 2\n";
+
+fn check_hybrid_err(text: &str, line: usize, word: &str, msg: &str) {
+    let e = parse_data_as(text, &hybrid()).unwrap_err();
+    let l = text.lines().nth(line - 1).unwrap_or("");
+    assert_eq!(e.line, line, "{e}");
+    assert_eq!(&l[e.col_range.clone()], word, "{e}");
+    assert!(e.message.contains(msg), "'{}' lacks '{msg}'", e.message);
+}
+
+/// `atom_style hybrid granular bond/gran`: `id type x y z diameter density molecule`,
+/// bonds; the other sub-style order puts the molecule first.
+#[test]
+fn parses_a_hybrid_file_with_bonds() {
+    let f = parse_data_as(HYBRID, &hybrid()).unwrap();
+    let a = &f.atoms[1];
+    assert_eq!(
+        (a.id, a.diameter, a.density, a.molecule),
+        (2, 0.12, 2600.0, 7)
+    );
+    assert_eq!(a.x, DVec3::new(0.4, 0.3, 0.5));
+    assert_eq!(f.atoms[0].image, [0, 0, 1]);
+    assert_eq!(f.velocities[0].omega, DVec3::new(0.0, 0.0, 1.0));
+    assert_eq!(f.nbondtypes, 1);
+    assert_eq!(
+        f.bonds,
+        vec![
+            DataBond {
+                id: 1,
+                ty: 1,
+                atoms: [1, 2]
+            },
+            DataBond {
+                id: 2,
+                ty: 1,
+                atoms: [3, 2]
+            }
+        ]
+    );
+    let back = parse_data_as(&format_data(&f), &hybrid()).unwrap();
+    assert_eq!(back, f);
+    let other = AtomLayout::Hybrid(vec![SubStyle::BondGran, SubStyle::Sphere]);
+    let g = parse_data_as(
+        "t\n1 atoms\n1 atom types\nAtoms\n\n1 1 0 0 0 4 0.1 2500\n",
+        &other,
+    )
+    .unwrap();
+    assert_eq!((g.atoms[0].molecule, g.atoms[0].diameter), (4, 0.1));
+    // Granular files have no bonds.
+    check_err(HYBRID, 5, "bonds", "not supported by atom_style granular");
+}
+
+#[test]
+fn hybrid_errors_point_at_the_word() {
+    let bond = |to: &str| HYBRID.replace("2 1 3 2\n", to);
+    check_hybrid_err(&bond("2 2 3 2\n"), 25, "2", "bond type 2 is outside 1..1");
+    check_hybrid_err(
+        &bond("2 1 3 9\n"),
+        25,
+        "9",
+        "atom-ID 9 is not in the Atoms section",
+    );
+    check_hybrid_err(&bond("2 1 3 3\n"), 25, "3", "to itself");
+    check_hybrid_err(&bond("2 1 3\n"), 25, "3", "a bond line has 4 values");
+    check_hybrid_err(
+        &HYBRID.replace("2 bonds", "3 bonds"),
+        26,
+        "",
+        "the file ends after 2 of the 3 lines of 'Bonds'",
+    );
+    check_hybrid_err(
+        &HYBRID.replace("7 0 0 1\n", "0 0 1\n"),
+        12,
+        "0",
+        "an atom line has 8 values (atom-ID atom-type x y z diameter density molecule-ID) or 11",
+    );
+    check_hybrid_err(
+        &HYBRID.replace("1 0.1 0 0 0 0 1\n", "1 0.1 0 0\n"),
+        18,
+        "0",
+        "a velocity line has 7 values",
+    );
+    let cut = HYBRID.find("\nBonds").unwrap();
+    check_hybrid_err(
+        &HYBRID[..cut],
+        21,
+        "",
+        "announces 2 bonds but there is no 'Bonds' section",
+    );
+    let moved = "t\n1 atoms\n1 atom types\n1 bonds\n1 bond types\nBonds\n\n1 1 1 1\n";
+    check_hybrid_err(moved, 6, "Bonds", "after the 'Atoms' section");
+    let no_bonds = AtomLayout::Hybrid(vec![SubStyle::Sphere]);
+    let e = parse_data_as(HYBRID, &no_bonds).unwrap_err();
+    assert!(
+        e.message
+            .contains("'bonds' is not supported by atom_style hybrid without bond/gran"),
+        "{e}"
+    );
+}

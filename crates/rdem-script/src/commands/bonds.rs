@@ -188,3 +188,64 @@ fn fibers_coeff(a: &mut Args) -> CmdResult<BondCoeff> {
     BondCoeff::new(ro, ri, youngs, shear, damping, breaking)
         .map_err(|e| a.error_cmd(e.to_string(), None))
 }
+
+/// `delete_bonds group-ID multi|atom T|bond T|stats [any] [undo] [remove] [special]`:
+/// bonds turned off (their type negated: no force), on again (`undo`) or removed
+/// (`remove`, every turned-off bond), as LAMMPS' command does ([`rdem::bond_gran::DeleteBonds`]).
+/// `special` asks LAMMPS to rebuild its 1-2 neighbor list; rdem keeps none (its pair
+/// rules read the bonds as they are), so it changes nothing more.
+pub(super) fn delete_bonds(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    use rdem::bond_gran::{BondSelect, DeleteBonds};
+    bonds_of(sim, a)?;
+    let groupbit = sim.group_bit(a, "group ID")?;
+    let select = match a.keyword("delete_bonds style", &["multi", "atom", "bond", "stats"])? {
+        "multi" => BondSelect::Multi,
+        "atom" => {
+            let k = a.pos();
+            let t = a.u64("atom type")?;
+            let n = sim.ntypes() as u64;
+            if t == 0 || t > n {
+                return Err(a.error_at(k, format!("atom type {t} is not within 1..={n}"), None));
+            }
+            BondSelect::AtomType(t as u32)
+        }
+        "bond" => {
+            let k = a.pos();
+            let t = a.u64("bond type (0: the broken bonds)")?;
+            let n = sim.setup.bond_gran.map_or(0, |b| b.0) as u64;
+            if t > n {
+                return Err(a.error_at(k, format!("bond type {t} is not within 0..={n}"), None));
+            }
+            BondSelect::BondType(t as u32)
+        }
+        _ => BondSelect::Stats,
+    };
+    let mut d = DeleteBonds {
+        select,
+        groupbit,
+        any: false,
+        undo: false,
+        remove: false,
+    };
+    while !a.is_done() {
+        match a.keyword(
+            "delete_bonds keyword",
+            &["any", "undo", "remove", "special"],
+        )? {
+            "any" => d.any = true,
+            "undo" => d.undo = true,
+            "remove" => d.remove = true,
+            _ => {}
+        }
+    }
+    let w = sim.world.as_mut().expect("checked by bonds_of");
+    let bonds = w.bonds.as_mut().expect("checked by bonds_of");
+    let tally = bonds
+        .delete(&mut w.particles, &*w.comm, &d)
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    sim.outputs.out.line(&format!(
+        "Deleting bonds ...\n  {} total bonds, {} turned on, {} turned off",
+        tally.total, tally.on, tally.off
+    ));
+    Ok(())
+}

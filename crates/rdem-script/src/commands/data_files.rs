@@ -24,8 +24,18 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(a.error_cmd("read_data: the simulation box is already defined", None));
     }
     let boundary = super::settings::box_boundary(sim, a, 0)?;
-    let data = rdem_io::read_data(std::path::Path::new(file))
+    let Some(layout) = sim.setup.data_layout.clone() else {
+        return Err(a.error_cmd(
+            "read_data under atom_style bond/gran: its atom lines (atom-ID molecule-ID atom-type x y z) give no diameter or density",
+            Some("use atom_style hybrid granular bond/gran ..., whose lines are atom-ID atom-type x y z diameter density molecule-ID".into()),
+        ));
+    };
+    let data = rdem_io::read_data_as(std::path::Path::new(file), &layout)
         .map_err(|e| a.error_at(1, e.to_string(), None))?;
+    if let Some((nbt, per_atom, _)) = sim.setup.bond_gran {
+        check_data_bonds(&data, nbt, per_atom)
+            .map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
+    }
     let domain = Domain::with_faces(data.lo, data.hi, boundary)
         .map_err(|e| a.error_at(1, format!("{file}: {e}"), None))?;
     sim.outputs.out.line(&format!(
@@ -54,10 +64,72 @@ pub(super) fn read_data(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.outputs
         .out
         .line(&format!("  {} atoms", data.atoms.len()));
+    if !data.velocities.is_empty() {
+        sim.outputs
+            .out
+            .line(&format!("  {} velocities", data.velocities.len()));
+    }
     w.materials.ntypes = data.ntypes as usize;
     sim.install_world(w);
+    if data.layout.has_bonds() {
+        data_bonds(sim, &data).map_err(|m| a.error_at(1, format!("{file}: {m}"), None))?;
+        sim.outputs
+            .out
+            .line(&format!("  {} bonds", data.bonds.len()));
+    }
     super::settings::disc_masses(sim);
     Ok(())
+}
+
+/// The bonds of a data file fit the atom style: bond types within `n_bondtypes`, at
+/// most `bonds_per_atom` per atom.
+fn check_data_bonds(data: &rdem_io::DataFile, nbt: usize, per_atom: usize) -> Result<(), String> {
+    let mut count: std::collections::HashMap<rdem::Tag, usize> = Default::default();
+    for b in &data.bonds {
+        if b.ty as usize > nbt {
+            return Err(format!(
+                "bond {} has type {}, beyond the atom style's n_bondtypes {nbt}",
+                b.id, b.ty
+            ));
+        }
+        for t in b.atoms {
+            let c = count.entry(t).or_default();
+            *c += 1;
+            if *c > per_atom {
+                return Err(format!(
+                    "atom {t} has more than the atom style's bonds_per_atom = {per_atom} bonds"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The molecule IDs and bonds of a data file (`atom_style hybrid granular bond/gran`)
+/// given to the particles this rank owns: each bond is held by both of its spheres.
+fn data_bonds(sim: &mut Sim, data: &rdem_io::DataFile) -> Result<(), String> {
+    let w = sim.world.as_mut().ok_or("no simulation box")?;
+    let Some(bonds) = w.bonds.as_mut() else {
+        return Ok(());
+    };
+    let p = &mut w.particles;
+    let local: std::collections::HashMap<rdem::Tag, usize> =
+        (0..p.nlocal()).map(|i| (p.tag[i], i)).collect();
+    if let Some(m) = bonds.molecule_id() {
+        for a in &data.atoms {
+            if let Some(&i) = local.get(&a.id) {
+                p.props[m.0].data[i] = a.molecule as f64;
+            }
+        }
+    }
+    for b in &data.bonds {
+        for (me, other) in [(b.atoms[0], b.atoms[1]), (b.atoms[1], b.atoms[0])] {
+            if let Some(&i) = local.get(&me) {
+                bonds.add_pending(i, other, b.ty);
+            }
+        }
+    }
+    bonds.make_pending(p).map_err(|e| e.to_string())
 }
 
 /// `write_data FILE [nocoeff] [nofix]`: the particles and the box (and the step, in the
@@ -198,24 +270,84 @@ fn read_liggghts_restart(sim: &mut Sim, a: &mut Args, file: &str) -> CmdResult {
 }
 
 /// Writes the particles and the box (and the step, in the title line) to `path` as a
-/// data file, which `read_data` reads. Every rank sends its owned particles; rank 0
-/// writes them all, sorted by tag, under a temporary name renamed to `path` when
-/// complete (`rdem_io`'s atomic writes). Under `rdem -check` nothing is written.
+/// data file, which `read_data` reads, in the columns of the atom style (under
+/// `hybrid granular bond/gran`, with the molecule IDs and the intact bonds that are
+/// turned on; their lengths and loads are not kept, as in LAMMPS' data files). Every
+/// rank sends its owned particles; rank 0 writes them all, sorted by tag, under a
+/// temporary name renamed to `path` when complete (`rdem_io`'s atomic writes). Under
+/// `rdem -check` nothing is written.
 pub(crate) fn write_data_file(sim: &Sim, path: &str) -> Result<(), Error> {
     if sim.script.check {
         return Ok(());
     }
     let ntypes = sim.ntypes() as u32;
     let w = sim.world.as_ref().ok_or("no simulation box")?;
-    let all: Vec<usize> = (0..w.particles.nlocal()).collect();
-    if let Some(g) = dumps::gather_owned(&*w.comm, &w.particles, &all, &[]) {
-        rdem_io::write_data(
-            std::path::Path::new(path),
-            &g.particles,
-            &w.domain,
-            ntypes,
-            w.step,
-        )?;
+    let nl = w.particles.nlocal();
+    let all: Vec<usize> = (0..nl).collect();
+    let layout = sim
+        .setup
+        .data_layout
+        .clone()
+        .unwrap_or(rdem_io::AtomLayout::Granular);
+    // Under bond/gran: the molecule ID, then (partner tag, type) per bond slot.
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    let bonds = w.bonds.as_ref().filter(|_| layout.has_bonds());
+    if let Some(b) = bonds {
+        let per = b.per_atom;
+        columns = vec![vec![0.0; nl]; 1 + 2 * per];
+        if let Some(m) = b.molecule_id() {
+            columns[0].copy_from_slice(&w.particles.props[m.0].data[..nl]);
+        }
+        for i in 0..nl {
+            for (s, (tag, ty)) in b.intact(&w.particles, i).into_iter().enumerate() {
+                let (tags, types) = columns[1 + 2 * s..].split_at_mut(1);
+                tags[0][i] = tag as f64;
+                types[0][i] = f64::from(ty);
+            }
+        }
     }
+    let custom: Vec<&[f64]> = columns.iter().map(Vec::as_slice).collect();
+    let Some(g) = dumps::gather_owned(&*w.comm, &w.particles, &all, &custom) else {
+        return Ok(());
+    };
+    let title = format!(
+        "LAMMPS data file via rdem write_data, timestep = {}",
+        w.step
+    );
+    let mut f = rdem_io::DataFile::from_particles(&g.particles, &w.domain, ntypes, &title);
+    if let Some(b) = bonds {
+        // `from_particles` sorts by tag: map each tag to its gathered row.
+        let row: std::collections::HashMap<rdem::Tag, usize> = (0..g.particles.nlocal())
+            .map(|k| (g.particles.tag[k], k))
+            .collect();
+        for a in &mut f.atoms {
+            a.molecule = g.custom[0][row[&a.id]] as u64;
+        }
+        let mut list = Vec::new();
+        for a in &f.atoms {
+            let k = row[&a.id];
+            for s in 0..b.per_atom {
+                let (tag, ty) = (g.custom[1 + 2 * s][k] as rdem::Tag, g.custom[2 + 2 * s][k]);
+                if ty > 0.0 && a.id < tag {
+                    list.push((a.id, tag, ty as u32));
+                }
+            }
+        }
+        f.bonds = list
+            .into_iter()
+            .enumerate()
+            .map(|(n, (a, b, ty))| rdem_io::DataBond {
+                id: n as u64 + 1,
+                ty,
+                atoms: [a, b],
+            })
+            .collect();
+        f.nbondtypes = b.ntypes as u32;
+    }
+    f.layout = layout;
+    rdem_io::write_atomic(
+        std::path::Path::new(path),
+        rdem_io::format_data(&f).as_bytes(),
+    )?;
     Ok(())
 }

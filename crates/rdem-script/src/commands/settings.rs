@@ -15,22 +15,40 @@ pub(super) fn atom_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
     }
     sim.setup.sph = s == "sph";
     sim.setup.bond_gran = None;
+    sim.setup.data_layout = Some(rdem_io::AtomLayout::Granular);
     match s {
         // `granular/omp`: LIGGGHTS-PFM's OpenMP variant of `granular`.
         "granular" | "granular/omp" | "sphere" | "sph" => a.done(),
-        "bond/gran" => bond_gran_style(sim, a),
+        "bond/gran" => {
+            sim.setup.data_layout = None;
+            bond_gran_style(sim, a)
+        }
         "hybrid" => {
             // `hybrid granular bond/gran ...` (LIGGGHTS_Flexible_Fibers, LIGGGHTS-PFM).
             let mut spheres = false;
+            let mut subs = Vec::new();
             while !a.is_done() {
                 match a.keyword(
                     "atom_style hybrid sub-style",
                     &["granular", "sphere", "bond/gran"],
                 )? {
-                    "bond/gran" => bond_gran_style(sim, a)?,
-                    _ => spheres = true,
+                    "bond/gran" => {
+                        bond_gran_style(sim, a)?;
+                        subs.push(rdem_io::SubStyle::BondGran);
+                    }
+                    s => {
+                        if spheres {
+                            return Err(a.error_prev(
+                                format!("atom_style hybrid: a second sphere sub-style '{s}'"),
+                                Some("granular and sphere are one style; name it once".into()),
+                            ));
+                        }
+                        spheres = true;
+                        subs.push(rdem_io::SubStyle::Sphere);
+                    }
                 }
             }
+            sim.setup.data_layout = Some(rdem_io::AtomLayout::Hybrid(subs));
             if !spheres || sim.setup.bond_gran.is_none() {
                 return Err(a.error_cmd(
                     "atom_style hybrid: rdem supports the hybrid of granular (or sphere) and bond/gran",
