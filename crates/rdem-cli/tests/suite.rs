@@ -55,6 +55,7 @@ mod servo_wall;
 mod slowinit;
 mod sph;
 mod stream_insert;
+mod tangential_off;
 mod threads;
 mod tutorials;
 mod wall_local;

@@ -64,7 +64,12 @@ pub const NONLINEAR_SWITCHES: [&str; 10] = [
 
 /// Reads the model-type/name pairs at the cursor (stops at the first other word).
 pub fn parse_types(a: &mut Args) -> CmdResult<ContactModel> {
-    let mut m = ContactModel::hertz_history();
+    // Without `tangential`, LIGGGHTS 3.8 (and LIGGGHTS_Flexible_Fibers, SEAICE, INL,
+    // CFDRC) apply no tangential force; LIGGGHTS-PFM applies `no_history`.
+    let mut m = ContactModel {
+        tangential: rdem::TangentialKind::Off,
+        ..ContactModel::hertz_history()
+    };
     let mut last: Option<usize> = None;
     while let Some(w) = a.peek() {
         let Some(k) = ORDER.iter().position(|o| *o == w) else {

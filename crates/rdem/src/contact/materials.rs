@@ -323,6 +323,8 @@ pub struct PairCoeff {
 /// Which optional properties a contact model needs.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Needs {
+    /// The tangential model is `off`: no `coefficientFriction` is needed.
+    pub no_tangential: bool,
     /// Rolling friction coefficient.
     pub rolling_friction: bool,
     /// Rolling viscous damping.
@@ -437,7 +439,7 @@ impl CoeffTable {
             "coefficientFriction",
             &m.friction,
             n,
-            true,
+            !needs.no_tangential,
             |v| v >= 0.0,
             "must be >= 0",
         )?;

@@ -1,6 +1,6 @@
 //! Granular contact law (SPEC §3), composed from sub-models: normal (hertz, hooke,
 //! hooke/hysteresis, hertz/stiffness, hooke/stiffness, jkr, hysteretic/nonlinear1 and 2),
-//! tangential (history, no_history,
+//! tangential (off, history, no_history,
 //! incremental_history),
 //! rolling friction (off, cdt, cdtnonlinear2, epsd, epsd2, epsd3) and cohesion (off, sjkr, sjkr2,
 //! easo/capillary/viscous liquid bridges). Each sub-model is a zero-sized type; a
@@ -114,6 +114,11 @@ macro_rules! model_kinds {
 model_kinds! {
     /// Tangential model (`tangential ...`).
     TangentialKind {
+        /// `off`, LIGGGHTS 3.8's default when `tangential` is not given: no tangential
+        /// force (and no `coefficientFriction` needed). Its kernel is `no_history`'s
+        /// with the damping switched off ([`ContactModel::kernel_flags`]), which gives
+        /// no force. (LIGGGHTS-PFM defaults to `no_history` and has no `off`.)
+        Off = "off",
         /// `history`: incremental spring with Coulomb cap.
         History = "history",
         /// `no_history`: damping only, with Coulomb cap.
@@ -260,6 +265,10 @@ impl ContactModel {
             rolling: self.rolling,
             cohesion: self.cohesion,
             normal: self.normal,
+            // `tangential off` runs the `no_history` kernel, which gives no force
+            // without its damping.
+            tangential_damping: self.flags.tangential_damping
+                && self.tangential != TangentialKind::Off,
             ..self.flags
         }
     }
@@ -267,6 +276,7 @@ impl ContactModel {
     /// Which optional material properties this model needs.
     pub fn needs(&self) -> Needs {
         Needs {
+            no_tangential: self.tangential == TangentialKind::Off,
             rolling_friction: self.rolling != RollingKind::Off,
             rolling_damping: matches!(self.rolling, RollingKind::Epsd | RollingKind::Epsd3),
             rolling_stiffness: self.rolling == RollingKind::Epsd3,
@@ -356,7 +366,9 @@ impl ContactModel {
     fn d_tan<N: normal::Normal, V: Visitor>(&self, v: V) -> V::Output {
         match self.tangential {
             TangentialKind::History => self.d_roll::<N, tangential::History, V>(v),
-            TangentialKind::NoHistory => self.d_roll::<N, tangential::NoHistory, V>(v),
+            TangentialKind::NoHistory | TangentialKind::Off => {
+                self.d_roll::<N, tangential::NoHistory, V>(v)
+            }
             TangentialKind::IncrementalHistory => {
                 self.d_roll::<N, tangential::IncrementalHistory, V>(v)
             }

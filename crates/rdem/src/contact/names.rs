@@ -56,7 +56,7 @@ mod tests {
         );
         assert_eq!(
             names(TANGENTIAL_MODELS),
-            "history no_history incremental_history"
+            "off history no_history incremental_history"
         );
         assert_eq!(
             names(COHESION_MODELS),
