@@ -202,7 +202,8 @@ fn mesh_topology_values_match_liggghts() {
     let (dir, out) = run_kept("mesh-topology", &bad, &[], None);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("'acorner' is neither a value"), "{err}");
+    assert!(err.contains("'acorner' is not a value"), "{err}");
+    assert!(err.contains("did you mean 'acorners'"), "{err}");
     assert!(err.contains("aedges, acorners, nneighs"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }

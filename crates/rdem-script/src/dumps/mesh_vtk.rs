@@ -77,10 +77,15 @@ fn parse(sim: &Sim, a: &mut Args, file: &str) -> CmdResult<(Box<dyn DumpStyle>, 
                 return Err(a.error_at(
                     a.pos(),
                     format!(
-                        "dump {style}: '{w}' is neither a value ({}) nor a mesh ID",
+                        "dump {style}: no mesh '{w}', and '{w}' is not a value ({})",
                         FIELDS.join(", ")
                     ),
-                    Some(suggest(w, &known)),
+                    Some(if known.is_empty() {
+                        "no mesh is defined yet: define one with fix mesh/surface first".into()
+                    } else {
+                        let all: Vec<&str> = FIELDS.iter().copied().chain(known).collect();
+                        suggest(w, &all)
+                    }),
                 ));
             }
             meshes.push(w.to_string());
