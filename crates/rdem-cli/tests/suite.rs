@@ -47,6 +47,7 @@ mod nve_limit;
 mod omp_styles;
 mod pour;
 mod random_function;
+mod region_prism;
 mod region_wedge;
 mod restart_exact;
 mod rolling_cdt;

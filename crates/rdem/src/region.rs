@@ -90,6 +90,18 @@ pub enum Shape {
         /// Angle from the starting to the ending face, in (0, π] (LIGGGHTS-INL's limit).
         span: f64,
     },
+    /// Parallelepiped (LAMMPS' `prism`): the origin `lo` and the edges
+    /// A = (hi.x − lo.x, 0, 0), B = (xy, hi.y − lo.y, 0), C = (xz, yz, hi.z − lo.z), with
+    /// `tilt` = (xy, xz, yz); a point is inside when its coordinates along A, B, C all lie
+    /// in [0, 1] (boundary included), computed as LAMMPS' `region prism` does.
+    Prism {
+        /// The untilted lower bounds (the origin).
+        lo: DVec3,
+        /// The untilted upper bounds.
+        hi: DVec3,
+        /// The tilt factors (xy, xz, yz).
+        tilt: DVec3,
+    },
     /// Half space on the side the normal points to: (x − point)·normal ≥ 0.
     Plane {
         /// A point on the plane.
@@ -241,6 +253,36 @@ fn clear_of_cylinder(rad: f64, t: f64, radius: f64, lo: f64, hi: f64, r: f64) ->
     dr * dr + dt * dt >= r * r
 }
 
+/// The rows of the inverse of a prism's edge matrix (upper triangular, as LAMMPS
+/// writes it): a point's coordinates along the edges are `row · (x − lo)`.
+fn prism_rows(lo: DVec3, hi: DVec3, tilt: DVec3) -> [DVec3; 3] {
+    let h = hi - lo;
+    let (xy, xz, yz) = (tilt.x, tilt.y, tilt.z);
+    [
+        DVec3::new(
+            1.0 / h.x,
+            -xy / (h.x * h.y),
+            (xy * yz - h.y * xz) / (h.x * h.y * h.z),
+        ),
+        DVec3::new(0.0, 1.0 / h.y, -yz / (h.y * h.z)),
+        DVec3::new(0.0, 0.0, 1.0 / h.z),
+    ]
+}
+
+/// A prism's eight corners.
+fn prism_corners(lo: DVec3, hi: DVec3, tilt: DVec3) -> [DVec3; 8] {
+    let h = hi - lo;
+    let (a, b, c) = (
+        DVec3::new(h.x, 0.0, 0.0),
+        DVec3::new(tilt.x, h.y, 0.0),
+        DVec3::new(tilt.y, tilt.z, h.z),
+    );
+    std::array::from_fn(|k| {
+        let f = |bit: usize| if k & bit == 0 { 0.0 } else { 1.0 };
+        lo + f(1) * a + f(2) * b + f(4) * c
+    })
+}
+
 fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
@@ -330,6 +372,18 @@ impl Region {
                     return Err(bad("region wedge", format!("radius {radius}, bounds {lo} {hi}, angle {} degrees: need a radius > 0, finite lo <= hi and an angle in (0, 180] (LIGGGHTS-INL's limit)", span.to_degrees())));
                 }
             }
+            Shape::Prism { lo, hi, tilt } => {
+                let ok = lo.is_finite()
+                    && hi.is_finite()
+                    && tilt.is_finite()
+                    && (0..3).all(|a| lo[a] < hi[a]);
+                if !ok {
+                    return Err(bad(
+                        "region prism",
+                        format!("bounds {lo} .. {hi}, tilt {tilt}: need finite numbers and each lower bound below its upper bound"),
+                    ));
+                }
+            }
             Shape::Plane { point, normal } => {
                 if !point.is_finite() || !normal.is_finite() || normal.length_squared() == 0.0 {
                     return Err(bad("region plane", format!("point {point}, normal {normal}: need a finite point and a non-zero normal")));
@@ -391,7 +445,7 @@ impl Region {
                 .map(|p| p.max_contacts(outside))
                 .sum::<Option<usize>>()
                 .filter(|&n| n <= MAX_SURFACE_CONTACTS),
-            Shape::TetMesh(_) | Shape::Wedge { .. } => None,
+            Shape::TetMesh(_) | Shape::Wedge { .. } | Shape::Prism { .. } => None,
         }
     }
 
@@ -653,6 +707,12 @@ impl Region {
                 let within = lo <= t && t <= hi && d.0 * d.0 + d.1 * d.1 <= radius * radius;
                 within && s1 <= 0.0 && s2 <= 0.0
             }
+            Shape::Prism { lo, hi, tilt } => {
+                let d = x - *lo;
+                prism_rows(*lo, *hi, *tilt)
+                    .iter()
+                    .all(|r| (0.0..=1.0).contains(&r.dot(d)))
+            }
             Shape::Plane { point, normal } => (x - *point).dot(*normal) >= 0.0,
             Shape::TetMesh(m) => m.contains(x),
             Shape::Union(parts) => parts.iter().any(|p| p.contains(x)),
@@ -743,6 +803,20 @@ impl Region {
                     s1 <= -r && s2 <= -r && rad <= radius - r && lo + r <= t && t <= hi - r
                 }
             }
+            Shape::Prism { lo, hi, tilt } => {
+                // Distances to the faces a = 0 and a = 1 of each edge coordinate a.
+                let d = x - *lo;
+                let gaps = prism_rows(*lo, *hi, *tilt).map(|row| {
+                    let (u, g) = (row.dot(d), row.length());
+                    (u / g, (1.0 - u) / g)
+                });
+                if out {
+                    // Wholly beyond one face's plane (conservative near edges).
+                    gaps.iter().any(|&(a, b)| a <= -r || b <= -r)
+                } else {
+                    gaps.iter().all(|&(a, b)| a >= r && b >= r)
+                }
+            }
             Shape::Plane { point, normal } => {
                 let d = (x - *point).dot(*normal) / normal.length();
                 if out {
@@ -794,6 +868,13 @@ impl Region {
         let boxvol = ext.x * ext.y * ext.z;
         if let (Shape::Block { .. }, false) = (&self.shape, self.outside) {
             return boxvol;
+        }
+        if let (Shape::Prism { lo: l0, hi: h0, .. }, false) = (&self.shape, self.outside) {
+            let (l, h) = self.bounding_box().expect("a prism is bounded");
+            if l.cmpge(clip.0).all() && h.cmple(clip.1).all() {
+                let e = *h0 - *l0;
+                return e.x * e.y * e.z;
+            }
         }
         if let (Shape::TetMesh(m), false) = (&self.shape, self.outside) {
             let (l, h) = self.bounding_box().expect("a mesh is bounded");
@@ -874,6 +955,14 @@ impl Region {
                 (c[(axis + 1) % 3], c[(axis + 2) % 3]) = (cu, cv);
                 let (a, b) = others(axis);
                 axial_box(axis, c[a], c[b], radius, lo, hi).and_then(|(l, h)| finite(l, h))
+            }
+            Shape::Prism { lo, hi, tilt } => {
+                let c = prism_corners(*lo, *hi, *tilt);
+                let l = c.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p));
+                let h = c
+                    .iter()
+                    .fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p));
+                finite(l, h)
             }
             Shape::Plane { .. } => None,
             Shape::TetMesh(m) => Some(m.bounding_box()),

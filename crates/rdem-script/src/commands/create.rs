@@ -35,6 +35,15 @@ pub(super) fn create_box(sim: &mut Sim, a: &mut Args) -> CmdResult {
             None,
         ));
     }
+    if let rdem::region::Shape::Prism { tilt, .. } = r.shape {
+        if tilt != glam::DVec3::ZERO {
+            return Err(a.error_at(
+                2,
+                "create_box with a tilted prism region makes a triclinic box, which rdem does not support",
+                Some("use a block region (or a prism with tilt factors 0 0 0)".into()),
+            ));
+        }
+    }
     let (lo, hi) = r
         .bounding_box()
         .ok_or_else(|| a.error_at(2, "create_box needs a bounded region (e.g. a block)", None))?;

@@ -55,7 +55,12 @@ pub static STYLES: Registry<&'static [&'static str]> = Registry {
         .notes("inside = strictly inside one tetrahedron: points exactly on a face, outer or shared, are out, as LIGGGHTS 3.8 decides (measured); insertion samples by volume; `all_in yes` keeps whole spheres inside (distance to the surface faces; LIGGGHTS lets them poke out); either orientation of a tetrahedron (LIGGGHTS fails an assertion on inverted ones); binary VTK, VTK 5 cell arrays and `units lattice` are errors, other cell types are skipped with a warning"),
         Row::runs("union", &[], "`N ID1 ID2 ...`"),
         Row::runs("intersect", &[], "`N ID1 ID2 ...`"),
-        Row::not_yet("prism", ""),
+        Row::<&'static [&'static str]>::runs(
+            "prism",
+            &["xlo", "xhi", "ylo", "yhi", "zlo", "zhi", "xy", "xz", "yz"],
+            "`xlo xhi ylo yhi zlo zhi xy xz yz`: the parallelepiped from (xlo, ylo, zlo) along (xhi−xlo, 0, 0), (xy, yhi−ylo, 0), (xz, yz, zhi−zlo) (`INF`, `-INF`, `EDGE` allowed for the bounds)",
+        )
+        .notes("inside as LAMMPS' prism decides (boundary included); `all_in yes` keeps whole spheres inside (distance to each face); `create_box` with a tilted prism (a triclinic box) is refused; not usable as a `fix wall/region` surface"),
         Row::<&'static [&'static str]>::runs(
             "wedge",
             &[
@@ -174,6 +179,7 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let bound = |k: usize| -> Option<(usize, bool)> {
         match style {
             "block" => Some((k / 2, k % 2 == 0)),
+            "prism" if k < 6 => Some((k / 2, k % 2 == 0)),
             "cylinder" if k >= 4 => Some((axis0, k == 4)),
             "cone" if k >= 5 => Some((axis0, k == 5)),
             _ => None,
@@ -186,7 +192,9 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
             let Some((axis, lo)) = bound(k) else {
                 return Err(a.error_at(
                     word,
-                    format!("'{w}' is only valid for the bounds of block, cylinder and cone"),
+                    format!(
+                        "'{w}' is only valid for the bounds of block, cylinder, cone and prism"
+                    ),
                     None,
                 ));
             };
@@ -291,6 +299,31 @@ pub(super) fn region(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 start: num(11, 1.0)?.to_radians(),
                 span: num(13, 1.0)?.to_radians(),
             }
+        }
+        "prism" => {
+            let lo = DVec3::new(num(0, s.x)?, num(2, s.y)?, num(4, s.z)?);
+            let hi = DVec3::new(num(1, s.x)?, num(3, s.y)?, num(5, s.z)?);
+            let tilt = DVec3::new(num(6, s.x)?, num(7, s.x)?, num(8, s.y)?);
+            // As LAMMPS: a tilt may not pair with a dimension infinite at both ends.
+            let infinite = |d: usize| lo[d] <= -1e299 && hi[d] >= 1e299;
+            for (k, (d1, d2)) in [(6, (0, 1)), (7, (0, 2)), (8, (1, 2))] {
+                if tilt[k - 6] != 0.0 && (infinite(d1) || infinite(d2)) {
+                    return Err(a.error_at(
+                        args_start + k,
+                        format!(
+                            "region prism: the tilt {} is not 0, and {} is INF at both ends",
+                            arg_names[k],
+                            if infinite(d1) {
+                                ["x", "y", "z"][d1]
+                            } else {
+                                ["x", "y", "z"][d2]
+                            }
+                        ),
+                        None,
+                    ));
+                }
+            }
+            Shape::Prism { lo, hi, tilt }
         }
         "plane" => Shape::Plane {
             point: DVec3::new(num(0, s.x)?, num(1, s.y)?, num(2, s.z)?),
