@@ -361,8 +361,8 @@ fn wild_24_shortened_follows_the_fork() {
 }
 
 /// Runs `in.block` in a fresh directory on `threads` threads (`ranks` MPI ranks); returns
-/// its end state (`final.dump`) and thermo rows.
-fn block(threads: &str, ranks: Option<usize>) -> (String, Vec<Vec<f64>>) {
+/// its end state (`final.dump`), thermo rows and "Created N bonds" lines.
+fn block(threads: &str, ranks: Option<usize>) -> (String, Vec<Vec<f64>>, Vec<String>) {
     let d = common::scratch_dir("bond-block");
     std::fs::write(d.join("in.block"), read("in.block")).unwrap();
     let out = common::rdem_in(&d, "in.block", ranks)
@@ -375,7 +375,12 @@ fn block(threads: &str, ranks: Option<usize>) -> (String, Vec<Vec<f64>>) {
     let rows = common::thermo_rows(&text[text.rfind("Step").unwrap()..]);
     let end = std::fs::read_to_string(d.join("final.dump")).unwrap();
     let _ = std::fs::remove_dir_all(&d);
-    (end, rows)
+    let created = text
+        .lines()
+        .filter(|l| l.starts_with("Created") && l.contains("bonds"))
+        .map(str::to_string)
+        .collect();
+    (end, rows, created)
 }
 
 /// A block of 2352 bonded spheres (enough for the bond pass to run on the thread pool)
@@ -383,16 +388,18 @@ fn block(threads: &str, ranks: Option<usize>) -> (String, Vec<Vec<f64>>) {
 /// state of 1 byte for byte.
 #[test]
 fn threads_give_the_same_bonded_block() {
-    let (one, rows) = block("1", None);
+    let (one, rows, created) = block("1", None);
     assert_eq!(rows[0][2], 6524.0, "{rows:?}");
     assert_eq!(rows.last().unwrap()[2], 5904.0, "{rows:?}");
-    let (two, _) = block("2", None);
+    assert_eq!(created, ["Created 6524 bonds at timestep 1"]);
+    let (two, _, _) = block("2", None);
     assert!(one == two, "2 threads give another end state");
 }
 
 /// The block on 2 and 4 MPI ranks (bonds across the subdomains' faces, each computed on
 /// both sides; created on both sides, though the neighbor list holds a pair across two
-/// ranks on one of them): the serial bond count at every output and the serial end
+/// ranks on one of them): the serial "Created N bonds" line, the serial bond count at
+/// every output and the serial end
 /// state to 1e-10 of each column's scale (measured 6e-12). `create_atoms` numbers the
 /// spheres by rank, so the spheres are matched by position.
 #[cfg(feature = "mpi")]
@@ -401,13 +408,15 @@ fn ranks_give_the_serial_bonded_block() {
     if !common::have_mpirun() {
         return;
     }
-    let (serial, rows) = block("1", None);
+    let (serial, rows, created) = block("1", None);
     let want = &common::dump_frames(&serial)[0].1;
     let counts = |r: &[Vec<f64>]| r.iter().map(|r| r[2]).collect::<Vec<_>>();
     for ranks in [2, 4] {
-        let (end, got_rows) = block("1", Some(ranks));
+        let (end, got_rows, got_created) = block("1", Some(ranks));
         let what = format!("{ranks} ranks");
         assert_eq!(counts(&got_rows), counts(&rows), "{what}: numbonds");
+        // Counted once over the ranks (rank 0's own count was printed before).
+        assert_eq!(got_created, created, "{what}");
         let got = &common::dump_frames(&end)[0].1;
         assert_eq!(got.len(), want.len(), "{what}");
         for c0 in (1..13).step_by(3) {

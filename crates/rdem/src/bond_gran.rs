@@ -414,8 +414,9 @@ pub struct Creator {
     pub fraction: f64,
     /// The seed of `prob`.
     pub seed: u64,
-    /// (step, bonds made) of each step that made bonds, for the front end's log; the
-    /// front end drains it.
+    /// (step, bonds made on this rank) of each creation step, for the front end's log,
+    /// which sums them over the ranks and drains it; a bond is counted by the rank that
+    /// owns its lower tag.
     pub made: Vec<(u64, u64)>,
 }
 
@@ -1211,6 +1212,7 @@ impl GranBonds {
         }
         let (m, nl, w) = (self.per_atom, p.nlocal(), self.width());
         let mut total = 0;
+        let mut wrote = false;
         for k in due {
             let c = self.creators[k].clone();
             let mut made = 0;
@@ -1285,11 +1287,13 @@ impl GranBonds {
                 held[oa] += 1;
                 held[ob] += 1;
                 plan.push((oa, ob));
-                if oa < nl || ob < nl {
+                // Each bond counted once over the ranks: by the owner of its lower tag.
+                if oa < nl {
                     made += 1;
                 }
             }
             let limited = c.limits.iter().any(|l| l.max > 0);
+            wrote |= !plan.is_empty();
             for (oa, ob) in plan {
                 let (ta, tb) = (p.tag[oa], p.tag[ob]);
                 for (me, other) in [(oa, tb), (ob, ta)] {
@@ -1313,12 +1317,12 @@ impl GranBonds {
                     }
                 }
             }
-            if made > 0 {
-                self.creators[k].made.push((step, made));
-            }
+            // Every rank records every creation step, so that the front end can sum
+            // the counts over the ranks.
+            self.creators[k].made.push((step, made));
             total += made;
         }
-        if total > 0 {
+        if wrote {
             self.resolve(p)?;
         }
         Ok(total)

@@ -154,14 +154,17 @@ impl ScriptFix for BondCreate {
         Ok(true)
     }
 
-    /// The fork's line for each step that made bonds.
+    /// The fork's line for each step that made bonds (counted over all ranks).
     fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let made = match creator(ctx.world(), head) {
             Some(c) if !c.made.is_empty() => std::mem::take(&mut c.made),
             _ => return Ok(()),
         };
         for (step, n) in made {
-            ctx.line(&format!("Created {n} bonds at timestep {step}"));
+            let n = ctx.world().comm.sum_count(n);
+            if n > 0 {
+                ctx.line(&format!("Created {n} bonds at timestep {step}"));
+            }
         }
         Ok(())
     }
