@@ -62,6 +62,15 @@ impl AtomLayout {
         matches!(self, AtomLayout::Hybrid(s) if s.contains(&SubStyle::BondGran))
     }
 
+    /// The atom style, as messages name it.
+    fn style(&self) -> &'static str {
+        match self {
+            AtomLayout::Granular => "atom_style granular",
+            AtomLayout::Hybrid(_) if self.has_bonds() => "atom_style hybrid granular bond/gran",
+            AtomLayout::Hybrid(_) => "atom_style hybrid without bond/gran",
+        }
+    }
+
     /// The names of an atom line's values, without image flags.
     fn atom_names(&self) -> Vec<&'static str> {
         match self {
@@ -456,17 +465,10 @@ impl<'a> Parser<'a> {
                 _ => {
                     let n: u64 = parse_int(ln, &ws[0], &format!("'{keyword}'"))?;
                     if n != 0 {
-                        let style = match &f.layout {
-                            AtomLayout::Granular => "atom_style granular",
-                            AtomLayout::Hybrid(_) if keyword.contains("bond") => {
-                                "atom_style hybrid without bond/gran"
-                            }
-                            AtomLayout::Hybrid(_) => "atom_style hybrid granular bond/gran",
-                        };
                         return Err(err(
                             ln,
                             kw_range,
-                            format!("'{keyword}' is not supported by {style}"),
+                            format!("'{keyword}' is not supported by {}", f.layout.style()),
                         ));
                     }
                 }
@@ -474,6 +476,31 @@ impl<'a> Parser<'a> {
             self.next += 1;
         }
         Ok(())
+    }
+
+    /// Opens section `name` (its keyword on line `ln`, at `range`): `after_atoms` false
+    /// (a section that needs the atoms, before them) or `seen` (a second one) is an error;
+    /// marks it seen and skips the empty line after the keyword.
+    fn open_section(
+        &mut self,
+        name: &str,
+        ln: usize,
+        range: Range<usize>,
+        after_atoms: bool,
+        seen: &mut bool,
+    ) -> Result<(), DataError> {
+        if !after_atoms {
+            return Err(err(
+                ln,
+                range,
+                format!("'{name}' must come after the 'Atoms' section"),
+            ));
+        }
+        if *seen {
+            return Err(err(ln, range, format!("a second '{name}' section")));
+        }
+        *seen = true;
+        self.skip_after_keyword(name)
     }
 
     /// After a section keyword at index `k`: skips the following line, which must be
@@ -745,42 +772,16 @@ impl<'a> Parser<'a> {
             self.next += 1;
             match keyword.as_str() {
                 "Atoms" => {
-                    if have_atoms {
-                        return Err(err(ln, range, "a second 'Atoms' section"));
-                    }
-                    self.skip_after_keyword("Atoms")?;
+                    self.open_section("Atoms", ln, range, true, &mut have_atoms)?;
                     self.atoms(f)?;
-                    have_atoms = true;
                 }
                 "Velocities" => {
-                    if !have_atoms {
-                        return Err(err(
-                            ln,
-                            range,
-                            "'Velocities' must come after the 'Atoms' section",
-                        ));
-                    }
-                    if have_vel {
-                        return Err(err(ln, range, "a second 'Velocities' section"));
-                    }
-                    self.skip_after_keyword("Velocities")?;
+                    self.open_section("Velocities", ln, range, have_atoms, &mut have_vel)?;
                     self.velocities(f)?;
-                    have_vel = true;
                 }
                 "Bonds" if f.layout.has_bonds() => {
-                    if !have_atoms {
-                        return Err(err(
-                            ln,
-                            range,
-                            "'Bonds' must come after the 'Atoms' section",
-                        ));
-                    }
-                    if have_bonds {
-                        return Err(err(ln, range, "a second 'Bonds' section"));
-                    }
-                    self.skip_after_keyword("Bonds")?;
+                    self.open_section("Bonds", ln, range, have_atoms, &mut have_bonds)?;
                     self.bonds(f)?;
-                    have_bonds = true;
                 }
                 "Masses" => {
                     return Err(err(
@@ -791,17 +792,10 @@ impl<'a> Parser<'a> {
                     ))
                 }
                 k if OTHER_SECTIONS.contains(&k) => {
-                    let style = match &f.layout {
-                        AtomLayout::Granular => "atom_style granular",
-                        AtomLayout::Hybrid(_) if k == "Bonds" => {
-                            "atom_style hybrid without bond/gran"
-                        }
-                        AtomLayout::Hybrid(_) => "atom_style hybrid granular bond/gran",
-                    };
                     return Err(err(
                         ln,
                         range,
-                        format!("section '{k}' is not supported by {style}"),
+                        format!("section '{k}' is not supported by {}", f.layout.style()),
                     ));
                 }
                 _ if ws[0].text.parse::<f64>().is_ok() => {

@@ -1006,21 +1006,10 @@ impl GranBonds {
     /// Drops the broken bonds (at a re-neighboring) and finds each bond's partner.
     pub fn link(&mut self, p: &mut Particles) -> Result<()> {
         let Some(id) = self.prop else { return Ok(()) };
-        let (m, w) = (self.per_atom, self.width());
+        let w = self.width();
         for i in 0..p.nlocal() {
             let row = &mut p.props[id.0].data[i * w..(i + 1) * w];
-            // Keep the unbroken bonds, in order.
-            let mut k = 0;
-            for s in 0..m {
-                let slot = s * SLOT;
-                if row[slot + TYPE] != 0.0 && !broken(row[slot + BROKEN]) {
-                    if k != s {
-                        row.copy_within(slot..slot + SLOT, k * SLOT);
-                    }
-                    k += 1;
-                }
-            }
-            row[k * SLOT..].fill(0.0);
+            keep_slots(row, |h| h[TYPE] != 0.0 && !broken(h[BROKEN]));
         }
         self.resolve(p)
     }
@@ -1401,6 +1390,22 @@ impl GranBonds {
         }
         out
     }
+}
+
+/// Keeps the bond slots of a sphere's `row` for which `keep` holds, in order, at the
+/// front; the slots after them are emptied.
+fn keep_slots(row: &mut [f64], keep: impl Fn(&[f64]) -> bool) {
+    let mut k = 0;
+    for s in 0..row.len() / SLOT {
+        let slot = s * SLOT;
+        if keep(&row[slot..slot + SLOT]) {
+            if k != s {
+                row.copy_within(slot..slot + SLOT, k * SLOT);
+            }
+            k += 1;
+        }
+    }
+    row[k * SLOT..].fill(0.0);
 }
 
 /// The pairs (i, j) of an owned particle i and an owned (j > i) or ghost particle j

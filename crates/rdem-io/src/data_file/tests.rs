@@ -54,7 +54,12 @@ fn defaults_without_box_or_atoms() {
 
 /// (file, line, offending word, message fragment)
 fn check_err(text: &str, line: usize, word: &str, msg: &str) {
-    let e = parse_data(text).unwrap_err();
+    check_err_as(text, &AtomLayout::Granular, line, word, msg);
+}
+
+/// [`check_err`] for a file of `layout`.
+fn check_err_as(text: &str, layout: &AtomLayout, line: usize, word: &str, msg: &str) {
+    let e = parse_data_as(text, layout).unwrap_err();
     let l = text.lines().nth(line - 1).unwrap_or("");
     assert_eq!(e.line, line, "{e}");
     assert_eq!(&l[e.col_range.clone()], word, "{e}");
@@ -216,11 +221,7 @@ const HYBRID: &str = "hybrid\n\n3 atoms\n1 atom types\n2 bonds\n1 bond types\n\
     3 0 0 0 0 0 0\n\nBonds\n\n1 1 1 2\n2 1 3 2\n";
 
 fn check_hybrid_err(text: &str, line: usize, word: &str, msg: &str) {
-    let e = parse_data_as(text, &hybrid()).unwrap_err();
-    let l = text.lines().nth(line - 1).unwrap_or("");
-    assert_eq!(e.line, line, "{e}");
-    assert_eq!(&l[e.col_range.clone()], word, "{e}");
-    assert!(e.message.contains(msg), "'{}' lacks '{msg}'", e.message);
+    check_err_as(text, &hybrid(), line, word, msg);
 }
 
 /// `atom_style hybrid granular bond/gran`: `id type x y z diameter density molecule`,

@@ -8,7 +8,7 @@
 //! negative and the force of the bond listed before it, and only where its partner is
 //! on the same rank or a ghost there.
 
-use super::{broken, GranBonds, BROKEN, FORCE, SEPARATING, SLOT, TAG, TORQUE, TYPE};
+use super::{broken, keep_slots, GranBonds, BROKEN, FORCE, SEPARATING, SLOT, TAG, TORQUE, TYPE};
 use crate::comm::Comm;
 use crate::error::{Error, Result};
 use crate::particles::{Particles, Tag};
@@ -117,17 +117,7 @@ impl GranBonds {
                 }
             }
             if d.remove {
-                let mut k = 0;
-                for s in 0..m {
-                    let slot = s * SLOT;
-                    if row[slot + TYPE] > 0.0 {
-                        if k != s {
-                            row.copy_within(slot..slot + SLOT, k * SLOT);
-                        }
-                        k += 1;
-                    }
-                }
-                row[k * SLOT..].fill(0.0);
+                keep_slots(row, |h| h[TYPE] > 0.0);
             }
             for h in row.chunks_exact(SLOT) {
                 if h[TYPE] != 0.0 && ta < h[TAG] as Tag {
