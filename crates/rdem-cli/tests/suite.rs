@@ -38,6 +38,7 @@ mod mesh_stresscomponents;
 mod mesh_tet;
 mod mesh_tutorials;
 mod mesh_walls;
+mod momentum;
 mod mpi;
 mod mpi_dumps;
 mod mpi_io_failure;

@@ -38,6 +38,7 @@ mod mcg;
 mod mesh_servo;
 mod mesh_surface;
 mod modify;
+mod momentum;
 mod move_mesh;
 mod move_particles;
 mod multicontact;
@@ -374,6 +375,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_SETFORCE,
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
+        momentum::ROW,
         speedcontrol::ROW,
         buoyancy::ROW,
         sph::ROW_CONTINUITY,
