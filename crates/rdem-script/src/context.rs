@@ -388,6 +388,28 @@ impl Context for Ctx<'_> {
                 self.atom_vector(&key, |s, _| crate::fixes::fix_peratom(s, &id, idx))
             }
             Name::Fix(id, idx) => crate::fixes::fix_value(sim, id, *idx),
+            Name::VariableAt(v, tag) => {
+                let f = match sim.script.vars.get(v) {
+                    None => return Err(Error::undefined("variable", v)),
+                    Some(Variable::Atom(f)) => f.clone(),
+                    Some(_) => {
+                        return Err(format!(
+                            "v_{v}[{tag}]: '{v}' is not an atom-style variable (an index picks one atom's value of an atom-style variable)"
+                        )
+                        .into())
+                    }
+                };
+                // Every rank evaluates the whole vector (its formula may sum over
+                // ranks), then takes the owner's value, as LAMMPS does.
+                let values = eval_atom_depth(sim, &f, self.depth + 1, &mut HashMap::new())?;
+                let w = world(sim)?;
+                let i = w.particles.find_tag(*tag);
+                let found = w.comm.sum_count(i.is_some() as u64);
+                if found == 0 {
+                    return Err(format!("v_{v}[{tag}]: no atom with ID {tag}").into());
+                }
+                Ok(w.comm.sum(i.map_or(0.0, |i| values[i])))
+            }
             Name::Atom(field, tag) => {
                 let w = world(sim)?;
                 // The owner's value, on every rank.

@@ -81,6 +81,8 @@ pub enum Name {
     Keyword(String),
     /// `v_name`.
     Variable(String),
+    /// `v_name[i]`: atom `i`'s value (by atom ID) of an atom-style variable.
+    VariableAt(String, u64),
     /// `c_ID` or `c_ID[i]`.
     Compute(String, Option<usize>),
     /// `f_ID` or `f_ID[i]`.
@@ -259,7 +261,10 @@ impl Parser<'_> {
             };
             let span = start..self.i;
             let name = if let Some(rest) = word.strip_prefix("v_") {
-                Name::Variable(rest.to_string())
+                match index {
+                    Some(k) => Name::VariableAt(rest.to_string(), k),
+                    None => Name::Variable(rest.to_string()),
+                }
             } else if let Some(rest) = word.strip_prefix("c_") {
                 Name::Compute(rest.to_string(), index.map(|k| k as usize))
             } else if let Some(rest) = word.strip_prefix("f_") {

@@ -376,6 +376,33 @@ print "T ${{t1}} ${{t2}} ${{t3}} ${{t4}}"
     );
 }
 
+/// `v_name[i]`: atom i's value of an atom-style variable, in equal-style formulas and in
+/// atom-style ones (the same number for every atom). LIGGGHTS 3.8 printed the same
+/// thermo columns (8 digits) and `${e2}` (15 digits) for a three-sphere script with
+/// `v_e[2]`, `2*v_e[3]+v_e[1]` and `v_e[3]*x` in a reduced atom-style variable.
+#[test]
+fn indexed_atom_style_variables() {
+    let i = run(&format!(
+        r#"{TWO}
+variable mv atom mass*vx+z
+variable a equal v_mv[2]
+variable b equal 2*v_mv[1]-v_mv[2]
+variable s atom v_mv[2]*x
+compute r all reduce sum v_s
+variable c equal c_r
+print "IX ${{a}} ${{b}} ${{c}}"
+"#
+    ));
+    let pi = std::f64::consts::PI;
+    // vx1 = 0, z1 = 0.4; m2 = 4π/3, vx2 = 2, z2 = 0.4.
+    let (e1, e2) = (0.4, 8.0 * pi / 3.0 + 0.4);
+    assert_close(
+        &numbers(&i, "IX"),
+        &[e2, 2.0 * e1 - e2, e2 * (0.2 + 0.6)],
+        "v_mv[i]",
+    );
+}
+
 #[test]
 fn bad_references_in_formulas_are_errors() {
     for (formula, message) in [
@@ -383,11 +410,13 @@ fn bad_references_in_formulas_are_errors() {
         ("x[7]", "no atom with ID 7"),
         ("count(nobody)", "no group 'nobody'"),
         ("v_mv", "atom-style variable 'mv'"),
+        ("v_mv[7]", "v_mv[7]: no atom with ID 7"),
+        ("v_e[1]", "'e' is not an atom-style variable"),
     ] {
         let r = common::try_run(
             "in.test",
             &format!(
-                "{TWO}variable mv atom mass*vx\ncompute r all reduce max x vx\nprint \"$({formula})\"\n"
+                "{TWO}variable mv atom mass*vx\nvariable e equal 1\ncompute r all reduce max x vx\nprint \"$({formula})\"\n"
             ),
         )
         .map(|_| ());
