@@ -244,7 +244,9 @@ fn prepare(sim: &Sim, e: &Expr, depth: usize) -> Result<Node, Error> {
             )
             .into())
         }
-        Expr::Name(Name::Fix(id, _), _) if crate::fixes::is_peratom(sim, id) => {
+        Expr::Name(Name::Fix(id, _), _)
+            if crate::fixes::is_peratom(sim, id) && !crate::fixes::has_global(sim, id) =>
+        {
             return Err(format!(
                 "f_{id} is per-atom: a force fix's formula cannot use per-atom fixes yet"
             )

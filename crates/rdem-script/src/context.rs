@@ -376,7 +376,9 @@ impl Context for Ctx<'_> {
                     compute_global(sim, id, *idx)
                 }
             }
-            Name::Fix(id, idx) if crate::fixes::is_peratom(sim, id) => {
+            Name::Fix(id, idx)
+                if crate::fixes::is_peratom(sim, id) && !crate::fixes::has_global(sim, id) =>
+            {
                 if self.atom.is_none() {
                     return Err(format!(
                         "fix {id} is per-atom: use it in an atom-style variable or reduce it"

@@ -282,13 +282,17 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
         columns: sim.outputs.thermo.columns.clone(),
         rows: Vec::new(),
     };
+    // Dumps before thermo, as LIGGGHTS: a compute with an effect (nparticles/tracer/
+    // region unmarks what it counts) changes the dumped values after them.
+    if !sim.script.check {
+        crate::dumps::write_due(sim, start_step, true)?;
+    }
     thermo_row(sim)?;
     if sim.script.check {
         crate::check::after_setup(sim, nsteps)?;
         // What a run's end undoes (fix adapt's `reset yes`) is undone here too.
         return stages.end_of_run(sim);
     }
-    crate::dumps::write_due(sim, start_step, true)?;
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
         w.timers.reset();
@@ -330,11 +334,11 @@ fn step_loop(
         rdem::step::step(&mut Front::new(sim, stages))?;
         let t_out = Instant::now();
         let every = sim.outputs.thermo.every;
+        crate::dumps::write_due(sim, step, false)?;
+        crate::commands::restart::write_due(sim, step)?;
         if (every > 0 && step % every == 0) || step == sim.script.run_last {
             thermo_row(sim)?;
         }
-        crate::dumps::write_due(sim, step, false)?;
-        crate::commands::restart::write_due(sim, step)?;
         if let Some(w) = &mut sim.world {
             w.timers.lap(Stage::Output, t_out);
         }

@@ -15,6 +15,7 @@ mod ke;
 pub mod kernels;
 mod multisphere;
 mod nbond_atom;
+mod nparticles_tracer_region;
 mod pair_gran_local;
 mod pair_gran_local_bond;
 mod pe;
@@ -168,6 +169,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         pressure::ROW,
         displace_atom::ROW,
         reduce::ROW,
+        nparticles_tracer_region::ROW,
         property_atom::ROW,
         contact_atom::ROW,
         coord_atom::ROW,

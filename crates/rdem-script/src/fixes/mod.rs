@@ -56,6 +56,7 @@ mod slowinit;
 mod speedcontrol;
 mod sph;
 mod stage_ctx;
+pub mod tracer;
 mod wall_gran;
 mod wall_gran_old;
 
@@ -338,6 +339,8 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
     rows: &[
         property_global::ROW,
         property_atom::ROW,
+        tracer::ROW,
+        tracer::ROW_TIME,
         mesh_surface::ROW,
         mesh_surface::ROW_PLANAR,
         mesh_surface::ROW_STRESS,
@@ -558,6 +561,17 @@ pub fn is_peratom(sim: &Sim, id: &str) -> bool {
         .fixes
         .iter()
         .any(|f| f.head.id == id && f.imp.peratom_shape().map(|(n, _)| n).is_some())
+}
+
+/// True if fix `id` gives global values (`f_ID`, `f_ID[i]`): in a formula these take
+/// precedence over its per-atom values, as in LIGGGHTS (`fix property/atom/tracer`'s
+/// `f_ID` is its count, `fix heat/gran`'s its energy); dumps and reductions read the
+/// per-atom values.
+pub fn has_global(sim: &Sim, id: &str) -> bool {
+    sim.defs
+        .fixes
+        .iter()
+        .any(|f| f.head.id == id && f.stages.has(Stages::VALUES))
 }
 
 /// True if `f_ID` is divided by the atom count under `thermo_modify norm yes`.
