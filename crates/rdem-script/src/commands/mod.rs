@@ -9,6 +9,7 @@ mod bonds;
 mod compute;
 mod create;
 mod data_files;
+mod displace;
 mod group;
 mod pair;
 mod read_dump;
@@ -109,6 +110,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("write_data", data_files::write_data, "the particles and the box as a LAMMPS data file (`nocoeff`, `nofix` accepted), in the columns of the atom style")
             .notes("under `hybrid granular bond/gran` with the molecule IDs and the intact bonds turned on, which `read_data` (and LIGGGHTS-PFM's) reads back; their lengths and loads are not kept (LIGGGHTS-PFM stops at `write_data` with bond style gran; LIGGGHTS_Flexible_Fibers and LIGGGHTS_SEAICE write the bonds but no molecule column, a file their `read_data` refuses)"),
         sim("delete_atoms", atoms::delete_atoms, "`group`, `region`; `compress yes\\|no`"),
+        sim("displace_atoms", displace::displace_atoms, "`group move dx dy dz`, `ramp ddim dlo dhi dim clo chi`, `random dx dy dz seed` (LAMMPS' per-particle seeding: the same moves on any number of ranks), `rotate Px Py Pz Rx Ry Rz theta`; `units box\\|lattice` (default box)")
+            .notes("moves positions only (velocities and spins stay); the default units are `box`, as LIGGGHTS 3.8 does (its manual says `lattice`); a particle moved outside a fixed face stays there until the next run loses it, as in LIGGGHTS 3.8, with a warning; spheres of clumps are refused"),
         sim("set", atoms::set, "`atom`, `type`, `group`, `region` with `type`, `diameter`, `density`, `mass`, `x y z`, `vx vy vz`, `omegax omegay omegaz` (numbers or equal-/atom-style `v_name`), `omega`, `property/atom`")
             .notes("the mass follows diameter and density"),
         sim("velocity", atoms::velocity, "`set` (numbers, equal- or atom-style `v_name`, NULL), `zero linear\\|angular`, `ramp`, `create`; `sum`")
@@ -168,7 +171,6 @@ pub static REGISTRY: Registry<Command> = Registry {
         Row::not_yet("create_bonds", "bonds"),
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),
-        Row::not_yet("displace_atoms", "displace_atoms"),
         Row::not_yet("modify_timing", "per-fix timing"),
     ],
 };
