@@ -151,6 +151,36 @@ fn atoi_prefix(s: &str) -> Option<i64> {
     Some(if s.starts_with('-') { -v } else { v })
 }
 
+/// C's `atof` on `s`: the number at the start of `s` (`1./6.` gives 1), `None` when
+/// `s` does not start with one.
+pub fn atof_prefix(s: &str) -> Option<f64> {
+    let b = s.as_bytes();
+    let mut k = usize::from(matches!(b.first(), Some(b'+' | b'-')));
+    let digits = |k: &mut usize| {
+        let start = *k;
+        while b.get(*k).is_some_and(u8::is_ascii_digit) {
+            *k += 1;
+        }
+        *k - start
+    };
+    let mut n = digits(&mut k);
+    if b.get(k) == Some(&b'.') {
+        k += 1;
+        n += digits(&mut k);
+    }
+    if n == 0 {
+        return None;
+    }
+    let mantissa = k;
+    if matches!(b.get(k), Some(b'e' | b'E')) {
+        let mut e = k + 1 + usize::from(matches!(b.get(k + 1), Some(b'+' | b'-')));
+        if digits(&mut e) > 0 {
+            k = e;
+        }
+    }
+    s[..k].parse().ok().or_else(|| s[..mantissa].parse().ok())
+}
+
 impl<'a> Args<'a> {
     /// A cursor after the command name.
     pub fn new(cmd: &'a Command, words: &'a [Word]) -> Self {
@@ -552,6 +582,21 @@ pub fn names<K>(table: &[(&'static str, K)]) -> Vec<&'static str> {
 
 #[cfg(test)]
 mod tests {
+    use super::atof_prefix;
+
+    /// C's atof: LIGGGHTS 3.8 read `1./6.` and `5./6.` as 1 and 5 (its printed mass
+    /// shares 16.67 % and 83.33 % after normalizing).
+    #[test]
+    fn atof_reads_the_leading_number() {
+        assert_eq!(atof_prefix("1./6."), Some(1.0));
+        assert_eq!(atof_prefix("5./6."), Some(5.0));
+        assert_eq!(atof_prefix("-2.5e3x"), Some(-2500.0));
+        assert_eq!(atof_prefix("3e"), Some(3.0));
+        assert_eq!(atof_prefix(".5/2"), Some(0.5));
+        assert_eq!(atof_prefix("x1"), None);
+        assert_eq!(atof_prefix("."), None);
+    }
+
     use super::*;
 
     #[test]

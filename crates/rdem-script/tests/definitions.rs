@@ -69,3 +69,31 @@ fn a_good_redefinition_replaces_the_old_fix_everywhere() {
     assert!(i.sim.defs.properties.is_empty() && i.sim.defs.templates.is_empty());
     assert!(i.sim.defs.fixes.is_empty());
 }
+
+/// LIGGGHTS 3.8 reads template weights with C's atof: `1./6.` and `5./6.` are 1 and 5,
+/// normalized to 1/6 and 5/6 (it printed mass shares 16.666667 % and 83.333333 %). rdem
+/// reads them so, with a warning naming each; a weight with no number at its start is
+/// still an error.
+#[test]
+fn template_weights_are_read_as_liggghts_reads_them() {
+    let two = format!(
+        "{SETUP}fix pts2 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.02\n"
+    );
+    let out = common::run_screen(
+        "in.w",
+        &format!(
+            "{two}fix pdd all particledistribution/discrete 32452843 2 pts 1./6. pts2 5./6.\n"
+        ),
+    );
+    assert!(out.contains("template weight '1./6.' read as 1,"), "{out}");
+    assert!(out.contains("template weight '5./6.' read as 5,"), "{out}");
+    assert!(out.contains("weights sum to 6, not 1; normalised"), "{out}");
+    let e = common::error(
+        "in.w",
+        &format!("{two}fix pdd all particledistribution/discrete 32452843 2 pts half pts2 0.5\n"),
+    );
+    assert!(
+        e.contains("template weight must be a number, not 'half'"),
+        "{e}"
+    );
+}

@@ -68,7 +68,31 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 Some(suggest(tid, &names)),
             )
         })?;
-        let w = a.non_negative("template weight")?;
+        let w = match a.peek().and_then(|w| crate::args::parse_f64(w)) {
+            Some(_) => a.non_negative("template weight")?,
+            // LIGGGHTS 3.8 reads a weight with C's atof: `1./6.` is 1 (with `5./6.` for
+            // the other template the normalized weights are still 1/6 and 5/6).
+            None => {
+                let word = a.word("template weight")?;
+                match crate::args::atof_prefix(word).filter(|v| *v >= 0.0) {
+                    Some(v) => {
+                        a.warn_at(
+                            a.pos() - 1,
+                            &format!(
+                                "template weight '{word}' read as {v}, as LIGGGHTS reads it (C's atof stops at the first character that is not part of a number); weights are normalized to sum 1"
+                            ),
+                        );
+                        v
+                    }
+                    None => {
+                        return Err(a.error_prev(
+                            format!("template weight must be a number, not '{word}'"),
+                            None,
+                        ))
+                    }
+                }
+            }
+        };
         parts.push((t, w));
     }
     a.done()?;
