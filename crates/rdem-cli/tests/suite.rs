@@ -39,6 +39,7 @@ mod mesh_stresscomponents;
 mod mesh_tet;
 mod mesh_tutorials;
 mod mesh_walls;
+mod modify_timing;
 mod momentum;
 mod mpi;
 mod mpi_dumps;

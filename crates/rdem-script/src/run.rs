@@ -10,7 +10,7 @@ use rdem::{HookMask, NoHooks, StepHooks, StepHost, World};
 use crate::args::{Args, CmdResult};
 use crate::diagnostic::{RunError, ScriptError};
 use crate::fixes::{self, FixEntry, Notes, StageCtx, Stages};
-use crate::sim::Sim;
+use crate::sim::{ModifyTiming, Sim};
 use crate::thermo;
 
 /// What a `run` line asks for: `run N [upto] [start N1] [stop N2] [pre yes|no]
@@ -243,6 +243,7 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
             st.ntypes = ntypes;
         }
         w.timers.reset();
+        w.fix_timing = sim.script.modify_timing != crate::sim::ModifyTiming::Off;
     }
     // LAMMPS' init: computes count what they keep through the run (skipped with the
     // set-up after `pre no`, as LAMMPS skips `init`).
@@ -296,7 +297,9 @@ fn run_steps(sim: &mut Sim, chunk: Chunk) -> Result<(), RunError> {
     if let Some(w) = &mut sim.world {
         // The breakdown covers the loop only, as "Loop time" does.
         w.timers.reset();
+        w.fixes.iter_mut().for_each(|f| f.seconds = 0.0);
     }
+    sim.defs.fixes.iter_mut().for_each(|f| f.seconds = 0.0);
     let t0 = Instant::now();
     sim.script.run_started = t0;
     // The pool's other threads wait for the steps' parallel loops awake (see
@@ -470,7 +473,11 @@ impl StepHooks for Insertions<'_> {
         for &k in self.candidates {
             let f = &mut self.fixes[k];
             if f.imp.due(self.step) {
+                let t0 = w.fix_timing.then(Instant::now);
                 f.imp.pre_exchange(&f.head, w, &mut self.notes)?;
+                if let Some(t0) = t0 {
+                    f.seconds += t0.elapsed().as_secs_f64();
+                }
             }
         }
         Ok(())
@@ -631,22 +638,78 @@ fn report(sim: &mut Sim, loop_time: f64, nsteps: u64, builds0: (u64, u64), summa
             0.0
         }
     };
-    // LIGGGHTS' labels; Modify (the fixes) is rdem's addition.
+    // LIGGGHTS' labels; Modify (the fixes) is rdem's addition, which LIGGGHTS prints
+    // as `Modfy` under `modify_timing`.
+    let timing = sim.script.modify_timing;
     let stages = [
         ("Pair ", Stage::Pair),
         ("Neigh", Stage::Neigh),
         ("Comm ", Stage::Comm),
         ("Outpt", Stage::Output),
-        ("Modify", Stage::Modify),
+        (
+            if timing == ModifyTiming::Off {
+                "Modify"
+            } else {
+                "Modfy"
+            },
+            Stage::Modify,
+        ),
     ];
     let mut accounted = 0.0;
     for (name, st) in stages {
         let t = timers.get(st).as_secs_f64();
         accounted += t;
         lines.push(format!("{name} time (%) = {} ({})", g(t), g(pct(t))));
+        if st == Stage::Modify && timing == ModifyTiming::Verbose {
+            for (r, t) in w.comm.all_gather(&[t]).into_iter().enumerate() {
+                lines.push(format!(
+                    "  Modify   time [{r}] (%) = {} ({})",
+                    g(t),
+                    g(pct(t))
+                ));
+            }
+        }
     }
     let other = (loop_time - accounted).max(0.0);
     lines.push(format!("Other time (%) = {} ({})", g(other), g(pct(other))));
+    if timing != ModifyTiming::Off {
+        // Each fix's stages in the script and in the engine (an engine fix shares its
+        // script fix's ID).
+        let times: Vec<f64> = sim
+            .defs
+            .fixes
+            .iter()
+            .map(|e| {
+                e.seconds
+                    + w.fixes
+                        .iter()
+                        .filter(|f| f.id == e.head.id)
+                        .map(|f| f.seconds)
+                        .sum::<f64>()
+            })
+            .collect();
+        let ranks = w.comm.all_gather(&times);
+        for (k, e) in sim.defs.fixes.iter().enumerate() {
+            let t = times[k];
+            lines.push(format!(
+                "Fix {} {} time (%) = {} ({})",
+                e.head.id,
+                e.head.style,
+                g(t),
+                g(pct(t))
+            ));
+            if timing == ModifyTiming::Verbose {
+                for (r, row) in ranks.chunks(times.len().max(1)).enumerate() {
+                    lines.push(format!(
+                        "  [{r}] Fix {} {} time {}",
+                        e.head.id,
+                        e.head.style,
+                        g(row[k])
+                    ));
+                }
+            }
+        }
+    }
     lines.push(String::new());
     for (label, k) in [("Nlocal", 0), ("Nghost", 1), ("Neighs", 2)] {
         let (line, hist) = spread(label, &column(k));

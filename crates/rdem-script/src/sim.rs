@@ -251,6 +251,20 @@ pub struct ScriptState {
     pub halted: bool,
     /// A fix asked the current run to end after this step ([`crate::fixes::StageCtx::end_run`]).
     pub stop_requested: bool,
+    /// `modify_timing`: each fix's time is counted and printed after a run.
+    pub modify_timing: ModifyTiming,
+}
+
+/// `modify_timing off|on|verbose`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ModifyTiming {
+    /// No per-fix times (the default).
+    #[default]
+    Off,
+    /// Each fix's time after a run.
+    On,
+    /// Each fix's time on each rank too.
+    Verbose,
 }
 
 /// Everything a script defines, each fact in one place: the set-up before the box
@@ -303,6 +317,7 @@ impl Sim {
                 time_origin: (0, 0.0),
                 halted: false,
                 stop_requested: false,
+                modify_timing: ModifyTiming::Off,
             },
         }
     }

@@ -182,6 +182,7 @@ fn fix_modify_reaches_a_style_keyword_first() {
         origin: None,
         energy: false,
         imp: Box::new(Servo::default()),
+        seconds: 0.0,
     });
     i.run_source("in.t", "fix_modify servo integrate stop energy yes\n")
         .unwrap();

@@ -647,7 +647,9 @@ impl World {
         if let Some(heat) = &self.heat {
             heat.reset_flux(&mut self.particles);
         }
+        let timing = self.fix_timing;
         for fix in &mut self.fixes {
+            let t0 = timing.then(std::time::Instant::now);
             match &mut fix.kind {
                 FixKind::NveSphere => {
                     integrate::initial_integrate(&mut self.particles, fix.groupbit, self.dt)
@@ -674,6 +676,9 @@ impl World {
                     self.dt,
                 ),
                 _ => {}
+            }
+            if let Some(t0) = t0 {
+                fix.seconds += t0.elapsed().as_secs_f64();
             }
         }
         self.initial_integrate_bodies();
@@ -938,7 +943,9 @@ impl World {
         if let Some(heat) = &self.heat {
             heat.integrate(&mut self.particles, self.dt);
         }
+        let timing = self.fix_timing;
         for fix in &mut self.fixes {
+            let t0 = timing.then(std::time::Instant::now);
             match &mut fix.kind {
                 FixKind::NveSphere => {
                     integrate::final_integrate(&mut self.particles, fix.groupbit, self.dt)
@@ -951,6 +958,9 @@ impl World {
                 }
                 FixKind::Move(m) => m.final_integrate(&mut self.particles, fix.groupbit, self.dt),
                 _ => {}
+            }
+            if let Some(t0) = t0 {
+                fix.seconds += t0.elapsed().as_secs_f64();
             }
         }
         self.final_integrate_bodies();

@@ -298,10 +298,13 @@ impl World {
             &mut self.fixes,
             &self.meshes,
             &mut self.particles,
-            self.dt,
-            update,
-            self.step,
             &*self.comm,
+            crate::fix::PostForce {
+                dt: self.dt,
+                update,
+                step: self.step,
+                timing: self.fix_timing,
+            },
         );
         self.conduct_heat(update);
         crate::insert::stream::hold_streamed(&mut self.particles, self.step);

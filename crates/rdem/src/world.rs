@@ -123,6 +123,9 @@ pub struct World {
     /// Contact histories read from a restart file, for the next set-up.
     pub(crate) restored_history: Option<crate::restart::HistoryState>,
     pub(crate) needs_reneighbor: bool,
+    /// `modify_timing on`: each fix's time is counted ([`crate::Fix::seconds`]), the
+    /// post-force fixes then acting one at a time (the same forces, a little slower).
+    pub fix_timing: bool,
     /// Particles were removed: the next step re-neighbors (no set-up needed).
     pub(crate) rebuild_next: bool,
 }
@@ -159,6 +162,7 @@ impl World {
             next_sort: 0,
             restored_history: None,
             needs_reneighbor: true,
+            fix_timing: false,
             rebuild_next: false,
         }
     }

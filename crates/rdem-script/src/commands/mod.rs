@@ -141,6 +141,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         flow("run", "`N`, `upto`, `start N1`, `stop N2`, `pre yes\\|no`, `post yes\\|no`, `every M \"c1\" \"c2\" ...` (or `NULL`): the run in chunks of M steps with the commands after each")
             .notes("`stop` is checked but changes nothing: no rdem style ramps over a run (no `ramp()`); `elaplong` counts from `start`; under `rdem -check` the chunks are one checked run and the commands run once"),
         sim_atoi("reset_timestep", settings::reset_timestep, "`N`"),
+        sim("modify_timing", settings::modify_timing, "`on\\|off\\|verbose`: after each run, each fix's time (`Fix ID style time (%) = t (pct)`, the fix's stages in the script and the engine), the Modify line called `Modfy`, as LIGGGHTS 3.8 prints them; `verbose` adds each MPI rank's")
+            .notes("while on, the post-force fixes act one at a time, each timed (the same forces, a slower run); LIGGGHTS also lists its internal fixes (`contacthistory`, ...), rdem the script's and those its commands define"),
         sim("dump", dumps::dump, "the dump styles below"),
         sim("dump_modify", dumps::dump_modify, "`sort`, `pad`, `format`, `every`, `first`, `region ID\\|none` (dump custom, custom/vtk), `binary`, `compressor`, `label L` (dump local)"),
         sim("undump", dumps::undump, "`ID`"),
@@ -171,7 +173,6 @@ pub static REGISTRY: Registry<Command> = Registry {
         Row::not_yet("create_bonds", "bonds"),
         Row::not_yet("run_style", "run styles other than verlet"),
         Row::not_yet("minimize", "energy minimisation"),
-        Row::not_yet("modify_timing", "per-fix timing"),
     ],
 };
 

@@ -610,6 +610,19 @@ pub(super) fn timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
     sim.set_timestep(dt).map_err(|m| a.error_at(1, m, None))
 }
 
+/// `modify_timing on|off|verbose` (LIGGGHTS 3.8): each fix's time, printed after every
+/// run (`verbose`: on each MPI rank too). While it is on, the post-force fixes act one
+/// at a time instead of in one fused pass over the particles, each timed (the same
+/// forces; the run is a little slower, as in LIGGGHTS, whose timers cost too).
+pub(super) fn modify_timing(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    sim.script.modify_timing = match a.keyword("modify_timing", &["on", "off", "verbose"])? {
+        "on" => crate::sim::ModifyTiming::On,
+        "verbose" => crate::sim::ModifyTiming::Verbose,
+        _ => crate::sim::ModifyTiming::Off,
+    };
+    a.done()
+}
+
 /// `reset_timestep N`.
 pub(super) fn reset_timestep(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let n = a.u64("timestep")?;

@@ -75,6 +75,7 @@ pub fn define(sim: &mut Sim) {
                 origin: None,
                 energy: false,
                 imp,
+                seconds: 0.0,
             });
         }
     };

@@ -62,6 +62,7 @@ mod wall_gran_old;
 
 use crate::error::Error;
 use std::any::Any;
+use std::time::Instant;
 
 use rdem::World;
 
@@ -434,6 +435,8 @@ pub struct FixEntry {
     pub energy: bool,
     /// The fix.
     pub imp: Box<dyn ScriptFix>,
+    /// Seconds its stages took since the run started, counted under `modify_timing`.
+    pub seconds: f64,
 }
 
 impl FixEntry {
@@ -465,7 +468,11 @@ pub(crate) fn with_fix<R>(
     f: impl FnOnce(&mut dyn ScriptFix, &mut Sim, &FixHead) -> R,
 ) -> R {
     let mut e = take(sim, k);
+    let t0 = (sim.script.modify_timing != crate::sim::ModifyTiming::Off).then(Instant::now);
     let r = f(&mut *e.imp, sim, &e.head);
+    if let Some(t0) = t0 {
+        e.seconds += t0.elapsed().as_secs_f64();
+    }
     sim.defs.fixes[k] = e;
     r
 }
@@ -481,6 +488,7 @@ pub(crate) fn take(sim: &mut Sim, k: usize) -> FixEntry {
             origin: None,
             energy: false,
             imp: Box::new(Vacant),
+            seconds: 0.0,
         },
     )
 }
@@ -625,6 +633,7 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
         origin,
         energy: false,
         imp,
+        seconds: 0.0,
     });
     Ok(())
 }

@@ -68,7 +68,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 Some(suggest(tid, &names)),
             )
         })?;
-        let w = match a.peek().and_then(|w| crate::args::parse_f64(w)) {
+        let w = match a.peek().and_then(crate::args::parse_f64) {
             Some(_) => a.non_negative("template weight")?,
             // LIGGGHTS 3.8 reads a weight with C's atof: `1./6.` is 1 (with `5./6.` for
             // the other template the normalized weights are still 1/6 and 5/6).

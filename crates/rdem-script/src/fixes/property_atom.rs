@@ -123,6 +123,7 @@ pub(super) fn define(sim: &mut Sim, a: &Args, mut imp: PropertyAtom) -> CmdResul
         origin,
         energy: false,
         imp: Box::new(imp),
+        seconds: 0.0,
     });
     Ok(())
 }

@@ -119,6 +119,9 @@ pub struct Fix {
     pub groupbit: u32,
     /// Behaviour.
     pub kind: FixKind,
+    /// Seconds spent in this fix since the run started, counted only while
+    /// [`crate::World::fix_timing`] is on (`modify_timing`).
+    pub seconds: f64,
 }
 
 impl Fix {
@@ -200,6 +203,7 @@ impl Fix {
             id: id.to_string(),
             groupbit,
             kind,
+            seconds: 0.0,
         })
     }
 
@@ -349,6 +353,19 @@ fn check_motion(style: &motion::MoveStyle) -> Result<()> {
     Ok(())
 }
 
+/// The settings of a post-force stage ([`post_force`]).
+#[derive(Clone, Copy)]
+pub(crate) struct PostForce {
+    /// The timestep.
+    pub dt: f64,
+    /// False at a run's set-up (contact histories not advanced).
+    pub update: bool,
+    /// The step.
+    pub step: u64,
+    /// `modify_timing`: each fix acts alone and is timed.
+    pub timing: bool,
+}
+
 /// Step 9 of [`crate::step`]: the post-force fixes, walls included, in definition order on
 /// the owned particles; returns false when some force or torque is then not finite (the
 /// caller finds which). Every fix acts on each particle alone, so the pass runs all fixes
@@ -366,12 +383,45 @@ pub(crate) fn post_force(
     fixes: &mut [Fix],
     meshes: &[crate::wall::MeshSurface],
     p: &mut Particles,
-    dt: f64,
-    update: bool,
-    step: u64,
     comm: &dyn crate::comm::Comm,
+    pass: PostForce,
 ) -> bool {
+    let PostForce {
+        dt,
+        update,
+        step,
+        timing,
+    } = pass;
     let at = |start: usize| At { start, step };
+    if timing {
+        // One fix at a time, each timed: the same operations per particle in the same
+        // order as the fused passes, so the same forces.
+        let mut ok = true;
+        for k in 0..fixes.len() {
+            let t0 = std::time::Instant::now();
+            if acts_alone(&fixes[k].kind) {
+                if let FixKind::WallRegionSph(w) = &fixes[k].kind {
+                    w.apply(p, fixes[k].groupbit);
+                } else if matches!(fixes[k].kind, FixKind::Enforce2d) {
+                    fixes[k].apply_enforce2d(p);
+                } else {
+                    fixes[k].apply_aveforce(p, comm);
+                }
+            } else if fixes[k].kind.acts_after_forces() {
+                ok &= post_force_pass(&fixes[k..k + 1], at(k), meshes, p, dt, update);
+            }
+            fixes[k].seconds += t0.elapsed().as_secs_f64();
+        }
+        return ok
+            & post_force_pass(
+                &fixes[fixes.len()..],
+                at(fixes.len()),
+                meshes,
+                p,
+                dt,
+                update,
+            );
+    }
     let mut start = 0;
     let mut ok = true;
     for k in 0..fixes.len() {
@@ -391,6 +441,23 @@ pub(crate) fn post_force(
     }
     // The last pass runs also without fixes: it checks that every force is finite.
     ok & post_force_pass(&fixes[start..], at(start), meshes, p, dt, update)
+}
+
+impl FixKind {
+    /// True for the fixes [`post_force_pass`] acts with: the per-particle post-force
+    /// fixes and the walls.
+    fn acts_after_forces(&self) -> bool {
+        !matches!(
+            self,
+            FixKind::NveSphere
+                | FixKind::NveLimit(_)
+                | FixKind::Move(_)
+                | FixKind::Sph(_)
+                | FixKind::AveForce { .. }
+                | FixKind::Enforce2d
+                | FixKind::WallRegionSph(_)
+        )
+    }
 }
 
 /// The post-force fixes that act alone between the parallel passes: `aveforce` (a sum over
