@@ -101,7 +101,7 @@ pub(super) const ROW_PACK: FixRow = style(
     "insert/pack",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES),
-    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `ntry_mc`, `verbose`; `check_dist_from_subdomain_border` (read; rdem's placement never overlaps across ranks); LIGGGHTS-PFM's `pos x y z` (every try at that point: one particle or template)",
+    "`volumefraction_region`, `particles_in_region`, `mass_in_region`; `insert_every once\\|N`; `overlapcheck`; `all_in`; `maxattempt`; `vel constant\\|uniform\\|gaussian`; `omega constant`; `orientation random\\|template\\|constant q0 q1 q2 q3` (clumps); `start`; `set_property NAME value` (a scalar `fix property/atom` of each new particle); `ntry_mc`, `verbose`; `check_dist_from_subdomain_border` (read; rdem's placement never overlaps across ranks); LIGGGHTS-PFM's `pos x y z` (every try at that point: one particle or template)",
 )
 .notes("rdem's own random generator: positions differ from LIGGGHTS', counts and statistics do not")
 .atoi();
@@ -173,6 +173,9 @@ pub struct Inserter {
     /// `insert/stream` with `verbose yes`: its rate line is still to be printed, at the
     /// first run's set-up with that run's time step (as LIGGGHTS 3.8 prints it).
     pub rate_line_due: bool,
+    /// `set_property NAME value`: the per-particle property NAME (a scalar `fix
+    /// property/atom`) of each inserted particle set to value.
+    pub set_property: Vec<(String, f64)>,
 }
 
 /// State of `insert/rate/region` (and `fix pour`).
@@ -216,7 +219,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let stream = style == "insert/stream";
     let rate = style == "insert/rate/region" || stream;
     // Keywords of every style, then each style's own (in LIGGGHTS' manual order).
-    const COMMON: [&str; 11] = [
+    const COMMON: [&str; 12] = [
         "seed",
         "distributiontemplate",
         "verbose",
@@ -228,6 +231,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         "vel",
         "omega",
         "orientation",
+        "set_property",
     ];
     let own: &[&'static str] = if stream {
         &[
@@ -285,6 +289,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
     let mut every_once = false;
     let mut position = None;
     let (mut face, mut extrude, mut duration) = (None, None, None);
+    let mut set_property = Vec::new();
     while !a.is_done() {
         let k = a.keyword(&format!("{style} keyword"), valid)?;
         match k {
@@ -328,6 +333,12 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 omega = a.vec3("omega")?;
             }
             "orientation" => orientation = orientation_law(a)?,
+            "set_property" => {
+                let name = a
+                    .word("property name (of a fix property/atom)")?
+                    .to_string();
+                set_property.push((name, a.f64("property value")?));
+            }
             "region" => region = Some(sim.fixed_region(a, &format!("fix {style}"))?),
             "volumefraction_region" => {
                 let f = a.f64("volume fraction")?;
@@ -395,6 +406,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                 prate,
                 mrate,
                 dt,
+                set_property,
             },
             |s| {
                 s.overlap_check = overlap;
@@ -497,6 +509,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         verbose,
         announce: None,
         rate_line_due: rate,
+        set_property,
     }))
 }
 
@@ -626,6 +639,7 @@ impl ScriptFix for Inserter {
         w: &mut World,
         notes: &mut Notes,
     ) -> rdem::Result<()> {
+        let first = w.particles.nlocal();
         let rep = match (&mut self.pack, &mut self.rate) {
             (InsertEngine::Stream(st), _) => st.insert(w)?,
             (InsertEngine::Pack(pack), None) => pack.insert(w)?,
@@ -639,6 +653,21 @@ impl ScriptFix for Inserter {
                 pack.insert_n(w, n)?
             }
         };
+        for (name, value) in &self.set_property {
+            let p = &mut w.particles;
+            let Some(id) = p.property(name).filter(|id| p.props[id.0].width == 1) else {
+                return Err(rdem::Error::Invalid {
+                    what: "set_property",
+                    reason: format!(
+                        "fix {}: no scalar per-particle property '{name}' (define it with 'fix ID all property/atom {name} scalar ...')",
+                        head.id
+                    ),
+                });
+            };
+            for i in first..p.nlocal() {
+                p.props[id.0].get_mut(i)[0] = *value;
+            }
+        }
         self.total += rep.inserted;
         self.total_mass += rep.mass;
         let id = &head.id;

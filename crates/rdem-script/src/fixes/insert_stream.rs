@@ -16,7 +16,7 @@ pub(super) const ROW: FixRow = style(
     "insert/stream",
     super::insert::parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
-    "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
+    "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`, `set_property NAME value`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
 )
 .notes("a packet every `round(L / (v·n dt))` steps (dt: the run's time step, as LIGGGHTS 3.8), each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps")
 .atoi();
@@ -38,6 +38,7 @@ pub(super) struct StreamArgs<'a> {
     pub(super) prate: Option<f64>,
     pub(super) mrate: Option<f64>,
     pub(super) dt: f64,
+    pub(super) set_property: Vec<(String, f64)>,
 }
 
 /// `fix insert/stream`: checks the keyword combinations LIGGGHTS requires and builds
@@ -131,6 +132,7 @@ pub(super) fn build(
         verbose,
         announce: None,
         rate_line_due: true,
+        set_property: s.set_property,
     }))
 }
 

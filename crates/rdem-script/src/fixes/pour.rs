@@ -236,6 +236,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         verbose: false,
         announce: Some(notes),
         rate_line_due: false,
+        set_property: Vec::new(),
     }))
 }
 
