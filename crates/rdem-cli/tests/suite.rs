@@ -1,6 +1,7 @@
 //! The integration tests of this crate, one module per file of `tests/`, built as one
 //! test binary: one link instead of one per file (see `autotests` in Cargo.toml).
 
+mod ave_spatial;
 mod bond_gran;
 mod bond_nonlinear;
 mod bonds;
@@ -56,6 +57,7 @@ mod restart_exact;
 mod rolling_cdt;
 mod servo_modes;
 mod servo_wall;
+mod set_property;
 mod slowinit;
 mod sph;
 mod stream_insert;

@@ -75,6 +75,11 @@ impl Groups {
         Ok(())
     }
 
+    /// The name of the group of bit mask `bit` (one bit set).
+    pub fn name_of_bit(&self, bit: u32) -> Option<&str> {
+        self.names.get(bit.trailing_zeros() as usize)?.as_deref()
+    }
+
     /// Names of all groups.
     pub fn names(&self) -> Vec<&str> {
         self.names.iter().flatten().map(|s| s.as_str()).collect()

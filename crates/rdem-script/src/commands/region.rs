@@ -11,7 +11,7 @@ use crate::registry::{Registry, Row};
 use crate::sim::Sim;
 
 /// `units lattice` scale; without a `lattice` command it is LIGGGHTS' default `none 1.0`.
-pub(super) fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
+pub(crate) fn scale_of(sim: &Sim, _a: &Args, units_lattice: bool) -> CmdResult<DVec3> {
     Ok(sim
         .defs
         .lattice

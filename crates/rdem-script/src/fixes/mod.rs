@@ -16,6 +16,7 @@ mod addforce;
 mod ave_atom;
 pub mod ave_euler;
 mod ave_histo;
+mod ave_spatial;
 mod ave_time;
 mod balance;
 mod bond_create_gran;
@@ -396,6 +397,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         print::ROW,
         ave_atom::ROW,
         ave_histo::ROW,
+        ave_spatial::ROW,
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
