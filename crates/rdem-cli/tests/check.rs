@@ -262,7 +262,7 @@ region box block 0 1 0 1 0 1 units box
 create_box 1 box
 variable i loop 3
 label top
-modify_timing on
+create_bonds many all all 1 0.0 0.1
 if \"$i == 3\" then \"bogus_on_the_last_pass\"
 next i
 jump SELF top
@@ -272,7 +272,7 @@ jump SELF top
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert_eq!(
         summary(&out),
-        "in.test: 2 lines rdem cannot run: modify_timing (line 6), if (7)",
+        "in.test: 2 lines rdem cannot run: create_bonds (line 6), if (7)",
         "{stderr}"
     );
     assert_eq!(stderr.matches("[in.test:6:").count(), 1, "{stderr}");
