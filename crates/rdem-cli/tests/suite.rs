@@ -31,6 +31,7 @@ mod jkr;
 mod lattice;
 mod lebc;
 mod liggghts_restart;
+mod line_plane_force;
 mod local_dump;
 mod mcg;
 mod memory_figure;

@@ -33,6 +33,7 @@ mod insert_dense;
 mod insert_fragments;
 mod insert_stream;
 mod lebc;
+mod line_plane_force;
 pub(crate) mod liquid;
 mod massflow_mesh;
 mod mcg;
@@ -381,6 +382,8 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         engine::ROW_AVEFORCE,
         engine::ROW_ENFORCE2D,
         momentum::ROW,
+        line_plane_force::ROW_LINE,
+        line_plane_force::ROW_PLANE,
         speedcontrol::ROW,
         buoyancy::ROW,
         sph::ROW_CONTINUITY,
