@@ -385,7 +385,7 @@ mod tests {
              bogus_command 1\n\
              variable i loop 3\n\
              label again\n\
-             modify_timing on\n\
+             create_bonds many all all 1 0.0 0.1\n\
              next i\n\
              jump SELF again\n",
         );
@@ -393,7 +393,7 @@ mod tests {
         assert_eq!(lines, vec![4, 6, 9], "{c:?}");
         assert_eq!(
             c.summary("in.t"),
-            "in.t: 3 lines rdem cannot run: fix ave/histo (line 4), bogus_command (6), modify_timing (9)"
+            "in.t: 3 lines rdem cannot run: fix ave/histo (line 4), bogus_command (6), create_bonds (9)"
         );
         assert_eq!(c.notes.len(), 1, "{:?}", c.notes);
     }
