@@ -61,6 +61,7 @@ mod servo_wall;
 mod set_property;
 mod slowinit;
 mod sph;
+mod store_state;
 mod stream_insert;
 mod tangential_off;
 mod threads;

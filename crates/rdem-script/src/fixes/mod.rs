@@ -58,6 +58,7 @@ mod slowinit;
 mod speedcontrol;
 mod sph;
 mod stage_ctx;
+mod store_state;
 pub mod tracer;
 mod wall_gran;
 mod wall_gran_old;
@@ -401,6 +402,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         ave_atom::ROW,
         ave_histo::ROW,
         ave_spatial::ROW,
+        store_state::ROW,
         ave_euler::ROW,
         heat_gran::ROW,
         heat_gran::ROW_ALIAS,
