@@ -78,3 +78,58 @@ fn displace_errors_are_located() {
         assert!(err.contains("in.test:7"), "{line}: {err}");
     }
 }
+
+/// A clump's spheres are not moved (their positions are their body's): LIGGGHTS 3.8
+/// moves them and its `fix multisphere` puts them back at the next step (measured on
+/// LIGGGHTS-PFM's `cornerghost` example); rdem says so in a warning. A free sphere of the
+/// same group moves.
+#[test]
+fn clumps_stay_with_a_warning() {
+    let script = "\
+units si
+atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+region box block 0 0.1 0 0.1 0 0.1 units box
+create_box 1 box
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 nspheres 2 ntry 100000 spheres 0 0 0 0.002 0.0032 0 0 0.0016 type 1
+fix pdd all particledistribution/discrete 15485867 1 pts 1.0
+region ins block 0.04 0.06 0.04 0.06 0.04 0.06 units box
+fix ins all insert/pack seed 32452843 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 1 region ins
+fix ms all multisphere allow_group_and_set yes
+run 1
+create_atoms 1 single 0.01 0.01 0.01 units box
+set atom 3 diameter 0.004 density 2500
+variable x1 equal x[1]
+variable x3 equal x[3]
+print \"BEFORE ${x1} ${x3}\"
+displace_atoms all move 0.01 0 0 units box
+run 1
+print \"AFTER ${x1} ${x3}\"
+";
+    let (dir, out) = common::run_kept_ok("displace_clump", script, &[], None);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        out.contains("2 sphere(s) of clumps (fix multisphere) not moved"),
+        "{out}"
+    );
+    let nums = |key: &str| -> Vec<f64> {
+        let l = out.lines().find(|l| l.starts_with(key)).unwrap();
+        l.split_whitespace()
+            .skip(1)
+            .map(|w| w.parse().unwrap())
+            .collect()
+    };
+    let (before, after) = (nums("BEFORE"), nums("AFTER"));
+    assert!((after[0] - before[0]).abs() < 1e-6, "{out}");
+    assert!((after[1] - before[1] - 0.01).abs() < 1e-6, "{out}");
+}

@@ -17,7 +17,9 @@
 //! default is `box` in LIGGGHTS 3.8, whatever its manual says (`move 1 0 0` after
 //! `lattice sc 0.2` moved by 1, measured). Particles are then wrapped into a periodic box; one that ends outside a
 //! fixed face stays where it is until the next run loses it, as in LIGGGHTS 3.8 (a
-//! warning says so). The spheres of clumps are refused: their positions are their body's.
+//! warning says so). Spheres of clumps are not moved, with a warning: their positions
+//! are their body's (LIGGGHTS 3.8 moves them, and its `fix multisphere` puts them back
+//! at the next step, measured on LIGGGHTS-PFM's `cornerghost` example).
 
 use glam::DVec3;
 
@@ -162,18 +164,15 @@ pub(super) fn displace_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         Displace::Rotate { point, .. } => *point *= s,
     }
     let w = sim.world_mut(a)?;
-    let members: Vec<usize> = (0..w.particles.nlocal())
-        .filter(|&i| w.particles.mask[i] & bit != 0)
-        .collect();
-    {
+    let (members, clumped) = {
         let of = w.clump_of();
-        if members.iter().any(|&i| of(i).is_some()) {
-            return Err(a.error_cmd(
-                "displace_atoms: the group holds spheres of clumps (fix multisphere), whose positions are their bodies'",
-                None,
-            ));
-        }
-    }
+        let p = &w.particles;
+        let group: Vec<usize> = (0..p.nlocal()).filter(|&i| p.mask[i] & bit != 0).collect();
+        let clumped = group.iter().filter(|&&i| of(i).is_some()).count();
+        let free: Vec<usize> = group.into_iter().filter(|&i| of(i).is_none()).collect();
+        (free, clumped)
+    };
+    let clumped = w.comm.sum_count(clumped as u64);
     let domain = w.domain.clone();
     let p = &mut w.particles;
     for &i in &members {
@@ -218,6 +217,11 @@ pub(super) fn displace_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         .filter(|&&i| domain.check_inside_fixed(p.x[i]).is_err())
         .count();
     let outside = w.comm.sum_count(outside as u64);
+    if clumped > 0 {
+        sim.outputs.out.warning(&format!(
+            "displace_atoms: {clumped} sphere(s) of clumps (fix multisphere) not moved: their positions are their bodies' (LIGGGHTS 3.8 moves them and puts them back at the next step)"
+        ));
+    }
     if outside > 0 {
         sim.outputs.out.warning(&format!(
             "displace_atoms moved {outside} particle(s) outside a fixed face of the box: the next run loses them, as LIGGGHTS does"
