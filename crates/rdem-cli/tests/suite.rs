@@ -49,6 +49,7 @@ mod mpi_io_failure;
 mod mpi_restart;
 mod multicontact;
 mod nve_limit;
+mod nve_noforce;
 mod omp_styles;
 mod pour;
 mod random_function;

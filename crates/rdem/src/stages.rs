@@ -657,6 +657,14 @@ impl World {
                 FixKind::NveLimit(l) => {
                     l.integrate(&mut self.particles, fix.groupbit, self.dt, true)
                 }
+                FixKind::NveNoforce => {
+                    let (p, dt) = (&mut self.particles, self.dt);
+                    for i in 0..p.nlocal() {
+                        if p.mask[i] & fix.groupbit != 0 {
+                            p.x[i] += dt * p.v[i];
+                        }
+                    }
+                }
                 FixKind::Sph(s @ (SphFix::Nve | SphFix::NveStationary)) => {
                     if let Some(props) = crate::sph::SphProps::find(&self.particles) {
                         crate::sph::initial_integrate(

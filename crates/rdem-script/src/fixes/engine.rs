@@ -1,5 +1,5 @@
-//! The fixes the engine runs every step, which the script only parses: `nve/sphere`
-//! and `nve/limit` (integration), `freeze`, `viscous`, `setforce`, `aveforce`, `enforce2d` (post-force);
+//! The fixes the engine runs every step, which the script only parses: `nve/sphere`,
+//! `nve/limit` and `nve/noforce` (integration), `freeze`, `viscous`, `setforce`, `aveforce`, `enforce2d` (post-force);
 //! `addforce` with numbers (its file: [`super::addforce`]).
 //! Each becomes an engine [`Fix`] in `World::fixes`; [`InEngine`] is its entry in the
 //! script's fix list (`unfix` removes it from the world).
@@ -25,6 +25,13 @@ pub(super) const ROW_NVE_LIMIT: FixRow = style(
     nve_limit,
     Stages::ENGINE.and(Stages::VALUES),
     "`absolute|radius_ratio xmax`: velocity Verlet for translation only, the speed capped after each half kick at xmax/dt (xmax·r/dt with radius_ratio); `f_ID` the resets since the run's start",
+);
+/// The registry row of `nve/noforce`.
+pub(super) const ROW_NVE_NOFORCE: FixRow = style(
+    "nve/noforce",
+    nve_noforce,
+    Stages::ENGINE,
+    "positions advance with the velocities; forces are ignored and velocities and spins stay (walls of particles moved at a set velocity)",
 );
 /// The registry row of `freeze`.
 pub(super) const ROW_FREEZE: FixRow = style(
@@ -131,6 +138,12 @@ fn nve_sphere(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Scri
         ));
     }
     engine_fix(sim, a, head, FixKind::NveSphere)
+}
+
+/// `fix ID group nve/noforce` (LIGGGHTS 3.8): x += dt v at each step's first stage.
+fn nve_noforce(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
+    a.done()?;
+    engine_fix(sim, a, head, FixKind::NveNoforce)
 }
 
 /// `fix ID group nve/limit absolute|radius_ratio xmax` ([`rdem::fix::integrate::NveLimit`]).

@@ -375,6 +375,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         massflow_mesh::ROW,
         engine::ROW_NVE,
         engine::ROW_NVE_LIMIT,
+        engine::ROW_NVE_NOFORCE,
         gravity::ROW,
         engine::ROW_FREEZE,
         engine::ROW_VISCOUS,

@@ -21,6 +21,9 @@ pub enum FixKind {
     NveSphere,
     /// `fix nve/limit`: velocity Verlet for translation with a speed cap.
     NveLimit(integrate::NveLimit),
+    /// `fix nve/noforce`: positions advance with the velocities; forces are ignored and
+    /// velocities (and spins) are not updated.
+    NveNoforce,
     /// `fix gravity g vector x y z`: force m·g along the unit vector.
     Gravity {
         /// Acceleration vector (magnitude × unit direction).
@@ -192,6 +195,7 @@ impl Fix {
                 check("nve/limit xmax", l.xmax, l.xmax > 0.0, "must be > 0")?;
             }
             FixKind::NveSphere
+            | FixKind::NveNoforce
             | FixKind::Freeze
             | FixKind::Enforce2d
             | FixKind::Sph(_)
@@ -303,6 +307,7 @@ impl Fix {
             FixKind::Force(fix) => fix.apply(p, lo, f, torque, bit, dt),
             FixKind::NveSphere
             | FixKind::NveLimit(_)
+            | FixKind::NveNoforce
             | FixKind::AveForce { .. }
             | FixKind::Enforce2d
             | FixKind::Move(_)
@@ -451,6 +456,7 @@ impl FixKind {
             self,
             FixKind::NveSphere
                 | FixKind::NveLimit(_)
+                | FixKind::NveNoforce
                 | FixKind::Move(_)
                 | FixKind::Sph(_)
                 | FixKind::AveForce { .. }
