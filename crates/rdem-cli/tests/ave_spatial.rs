@@ -145,7 +145,7 @@ fn ave_spatial_errors_are_located() {
     for (line, message) in [
         (
             "fix p all ave/spatial 10 5 30 z lower 0.01 vx",
-            "(Nrepeat-1)*Nevery < Nfreq",
+            "Nfreq > (Nrepeat-1)*Nevery",
         ),
         (
             "fix p all ave/spatial 10 1 100 vx",

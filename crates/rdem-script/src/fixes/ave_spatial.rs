@@ -30,6 +30,7 @@
 
 use glam::DVec3;
 
+use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::error::Error;
@@ -92,9 +93,7 @@ impl Layout {
 }
 
 struct AveSpatial {
-    nevery: u64,
-    nrepeat: u64,
-    nfreq: u64,
+    schedule: Schedule,
     dims: Vec<Dim>,
     /// Names of the values (the file's header).
     names: Vec<String>,
@@ -109,12 +108,10 @@ struct AveSpatial {
     overwrite: bool,
     titles: [Option<String>; 3],
     write_ts: bool,
+    /// The file's `#` lines, made when the fix is installed.
+    header: String,
     file: Option<rdem_io::AppendFile>,
-    /// The next step that takes a sample.
-    next: Option<u64>,
     layout: Layout,
-    /// Samples taken in the current average.
-    samples: u64,
     /// Per bin: the count and each value, summed over this average's samples.
     count_many: Vec<f64>,
     values_many: Vec<f64>,
@@ -134,16 +131,7 @@ fn axis_of(a: &mut Args) -> CmdResult<usize> {
 }
 
 fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
-    let nevery = a.count("Nevery")?;
-    let nrepeat = a.count("Nrepeat")?;
-    let nfreq = a.count("Nfreq")?;
-    if nfreq % nevery != 0 || (nrepeat - 1) * nevery >= nfreq {
-        return Err(a.error_at(
-            a.pos() - 1,
-            format!("Nfreq must be a multiple of Nevery and (Nrepeat-1)*Nevery < Nfreq (got {nevery} {nrepeat} {nfreq})"),
-            None,
-        ));
-    }
+    let schedule = Schedule::parse(a)?;
     let mut dims = Vec::new();
     while dims.len() < 3 && matches!(a.peek(), Some("x" | "y" | "z")) {
         let axis = axis_of(a)?;
@@ -287,9 +275,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     sim.world_ref(a)?;
     let _ = head;
     Ok(Box::new(AveSpatial {
-        nevery,
-        nrepeat,
-        nfreq,
+        schedule,
         dims,
         names,
         values,
@@ -302,10 +288,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         overwrite,
         titles,
         write_ts,
+        header: String::new(),
         file: None,
-        next: None,
         layout: Layout::default(),
-        samples: 0,
         count_many: Vec::new(),
         values_many: Vec::new(),
         count_total: Vec::new(),
@@ -316,19 +301,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
 }
 
 impl AveSpatial {
-    /// LAMMPS' next sampling step at or after `step`.
-    fn next_valid(&self, step: u64) -> u64 {
-        let mut n = (step / self.nfreq) * self.nfreq + self.nfreq;
-        if n - self.nfreq == step && self.nrepeat == 1 {
-            return step;
-        }
-        n -= (self.nrepeat - 1) * self.nevery;
-        if n < step {
-            n += self.nfreq;
-        }
-        n
-    }
-
     /// The bins over the current box.
     fn lay_out(&self, w: &rdem::World) -> Layout {
         let (lo, hi) = (w.domain.boxlo, w.domain.boxhi);
@@ -452,14 +424,13 @@ impl AveSpatial {
                 };
             }
         }
-        self.samples += 1;
         Ok(())
     }
 
     /// The average of the samples (then combined per `ave`), as LIGGGHTS normalizes it.
     fn finish(&mut self) -> (Vec<f64>, Vec<f64>) {
         let nbins = self.layout.nbins();
-        let repeat = self.samples.max(1) as f64;
+        let repeat = self.schedule.nrepeat as f64;
         let mut count = self.count_many.clone();
         let mut vals = self.values_many.clone();
         for (j, v) in self.values.iter().enumerate() {
@@ -550,7 +521,7 @@ impl AveSpatial {
         s
     }
 
-    fn header(&self, head: &FixHead, group: &str) -> String {
+    fn make_header(&self, head: &FixHead, group: &str) -> String {
         let coords = match self.dims.len() {
             1 => "Coord".to_string(),
             n => (1..=n)
@@ -580,23 +551,18 @@ impl AveSpatial {
 
 impl ScriptFix for AveSpatial {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
-        let step = sim.world_ref(a)?.step;
-        self.next = Some(self.next_valid(step));
+        self.schedule.begin(sim.world_ref(a)?.step);
+        let group = sim.defs.groups.name_of_bit(head.groupbit).unwrap_or("all");
+        self.header = self.make_header(head, group);
         let Some((path, at)) = &self.path else {
             return Ok(());
         };
         if sim.world.as_ref().is_some_and(|w| !w.comm.is_root()) {
             return Ok(());
         }
-        let group = sim
-            .defs
-            .groups
-            .name_of_bit(head.groupbit)
-            .unwrap_or("all")
-            .to_string();
         let mut f = rdem_io::AppendFile::new(path);
         if !self.overwrite {
-            f.append(self.header(head, &group).as_bytes())
+            f.append(self.header.as_bytes())
                 .map_err(|e| a.error_at(*at, e.to_string(), None))?;
         }
         self.file = Some(f);
@@ -605,36 +571,25 @@ impl ScriptFix for AveSpatial {
 
     fn end_of_step(&mut self, ctx: &mut StageCtx, head: &FixHead) -> Result<(), Error> {
         let step = ctx.step;
-        let next = *self.next.get_or_insert(step);
-        if step != next {
+        let Some(first) = self.schedule.due(step) else {
             return Ok(());
-        }
-        if self.samples == 0 {
+        };
+        if first {
             self.layout = self.lay_out(ctx.world_ref());
             let nbins = self.layout.nbins();
             self.count_many = vec![0.0; nbins];
             self.values_many = vec![0.0; nbins * self.values.len()];
         }
         self.sample(ctx, head)?;
-        if self.samples < self.nrepeat {
-            self.next = Some(step + self.nevery);
+        if !self.schedule.sampled(step) {
             return Ok(());
         }
         let (count, vals) = self.finish();
-        self.samples = 0;
-        self.next = Some(step + self.nfreq - (self.nrepeat - 1) * self.nevery);
         let text = self.block(step, ctx.world_ref(), &count, &vals);
         let mut wrote = Ok(());
         if let Some((path, _)) = &self.path {
             if self.overwrite {
-                let group = ctx
-                    .view()
-                    .defs
-                    .groups
-                    .name_of_bit(head.groupbit)
-                    .unwrap_or("all")
-                    .to_string();
-                let all = self.header(head, &group) + &text;
+                let all = format!("{}{text}", self.header);
                 if ctx.world_ref().comm.is_root() {
                     wrote = rdem_io::write_atomic(std::path::Path::new(path), all.as_bytes())
                         .map_err(Error::from);
