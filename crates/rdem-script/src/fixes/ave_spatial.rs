@@ -30,13 +30,13 @@
 
 use glam::DVec3;
 
+use super::peratom_ref::PerAtomRef;
 use super::sampling::Schedule;
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::error::Error;
 use crate::sim::Sim;
-use crate::thermo::split_reference;
-use crate::variables::{format_g, Variable};
+use crate::variables::format_g;
 
 /// The registry row.
 pub(super) const ROW: FixRow = style(
@@ -65,9 +65,7 @@ enum Value {
     Field(String),
     DensityNumber,
     DensityMass,
-    Compute(String, Option<usize>),
-    Fix(String, Option<usize>),
-    Variable(String),
+    Ref(PerAtomRef),
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -170,36 +168,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             Value::DensityNumber
         } else if w == "density/mass" {
             Value::DensityMass
-        } else if let Some((kind, id, col)) = split_reference(w) {
-            super::ave_histo::unknown_id(sim, a, a.pos(), kind, id)?;
-            match kind {
-                'c' => {
-                    let c = &sim.defs.computes[sim.compute_index(id).expect("known")];
-                    if !c.is_peratom() {
-                        return Err(a.error_at(
-                            a.pos(),
-                            format!("compute {id} is not per-atom"),
-                            None,
-                        ));
-                    }
-                    Value::Compute(id.to_string(), col)
-                }
-                'f' => {
-                    crate::fixes::check_fix_peratom(sim, id, col)
-                        .map_err(|m| a.error_at(a.pos(), m, None))?;
-                    Value::Fix(id.to_string(), col)
-                }
-                _ => {
-                    if !matches!(sim.script.vars.get(id), Some(Variable::Atom(_))) {
-                        return Err(a.error_at(
-                            a.pos(),
-                            format!("variable {id} is not atom-style"),
-                            None,
-                        ));
-                    }
-                    Value::Variable(id.to_string())
-                }
-            }
+        } else if let Some(r) = PerAtomRef::parse(sim, a, a.pos(), w)? {
+            Value::Ref(r)
         } else {
             break;
         };
@@ -393,12 +363,7 @@ impl AveSpatial {
                 Value::DensityMass => p.rmass[..n].to_vec(),
                 Value::Field(f) => crate::computes::kernels::field_values(w, f)
                     .ok_or_else(|| format!("bad attribute {f}"))?,
-                Value::Compute(id, col) => crate::context::compute_peratom(sim, id, *col)?,
-                Value::Fix(id, col) => crate::fixes::fix_peratom(sim, id, *col)?,
-                Value::Variable(name) => match sim.script.vars.get(name) {
-                    Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
-                    _ => return Err(format!("variable {name} is not atom-style").into()),
-                },
+                Value::Ref(r) => r.values(sim)?,
             };
             for (&i, &b) in members.iter().zip(&bins) {
                 one[nbins * (1 + j) + b] += per[i];

@@ -49,6 +49,7 @@ mod nve_nonspherical;
 mod particledistribution_discrete;
 mod particletemplate_multisphere;
 mod particletemplate_sphere;
+mod peratom_ref;
 mod pour;
 mod print;
 mod property_atom;

@@ -1,6 +1,6 @@
-//! The `Nevery Nrepeat Nfreq` sampling schedule that `fix ave/atom`, `fix ave/histo` and
-//! `fix ave/spatial` share (LAMMPS' `nvalid`/`irepeat`): `Nrepeat` samples `Nevery` steps apart, ending on
-//! each multiple of `Nfreq` (not before step `start`).
+//! The `Nevery Nrepeat Nfreq` sampling schedule that `fix ave/atom`, `fix ave/histo`
+//! and `fix ave/spatial` share (LAMMPS' `nvalid`/`irepeat`): `Nrepeat` samples `Nevery`
+//! steps apart, ending on each multiple of `Nfreq` (not before step `start`).
 
 use crate::args::{Args, CmdResult};
 

@@ -16,11 +16,10 @@ use rdem_io::Field;
 
 use crate::error::Error;
 
+use super::peratom_ref::PerAtomRef;
 use super::{style, FixHead, FixRow, ScriptFix, StageCtx, Stages};
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
-use crate::thermo::split_reference;
-use crate::variables::Variable;
 
 /// The registry row.
 pub(super) const ROW: FixRow = style(
@@ -32,9 +31,7 @@ pub(super) const ROW: FixRow = style(
 
 enum Input {
     Field(Field, String),
-    Compute(String, Option<usize>),
-    Fix(String, Option<usize>),
-    Variable(String),
+    Ref(PerAtomRef),
 }
 
 struct StoreState {
@@ -56,36 +53,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         }
         let input = if let Some(f) = Field::parse(w) {
             Input::Field(f, w.to_string())
-        } else if let Some((kind, id, col)) = split_reference(w) {
-            super::ave_histo::unknown_id(sim, a, a.pos(), kind, id)?;
-            match kind {
-                'c' => {
-                    let c = &sim.defs.computes[sim.compute_index(id).expect("known")];
-                    if !c.is_peratom() {
-                        return Err(a.error_at(
-                            a.pos(),
-                            format!("compute {id} is not per-atom"),
-                            None,
-                        ));
-                    }
-                    Input::Compute(id.to_string(), col)
-                }
-                'f' => {
-                    crate::fixes::check_fix_peratom(sim, id, col)
-                        .map_err(|m| a.error_at(a.pos(), m, None))?;
-                    Input::Fix(id.to_string(), col)
-                }
-                _ => {
-                    if !matches!(sim.script.vars.get(id), Some(Variable::Atom(_))) {
-                        return Err(a.error_at(
-                            a.pos(),
-                            format!("variable {id} is not atom-style"),
-                            None,
-                        ));
-                    }
-                    Input::Variable(id.to_string())
-                }
-            }
+        } else if let Some(r) = PerAtomRef::parse(sim, a, a.pos(), w)? {
+            Input::Ref(r)
         } else {
             return Err(a.error_at(
                 a.pos(),
@@ -153,12 +122,7 @@ impl StoreState {
                     Some((0..n).map(|i| f.value(p, &w.domain, i) - shift).collect())
                 }
                 _ if !all => None,
-                Input::Compute(id, col) => Some(crate::context::compute_peratom(sim, id, *col)?),
-                Input::Fix(id, col) => Some(crate::fixes::fix_peratom(sim, id, *col)?),
-                Input::Variable(name) => match sim.script.vars.get(name) {
-                    Some(Variable::Atom(f)) => Some(crate::context::eval_atom(sim, f)?),
-                    _ => return Err(format!("variable {name} is not atom-style").into()),
-                },
+                Input::Ref(r) => Some(r.values(sim)?),
             });
         }
         Ok(columns)
