@@ -37,17 +37,6 @@ impl ScriptCompute for Com {
                 return Err(format!("c_{id}: compute {id} gives a vector: use c_{id}[1..3]").into())
             }
         };
-        let w = super::world(sim)?;
-        let p = &w.particles;
-        let size = w.domain.boxhi - w.domain.boxlo;
-        let (mut m, mut s) = (0.0, 0.0);
-        for i in 0..p.nlocal() {
-            if p.mask[i] & c.groupbit != 0 {
-                m += p.rmass[i];
-                s += p.rmass[i] * (p.x[i][a] + p.image[i].get()[a] as f64 * size[a]);
-            }
-        }
-        let (m, s) = (w.comm.sum(m), w.comm.sum(s));
-        Ok(if m > 0.0 { s / m } else { 0.0 })
+        Ok(super::kernels::group_com(super::world(sim)?, c.groupbit).1[a])
     }
 }

@@ -4,9 +4,32 @@
 use crate::error::Error;
 use std::cell::RefCell;
 
+use glam::DVec3;
 use rdem::World;
 
 use crate::atom_fields;
+
+/// The mass of the group's particles and their centre of mass from the unwrapped
+/// positions (`x + image · box length`), summed over ranks (`compute com`, `fix
+/// momentum`, `fix store/state com yes`); the centre is 0 for an empty group.
+pub fn group_com(w: &World, groupbit: u32) -> (f64, DVec3) {
+    let p = &w.particles;
+    let mut s = [0.0; 4];
+    for i in (0..p.nlocal()).filter(|&i| p.mask[i] & groupbit != 0) {
+        let x = w.domain.unmap(p.x[i], p.image[i].get());
+        s[0] += p.rmass[i] * x.x;
+        s[1] += p.rmass[i] * x.y;
+        s[2] += p.rmass[i] * x.z;
+        s[3] += p.rmass[i];
+    }
+    w.comm.sum_slice(&mut s);
+    let com = if s[3] > 0.0 {
+        DVec3::new(s[0], s[1], s[2]) / s[3]
+    } else {
+        DVec3::ZERO
+    };
+    (s[3], com)
+}
 
 /// `compute reduce` modes.
 pub const REDUCE_MODES: [&str; 6] = ["sum", "min", "max", "ave", "sumsq", "avesq"];

@@ -123,15 +123,7 @@ impl Momentum {
                 .map(|&i| w.domain.unmap(p.x[i], p.image[i].get()))
                 .collect()
         };
-        let mut c = [0.0; 3];
-        for (&i, x) in members.iter().zip(&unwrapped) {
-            let mx = w.particles.rmass[i] * *x;
-            c[0] += mx.x;
-            c[1] += mx.y;
-            c[2] += mx.z;
-        }
-        w.comm.sum_slice(&mut c);
-        let xcm = DVec3::from(c) / mass;
+        let xcm = crate::computes::kernels::group_com(w, groupbit).1;
         // L (3) then I's xx yy zz xy yz xz.
         let mut li = [0.0; 9];
         {

@@ -93,20 +93,9 @@ impl StoreState {
         let w = sim.world.as_ref().ok_or(Error::NoBox)?;
         let n = w.particles.nlocal();
         let com = if self.com {
-            let p = &w.particles;
-            let mut s = [0.0; 4];
-            for i in (0..n).filter(|&i| p.mask[i] & groupbit != 0) {
-                let x = w.domain.unmap(p.x[i], p.image[i].get());
-                s[0] += p.rmass[i] * x.x;
-                s[1] += p.rmass[i] * x.y;
-                s[2] += p.rmass[i] * x.z;
-                s[3] += p.rmass[i];
-            }
-            w.comm.sum_slice(&mut s);
-            let m = if s[3] > 0.0 { s[3] } else { 1.0 };
-            [s[0] / m, s[1] / m, s[2] / m]
+            crate::computes::kernels::group_com(w, groupbit).1
         } else {
-            [0.0; 3]
+            glam::DVec3::ZERO
         };
         let mut columns: Vec<Option<Vec<f64>>> = Vec::new();
         for input in &self.inputs {
