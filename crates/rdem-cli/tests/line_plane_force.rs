@@ -16,16 +16,7 @@ fn rows(script: &str) -> Vec<Vec<f64>> {
     let (dir, _) = common::run_kept_ok("line_plane_force", script, &[], None);
     let text = std::fs::read_to_string(dir.join("d_x.txt")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    common::dump_frames(&text)
-        .into_iter()
-        .flat_map(|(s, rows)| {
-            rows.into_iter().map(move |r| {
-                let mut v = vec![s as f64];
-                v.extend(r);
-                v
-            })
-        })
-        .collect()
+    common::dump_rows_with_step(&text)
 }
 
 #[test]

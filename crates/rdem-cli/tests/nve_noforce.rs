@@ -15,16 +15,7 @@ fn moved_spheres_ignore_forces_as_liggghts() {
     let (dir, _) = common::run_kept_ok("nve_noforce", &script, &[], None);
     let text = std::fs::read_to_string(dir.join("d_x.txt")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    let got: Vec<Vec<f64>> = common::dump_frames(&text)
-        .into_iter()
-        .flat_map(|(s, rows)| {
-            rows.into_iter().map(move |r| {
-                let mut v = vec![s as f64];
-                v.extend(r);
-                v
-            })
-        })
-        .collect();
+    let got: Vec<Vec<f64>> = common::dump_rows_with_step(&text);
     let want = common::reference_rows(&data.join("ref.txt"));
     common::assert_columns(&got, &want, 1, 1e-10, "nve/noforce");
     // The movers kept their velocity under gravity and contact.

@@ -34,16 +34,7 @@ fn run(case: &[&str; 7], ranks: Option<usize>) -> (Vec<Vec<f64>>, Vec<Vec<f64>>)
     let text = std::fs::read_to_string(dir.join("d.txt")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     let thermo = common::thermo_rows(&out[out.find("Step").unwrap()..]);
-    let dump = common::dump_frames(&text)
-        .into_iter()
-        .flat_map(|(s, rows)| {
-            rows.into_iter().map(move |r| {
-                let mut v = vec![s as f64];
-                v.extend(r);
-                v
-            })
-        })
-        .collect();
+    let dump = common::dump_rows_with_step(&text);
     (thermo, dump)
 }
 

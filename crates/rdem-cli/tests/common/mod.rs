@@ -327,3 +327,19 @@ pub fn dump_frames(text: &str) -> Vec<(u64, Vec<Vec<f64>>)> {
         })
         .collect()
 }
+
+/// The rows of every snapshot of a `dump custom` file (see [`dump_frames`]), each with
+/// its step in front, in file order: the layout of the reference files that hold a
+/// whole LIGGGHTS dump.
+pub fn dump_rows_with_step(text: &str) -> Vec<Vec<f64>> {
+    dump_frames(text)
+        .into_iter()
+        .flat_map(|(s, rows)| {
+            rows.into_iter().map(move |r| {
+                let mut v = vec![s as f64];
+                v.extend(r);
+                v
+            })
+        })
+        .collect()
+}

@@ -173,8 +173,7 @@ pub(super) fn displace_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
         (free, clumped)
     };
     let clumped = w.comm.sum_count(clumped as u64);
-    let domain = w.domain.clone();
-    let p = &mut w.particles;
+    let (domain, p) = (&w.domain, &mut w.particles);
     for &i in &members {
         let x = p.x[i];
         p.x[i] += match &op {

@@ -106,6 +106,18 @@ impl ScriptFix for PropertyAtom {
     }
 }
 
+/// Adds the per-particle property `name` (`width` values, 0 for every particle) in which
+/// a fix keeps its own values (tracer markers, residence times, stored states), or takes
+/// it back as a restart file left it: true in that case.
+pub(super) fn fix_values(sim: &mut Sim, a: &Args, name: &str, width: usize) -> CmdResult<bool> {
+    let restored = sim.defs.restored.props.remove(name);
+    sim.world_mut(a)?
+        .particles
+        .add_property(name, width, &vec![0.0; width])
+        .map_err(|e| a.error_cmd(e.to_string(), None))?;
+    Ok(restored)
+}
+
 /// Defines `imp` as the fix `NAME all property/atom NAME ...` (fix ID = property name)
 /// that another command brings along: heat/gran's `Temp`, a wall's `force_ID`,
 /// couple/cfd's `dragforce`. Its origin is that command's style word.

@@ -143,13 +143,7 @@ impl StoreState {
 
 impl ScriptFix for StoreState {
     fn install(&mut self, sim: &mut Sim, a: &Args, head: &FixHead) -> CmdResult<()> {
-        let restored = sim.defs.restored.props.remove(&self.prop);
-        let width = self.inputs.len();
-        sim.world_mut(a)?
-            .particles
-            .add_property(&self.prop, width, &vec![0.0; width])
-            .map_err(|e| a.error_cmd(e.to_string(), None))?;
-        if restored {
+        if super::property_atom::fix_values(sim, a, &self.prop, self.inputs.len())? {
             // The values come back from the restart file (as LIGGGHTS keeps them).
             self.stored_all = true;
             return Ok(());

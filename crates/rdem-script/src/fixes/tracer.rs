@@ -158,11 +158,7 @@ impl Tracer {
 
 impl ScriptFix for Tracer {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
-        sim.defs.restored.props.remove(&self.prop);
-        sim.world_mut(a)?
-            .particles
-            .add_property(&self.prop, 1, &[0.0])
-            .map_err(|e| a.error_cmd(e.to_string(), None))?;
+        super::property_atom::fix_values(sim, a, &self.prop, 1)?;
         Ok(())
     }
 
@@ -303,12 +299,7 @@ impl RegionTime {
 
 impl ScriptFix for RegionTime {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
-        sim.defs.restored.props.remove(&self.prop);
-        let zeros = vec![0.0; self.width()];
-        sim.world_mut(a)?
-            .particles
-            .add_property(&self.prop, self.width(), &zeros)
-            .map_err(|e| a.error_cmd(e.to_string(), None))?;
+        super::property_atom::fix_values(sim, a, &self.prop, self.width())?;
         Ok(())
     }
 
