@@ -284,7 +284,7 @@ impl RegionTime {
         1 + 2 * self.regions.len()
     }
 
-    /// Time columns of the owned particles of the group (`None`: all particles).
+    /// The time columns (domain, then each region) of the owned particles.
     fn columns(&self, w: &rdem::World, head: &FixHead) -> Result<Vec<Vec<f64>>, Error> {
         let p = &w.particles;
         let id = p

@@ -405,13 +405,7 @@ pub(crate) fn post_force(
         for k in 0..fixes.len() {
             let t0 = std::time::Instant::now();
             if acts_alone(&fixes[k].kind) {
-                if let FixKind::WallRegionSph(w) = &fixes[k].kind {
-                    w.apply(p, fixes[k].groupbit);
-                } else if matches!(fixes[k].kind, FixKind::Enforce2d) {
-                    fixes[k].apply_enforce2d(p);
-                } else {
-                    fixes[k].apply_aveforce(p, comm);
-                }
+                fixes[k].act_alone(p, comm);
             } else if fixes[k].kind.acts_after_forces() {
                 ok &= post_force_pass(&fixes[k..k + 1], at(k), meshes, p, dt, update);
             }
@@ -434,13 +428,7 @@ pub(crate) fn post_force(
             if start < k {
                 ok &= post_force_pass(&fixes[start..k], at(start), meshes, p, dt, update);
             }
-            if let FixKind::WallRegionSph(w) = &fixes[k].kind {
-                w.apply(p, fixes[k].groupbit);
-            } else if matches!(fixes[k].kind, FixKind::Enforce2d) {
-                fixes[k].apply_enforce2d(p);
-            } else {
-                fixes[k].apply_aveforce(p, comm);
-            }
+            fixes[k].act_alone(p, comm);
             start = k + 1;
         }
     }
@@ -476,6 +464,15 @@ fn acts_alone(kind: &FixKind) -> bool {
 }
 
 impl Fix {
+    /// A fix that [`acts_alone`] between the post-force passes.
+    fn act_alone(&mut self, p: &mut Particles, comm: &dyn crate::comm::Comm) {
+        match &self.kind {
+            FixKind::WallRegionSph(w) => w.apply(p, self.groupbit),
+            FixKind::Enforce2d => self.apply_enforce2d(p),
+            _ => self.apply_aveforce(p, comm),
+        }
+    }
+
     /// `fix enforce2d`: the group's owned particles lose their z velocity and force and
     /// their x and y angular velocity and torque, so that they stay in their plane.
     fn apply_enforce2d(&self, p: &mut Particles) {
