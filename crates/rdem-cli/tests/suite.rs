@@ -51,6 +51,7 @@ mod multicontact;
 mod nve_limit;
 mod nve_noforce;
 mod omp_styles;
+mod peratom_index;
 mod pour;
 mod random_function;
 mod region_prism;

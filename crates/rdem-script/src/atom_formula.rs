@@ -232,20 +232,24 @@ fn prepare(sim: &Sim, e: &Expr, depth: usize) -> Result<Node, Error> {
             None => Node::Num(context::eval_name_equal(sim, &Name::Keyword(k.clone()))?),
         },
         Expr::Name(Name::Variable(v), _) => prepare_variable(sim, v, depth + 1)?,
-        Expr::Name(Name::Compute(id, _), _)
-            if sim
-                .defs
-                .computes
-                .iter()
-                .any(|c| c.id() == id && c.is_peratom()) =>
+        // `c_ID[I]` of a per-atom vector is one atom's value, a number.
+        Expr::Name(Name::Compute(id, idx), _)
+            if sim.defs.computes.iter().any(|c| {
+                c.id() == id
+                    && c.is_peratom()
+                    && !(idx.is_some() && c.peratom_cols() == 0 && c.imp.shape().vector == 0)
+            }) =>
         {
             return Err(format!(
                 "c_{id} is per-atom: a force fix's formula cannot use per-atom computes yet"
             )
             .into())
         }
-        Expr::Name(Name::Fix(id, _), _)
-            if crate::fixes::is_peratom(sim, id) && !crate::fixes::has_global(sim, id) =>
+        Expr::Name(Name::Fix(id, idx), _)
+            if crate::fixes::is_peratom(sim, id)
+                && !crate::fixes::has_global(sim, id)
+                && !(matches!(idx, Some(k) if *k != 0)
+                    && crate::fixes::peratom_cols(sim, id) == Some(0)) =>
         {
             return Err(format!(
                 "f_{id} is per-atom: a force fix's formula cannot use per-atom fixes yet"

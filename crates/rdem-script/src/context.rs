@@ -215,6 +215,17 @@ pub fn compute_global(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, Er
     c.imp.global(sim, &c.head, idx)
 }
 
+/// The value of atom `tag` among `values` (one per owned particle), on every rank: the
+/// owner's value, summed over the ranks. `what` names the reference in the error.
+fn value_of_atom(sim: &Sim, values: &[f64], tag: u64, what: &str) -> Result<f64, Error> {
+    let w = world(sim)?;
+    let i = w.particles.find_tag(tag);
+    if w.comm.sum_count(i.is_some() as u64) == 0 {
+        return Err(format!("{what}: no atom with ID {tag}").into());
+    }
+    Ok(w.comm.sum(i.map_or(0.0, |i| values[i])))
+}
+
 impl Ctx<'_> {
     /// `random(lo, hi, seed)`: the next number of the script's RANMAR generator (seeded
     /// by the first call's seed), scaled to [lo, hi), as LIGGGHTS' equal-style formulas
@@ -363,6 +374,15 @@ impl Context for Ctx<'_> {
                     .iter()
                     .find(|c| c.id() == id)
                     .ok_or_else(|| Error::undefined("compute", id))?;
+                // `c_ID[I]` of a per-atom vector with no global vector: atom I's value,
+                // in any formula (LAMMPS' rule).
+                if let (Some(tag), true) = (
+                    idx,
+                    c.is_peratom() && c.peratom_cols() == 0 && c.imp.shape().vector == 0,
+                ) {
+                    let values = compute_peratom(sim, id, None)?;
+                    return value_of_atom(sim, &values, *tag as u64, &format!("c_{id}[{tag}]"));
+                }
                 if c.is_peratom() {
                     if self.atom.is_none() {
                         return Err(format!(
@@ -375,6 +395,37 @@ impl Context for Ctx<'_> {
                 } else {
                     compute_global(sim, id, *idx)
                 }
+            }
+            Name::Fix(id, Some(tag))
+                if *tag != 0
+                    && crate::fixes::peratom_cols(sim, id) == Some(0)
+                    && !crate::fixes::has_global(sim, id) =>
+            {
+                // `f_ID[I]` of a per-atom vector: atom I's value (`f_ID[0]` is LIGGGHTS'
+                // old spelling of the whole vector).
+                let values = crate::fixes::fix_peratom(sim, id, None)?;
+                value_of_atom(sim, &values, *tag as u64, &format!("f_{id}[{tag}]"))
+            }
+            Name::ComputeAt(id, tag, col) => {
+                let c = find_compute(sim, id)?;
+                if c.peratom_cols() == 0 {
+                    return Err(format!(
+                        "c_{id}[{tag}][{col}]: compute {id} has no per-atom array (two indices pick an atom and a column of one)"
+                    )
+                    .into());
+                }
+                let values = compute_peratom(sim, id, Some(*col))?;
+                value_of_atom(sim, &values, *tag, &format!("c_{id}[{tag}][{col}]"))
+            }
+            Name::FixAt(id, tag, col) => {
+                if !matches!(crate::fixes::peratom_cols(sim, id), Some(n) if n > 0) {
+                    return Err(format!(
+                        "f_{id}[{tag}][{col}]: fix {id} has no per-atom array (two indices pick an atom and a column of one)"
+                    )
+                    .into());
+                }
+                let values = crate::fixes::fix_peratom(sim, id, Some(*col))?;
+                value_of_atom(sim, &values, *tag, &format!("f_{id}[{tag}][{col}]"))
             }
             Name::Fix(id, idx)
                 if crate::fixes::is_peratom(sim, id) && !crate::fixes::has_global(sim, id) =>
@@ -404,13 +455,7 @@ impl Context for Ctx<'_> {
                 // Every rank evaluates the whole vector (its formula may sum over
                 // ranks), then takes the owner's value, as LAMMPS does.
                 let values = eval_atom_depth(sim, &f, self.depth + 1, &mut HashMap::new())?;
-                let w = world(sim)?;
-                let i = w.particles.find_tag(*tag);
-                let found = w.comm.sum_count(i.is_some() as u64);
-                if found == 0 {
-                    return Err(format!("v_{v}[{tag}]: no atom with ID {tag}").into());
-                }
-                Ok(w.comm.sum(i.map_or(0.0, |i| values[i])))
+                value_of_atom(sim, &values, *tag, &format!("v_{v}[{tag}]"))
             }
             Name::Atom(field, tag) => {
                 let w = world(sim)?;

@@ -87,6 +87,10 @@ pub enum Name {
     Compute(String, Option<usize>),
     /// `f_ID` or `f_ID[i]`.
     Fix(String, Option<usize>),
+    /// `c_ID[I][J]`: column `J` of the per-atom array of a compute, at atom ID `I`.
+    ComputeAt(String, u64, usize),
+    /// `f_ID[I][J]`: column `J` of the per-atom array of a fix, at atom ID `I`.
+    FixAt(String, u64, usize),
     /// An atom value `x[i]`, `vx[i]`, `mass[i]`, … (the index is the atom ID).
     Atom(String, u64),
 }
@@ -242,25 +246,19 @@ impl Parser<'_> {
             if self.s[end..].starts_with('(') {
                 return self.call(word, start);
             }
-            let index = if self.s[end..].starts_with('[') {
-                let close = match self.s[end..].find(']') {
-                    Some(k) => end + k,
-                    None => return err("'[' without a matching ']'", end..end + 1),
-                };
-                let text = self.s[end + 1..close].trim();
-                let Ok(k) = text.parse::<u64>() else {
-                    return err(
-                        format!("index '{text}' must be a positive integer"),
-                        end..close + 1,
-                    );
-                };
-                self.i = close + 1;
-                Some(k)
-            } else {
-                None
+            let index = self.bracket()?;
+            let second = match index {
+                Some(_) if word.starts_with("c_") || word.starts_with("f_") => self.bracket()?,
+                _ => None,
             };
             let span = start..self.i;
-            let name = if let Some(rest) = word.strip_prefix("v_") {
+            let name = if let (Some(i), Some(j)) = (index, second) {
+                let j = j as usize;
+                match word.split_at(2) {
+                    ("c_", id) => Name::ComputeAt(id.to_string(), i, j),
+                    (_, id) => Name::FixAt(id.to_string(), i, j),
+                }
+            } else if let Some(rest) = word.strip_prefix("v_") {
                 match index {
                     Some(k) => Name::VariableAt(rest.to_string(), k),
                     None => Name::Variable(rest.to_string()),
@@ -280,6 +278,27 @@ impl Parser<'_> {
             format!("unexpected '{c}' in formula"),
             start..start + c.len_utf8(),
         )
+    }
+
+    /// An index `[k]` at the cursor (a non-negative integer), if one is there.
+    fn bracket(&mut self) -> Result<Option<u64>, ExprError> {
+        let at = self.i;
+        if !self.s[at..].starts_with('[') {
+            return Ok(None);
+        }
+        let close = match self.s[at..].find(']') {
+            Some(k) => at + k,
+            None => return err("'[' without a matching ']'", at..at + 1),
+        };
+        let text = self.s[at + 1..close].trim();
+        let Ok(k) = text.parse::<u64>() else {
+            return err(
+                format!("index '{text}' must be a positive integer"),
+                at..close + 1,
+            );
+        };
+        self.i = close + 1;
+        Ok(Some(k))
     }
 
     fn number(&mut self) -> Result<Expr, ExprError> {

@@ -74,7 +74,7 @@ pub static STYLES: Registry<()> = Registry {
         Row::runs("string", (), "one string"),
         Row::runs("getenv", (), "an environment variable"),
         Row::runs("equal", (), "a formula, evaluated when used")
-            .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `random(lo,hi,seed)` (LIGGGHTS' RANMAR generator: the same numbers for the same seed; atom-style: not supported yet); `x[ID]`, `vx[ID]`, ...; `v_name[ID]`, atom ID's value of an atom-style variable"),
+            .notes("LIGGGHTS' formula grammar and precedence; math functions; group functions `count mass xcm vcm bound ke`; `random(lo,hi,seed)` (LIGGGHTS' RANMAR generator: the same numbers for the same seed; atom-style: not supported yet); `x[ID]`, `vx[ID]`, ...; `v_name[ID]`, atom ID's value of an atom-style variable; `c_ID[I]` / `f_ID[I]`, atom I's value of a per-atom vector compute or fix, and `c_ID[I][J]` / `f_ID[I][J]`, column J at atom I of a per-atom array, as LAMMPS reads them"),
         Row::runs("atom", (), "a formula evaluated per particle"),
         Row::not_yet("atomfile", ""),
         Row::not_yet("world", ""),

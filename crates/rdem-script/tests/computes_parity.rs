@@ -149,3 +149,38 @@ fn ave_atom_dump() {
     }
     let _ = std::fs::remove_file(&d);
 }
+
+/// LIGGGHTS' general compute keyword `update_on_run_end yes|no`, read right after the
+/// style and before the style's own words. LIGGGHTS 3.8 printed A 0.0010471975511966
+/// (erotate/sphere of a 0.1 m sphere of 1000 kg/m³ spinning at 2 rad/s) and B 1 for this
+/// script; after the style's words the keyword is the style's error, as in LIGGGHTS.
+#[test]
+fn update_on_run_end_is_read_after_the_style() {
+    let head = "atom_style granular\natom_modify map array sort 0 0\ncommunicate single vel yes\n\
+        units si\nregion reg block 0 1 0 1 0 1 units box\ncreate_box 1 reg\n\
+        create_atoms 1 single 0.5 0.5 0.5\n\
+        set atom 1 diameter 0.1 density 1000 vx 1 omegaz 2\n";
+    let out = common::run_screen(
+        "in.uore",
+        &format!(
+            "{head}compute rke all erotate/sphere update_on_run_end yes\n\
+             compute r1 all reduce update_on_run_end no sum vx\n\
+             fix integr all nve/sphere\ntimestep 1e-4\n\
+             thermo_style custom step c_rke c_r1\nrun 1\n\
+             variable a equal c_rke\nprint \"A $a\"\nvariable b equal c_r1\nprint \"B $b\"\n"
+        ),
+    );
+    assert!(out.contains("A 0.0010471975511966\n"), "{out}");
+    assert!(out.contains("B 1\n"), "{out}");
+    for (line, at) in [
+        (
+            "compute r all reduce sum vx update_on_run_end yes",
+            "in.e:9:29",
+        ),
+        ("compute r all ke update_on_run_end maybe", "in.e:9:36"),
+        ("compute r all ke update_on_run_end", "in.e:9:"),
+    ] {
+        let e = common::error("in.e", &format!("{head}{line}\n"));
+        assert!(e.contains(at), "{line}: {e}");
+    }
+}

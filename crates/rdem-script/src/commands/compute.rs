@@ -15,6 +15,14 @@ pub(super) fn compute(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let groupbit = sim.group_bit(a, "group ID")?;
     let style_word = a.word("compute style")?;
     let (style, parse) = computes::REGISTRY.lookup(a, style_word)?;
+    // LIGGGHTS' general keyword, read right after the style and before the style's own
+    // words. rdem evaluates a compute from the current state whenever it is asked, so
+    // its value after a run is always current: `yes` is what rdem does anyway, and `no`
+    // only loses LIGGGHTS' "not current" error.
+    while a.peek() == Some("update_on_run_end") {
+        a.word("update_on_run_end")?;
+        a.yes_no("update_on_run_end value")?;
+    }
     let imp = parse(sim, a)?;
     a.done()?;
     sim.defs.computes.push(Compute {

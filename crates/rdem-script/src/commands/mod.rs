@@ -127,7 +127,8 @@ pub static REGISTRY: Registry<Command> = Registry {
         sim("unfix", fixes::unfix, "`ID`"),
         sim("fix_modify", fixes::fix_modify, "`energy yes\\|no`, and a style's own keywords")
             .notes("`energy yes` on `gravity`/`addforce` warns: their energy is not added to a potential energy (no granular fix tallies one in LIGGGHTS 3.8); `temp`, `press`, `virial` stop as in LIGGGHTS 3.8 (no granular fix computes a temperature or pressure)"),
-        sim("compute", compute::compute, "the compute styles below"),
+        sim("compute", compute::compute, "the compute styles below; the general keyword `update_on_run_end yes\\|no` after the style")
+            .notes("rdem evaluates a compute from the current state whenever it is asked, so a value read after a run is always current (`no` only loses LIGGGHTS' \"not current\" error)"),
         sim("uncompute", compute::uncompute, "`ID`"),
         sim("compute_modify", compute::compute_modify, "`extra N` (also `extra/dof`), `dynamic yes\\|no` (also `dynamic/dof`), `thermo yes\\|no`; `thermo_temp` and user computes")
             .notes("`extra/dof`, `dynamic/dof` are later LAMMPS names LIGGGHTS 3.8 refuses; a keyword a style does not use is accepted with a warning"),

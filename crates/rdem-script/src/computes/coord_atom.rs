@@ -30,7 +30,7 @@ pub(super) const ROW: ComputeRow = ComputeRow::runs(
     parse,
     "`cutoff`, then `mix yes\\|no` or type ranges (`2`, `*`, `*n`, `n*`, `m*n`; several: one column each): neighbours closer than the cutoff, per particle",
 )
-.notes("as LIGGGHTS 3.8, a pair of types a, b counts only within rmax_a + rmax_b + skin (the reach of its neighbor list), and a cutoff beyond 2 rmax + skin is an error; rdem takes the radii of the current particles at each evaluation (LIGGGHTS at the run's set-up, with the insertion templates'); the general keyword `update_on_run_end` is not supported yet");
+.notes("as LIGGGHTS 3.8, a pair of types a, b counts only within rmax_a + rmax_b + skin (the reach of its neighbor list), and a cutoff beyond 2 rmax + skin is an error; rdem takes the radii of the current particles at each evaluation (LIGGGHTS at the run's set-up, with the insertion templates')");
 
 /// A defined `compute coord/atom`.
 #[derive(Debug)]

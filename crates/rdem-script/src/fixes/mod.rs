@@ -572,6 +572,16 @@ pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), 
     }
 }
 
+/// The number of per-particle columns of fix `id` (0: one value per particle), if it has
+/// per-particle values.
+pub fn peratom_cols(sim: &Sim, id: &str) -> Option<usize> {
+    sim.defs
+        .fixes
+        .iter()
+        .find(|f| f.head.id == id)
+        .and_then(|f| f.imp.peratom_shape().map(|(n, _)| n))
+}
+
 /// True if fix `id` has per-particle values.
 pub fn is_peratom(sim: &Sim, id: &str) -> bool {
     sim.defs
