@@ -28,6 +28,7 @@ mod hopper;
 mod hysteretic;
 mod incremental_history;
 mod jkr;
+mod jkr_pfm;
 mod lattice;
 mod lebc;
 mod liggghts_restart;

@@ -161,6 +161,7 @@ impl PairGran {
     /// Mixes the material table, and the bond table with `cohesion bond` (called before
     /// every run).
     pub fn setup(&mut self, materials: &Materials) -> Result<()> {
+        self.model.resolve_jkr(materials)?;
         self.table = CoeffTable::new(materials, self.model.needs())?;
         self.bond = BondTable::for_model(&self.model, materials)?;
         Ok(())

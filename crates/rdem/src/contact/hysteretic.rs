@@ -192,6 +192,7 @@ impl Normal for HystereticNonlinear {
         }
         NormalOut {
             fn_contact,
+            fn_load: fn_contact,
             fn_elastic: fe,
             kn: k1,
             kt: k1,

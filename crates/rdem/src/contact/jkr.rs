@@ -188,8 +188,10 @@ impl Normal for Jkr {
         let sq = (g.r_star * g.delta.max(0.0)).sqrt();
         let sm = (sq * g.m_star).sqrt();
         let fn_elastic = s.f_c * force(a_hat);
+        let fn_contact = finish(fn_elastic, -c.hertz_damp_n * sm * vn, flags);
         NormalOut {
-            fn_contact: finish(fn_elastic, -c.hertz_damp_n * sm * vn, flags),
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic,
             kn: 4.0 / 3.0 * c.e_star * a,
             kt: 8.0 * c.g_star * a,

@@ -343,6 +343,8 @@ pub struct Needs {
     pub rolling_stiffness: bool,
     /// `workOfAdhesion` and `resolutionJKR` (`model jkr`).
     pub work_of_adhesion: bool,
+    /// LIGGGHTS-PFM's `model jkr`: the work of adhesion is twice `cohesionEnergyDensity`.
+    pub jkr_pfm: bool,
     /// A stiffness model (`hertz/stiffness`, `hooke/stiffness`): `Some(absolute_damping)`.
     /// It needs `kn`, `kt` and the damping tables (`gamman_abs`, `gammat_abs` with
     /// absolute damping, else `gamman`, `gammat`), and not Young's modulus, Poisson's
@@ -509,6 +511,12 @@ impl CoeffTable {
             })?;
             check("resolutionJKR", v, v > 0.0, "must be > 0")?;
         }
+        // The work of adhesion W of the JKR laws: PFM's is twice its surface energy.
+        let w_jkr: Vec<f64> = if needs.jkr_pfm {
+            coh.iter().map(|g| 2.0 * g).collect()
+        } else {
+            wa
+        };
         let stiff = needs.stiffness.is_some();
         let abs = needs.stiffness == Some(true);
         // A zero kn is LIGGGHTS 3.8's "no normal spring" for type pairs that never touch
@@ -594,8 +602,8 @@ impl CoeffTable {
                     hertz_damp_n: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * e_star).sqrt(),
                     hertz_damp_t: -2.0 * (5.0f64 / 6.0).sqrt() * beta * (8.0 * g_star).sqrt(),
                     liquid,
-                    jkr_w: wa[k],
-                    jkr_k: 4.5 * std::f64::consts::PI * wa[k] / e_star,
+                    jkr_w: w_jkr[k],
+                    jkr_k: 4.5 * std::f64::consts::PI * w_jkr[k] / e_star,
                     hysteretic: hyst[k],
                 });
             }
@@ -604,7 +612,7 @@ impl CoeffTable {
         // the largest k (a slight overestimate, rounding aside, is harmless: a reach).
         let neck = coeffs
             .iter()
-            .filter(|c| c.jkr_w > 0.0)
+            .filter(|c| needs.work_of_adhesion && c.jkr_w > 0.0)
             .map(|c| super::jkr::Scales::of(c, 1.0).delta_c * (1.0 + 1e-12))
             .fold(0.0, f64::max);
         Ok(Self {

@@ -11,6 +11,7 @@
 pub mod cohesion;
 pub mod hysteretic;
 pub mod jkr;
+pub mod jkr_pfm;
 pub mod liquid;
 pub mod materials;
 pub mod names;
@@ -18,6 +19,7 @@ pub mod normal;
 pub mod rolling;
 pub mod tangential;
 
+use crate::error::{Error, Result};
 use glam::DVec3;
 
 pub use materials::{
@@ -77,6 +79,11 @@ normal_laws! {
     /// `jkr` (LIGGGHTS_Flexible_Fibers, PICI): the JKR adhesive contact, which holds
     /// while the spheres are apart down to δ = −δ_c ([`jkr::Jkr`]).
     Jkr => jkr::Jkr, kernel jkr::Jkr, "jkr";
+    /// `jkr/pfm`: LIGGGHTS-PFM's `model jkr`, with `cohesionEnergyDensity`, acting only
+    /// while the spheres overlap ([`jkr_pfm::JkrPfm`]). A script's `model jkr` is this
+    /// law when `cohesionEnergyDensity` is defined and `workOfAdhesion` is not
+    /// ([`ContactModel::resolve_jkr`]).
+    JkrPfm => jkr_pfm::JkrPfm, kernel jkr_pfm::JkrPfm, "jkr/pfm";
     /// `hysteretic/nonlinear1` (LIGGGHTS-INL): elasto-plastic, loading α k₁ δ², linear
     /// unloading, an adhesive branch ([`hysteretic`]).
     HystereticNonlinear1 => hysteretic::HystereticNonlinear, kernel hysteretic::HystereticNonlinear, "hysteretic/nonlinear1";
@@ -281,7 +288,9 @@ impl ContactModel {
             rolling_damping: matches!(self.rolling, RollingKind::Epsd | RollingKind::Epsd3),
             rolling_stiffness: self.rolling == RollingKind::Epsd3,
             work_of_adhesion: self.normal.traits().adhesion,
-            cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2),
+            cohesion: matches!(self.cohesion, CohesionKind::Sjkr | CohesionKind::Sjkr2)
+                || self.normal == NormalKind::JkrPfm,
+            jkr_pfm: self.normal == NormalKind::JkrPfm,
             liquid: self.cohesion == CohesionKind::Easo,
             characteristic_velocity: self.normal.traits().characteristic_velocity,
             hysteresis: self.normal.traits().hysteresis,
@@ -296,6 +305,25 @@ impl ContactModel {
                 None
             },
         }
+    }
+
+    /// Settles which JKR law a script's `model jkr` means, before a run: LIGGGHTS_Flexible_
+    /// Fibers' and PICI's ([`NormalKind::Jkr`]) reads `workOfAdhesion`, LIGGGHTS-PFM's
+    /// ([`NormalKind::JkrPfm`]) `cohesionEnergyDensity`. It is PFM's when only
+    /// `cohesionEnergyDensity` is defined; with neither, the error names both.
+    pub fn resolve_jkr(&mut self, m: &Materials) -> Result<()> {
+        if self.normal != NormalKind::Jkr || !m.work_of_adhesion.is_empty() {
+            return Ok(());
+        }
+        if m.cohesion_energy_density.is_empty() {
+            return Err(Error::Invalid {
+                what: "workOfAdhesion",
+                reason: "model jkr needs fix property/global workOfAdhesion peratomtypepair                          (LIGGGHTS_Flexible_Fibers' and PICI's law, with resolutionJKR) or                          cohesionEnergyDensity peratomtypepair (LIGGGHTS-PFM's law)"
+                    .into(),
+            });
+        }
+        self.normal = NormalKind::JkrPfm;
+        Ok(())
     }
 
     /// True with `cohesion bond` or `cohesion bond/nonlinear`.
@@ -546,6 +574,10 @@ pub struct NormalOut {
     pub fn_contact: f64,
     /// Elastic part alone.
     pub fn_elastic: f64,
+    /// The normal load that sets the Coulomb and rolling limits and the unloading test of
+    /// `tangential incremental_history`: [`NormalOut::fn_contact`] for every law but
+    /// LIGGGHTS-PFM's jkr, which takes Hertz's force there ([`jkr_pfm`]).
+    pub fn_load: f64,
     /// Normal stiffness k_n.
     pub kn: f64,
     /// Tangential stiffness k_t.
@@ -678,9 +710,9 @@ pub fn contact<
     // (damping included); with `tangential_reduce on` the cohesive pull is added to it and
     // the magnitude taken, as LIGGGHTS 3.8 does (its manual words it the other way round).
     let load = if flags.tangential_reduce {
-        (no.fn_contact - f_coh).abs()
+        (no.fn_load - f_coh).abs()
     } else {
-        no.fn_contact.abs()
+        no.fn_load.abs()
     };
     let mut ft = T::force(g, c, &no, load, vt_rel, flags, h_tan, h_tan_even);
     if C::BRIDGE {

@@ -52,7 +52,7 @@ mod tests {
         // The names scripts use, in the order the help lists them.
         assert_eq!(
             names(NORMAL_MODELS),
-            "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness jkr hysteretic/nonlinear1 hysteretic/nonlinear2"
+            "hertz hooke hooke/hysteresis hertz/stiffness hooke/stiffness jkr jkr/pfm hysteretic/nonlinear1 hysteretic/nonlinear2"
         );
         assert_eq!(
             names(TANGENTIAL_MODELS),

@@ -85,8 +85,10 @@ impl Normal for Hertz {
         let gamma_n = c.hertz_damp_n * s;
         let gamma_t = c.hertz_damp_t * s;
         let fn_elastic = kn * g.delta;
+        let fn_contact = finish(fn_elastic, -gamma_n * vn, flags);
         NormalOut {
-            fn_contact: finish(fn_elastic, -gamma_n * vn, flags),
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic,
             kn,
             kt,
@@ -127,8 +129,10 @@ impl Normal for Hooke {
         let kn = hooke_kn(c, g.r_star, g.m_star);
         let gamma_n = hooke_gamma(c, kn, g.m_star);
         let fn_elastic = kn * g.delta;
+        let fn_contact = finish(fn_elastic, -gamma_n * vn, flags);
         NormalOut {
-            fn_contact: finish(fn_elastic, -gamma_n * vn, flags),
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic,
             kn,
             kt: kn,
@@ -188,8 +192,10 @@ impl Normal for HookeHysteresis {
             }
             -kc * delta
         };
+        let fn_contact = fe - gamma_n * vn;
         NormalOut {
-            fn_contact: fe - gamma_n * vn,
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic: fe,
             kn: k1,
             kt: k1,
@@ -219,8 +225,10 @@ impl Normal for HertzStiffness {
         let kn = c.kn * sq;
         let msq = g.m_star * sq;
         let fn_elastic = kn * g.delta;
+        let fn_contact = finish(fn_elastic, -c.gamman * msq * vn, flags);
         NormalOut {
-            fn_contact: finish(fn_elastic, -c.gamman * msq * vn, flags),
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic,
             kn,
             kt: c.kt * sq,
@@ -252,8 +260,10 @@ impl Normal for HookeStiffness {
             g.m_star
         };
         let fn_elastic = c.kn * g.delta;
+        let fn_contact = finish(fn_elastic, -c.gamman * m * vn, flags);
         NormalOut {
-            fn_contact: finish(fn_elastic, -c.gamman * m * vn, flags),
+            fn_contact,
+            fn_load: fn_contact,
             fn_elastic,
             kn: c.kn,
             kt: c.kt,

@@ -147,7 +147,7 @@ impl Tangential for IncrementalHistory {
         }
         ft -= ft.dot(g.n) * g.n;
         let (kt_old, fn_old) = (even[0], even[1]);
-        if no.fn_contact < fn_old && kt_old > 0.0 {
+        if no.fn_load < fn_old && kt_old > 0.0 {
             ft *= no.kt / kt_old;
         }
         ft -= no.kt * g.dt * vt;
@@ -159,7 +159,7 @@ impl Tangential for IncrementalHistory {
         hist[1] = ft.y;
         hist[2] = ft.z;
         even[0] = no.kt;
-        even[1] = no.fn_contact;
+        even[1] = no.fn_load;
         ft
     }
 }

@@ -318,6 +318,7 @@ impl MeshWall {
         all: &[MeshSurface],
         p: &mut Particles,
     ) -> Result<()> {
+        self.model.resolve_jkr(materials)?;
         self.table = CoeffTable::new(materials, self.model.needs())?;
         for &k in &self.meshes {
             let m = all.get(k).ok_or(Error::Invalid {

@@ -315,6 +315,7 @@ impl PrimitiveWall {
 
     /// Mixes the material table and registers the history property; called before a run.
     pub fn setup(&mut self, materials: &Materials, p: &mut Particles) -> Result<()> {
+        self.model.resolve_jkr(materials)?;
         self.table = CoeffTable::new(materials, self.model.needs())?;
         if self.wall_type as usize > materials.ntypes {
             return Err(Error::TypeOutOfRange {
