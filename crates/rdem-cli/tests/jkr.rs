@@ -106,6 +106,31 @@ fn the_rebound_speed_is_the_forks_and_thornton_and_nings() {
     assert!((v_out - tn).abs() < 0.01 * tn, "{v_out} against {tn}");
 }
 
+/// W = 0 is Hertz's contact for the type pair, as both forks code it (the SEAICE example
+/// `jkr_bounce_cor_only` measures a restitution coefficient so): Thornton & Ning's
+/// sphere with e = 0.5 bounces off the plane exactly as under `model hertz`, at 0.5 of
+/// its speed to 2 % (Hertz's damping of LIGGGHTS gives e only approximately).
+#[test]
+fn no_work_of_adhesion_is_hertz() {
+    let s = read("in.bounce")
+        .replace(
+            "workOfAdhesion peratomtypepair 2 0.2 0.2 0.2 0.2",
+            "workOfAdhesion peratomtypepair 2 0 0 0 0",
+        )
+        .replace(
+            "coefficientRestitution peratomtypepair 2 1 1 1 1",
+            "coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5",
+        );
+    let jkr = common::thermo_rows(&common::run_script(&s, None));
+    let hertz = common::thermo_rows(&common::run_script(
+        &s.replace("model jkr", "model hertz"),
+        None,
+    ));
+    assert_eq!(jkr, hertz);
+    let v_out = -jkr.last().unwrap()[2];
+    assert!((v_out - 0.015).abs() < 0.02 * 0.015, "{v_out}");
+}
+
 /// The pull-off script: sphere 2 held, sphere 1 (touching it with δ = 1 µm) drawn away at
 /// 0.5 mm/s; E = 10 MPa, ν = 0.3, W = 0.5 J/m², R = 1 mm, no damping.
 fn pull(skin: &str) -> Vec<Vec<f64>> {

@@ -499,8 +499,8 @@ impl CoeffTable {
             &m.work_of_adhesion,
             n,
             needs.work_of_adhesion,
-            |v| v > 0.0,
-            "must be > 0 (model jkr divides by the neck's length, which vanishes with it)",
+            |v| v >= 0.0,
+            "must be >= 0 (0: Hertz's contact for the type pair, as the forks do)",
         )?;
         if needs.work_of_adhesion {
             let v = m.resolution_jkr.ok_or_else(|| Error::Invalid {
