@@ -69,6 +69,7 @@ mod stream_insert;
 mod tangential_off;
 mod threads;
 mod tracer;
+mod tracer_stream;
 mod tutorials;
 mod wall_local;
 mod wall_store_force;

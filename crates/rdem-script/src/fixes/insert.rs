@@ -176,6 +176,9 @@ pub struct Inserter {
     /// `set_property NAME value`: the per-particle property NAME (a scalar `fix
     /// property/atom`) of each inserted particle set to value.
     pub set_property: Vec<(String, f64)>,
+    /// `insert/stream`: the `fix property/atom/tracer/stream` markings that follow it,
+    /// called on each packet right after it is inserted.
+    pub stream_tracers: Vec<std::sync::Arc<super::tracer::StreamMarking>>,
 }
 
 /// State of `insert/rate/region` (and `fix pour`).
@@ -510,6 +513,7 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         announce: None,
         rate_line_due: rate,
         set_property,
+        stream_tracers: Vec::new(),
     }))
 }
 
@@ -653,6 +657,11 @@ impl ScriptFix for Inserter {
                 pack.insert_n(w, n)?
             }
         };
+        if let InsertEngine::Stream(st) = &self.pack {
+            for t in &self.stream_tracers {
+                t.mark(w, first, st.packet_every())?;
+            }
+        }
         for (name, value) in &self.set_property {
             let p = &mut w.particles;
             let Some(id) = p.property(name).filter(|id| p.props[id.0].width == 1) else {

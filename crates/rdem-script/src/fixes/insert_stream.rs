@@ -18,7 +18,7 @@ pub(super) const ROW: FixRow = style(
     Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
     "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`, `set_property NAME value`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
 )
-.notes("a packet every `round(L / (v·n dt))` steps (dt: the run's time step, as LIGGGHTS 3.8), each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps")
+.notes("a packet every `round(L / (v·n dt))` steps (dt: the run's time step, as LIGGGHTS 3.8), each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps; `f_release_fix_insert_stream[5]` is each particle's release step, as LIGGGHTS records it (its other columns are not kept)")
 .atoi();
 
 /// What `fix insert/stream` was given (besides the settings every insertion has).
@@ -133,6 +133,7 @@ pub(super) fn build(
         announce: None,
         rate_line_due: true,
         set_property: s.set_property,
+        stream_tracers: Vec::new(),
     }))
 }
 

@@ -157,10 +157,15 @@ impl Notes {
 pub trait AsAny: Any {
     /// `self` as `Any`.
     fn as_any(&self) -> &dyn Any;
+    /// `self` as mutable `Any`.
+    fn as_any_mut(&mut self) -> &mut dyn Any;
 }
 
 impl<T: Any> AsAny for T {
     fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
         self
     }
 }
@@ -345,6 +350,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         property_global::ROW,
         property_atom::ROW,
         tracer::ROW,
+        tracer::ROW_STREAM,
         tracer::ROW_TIME,
         mesh_surface::ROW,
         mesh_surface::ROW_PLANAR,
@@ -459,6 +465,11 @@ impl FixEntry {
         // Through the trait object: `self.imp.as_any()` would give the Box itself.
         (*self.imp).as_any().downcast_ref::<T>()
     }
+
+    /// The fix as its own type, mutably, if it is one.
+    pub fn downcast_mut<T: ScriptFix>(&mut self) -> Option<&mut T> {
+        (*self.imp).as_any_mut().downcast_mut::<T>()
+    }
 }
 
 /// The placeholder of a fix that is out of `Sim::fixes` while one of its stages runs.
@@ -547,8 +558,48 @@ pub fn fix_value(sim: &Sim, id: &str, idx: Option<usize>) -> Result<f64, Error> 
     }
 }
 
+/// The ID of the per-particle array LIGGGHTS' `fix insert/stream` keeps (its release
+/// data); rdem gives its column 5, the release step (see [`release_step_column`]).
+pub const STREAM_RELEASE_ID: &str = "release_fix_insert_stream";
+
+/// `f_release_fix_insert_stream[5]`, when no fix has that ID: LIGGGHTS 3.8's release step of
+/// each streamed particle (0 for the others). Its other columns (insertion position and
+/// step, velocities) are not kept by rdem: an error says so.
+fn release_step_column(sim: &Sim, col: Option<usize>) -> Result<Vec<f64>, Error> {
+    if col != Some(5) {
+        return Err(format!(
+            "f_{STREAM_RELEASE_ID}: rdem keeps column 5 of it (the release step), not {}",
+            col.map_or("the whole array".to_string(), |c| format!("column {c}"))
+        )
+        .into());
+    }
+    let w = sim.world.as_ref().ok_or(Error::NoBox)?;
+    let p = &w.particles;
+    Ok(
+        match p.property(rdem::insert::stream::RELEASE_STEP_PROPERTY) {
+            Some(id) => p.props[id.0].data[..p.nlocal()].to_vec(),
+            None => vec![0.0; p.nlocal()],
+        },
+    )
+}
+
+/// True if `id` names LIGGGHTS' release data of `fix insert/stream` (no fix has the ID
+/// and an insert/stream is defined).
+fn is_stream_release(sim: &Sim, id: &str) -> bool {
+    id == STREAM_RELEASE_ID
+        && sim.fix_index(id).is_none()
+        && sim
+            .defs
+            .fixes
+            .iter()
+            .any(|f| f.head.style == "insert/stream")
+}
+
 /// The per-particle values `f_ID` / `f_ID[i]` (1-based) of every owned particle.
 pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, Error> {
+    if is_stream_release(sim, id) {
+        return release_step_column(sim, col);
+    }
     check_fix_peratom(sim, id, col)?;
     let f = &sim.defs.fixes[sim.fix_index(id).expect("checked")];
     // `f_ID[0]` of a fix with one value per atom is `f_ID`, as in LIGGGHTS.
@@ -557,6 +608,12 @@ pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, 
 
 /// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
 pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), Error> {
+    if is_stream_release(sim, id) {
+        return match col {
+            Some(5) => Ok(()),
+            _ => release_step_column(sim, col).map(|_| ()),
+        };
+    }
     let Some(f) = sim.defs.fixes.iter().find(|f| f.head.id == id) else {
         let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
         return Err(format!("no fix '{id}' ({})", crate::args::id_help("fix", id, &ids)).into());
@@ -575,6 +632,9 @@ pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), 
 /// The number of per-particle columns of fix `id` (0: one value per particle), if it has
 /// per-particle values.
 pub fn peratom_cols(sim: &Sim, id: &str) -> Option<usize> {
+    if is_stream_release(sim, id) {
+        return Some(5);
+    }
     sim.defs
         .fixes
         .iter()
@@ -584,6 +644,9 @@ pub fn peratom_cols(sim: &Sim, id: &str) -> Option<usize> {
 
 /// True if fix `id` has per-particle values.
 pub fn is_peratom(sim: &Sim, id: &str) -> bool {
+    if is_stream_release(sim, id) {
+        return true;
+    }
     sim.defs
         .fixes
         .iter()

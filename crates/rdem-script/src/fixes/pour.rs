@@ -237,6 +237,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         announce: Some(notes),
         rate_line_due: false,
         set_property: Vec::new(),
+        stream_tracers: Vec::new(),
     }))
 }
 

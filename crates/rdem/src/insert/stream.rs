@@ -30,6 +30,13 @@ use crate::world::World;
 /// ballistically through the insertion volume).
 pub const HOLD_PROPERTY: &str = "insert_stream_release";
 
+/// Per-particle property holding a streamed particle's release step as LIGGGHTS 3.8
+/// records it (its `release_fix_insert_stream[5]`): the insertion step plus
+/// ⌊(d + 10⁻¹⁴)/(v_n dt)⌋, d the centre's distance behind the face. (The particle moves
+/// freely from the step after it, as [`HOLD_PROPERTY`] has it.) `fix
+/// property/atom/tracer/stream` reads it.
+pub const RELEASE_STEP_PROPERTY: &str = "insert_stream_release_step";
+
 /// Per-particle property holding the part of a streamed particle's insertion velocity
 /// along the face, which it gains when released (then zero). A clump's spheres carry
 /// their body's; [`crate::world::World`]'s body sums hand it to the body.
@@ -345,6 +352,11 @@ impl InsertStream {
         Ok(())
     }
 
+    /// Steps between packets (for the run's time step, after [`InsertStream::set_timestep`]).
+    pub fn packet_every(&self) -> u64 {
+        self.every
+    }
+
     /// Particles per time unit.
     pub fn rate(&self) -> f64 {
         self.rate
@@ -402,6 +414,9 @@ impl InsertStream {
             self.velocity,
         );
         let hold = world.particles.add_property(HOLD_PROPERTY, 1, &[0.0])?;
+        let release = world
+            .particles
+            .add_property(RELEASE_STEP_PROPERTY, 1, &[0.0])?;
         let tangent = world
             .particles
             .add_property(TANGENT_PROPERTY, 3, &[0.0; 3])?;
@@ -432,8 +447,14 @@ impl InsertStream {
                 } else {
                     0.0
                 };
+                let released = if vn > 0.0 {
+                    ((depth + 1e-14) / (vn * dt)).floor()
+                } else {
+                    0.0
+                };
                 let props = &mut world.particles.props;
                 props[hold.0].data[added.clone()].fill(step as f64 + steps);
+                props[release.0].data[added.clone()].fill(step as f64 + released);
                 let rest = (pl.v - n * vn).to_array();
                 for i in added {
                     props[tangent.0].data[3 * i..3 * i + 3].copy_from_slice(&rest);
