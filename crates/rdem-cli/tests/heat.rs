@@ -160,3 +160,26 @@ fn settling_packing_as_liggghts() {
         "{bottom:?}"
     );
 }
+
+/// `temperature T` at the end of a mesh `fix wall/gran` line: LIGGGHTS 3.8 reads it and
+/// ignores it (each mesh has its `fix mesh/surface` temperature). For
+/// `tests/data/heat_mesh_wall/in.w` (a sphere on a 500 K floor) it printed the summed
+/// temperature 300.70995 at steps 1500 and 2000 with T = 500 and with T = 900. rdem runs
+/// both to those digits and warns where T differs from the mesh's.
+#[test]
+fn mesh_wall_temperature_is_ignored_as_liggghts() {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/heat_mesh_wall");
+    let script = std::fs::read_to_string(data.join("in.w")).unwrap();
+    let floor = std::fs::read_to_string(data.join("floor.stl")).unwrap();
+    for t in ["500", "900"] {
+        let s = common::index_vars(&[("T", t)]) + &script;
+        let out = common::run_with_files_raw(&s, &[("floor.stl", &floor)], None);
+        let stdout = common::success(t, &out);
+        let rows = common::thermo_rows(&stdout);
+        let last = rows.last().unwrap();
+        assert_eq!(last[0], 2000.0);
+        assert!((last[1] - 300.70995).abs() < 1e-5, "T {t}: {last:?}");
+        let text = stdout + &String::from_utf8_lossy(&out.stderr);
+        assert_eq!(text.contains("is ignored"), t == "900", "T {t}: {text}");
+    }
+}
