@@ -34,6 +34,7 @@ mod lebc;
 mod liggghts_restart;
 mod line_plane_force;
 mod local_dump;
+mod local_reduce;
 mod mcg;
 mod memory_figure;
 mod mesh_motion;

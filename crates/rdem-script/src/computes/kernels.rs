@@ -193,6 +193,12 @@ pub fn reduce(w: &World, mode: &str, groupbit: u32, values: &[f64]) -> f64 {
         .enumerate()
         .filter(|&(i, _)| p.mask[i] & groupbit != 0)
         .map(|(_, v)| *v);
+    reduce_over(w, mode, sel)
+}
+
+/// [`reduce`] of this rank's `values` (all of them, no group), over the ranks: a local
+/// (per-contact) column, which LAMMPS' `compute reduce` takes whole.
+pub fn reduce_over(w: &World, mode: &str, sel: impl Iterator<Item = f64>) -> f64 {
     let (mut sum, mut sq, mut n) = (0.0, 0.0, 0u64);
     let (mut lo, mut hi) = (1e20f64, -1e20f64);
     for v in sel {

@@ -1,6 +1,8 @@
 //! `compute ID group reduce mode input ...`: sums, extremes and means over the group of
 //! per-atom properties, per-atom computes (`c_ID`, `c_ID[i]`), per-atom fix values (`f_ID`,
-//! `f_ID[i]`) and atom-style variables.
+//! `f_ID[i]`) and atom-style variables, and over every row (the group aside, as in LAMMPS)
+//! of a local compute's column (`compute pair/gran/local`, ...: the largest overlap, say).
+//! With no value at all, `min` is 1e20 and `max` −1e20, as LIGGGHTS 3.8 prints them.
 
 use super::kernels::{field_values, reduce, REDUCE_MODES};
 use super::{ComputeHead, ComputeRow, ScriptCompute, Shape};
@@ -15,7 +17,7 @@ use crate::variables::Variable;
 pub(super) const ROW: ComputeRow = ComputeRow::runs(
     "reduce",
     parse,
-    "`sum\\|min\\|max\\|ave\\|sumsq\\|avesq` of per-atom properties, `c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]`, `v_name`",
+    "`sum\\|min\\|max\\|ave\\|sumsq\\|avesq` of per-atom properties, `c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]`, `v_name`, and of the columns `c_ID[i]` of local computes (every contact, the group aside)",
 );
 
 /// One input.
@@ -25,6 +27,8 @@ pub enum Input {
     Field(String),
     /// `c_ID` or `c_ID[i]` of a per-atom compute.
     Compute(String, Option<usize>),
+    /// `c_ID` or `c_ID[i]` (0-based column here) of a local compute: every row.
+    Local(String, usize),
     /// `v_name` of an atom-style variable.
     Variable(String),
     /// `f_ID` or `f_ID[i]` of a fix with per-atom values (`property/atom`).
@@ -61,6 +65,18 @@ impl ScriptCompute for Reduce {
         let values = match &self.inputs[k] {
             Input::Field(f) => field_values(w, f).ok_or_else(|| format!("bad field {f}"))?,
             Input::Compute(cid, col) => crate::context::compute_peratom(sim, cid, *col)?,
+            Input::Local(cid, col) => {
+                let lc = sim
+                    .defs
+                    .computes
+                    .iter()
+                    .find(|c| c.id() == cid)
+                    .ok_or_else(|| Error::undefined("compute", cid))?;
+                let width = lc.imp.local_cols().unwrap_or(1).max(1);
+                let rows = lc.imp.local(sim, &lc.head)?;
+                let column = rows.chunks_exact(width).map(|r| r[*col]);
+                return Ok(super::kernels::reduce_over(w, &self.mode, column));
+            }
             Input::Fix(fid, col) => crate::fixes::fix_peratom(sim, fid, *col)?,
             Input::Variable(v) => match sim.script.vars.get(v) {
                 Some(Variable::Atom(f)) => crate::context::eval_atom(sim, f)?,
@@ -85,10 +101,24 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
             match thermo::split_reference(w) {
                 Some(('c', cid, col)) => match sim.defs.computes.iter().find(|c| c.id() == cid) {
                     Some(c) if c.is_peratom() => Input::Compute(cid.to_string(), col),
+                    Some(c) if c.imp.local_cols().is_some() => {
+                        let n = c.imp.local_cols().unwrap_or(0);
+                        match col {
+                            Some(k) if k >= 1 && k <= n => Input::Local(cid.to_string(), k - 1),
+                            None if n == 1 => Input::Local(cid.to_string(), 0),
+                            _ => {
+                                return Err(a.error_at(
+                                    a.pos(),
+                                    format!("compute {cid} gives {n} local column(s)"),
+                                    Some(format!("use c_{cid}[1..{n}]")),
+                                ))
+                            }
+                        }
+                    }
                     Some(_) => {
                         return Err(a.error_at(
                             a.pos(),
-                            format!("compute {cid} is not per-atom"),
+                            format!("compute {cid} is neither per-atom nor local"),
                             None,
                         ))
                     }
