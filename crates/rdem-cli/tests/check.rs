@@ -301,6 +301,40 @@ bogus_after_the_loop
     assert!(stdout.contains("followed 1000 times"), "{stdout}");
 }
 
+/// With no particles (no step runs) a formula over them that divides by zero is a note,
+/// not a line rdem cannot run (CFDEM's small_hearth divides by a region's particle count
+/// in a `run every` command); with particles, or before the box, it is still a problem.
+#[test]
+fn division_by_no_particles_is_a_note() {
+    let head = "\
+units si
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+variable n equal count(all)
+variable per equal 1/v_n
+";
+    let script = format!("{head}run 10 every 5 \"print 'per ${{per}}'\"\n");
+    let out = check_script(&script, &[], &["-check", "in.test"]);
+    assert_eq!(summary(&out), "in.test: rdem can run every line");
+    assert!(
+        text(&out.stdout).contains("in.test:6: not checked"),
+        "{}",
+        text(&out.stdout)
+    );
+    let with_one = script
+        .replace("block 0 1 0 1 0 1", "block 0 10 0 10 0 10")
+        .replace(
+            "variable n equal count(all)",
+            "create_atoms 1 single 5 5 5\nvariable n equal count(all)-1",
+        );
+    let out = check_script(&with_one, &[], &["-check", "in.test"]);
+    assert!(
+        summary(&out).contains("1 line rdem cannot run"),
+        "{}",
+        summary(&out)
+    );
+}
+
 /// The cases of `../shared/wild` (MANIFEST.tsv) whose every line rdem can run, as
 /// `rdem -check` says (exit 0). The list grows as the commands real scripts use land
 /// (issue 17); each case not in it must have at least one line reported.
