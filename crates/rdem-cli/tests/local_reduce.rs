@@ -35,3 +35,26 @@ fn a_local_array_needs_its_column() {
         "{err}"
     );
 }
+
+/// `compute reduce/region`: the highest particle and the summed velocities of the
+/// particles at or below z = 0.008 m (the region's surface included: the lattice's layer
+/// at 0.008 counts at step 0, as in LIGGGHTS 3.8), to LIGGGHTS 3.8's thermo within 1e-9
+/// of each column's scale.
+#[test]
+fn reduce_region_as_liggghts() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/local_reduce");
+    let script = std::fs::read_to_string(data.join("in.rr")).unwrap();
+    let got = common::thermo_rows(&common::run_script(&script, None));
+    let want = common::reference_rows(&data.join("ref_region.txt"));
+    common::assert_columns(&got, &want, 1, 1e-9, "reduce/region");
+    assert_eq!(got[0][2], 0.008);
+    // A local input has no position: refused.
+    let bad = script.replace("reduce/region low max z", "reduce/region low max c_pl[7]");
+    let out = common::run_script_raw(&bad, None);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("per-atom inputs") && err.contains("in.test:"),
+        "{err}"
+    );
+}

@@ -169,6 +169,7 @@ pub static REGISTRY: Registry<ComputeParse> = Registry {
         pressure::ROW,
         displace_atom::ROW,
         reduce::ROW,
+        reduce::ROW_REGION,
         nparticles_tracer_region::ROW,
         property_atom::ROW,
         contact_atom::ROW,

@@ -35,9 +35,18 @@ pub enum Input {
     Fix(String, Option<usize>),
 }
 
+/// The registry row of `reduce/region`.
+pub(super) const ROW_REGION: ComputeRow = ComputeRow::runs(
+    "reduce/region",
+    parse_region,
+    "`REGION` then as `reduce`, over the group's particles inside the region (its surface included, as LIGGGHTS 3.8 counts it); per-atom inputs only",
+);
+
 /// The mode and the inputs.
 #[derive(Debug)]
 pub struct Reduce {
+    /// `reduce/region`: the region the particles must be in.
+    region: Option<String>,
     /// `sum`, `min`, `max`, `ave`, `sumsq`, `avesq`.
     mode: String,
     /// Inputs (one gives a scalar, several a vector).
@@ -83,12 +92,43 @@ impl ScriptCompute for Reduce {
                 _ => return Err(format!("variable '{v}' is not atom-style").into()),
             },
         };
-        Ok(reduce(w, &self.mode, c.groupbit, &values))
+        match &self.region {
+            None => Ok(reduce(w, &self.mode, c.groupbit, &values)),
+            Some(r) => {
+                let region = crate::regions::region_now(sim, r)?;
+                let p = &w.particles;
+                let inside = (0..p.nlocal())
+                    .filter(|&i| p.mask[i] & c.groupbit != 0 && region.contains(p.x[i]))
+                    .map(|i| values[i]);
+                Ok(super::kernels::reduce_over(w, &self.mode, inside))
+            }
+        }
     }
+}
+
+/// `compute ID group reduce/region REGION mode input ...`.
+fn parse_region(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
+    let region = sim.region_id(a)?;
+    let at = a.pos();
+    let mut r = parse_reduce(sim, a)?;
+    if let Some(k) = r.inputs.iter().position(|i| matches!(i, Input::Local(..))) {
+        return Err(a.error_at(
+            at + 1 + k,
+            "compute reduce/region takes per-atom inputs (a local compute's rows have no position)",
+            None,
+        ));
+    }
+    r.region = Some(region);
+    Ok(Box::new(r))
 }
 
 /// `compute ID group reduce mode input ...`.
 fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
+    Ok(Box::new(parse_reduce(sim, a)?))
+}
+
+/// The mode and inputs of `reduce` and `reduce/region`.
+fn parse_reduce(sim: &Sim, a: &mut Args) -> CmdResult<Reduce> {
     let mode = a.keyword("reduce mode", &REDUCE_MODES)?.to_string();
     let mut inputs = Vec::new();
     while let Some(w) = a.peek() {
@@ -155,5 +195,9 @@ fn parse(sim: &Sim, a: &mut Args) -> CmdResult<Box<dyn ScriptCompute>> {
     if inputs.is_empty() {
         return Err(a.error_at(a.pos(), "compute reduce needs at least one input", None));
     }
-    Ok(Box::new(Reduce { mode, inputs }))
+    Ok(Reduce {
+        region: None,
+        mode,
+        inputs,
+    })
 }
