@@ -235,9 +235,7 @@ fn prepare(sim: &Sim, e: &Expr, depth: usize) -> Result<Node, Error> {
         // `c_ID[I]` of a per-atom vector is one atom's value, a number.
         Expr::Name(Name::Compute(id, idx), _)
             if sim.defs.computes.iter().any(|c| {
-                c.id() == id
-                    && c.is_peratom()
-                    && !(idx.is_some() && c.peratom_cols() == 0 && c.imp.shape().vector == 0)
+                c.id() == id && c.is_peratom() && !(idx.is_some() && c.indexes_atoms())
             }) =>
         {
             return Err(format!(
@@ -248,8 +246,7 @@ fn prepare(sim: &Sim, e: &Expr, depth: usize) -> Result<Node, Error> {
         Expr::Name(Name::Fix(id, idx), _)
             if crate::fixes::is_peratom(sim, id)
                 && !crate::fixes::has_global(sim, id)
-                && !(matches!(idx, Some(k) if *k != 0)
-                    && crate::fixes::peratom_cols(sim, id) == Some(0)) =>
+                && !crate::fixes::indexes_atoms(sim, id, *idx) =>
         {
             return Err(format!(
                 "f_{id} is per-atom: a force fix's formula cannot use per-atom fixes yet"

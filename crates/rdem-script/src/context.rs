@@ -376,10 +376,7 @@ impl Context for Ctx<'_> {
                     .ok_or_else(|| Error::undefined("compute", id))?;
                 // `c_ID[I]` of a per-atom vector with no global vector: atom I's value,
                 // in any formula (LAMMPS' rule).
-                if let (Some(tag), true) = (
-                    idx,
-                    c.is_peratom() && c.peratom_cols() == 0 && c.imp.shape().vector == 0,
-                ) {
+                if let (Some(tag), true) = (idx, c.indexes_atoms()) {
                     let values = compute_peratom(sim, id, None)?;
                     return value_of_atom(sim, &values, *tag as u64, &format!("c_{id}[{tag}]"));
                 }
@@ -396,13 +393,8 @@ impl Context for Ctx<'_> {
                     compute_global(sim, id, *idx)
                 }
             }
-            Name::Fix(id, Some(tag))
-                if *tag != 0
-                    && crate::fixes::peratom_cols(sim, id) == Some(0)
-                    && !crate::fixes::has_global(sim, id) =>
-            {
-                // `f_ID[I]` of a per-atom vector: atom I's value (`f_ID[0]` is LIGGGHTS'
-                // old spelling of the whole vector).
+            Name::Fix(id, Some(tag)) if crate::fixes::indexes_atoms(sim, id, Some(*tag)) => {
+                // `f_ID[I]` of a per-atom vector: atom I's value.
                 let values = crate::fixes::fix_peratom(sim, id, None)?;
                 value_of_atom(sim, &values, *tag as u64, &format!("f_{id}[{tag}]"))
             }

@@ -214,6 +214,12 @@ impl Compute {
         self.imp.shape().peratom.unwrap_or(0)
     }
 
+    /// True if `c_ID[I]` names atom I's value (LAMMPS' rule): a per-atom vector with no
+    /// global vector, whose one index can only be an atom ID.
+    pub fn indexes_atoms(&self) -> bool {
+        self.is_peratom() && self.peratom_cols() == 0 && self.imp.shape().vector == 0
+    }
+
     /// True if the global value is extensive (see [`ScriptCompute::extensive`]).
     pub fn is_extensive(&self) -> bool {
         self.imp.extensive()

@@ -566,13 +566,7 @@ pub const STREAM_RELEASE_ID: &str = "release_fix_insert_stream";
 /// each streamed particle (0 for the others). Its other columns (insertion position and
 /// step, velocities) are not kept by rdem: an error says so.
 fn release_step_column(sim: &Sim, col: Option<usize>) -> Result<Vec<f64>, Error> {
-    if col != Some(5) {
-        return Err(format!(
-            "f_{STREAM_RELEASE_ID}: rdem keeps column 5 of it (the release step), not {}",
-            col.map_or("the whole array".to_string(), |c| format!("column {c}"))
-        )
-        .into());
-    }
+    check_release_column(col)?;
     let w = sim.world.as_ref().ok_or(Error::NoBox)?;
     let p = &w.particles;
     Ok(
@@ -581,6 +575,18 @@ fn release_step_column(sim: &Sim, col: Option<usize>) -> Result<Vec<f64>, Error>
             None => vec![0.0; p.nlocal()],
         },
     )
+}
+
+/// Only column 5 of `f_release_fix_insert_stream` is kept.
+fn check_release_column(col: Option<usize>) -> Result<(), Error> {
+    if col == Some(5) {
+        return Ok(());
+    }
+    Err(format!(
+        "f_{STREAM_RELEASE_ID}: rdem keeps column 5 of it (the release step), not {}",
+        col.map_or("the whole array".to_string(), |c| format!("column {c}"))
+    )
+    .into())
 }
 
 /// True if `id` names LIGGGHTS' release data of `fix insert/stream` (no fix has the ID
@@ -609,10 +615,7 @@ pub fn fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<Vec<f64>, 
 /// Checks a reference `f_ID` / `f_ID[i]` to per-particle values of a fix.
 pub fn check_fix_peratom(sim: &Sim, id: &str, col: Option<usize>) -> Result<(), Error> {
     if is_stream_release(sim, id) {
-        return match col {
-            Some(5) => Ok(()),
-            _ => release_step_column(sim, col).map(|_| ()),
-        };
+        return check_release_column(col);
     }
     let Some(f) = sim.defs.fixes.iter().find(|f| f.head.id == id) else {
         let ids: Vec<&str> = sim.defs.fixes.iter().map(|f| f.id()).collect();
@@ -644,13 +647,13 @@ pub fn peratom_cols(sim: &Sim, id: &str) -> Option<usize> {
 
 /// True if fix `id` has per-particle values.
 pub fn is_peratom(sim: &Sim, id: &str) -> bool {
-    if is_stream_release(sim, id) {
-        return true;
-    }
-    sim.defs
-        .fixes
-        .iter()
-        .any(|f| f.head.id == id && f.imp.peratom_shape().map(|(n, _)| n).is_some())
+    peratom_cols(sim, id).is_some()
+}
+
+/// True if `f_ID[I]` (I ≠ 0) names atom I's value (LAMMPS' rule): a per-atom vector of a
+/// fix with no global values. (`f_ID[0]` is LIGGGHTS' old spelling of the whole vector.)
+pub fn indexes_atoms(sim: &Sim, id: &str, idx: Option<usize>) -> bool {
+    matches!(idx, Some(k) if k != 0) && peratom_cols(sim, id) == Some(0) && !has_global(sim, id)
 }
 
 /// True if fix `id` gives global values (`f_ID`, `f_ID[i]`): in a formula these take

@@ -178,11 +178,15 @@ impl StreamMarking {
                     self.prop.trim_start_matches("tracer:")
                 ));
             }
-            let mut k = self.mark_step + self.every;
+            // The windows S + jE (j ≥ 1) with t < S + jE < t + P, from the first past t.
+            let j = if t < self.mark_step + self.every {
+                1
+            } else {
+                (t - self.mark_step) / self.every + 1
+            };
+            let mut k = self.mark_step + j * self.every;
             while k < t + period {
-                if k > t {
-                    windows.push_back((k, self.n_tracer));
-                }
+                windows.push_back((k, self.n_tracer));
                 k += self.every;
             }
         }
@@ -288,6 +292,16 @@ fn parse_tracer(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn Sc
     }))
 }
 
+/// The `fix insert/stream` `id`, as its own type.
+fn stream_inserter<'s>(sim: &'s mut Sim, id: &str) -> Option<&'s mut super::insert::Inserter> {
+    sim.defs
+        .fixes
+        .iter_mut()
+        .find(|f| f.head.id == id)
+        .and_then(|f| f.downcast_mut::<super::insert::Inserter>())
+        .filter(|i| matches!(i.pack, super::insert::InsertEngine::Stream(_)))
+}
+
 fn parse_stream(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix>> {
     let (mut mark_step, mut n_tracer, mut insert, mut every) = (None, None, None, None);
     while !a.is_done() {
@@ -389,13 +403,7 @@ impl ScriptFix for Tracer {
     fn install(&mut self, sim: &mut Sim, a: &Args, _head: &FixHead) -> CmdResult<()> {
         super::property_atom::fix_values(sim, a, &self.prop, 1)?;
         if let Mode::Stream { insert, marking } = &self.mode {
-            if let Some(ins) = sim
-                .defs
-                .fixes
-                .iter_mut()
-                .find(|f| &f.head.id == insert)
-                .and_then(|f| f.downcast_mut::<super::insert::Inserter>())
-            {
+            if let Some(ins) = stream_inserter(sim, insert) {
                 ins.stream_tracers.push(marking.clone());
             }
         }
@@ -513,13 +521,7 @@ impl ScriptFix for Tracer {
 
     fn unfix(&mut self, sim: &mut Sim, _head: &FixHead) {
         if let Mode::Stream { insert, marking } = &self.mode {
-            if let Some(ins) = sim
-                .defs
-                .fixes
-                .iter_mut()
-                .find(|f| &f.head.id == insert)
-                .and_then(|f| f.downcast_mut::<super::insert::Inserter>())
-            {
+            if let Some(ins) = stream_inserter(sim, insert) {
                 ins.stream_tracers.retain(|m| !Arc::ptr_eq(m, marking));
             }
         }

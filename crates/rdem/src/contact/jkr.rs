@@ -178,7 +178,10 @@ impl Normal for Jkr {
     #[inline(always)]
     fn normal(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags, hist: &mut [f64]) -> NormalOut {
         if c.jkr_w == 0.0 {
-            return hertz(g, c, vn, flags);
+            // No work of adhesion (W = 0): Hertz's contact for the type pair, ending at
+            // δ = 0 (no neck: `Scales` gives δ_c = 0, and `holds` never keeps it), as
+            // both forks code it (their examples measure a restitution coefficient so).
+            return super::normal::Hertz::normal(g, c, vn, flags, hist);
         }
         let s = Scales::of(c, g.r_star);
         // The pass calls the law apart only while the neck holds (δ ≥ −δ_c).
@@ -214,30 +217,6 @@ impl Normal for Jkr {
             hist[0] = 0.0;
         }
         held
-    }
-}
-
-/// A type pair with no work of adhesion (W = 0): Hertz's contact, a = √(R*δ),
-/// F = (4/3)E*aδ, k_n = (4/3)E*a, k_t = 8G*a and Hertz's damping, ending at δ = 0 (no
-/// neck: [`Scales`] gives δ_c = 0). Both forks take this branch for W = 0 (their
-/// examples measure a restitution coefficient so).
-#[inline(always)]
-fn hertz(g: &Geom, c: &PairCoeff, vn: f64, flags: Flags) -> NormalOut {
-    let a = (g.r_star * g.delta.max(0.0)).sqrt();
-    let kn = 4.0 / 3.0 * c.e_star * a;
-    let fn_elastic = kn * g.delta;
-    let fn_contact = finish(
-        fn_elastic,
-        -c.hertz_damp_n * (a * g.m_star).sqrt() * vn,
-        flags,
-    );
-    NormalOut {
-        fn_contact,
-        fn_load: fn_contact,
-        fn_elastic,
-        kn,
-        kt: 8.0 * c.g_star * a,
-        gamma_t: c.hertz_damp_t * (a * g.m_star).sqrt(),
     }
 }
 

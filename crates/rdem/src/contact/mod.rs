@@ -318,7 +318,9 @@ impl ContactModel {
         if m.cohesion_energy_density.is_empty() {
             return Err(Error::Invalid {
                 what: "workOfAdhesion",
-                reason: "model jkr needs fix property/global workOfAdhesion peratomtypepair                          (LIGGGHTS_Flexible_Fibers' and PICI's law, with resolutionJKR) or                          cohesionEnergyDensity peratomtypepair (LIGGGHTS-PFM's law)"
+                reason: "model jkr needs fix property/global workOfAdhesion peratomtypepair \
+                         (LIGGGHTS_Flexible_Fibers' and PICI's law, with resolutionJKR) or \
+                         cohesionEnergyDensity peratomtypepair (LIGGGHTS-PFM's law)"
                     .into(),
             });
         }
