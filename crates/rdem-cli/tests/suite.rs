@@ -12,6 +12,7 @@ mod buoyancy;
 mod check;
 mod cli_errors;
 mod cli_run;
+mod coarse_graining;
 mod com;
 mod common;
 mod contact_history;

@@ -11,6 +11,7 @@ pub mod args;
 pub mod atom_fields;
 pub mod atom_formula;
 pub mod check;
+pub mod coarse_graining;
 pub mod commands;
 pub mod computes;
 pub mod context;

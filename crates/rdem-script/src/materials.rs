@@ -171,6 +171,10 @@ pub fn materials(sim: &Sim) -> Result<Materials, Error> {
         }
         *slot = p.values.clone();
     }
+    let cg = sim.setup.coarse_graining;
+    if cg.active() {
+        crate::coarse_graining::scale_stiffness(&mut m, cg.factor);
+    }
     Ok(m)
 }
 

@@ -410,16 +410,18 @@ impl StepHost for Front<'_> {
         let w = world.as_mut().expect(WORLD);
         let step = w.step + 1;
         let fixes = &mut defs.fixes;
-        if !self
-            .stages
-            .pre_exchange
-            .iter()
-            .any(|&k| fixes[k].imp.due(step))
+        if self.stages.post_integrate.is_empty()
+            && !self
+                .stages
+                .pre_exchange
+                .iter()
+                .any(|&k| fixes[k].imp.due(step))
         {
             return Ok(f(w, &mut NoHooks)?);
         }
         let mut hooks = Insertions {
             fixes,
+            post_integrate: &self.stages.post_integrate,
             candidates: &self.stages.pre_exchange,
             step,
             notes: Notes::default(),
@@ -458,6 +460,8 @@ impl StepHost for Front<'_> {
 /// fix list while the engine holds the world, and what they print.
 struct Insertions<'a> {
     fixes: &'a mut [FixEntry],
+    /// The fixes with a post-integrate stage: they act first, every step.
+    post_integrate: &'a [usize],
     /// The fixes with a pre-exchange stage; those due at `step` act.
     candidates: &'a [usize],
     step: u64,
@@ -470,6 +474,16 @@ impl StepHooks for Insertions<'_> {
     }
 
     fn pre_exchange(&mut self, w: &mut World) -> rdem::Result<()> {
+        // LIGGGHTS' post_integrate comes before its pre_exchange, in the same place of
+        // the step (after the initial integration and the mesh motion).
+        for &k in self.post_integrate {
+            let f = &mut self.fixes[k];
+            let t0 = w.fix_timing.then(Instant::now);
+            f.imp.post_integrate(&f.head, w)?;
+            if let Some(t0) = t0 {
+                f.seconds += t0.elapsed().as_secs_f64();
+            }
+        }
         for &k in self.candidates {
             let f = &mut self.fixes[k];
             if f.imp.due(self.step) {
@@ -493,6 +507,7 @@ fn fix_error(sim: &Sim, k: usize, message: String) -> RunError {
 /// during a run): a stage no fix uses costs nothing.
 struct RunStages {
     pre_step: Vec<usize>,
+    post_integrate: Vec<usize>,
     pre_exchange: Vec<usize>,
     end_of_step: Vec<usize>,
     end_of_run: Vec<usize>,
@@ -504,6 +519,7 @@ impl RunStages {
     fn of(sim: &Sim) -> Self {
         Self {
             pre_step: fixes::with_stage(sim, Stages::PRE_STEP),
+            post_integrate: fixes::with_stage(sim, Stages::POST_INTEGRATE),
             pre_exchange: fixes::with_stage(sim, Stages::PRE_EXCHANGE),
             end_of_step: fixes::with_stage(sim, Stages::END_OF_STEP),
             end_of_run: fixes::with_stage(sim, Stages::END_OF_RUN),

@@ -133,6 +133,10 @@ pub struct Setup {
     /// `pair_style gran ...` given before the box (LIGGGHTS 3.8 takes it there): the box
     /// gets it.
     pub pair: Option<rdem::ContactModel>,
+    /// `coarsegraining` (LIGGGHTS-PFM): the factor and its model check.
+    pub coarse_graining: crate::coarse_graining::CoarseGraining,
+    /// Whether `neighbor` gave the skin (`coarsegraining` must come before it).
+    pub skin_given: bool,
 }
 
 impl Default for Setup {
@@ -152,6 +156,8 @@ impl Default for Setup {
             bond_gran: None,
             data_layout: Some(rdem_io::AtomLayout::Granular),
             pair: None,
+            coarse_graining: Default::default(),
+            skin_given: false,
         }
     }
 }

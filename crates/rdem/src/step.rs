@@ -22,7 +22,9 @@
 //! 3. mesh motion (`move/mesh`) to the step's time; servo meshes
 //!    (`mesh/surface/stress/servo`) translated by the velocity their controller set at
 //!    the end of the previous step (LIGGGHTS moves them in `initial_integrate`) [Modify]
-//! 4. [`StepHooks::pre_exchange`] (LIGGGHTS' `pre_exchange`: insertion); particles added
+//! 4. [`StepHooks::pre_exchange`]: first the front end's post-integrate fixes (LIGGGHTS'
+//!    `post_integrate`: `massflow/mesh` counts the crossings with the new positions and
+//!    the half-step velocities), then LIGGGHTS' `pre_exchange` (insertion); particles added
 //!    here are not moved this step, get their forces and the final half kick, and force
 //!    step 5's rebuild [Modify]
 //! 5. neighbor decision: a rebuild is due when particles were added or removed (on any
@@ -60,7 +62,7 @@
 //! 15. the front end's end-of-step stage ([`StepHost::end_of_step`], LIGGGHTS'
 //!     `end_of_step`): the world's warnings of the step printed, then rdem-script's
 //!     `Stages::END_OF_STEP` fixes (`ave/euler`, `ave/atom`, `ave/time`, `ave/histo`,
-//!     `massflow/mesh`, `check/timestep/gran`, `print`) in definition order, with the
+//!     `massflow/mesh`'s file lines, `check/timestep/gran`, `print`) in definition order, with the
 //!     whole script state (variables, computes) in reach. This is the last stage of a
 //!     step; the thermo output and the dumps that are due follow [Modify].
 //!

@@ -111,6 +111,7 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
             Some("add 'allow_group_and_set yes' to the fix multisphere command".into()),
         ));
     }
+    let cg = sim.setup.coarse_graining.factor;
     let style = a.keyword("set style", &["atom", "type", "group", "region"])?;
     let sel = select(sim, a, style)?;
     if a.is_done() {
@@ -197,7 +198,8 @@ pub(super) fn set(sim: &mut Sim, a: &mut Args) -> CmdResult {
                 }
             }
             "diameter" => {
-                let d = a.positive("diameter")?;
+                // LIGGGHTS-PFM's coarse graining scales the diameter given.
+                let d = a.positive("diameter")? * cg;
                 for i in (0..p.nlocal()).filter(|&i| sel[i]) {
                     p.set_radius(i, 0.5 * d)
                         .map_err(|e| a.error_prev(e.to_string(), None))?;

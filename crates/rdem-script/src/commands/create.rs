@@ -92,6 +92,7 @@ pub(super) fn new_default(x: DVec3, ty: u32) -> NewParticle {
 }
 
 pub(super) fn create_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
+    crate::coarse_graining::check(sim, a, 0, "create_atoms")?;
     let ty = a.count("atom type")? as u32;
     if ty as usize > sim.ntypes() {
         return Err(a.error_prev(

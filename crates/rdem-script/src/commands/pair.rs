@@ -33,6 +33,7 @@ pub(super) fn pair_style(sim: &mut Sim, a: &mut Args) -> CmdResult {
         return Err(models::unknown(a, a.pos(), &[]));
     }
     models::parse_switches(a, &mut m)?;
+    crate::coarse_graining::check_model(sim, a, 1, &m)?;
     if sim.world.is_none() {
         // Before the box (LIGGGHTS 3.8 takes it there too): the box gets it.
         sim.setup.pair = Some(m);
@@ -64,6 +65,7 @@ fn old_pair_style(sim: &mut Sim, a: &mut Args, style: &str) -> CmdResult {
         ));
     };
     let form = old_gran::read_pair_words(a, &mut m)?;
+    crate::coarse_graining::check_model(sim, a, 1, &m)?;
     let note = format!(
         "pair_style {} ({} syntax) runs as: pair_style gran {}",
         old_gran::text_from(a, 1),

@@ -501,9 +501,11 @@ pub(super) fn hard_particles(_sim: &mut Sim, a: &mut Args) -> CmdResult {
 
 /// `neighbor skin bin|nsq`.
 pub(super) fn neighbor(sim: &mut Sim, a: &mut Args) -> CmdResult {
-    let skin = a.non_negative("skin distance")?;
+    // LIGGGHTS-PFM's coarse graining scales the skin too.
+    let skin = a.non_negative("skin distance")? * sim.setup.coarse_graining.factor;
     a.keyword("neighbor style", &["bin", "nsq"])?;
     a.done()?;
+    sim.setup.skin_given = true;
     let mut s = sim.neighbor_settings();
     s.skin = skin;
     sim.set_neighbor(s);

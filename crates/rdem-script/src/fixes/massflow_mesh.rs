@@ -13,10 +13,12 @@ use crate::sim::Sim;
 pub(super) const ROW: FixRow = style(
     "massflow/mesh",
     parse,
-    Stages::END_OF_STEP.and(Stages::VALUES),
+    Stages::POST_INTEGRATE
+        .and(Stages::END_OF_STEP)
+        .and(Stages::VALUES),
     "`mesh ID vec_side vx vy vz`, `count once\\|multiple`, `delete_atoms yes\\|no`, `file F`, `append F`, `writeTime`; `screen` accepted",
 )
-.notes("`f_ID[1..6]`: mass and count through the face, mass and number rates since the previous evaluation (thermo output), deleted mass and count; a particle counts when its centre crosses the face's plane inside a triangle; `delete_atoms yes` removes it at the next re-neighboring, as LIGGGHTS does; `file`/`append`: a line per counted particle (ID, [time,] diameter, position, velocity) in LIGGGHTS 3.8's layout; `point_at_outlet`, `inside_out` stop with an error");
+.notes("`f_ID[1..6]`: mass and count through the face, mass and number rates since the previous evaluation (thermo output), deleted mass and count; a particle counts when its centre crosses the face's plane inside a triangle; `delete_atoms yes` removes it at the next re-neighboring, as LIGGGHTS does; `file`/`append`: a line per counted particle (ID, [time,] diameter, position, velocity) in LIGGGHTS 3.8's layout, counted where LIGGGHTS counts (after the initial integration: the half-step velocity); under `coarsegraining` the diameter over the factor, as LIGGGHTS-PFM; `point_at_outlet`, `inside_out` stop with an error");
 
 /// `fix massflow/mesh`: the engine's counter and the output rates.
 pub struct MassFlowFix {
@@ -44,6 +46,12 @@ pub struct FlowFile {
     pub word: usize,
     /// `writeTime`.
     pub write_time: bool,
+    /// The `coarsegraining` factor: the file gives the diameter the script describes,
+    /// 2r/cg, as LIGGGHTS-PFM writes it.
+    pub coarse_graining: f64,
+    /// This rank's lines of the step's crossings, (ID, diameter, x, y, z, vx, vy, vz)
+    /// each, from the post-integrate stage to the end of the step.
+    pub pending: Vec<f64>,
     /// The file (on the rank that writes files; none under `rdem -check`).
     pub writer: Option<AppendFile>,
 }
@@ -167,6 +175,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             append,
             word,
             write_time,
+            coarse_graining: sim.setup.coarse_graining.factor,
+            pending: Vec::new(),
             writer: None,
         }),
     }))
@@ -240,37 +250,42 @@ impl ScriptFix for MassFlowFix {
         Ok(self.rates(w.step, w.dt).to_vec())
     }
 
-    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
-        let setup = ctx.setup;
-        if setup {
-            return Ok(());
-        }
-        let time = ctx.time();
-        let w = ctx.world();
+    /// Counts the crossings where LIGGGHTS does (its `post_integrate`): with the step's
+    /// new positions and the half-step velocities, which the file's lines give.
+    fn post_integrate(&mut self, _head: &FixHead, w: &mut rdem::World) -> rdem::Result<()> {
         self.flow.update(w)?;
         let Some(out) = &mut self.out else {
             return Ok(());
         };
         let p = &w.particles;
-        let rows: Vec<f64> = self
-            .flow
-            .crossed
-            .iter()
-            .flat_map(|&i| {
-                let (x, v) = (p.x[i], p.v[i]);
-                [
-                    p.tag[i] as f64,
-                    2.0 * p.radius[i],
-                    x.x,
-                    x.y,
-                    x.z,
-                    v.x,
-                    v.y,
-                    v.z,
-                ]
-            })
-            .collect();
-        // Every rank's lines, in rank order, on the rank that writes.
+        out.pending.clear();
+        out.pending.extend(self.flow.crossed.iter().flat_map(|&i| {
+            let (x, v) = (p.x[i], p.v[i]);
+            [
+                p.tag[i] as f64,
+                2.0 * p.radius[i] / out.coarse_graining,
+                x.x,
+                x.y,
+                x.z,
+                v.x,
+                v.y,
+                v.z,
+            ]
+        }));
+        Ok(())
+    }
+
+    /// Writes the step's lines (every rank's, in rank order, on the rank that writes).
+    fn end_of_step(&mut self, ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
+        if ctx.setup {
+            return Ok(());
+        }
+        let time = ctx.time();
+        let w = ctx.world();
+        let Some(out) = &mut self.out else {
+            return Ok(());
+        };
+        let rows = std::mem::take(&mut out.pending);
         let mut wrote = Ok(());
         if let Some(all) = w.comm.gather(&rows) {
             let text: String = all.chunks_exact(8).map(|r| out.line(time, r)).collect();

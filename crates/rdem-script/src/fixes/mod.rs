@@ -100,6 +100,10 @@ impl Stages {
     pub const END_OF_RUN: Self = Self(16);
     /// Global values for `f_ID`, `f_ID[i]` ([`ScriptFix::values`]).
     pub const VALUES: Self = Self(32);
+    /// Every step after the initial integration, before the pre-exchange fixes
+    /// ([`ScriptFix::post_integrate`]: LIGGGHTS' `post_integrate`, which sees the
+    /// step's new positions and the half-step velocities).
+    pub const POST_INTEGRATE: Self = Self(64);
 
     /// Both sets.
     pub const fn and(self, other: Self) -> Self {
@@ -211,6 +215,12 @@ pub trait ScriptFix: AsAny {
     /// [`Stages::PRE_STEP`]: before step `ctx.step` (with `ctx.setup`, before a run's
     /// set-up).
     fn pre_step(&mut self, _ctx: &mut StageCtx, _head: &FixHead) -> Result<(), Error> {
+        Ok(())
+    }
+
+    /// [`Stages::POST_INTEGRATE`]: acts on the world inside every step, after the initial
+    /// integration and before the [`Stages::PRE_EXCHANGE`] fixes.
+    fn post_integrate(&mut self, _head: &FixHead, _world: &mut World) -> rdem::Result<()> {
         Ok(())
     }
 
@@ -699,6 +709,9 @@ pub fn fix(sim: &mut Sim, a: &mut Args) -> CmdResult {
     let (style, row) = REGISTRY.lookup(a, style_word)?;
     if row.atoi {
         a.read_integers_with_atoi();
+    }
+    if crate::coarse_graining::INCONSISTENT_FIXES.contains(&style) {
+        crate::coarse_graining::check(sim, a, STYLE_WORD, &format!("fix {style}"))?;
     }
     let head = FixHead {
         id,

@@ -311,6 +311,8 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             v
         }
     };
+    // LIGGGHTS-PFM's coarse graining scales the spheres too.
+    let scale = scale * sim.setup.coarse_graining.factor;
     for s in &mut spheres {
         s.x *= scale;
         s.r *= scale;

@@ -61,6 +61,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     let id = head.id.as_str();
     let seed = a.seed()?;
     let (mut ty, mut density, mut radius) = (1u32, None, None);
+    let mut radius_at = 0;
     while !a.is_done() {
         match a.keyword(
             "particletemplate/sphere keyword",
@@ -72,6 +73,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
                 density = Some(a.positive("density")?);
             }
             "radius" => {
+                radius_at = a.pos();
                 radius = Some(
                     match a.keyword("radius distribution", &["constant", "uniform", "gaussian"])? {
                         "constant" => RadiusDist::Constant(a.positive("radius")?),
@@ -106,6 +108,9 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             Some("add 'density constant RHO' (kg/m^3)".into()),
         )
     })?;
+    let radius = radius
+        .map(|r| coarse_grained(sim, a, radius_at, r))
+        .transpose()?;
     let radius = radius.ok_or_else(|| {
         a.error_at(
             STYLE_WORD,
@@ -118,4 +123,24 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
     // Inserted spheres join the template's group too, as in LIGGGHTS 3.8.
     t.groupbit = head.groupbit;
     Ok(Box::new(Template { parsed: Some(t) }))
+}
+
+/// The radius under LIGGGHTS-PFM's coarse graining: a constant radius times the factor; a
+/// distribution is an error there, whatever `model_check` says (word `at`: its style).
+fn coarse_grained(sim: &Sim, a: &Args, at: usize, r: RadiusDist) -> CmdResult<RadiusDist> {
+    let cg = sim.setup.coarse_graining;
+    if !cg.active() {
+        return Ok(r);
+    }
+    match r {
+        RadiusDist::Constant(v) => Ok(RadiusDist::Constant(v * cg.factor)),
+        _ => Err(a.error_at(
+            at,
+            format!(
+                "a radius distribution cannot be coarse grained (coarsegraining {})",
+                cg.factor
+            ),
+            Some("use 'radius constant R' with coarsegraining, as LIGGGHTS-PFM requires".into()),
+        )),
+    }
 }

@@ -177,6 +177,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
             } else if !a.is_done() {
                 return Err(models::unknown(a, a.pos(), &["store_force"]));
             }
+            crate::coarse_graining::check_model(sim, a, start, &model)?;
             let mut wall = rdem::wall::MeshWall::new(id, model, meshes)
                 .map_err(|e| a.error_cmd(e.to_string(), None))?;
             wall.store_force = store;
@@ -249,6 +250,7 @@ fn wall_gran(sim: &Sim, a: &mut Args, id: &str) -> CmdResult<Wall> {
             }
         }
     }
+    crate::coarse_graining::check_model(sim, a, start, &model)?;
     let mut wall = PrimitiveWall::new(id, model, wall_type, shape)
         .map_err(|e| a.error_cmd(e.to_string(), None))?;
     wall.velocity = velocity;

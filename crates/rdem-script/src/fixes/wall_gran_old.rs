@@ -108,6 +108,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         let (wall, shear) = v2_wall(sim, a, &mut m, &head.id, &mut store)?;
         (Form::V2, vec![wall], shear)
     };
+    crate::coarse_graining::check_model(sim, a, super::STYLE_WORD, &m)?;
     // `store_force` is a 2.x keyword: one wall.
     let store_name = store.then(|| format!("force_{}", head.id));
     let mut fixes = Vec::new();
