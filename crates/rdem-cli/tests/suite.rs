@@ -59,6 +59,7 @@ mod pour;
 mod random_function;
 mod region_prism;
 mod region_wedge;
+mod remove;
 mod restart_exact;
 mod rolling_cdt;
 mod servo_modes;

@@ -29,6 +29,7 @@ pub mod materials;
 pub mod models;
 pub mod old_gran;
 pub mod output;
+pub mod park_miller;
 pub mod ranmars;
 pub mod regions;
 pub mod registry;

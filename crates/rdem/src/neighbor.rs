@@ -273,6 +273,13 @@ impl Neighbor {
         self.live = false;
     }
 
+    /// Renames the tags of the history saved by [`Neighbor::save_history`] with `new`
+    /// (old tag to new; removed particles to 0), for particles renumbered between the
+    /// save and the next build (`fix remove ... compress yes`).
+    pub fn renumber_saved(&mut self, new: &dyn Fn(Tag) -> Tag) {
+        self.store.renumber(new);
+    }
+
     /// Takes the mirror entries of contacts with other ranks' ghosts saved by
     /// [`Neighbor::save_history`], one buffer per rank (`nranks` of them).
     pub fn take_remote(&mut self, nranks: usize) -> Vec<Vec<f64>> {

@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::fix::Fix;
 use crate::neighbor::{Neighbor, NeighborSettings};
 use crate::pair::PairGran;
-use crate::particles::{NewParticle, Particles};
+use crate::particles::{NewParticle, Particles, Tag};
 use crate::timers::Timers;
 
 /// What to do when particles leave a fixed boundary (`thermo_modify lost`).
@@ -218,6 +218,38 @@ impl World {
         self.rebuild_next = true;
         self.virial_step = None;
         n
+    }
+
+    /// Renumbers the particles 1..N keeping the order of their tags (LIGGGHTS'
+    /// `compress yes` after removing particles), after [`World::remove_particles`]: the
+    /// saved contact history follows the new tags. Returns whether any tag changed (on
+    /// any rank). Not for bonded particles or clumps, whose stores keep tags.
+    pub fn renumber_tags(&mut self) -> bool {
+        let p = &mut self.particles;
+        let nlocal = p.nlocal();
+        let mine: Vec<f64> = p.tag[..nlocal].iter().map(|&t| t as f64).collect();
+        let mut all: Vec<Tag> = self
+            .comm
+            .all_gather(&mine)
+            .iter()
+            .map(|&t| t as Tag)
+            .collect();
+        all.sort_unstable();
+        let new = |t: Tag| match all.binary_search(&t) {
+            Ok(k) => k as Tag + 1,
+            Err(_) => 0,
+        };
+        let mut changed = false;
+        for t in &mut p.tag[..nlocal] {
+            let n = new(*t);
+            changed |= n != *t;
+            *t = n;
+        }
+        let changed = self.comm.any(changed);
+        if changed {
+            self.neighbor.renumber_saved(&new);
+        }
+        changed
     }
 
     /// Marks owned particle `i` for removal at the next re-neighboring (as LIGGGHTS

@@ -54,6 +54,7 @@ mod pour;
 mod print;
 mod property_atom;
 mod property_global;
+mod remove;
 mod sampling;
 mod slowinit;
 mod speedcontrol;
@@ -390,6 +391,7 @@ pub static REGISTRY: Registry<FixStyle> = Registry {
         insert_stream::ROW,
         pour::ROW,
         massflow_mesh::ROW,
+        remove::ROW,
         engine::ROW_NVE,
         engine::ROW_NVE_LIMIT,
         engine::ROW_NVE_NOFORCE,

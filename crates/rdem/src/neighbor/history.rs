@@ -80,6 +80,28 @@ impl HistoryStore {
         };
     }
 
+    /// Renames every tag the store holds (rows, partners, the entries still to be sent
+    /// or stored) with `new`, which maps a removed particle's tag to 0 (no particle has
+    /// it, so its entries are never restored).
+    pub(super) fn renumber(&mut self, new: &dyn Fn(Tag) -> Tag) {
+        for t in self.tags.iter_mut().chain(self.partner.iter_mut()) {
+            *t = new(*t);
+        }
+        self.max_tag = self.tags.iter().copied().max().unwrap_or(0);
+        self.by_tag_fresh = false;
+        let rec = 2 + self.width;
+        for buf in self
+            .remote
+            .iter_mut()
+            .chain(std::iter::once(&mut self.pending))
+        {
+            for r in buf.chunks_exact_mut(rec) {
+                r[0] = new(r[0] as Tag) as f64;
+                r[1] = new(r[1] as Tag) as f64;
+            }
+        }
+    }
+
     pub(super) fn is_empty(&self) -> bool {
         self.partner.is_empty()
     }
