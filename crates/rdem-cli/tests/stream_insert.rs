@@ -494,7 +494,7 @@ run 3000
 /// 2.000000e-01)" and "74 particles (mass 4.959528e-02) within 2400 steps" (74 / 8.95
 /// gives 8 whole packets of 300 steps); the tutorial insert_stream (5000 particles in
 /// packets of 300 every 30000 steps) "within 480000 steps", and nothing after the rate
-/// line with `nparticles INF`.
+/// line with `nparticles INF` or `mass INF`.
 #[test]
 fn rate_lines_give_the_limit_as_liggghts() {
     let script = "atom_style granular
@@ -528,6 +528,8 @@ run 1
     for (limit, line) in [
         ("nparticles 5000", Some("      5000 particles (mass ")),
         ("nparticles INF", None),
+        // The manual's `mass INF`: LIGGGHTS 3.8 prints the same rate line, no limit.
+        ("mass INF", None),
     ] {
         let script = format!(
             "{HEAD}fix ins all insert/stream seed 10039 distributiontemplate pdd {limit} \

@@ -84,11 +84,22 @@ pub fn commands(src: &str) -> Vec<Command> {
     };
     let mut line_no = 0;
     let mut offset = 0;
+    // A line whose comment ends in '&' continues into the next line, which is then part
+    // of the comment (LIGGGHTS joins lines before it cuts comments: checked on 3.8).
+    let mut in_comment = false;
     for raw in src.split_inclusive('\n') {
         line_no += 1;
         let line = raw.trim_end_matches(['\n', '\r']);
-        if cur.text.is_empty() {
+        if cur.text.is_empty() && !in_comment {
             cur.line = line_no;
+        }
+        if in_comment {
+            in_comment = line.trim_end().ends_with('&');
+            if !in_comment {
+                finish(&mut out, &mut cur, line_no);
+            }
+            offset += raw.len();
+            continue;
         }
         // Cut the comment: the first '#' outside quotes (quotes may span continuations).
         let b = line.as_bytes();
@@ -118,20 +129,9 @@ pub fn commands(src: &str) -> Vec<Command> {
         };
         cur.text.push_str(body);
         cur.origin.extend((0..body.len()).map(|k| offset + k));
-        if !continues {
-            if !cur.text.trim().is_empty() {
-                out.push(std::mem::replace(
-                    &mut cur,
-                    Command {
-                        text: String::new(),
-                        origin: Vec::new(),
-                        line: line_no + 1,
-                    },
-                ));
-            } else {
-                cur.text.clear();
-                cur.origin.clear();
-            }
+        in_comment = end < b.len() && line.trim_end().ends_with('&');
+        if !continues && !in_comment {
+            finish(&mut out, &mut cur, line_no);
         }
         offset += raw.len();
     }
@@ -139,6 +139,23 @@ pub fn commands(src: &str) -> Vec<Command> {
         out.push(cur);
     }
     out
+}
+
+/// Ends the command being read after line `line_no`: kept if it has text.
+fn finish(out: &mut Vec<Command>, cur: &mut Command, line_no: usize) {
+    if !cur.text.trim().is_empty() {
+        out.push(std::mem::replace(
+            cur,
+            Command {
+                text: String::new(),
+                origin: Vec::new(),
+                line: line_no + 1,
+            },
+        ));
+    } else {
+        cur.text.clear();
+        cur.origin.clear();
+    }
 }
 
 /// The quote state at the end of `text` (for a command continued across lines).
@@ -401,6 +418,25 @@ mod tests {
         assert_eq!(
             texts("fix 1 all &  # no continuation\nnve\n"),
             vec!["fix 1 all &  ", "nve"]
+        );
+    }
+
+    /// LIGGGHTS 3.8 prints `a`, `c`, `e` for `print "a" # c &` / `print "b"` /
+    /// `print "c" #x &` / `  more &` / `print "d"` / `print "e"`: a comment that ends in
+    /// '&' takes the next line into the comment.
+    #[test]
+    fn a_comment_ending_in_an_ampersand_swallows_the_next_line() {
+        let src = "print \"a\" # c &\nprint \"b\"\nprint \"c\" #x &\n  more &\nprint \"d\"\nprint \"e\"\n";
+        assert_eq!(
+            texts(src),
+            vec!["print \"a\" ", "print \"c\" ", "print \"e\""]
+        );
+        let lines: Vec<usize> = commands(src).iter().map(|c| c.line).collect();
+        assert_eq!(lines, vec![1, 3, 6]);
+        // A commented-out command continued over two lines is gone whole.
+        assert_eq!(
+            texts("#fix a all remove &\n  seed 1\nrun 1\n"),
+            vec!["run 1"]
         );
     }
 

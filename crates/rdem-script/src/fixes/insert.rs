@@ -111,7 +111,7 @@ pub(super) const ROW_RATE: FixRow = style(
     "insert/rate/region",
     parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
-    "`nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `insert_every`, the placement keywords of insert/pack",
+    "`nparticles N\\|INF` or `mass M\\|INF`, `particlerate` or `massrate`, `insert_every`, the placement keywords of insert/pack",
 )
 .atoi();
 
@@ -376,7 +376,15 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
                     nparticles = Some(Some(a.count("nparticles")?));
                 }
             }
-            "mass" => massmax = Some(a.positive("mass to insert")?),
+            // `INF`: no limit (the LIGGGHTS 3.8 manual's "as many as possible").
+            "mass" => {
+                if a.peek() == Some("INF") {
+                    a.seek(a.pos() + 1);
+                    massmax = Some(None);
+                } else {
+                    massmax = Some(Some(a.positive("mass to insert")?));
+                }
+            }
             "particlerate" => prate = Some(a.positive("particle rate")?),
             "massrate" => mrate = Some(a.positive("mass rate")?),
             _ => unreachable!(),
@@ -435,11 +443,11 @@ pub(super) fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dy
         })?;
         let limit = match (nparticles, massmax) {
             (Some(n), None) => n,
-            (None, Some(m)) => Some(count_for_mass(m, dist.mean_particle_mass())),
+            (None, Some(m)) => m.map(|m| count_for_mass(m, dist.mean_particle_mass())),
             (None, None) => {
                 return Err(a.error_at(
                     STYLE_WORD,
-                    "insert/rate/region needs 'nparticles N' (or INF) or 'mass M'",
+                    "insert/rate/region needs 'nparticles N' or 'mass M' (or INF)",
                     None,
                 ))
             }

@@ -16,7 +16,7 @@ pub(super) const ROW: FixRow = style(
     "insert/stream",
     super::insert::parse,
     Stages::PRE_EXCHANGE.and(Stages::VALUES).and(Stages::PRE_STEP),
-    "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`, `set_property NAME value`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
+    "`insertion_face MESH` (a planar mesh), `extrude_length L` or `insert_every N`, `nparticles N\\|INF` or `mass M\\|INF`, `particlerate` or `massrate`, `vel`, `omega`, `overlapcheck`, `all_in`, `maxattempt`, `start`, `set_property NAME value`; `parallel`, `random_distribute`, `compress_tags`, `verbose` accepted",
 )
 .notes("a packet every `round(L / (v·n dt))` steps (dt: the run's time step, as LIGGGHTS 3.8), each particle flying at its insertion velocity (no force) until it reaches the face, as in LIGGGHTS; the per-template split of a packet is LIGGGHTS' expected split, not its random one; `duration` with `insert_every` pours each packet in that many steps; `f_release_fix_insert_stream[5]` is each particle's release step, as LIGGGHTS records it (its other columns are not kept)")
 .atoi();
@@ -34,7 +34,8 @@ pub(super) struct StreamArgs<'a> {
     /// (word position, steps).
     pub(super) duration: Option<(usize, u64)>,
     pub(super) nparticles: Option<Option<u64>>,
-    pub(super) massmax: Option<f64>,
+    /// `mass M` (`Some(None)`: `mass INF`).
+    pub(super) massmax: Option<Option<f64>>,
     pub(super) prate: Option<f64>,
     pub(super) mrate: Option<f64>,
     pub(super) dt: f64,
@@ -94,14 +95,11 @@ pub(super) fn build(
     };
     let limit = match (s.nparticles, s.massmax) {
         (Some(n), None) => n,
-        (None, Some(m)) => Some(super::insert::count_for_mass(
-            m,
-            s.dist.mean_particle_mass(),
-        )),
+        (None, Some(m)) => m.map(|m| super::insert::count_for_mass(m, s.dist.mean_particle_mass())),
         (None, None) => {
             return Err(err(
                 a,
-                "insert/stream needs 'nparticles N' (or INF) or 'mass M'",
+                "insert/stream needs 'nparticles N' or 'mass M' (or INF)",
             ))
         }
         (Some(_), Some(_)) => return Err(err(a, "give either nparticles or mass, not both")),
