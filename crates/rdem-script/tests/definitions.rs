@@ -97,3 +97,42 @@ fn template_weights_are_read_as_liggghts_reads_them() {
         "{e}"
     );
 }
+
+/// The forks' radius distributions (LIGGGHTS 3.8's ParScale tutorial writes
+/// `radius gaussian number MU SIGMA`): `number` forms are read, `mass` is refused as the
+/// forks refuse it, and `lognormal` needs the basis word.
+#[test]
+fn the_forks_radius_distributions() {
+    use rdem::insert::template::RadiusDist;
+    let mut i = interpreter();
+    i.run_source(
+        "in.forks",
+        "fix g1 all particletemplate/sphere 15485867 atom_type 1 density constant 1000 radius gaussian number 0.008 2.5e-3\n\
+         fix g2 all particletemplate/sphere 32452843 atom_type 1 density constant 1000 radius lognormal number -6 0.2\n\
+         fix g3 all particletemplate/sphere 32452867 atom_type 1 density constant 1000 radius uniform number 0.001 0.002\n",
+    )
+    .expect("the forks' number forms");
+    let t = &i.sim.defs.templates;
+    assert_eq!(t["g1"].radius, RadiusDist::GaussianWithin3(0.008, 2.5e-3));
+    assert_eq!(t["g2"].radius, RadiusDist::Lognormal(-6.0, 0.2));
+    assert_eq!(t["g3"].radius, RadiusDist::Uniform(0.001, 0.002));
+    for (src, needle) in [
+        (
+            "radius gaussian mass 0.008 2.5e-3",
+            "mass-based radius distribution",
+        ),
+        ("radius lognormal -6 0.2", "takes 'number mu sigma'"),
+        (
+            "radius gaussian number 0.002 0.001",
+            "3 standard deviations",
+        ),
+    ] {
+        let e = i
+            .run_source(
+                "in.bad",
+                &format!("fix b all particletemplate/sphere 15485863 atom_type 1 density constant 1000 {src}\n"),
+            )
+            .expect_err(src);
+        assert!(format!("{e:?}").contains(needle), "{src}: {e:?}");
+    }
+}

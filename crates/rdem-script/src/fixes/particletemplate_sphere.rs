@@ -12,7 +12,7 @@ pub(super) const ROW: FixRow = style(
     "particletemplate/sphere",
     parse,
     Stages::NONE,
-    "`atom_type`, `density constant`, `radius constant\\|uniform\\|gaussian`",
+    "`atom_type`, `density constant`, `radius constant R`, `uniform [number] RMIN RMAX`, `gaussian MU SIGMA` (redrawn until positive), the forks' `gaussian number MU SIGMA` and `lognormal number MU SIGMA` (drawn within 3 standard deviations, of ln r for lognormal)",
 )
 .atoi();
 
@@ -74,19 +74,49 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             }
             "radius" => {
                 radius_at = a.pos();
-                radius = Some(
-                    match a.keyword("radius distribution", &["constant", "uniform", "gaussian"])? {
-                        "constant" => RadiusDist::Constant(a.positive("radius")?),
-                        "uniform" => RadiusDist::Uniform(
-                            a.positive("smallest radius")?,
-                            a.positive("largest radius")?,
-                        ),
-                        _ => RadiusDist::Gaussian(
-                            a.positive("mean radius")?,
-                            a.non_negative("radius standard deviation")?,
-                        ),
-                    },
-                );
+                let style = a.keyword(
+                    "radius distribution",
+                    &["constant", "uniform", "gaussian", "lognormal"],
+                )?;
+                // The forks' forms name what the distribution counts: `number` (as
+                // rdem's own forms) or `mass`, which LIGGGHTS-PFM and -INL stop on too.
+                let forks = style != "constant" && matches!(a.peek(), Some("number" | "mass"));
+                if forks && a.keyword("distribution basis", &["number", "mass"])? == "mass" {
+                    return Err(a.error_prev(
+                        format!("radius {style} mass: a mass-based radius distribution is not supported"),
+                        Some(format!(
+                            "write 'radius {style} number ...' (LIGGGHTS-PFM stops on 'mass' too: \"mass distribution not implemented\")"
+                        )),
+                    ));
+                }
+                radius = Some(match style {
+                    "constant" => RadiusDist::Constant(a.positive("radius")?),
+                    "uniform" => RadiusDist::Uniform(
+                        a.positive("smallest radius")?,
+                        a.positive("largest radius")?,
+                    ),
+                    "gaussian" if forks => RadiusDist::GaussianWithin3(
+                        a.positive("mean radius")?,
+                        a.non_negative("radius standard deviation")?,
+                    ),
+                    "gaussian" => RadiusDist::Gaussian(
+                        a.positive("mean radius")?,
+                        a.non_negative("radius standard deviation")?,
+                    ),
+                    _ if forks => RadiusDist::Lognormal(
+                        a.f64("mean of the log of the radius")?,
+                        a.non_negative("standard deviation of the log of the radius")?,
+                    ),
+                    _ => {
+                        return Err(a.error_prev(
+                            "radius lognormal takes 'number mu sigma' (the forks' form)",
+                            Some(
+                                "write 'radius lognormal number MU SIGMA' (mu, sigma of ln r)"
+                                    .into(),
+                            ),
+                        ))
+                    }
+                });
             }
             "volume_limit" => {
                 a.positive("volume limit")?;
