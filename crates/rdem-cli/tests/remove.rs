@@ -314,6 +314,29 @@ fn errors_are_located() {
             "{to}: {err}"
         );
     }
+    // Clumps are not supported yet: refused at the definition, or at the first removal
+    // step when `fix multisphere` comes after.
+    for (text, needle) in [
+        (
+            base.replace(
+                "fix rm all remove",
+                "fix ms all multisphere\nfix rm all remove",
+            ),
+            "fix remove with clumps",
+        ),
+        (
+            base.replace(
+                "variable m equal",
+                "fix ms all multisphere\nvariable m equal",
+            ),
+            "removing clumps (fix multisphere)",
+        ),
+    ] {
+        let out = common::run_script_raw(&text, None);
+        assert!(!out.status.success(), "{needle}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
     let text = script("e").replace("variable vr equal 0.02*step\n", "");
     let out = common::run_script_raw(&text, None);
     let err = String::from_utf8_lossy(&out.stderr);

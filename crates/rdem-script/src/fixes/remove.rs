@@ -267,6 +267,16 @@ impl Remove {
 
     /// One removal step.
     fn act(&mut self, head: &FixHead, w: &mut World, notes: &mut Notes) -> rdem::Result<()> {
+        if w.multisphere.is_some() {
+            // A `fix multisphere` defined after this fix.
+            return Err(rdem::Error::Invalid {
+                what: "fix remove",
+                reason: format!(
+                    "fix {}: removing clumps (fix multisphere) is not supported yet",
+                    head.id
+                ),
+            });
+        }
         let now = w.step;
         self.next = now + self.every;
         let due = self.mass_due(now, w.dt);
