@@ -22,7 +22,7 @@
 
 use crate::args::{Args, CmdResult};
 use crate::sim::Sim;
-use rdem::contact::names::{COHESION_MODELS, NORMAL_MODELS, ROLLING_MODELS};
+use rdem::contact::names::{name_of, COHESION_MODELS, NORMAL_MODELS, ROLLING_MODELS};
 use rdem::ContactModel;
 
 /// The coarse-graining factor and what a model inconsistent with it does.
@@ -155,9 +155,9 @@ pub fn check_model(sim: &Sim, a: &Args, from: usize, m: &ContactModel) -> CmdRes
         return Ok(());
     }
     let used = [
-        ("model", name(NORMAL_MODELS, m.normal)),
-        ("cohesion", name(COHESION_MODELS, m.cohesion)),
-        ("rolling_friction", name(ROLLING_MODELS, m.rolling)),
+        ("model", name_of(NORMAL_MODELS, m.normal)),
+        ("cohesion", name_of(COHESION_MODELS, m.cohesion)),
+        ("rolling_friction", name_of(ROLLING_MODELS, m.rolling)),
     ];
     for (family, n) in used {
         if INCONSISTENT_MODELS.contains(&n) {
@@ -168,15 +168,6 @@ pub fn check_model(sim: &Sim, a: &Args, from: usize, m: &ContactModel) -> CmdRes
         }
     }
     Ok(())
-}
-
-/// The script name of `kind` in `table` ("" if it has none).
-fn name<K: PartialEq>(table: &[(&'static str, K)], kind: K) -> &'static str {
-    table
-        .iter()
-        .find(|(_, k)| *k == kind)
-        .map(|(n, _)| *n)
-        .unwrap_or("")
 }
 
 /// Scales the stiffness models' tables as LIGGGHTS-PFM does: kn times cg, gamman over

@@ -189,8 +189,8 @@ pub fn model_words(m: &ContactModel) -> String {
     // The 3.x names, from the 3.x tables.
     let mut s = format!(
         "model {} tangential {}",
-        name_of(rdem::contact::names::NORMAL_MODELS, m.normal),
-        name_of(rdem::contact::names::TANGENTIAL_MODELS, m.tangential)
+        rdem::contact::names::name_of(rdem::contact::names::NORMAL_MODELS, m.normal),
+        rdem::contact::names::name_of(rdem::contact::names::TANGENTIAL_MODELS, m.tangential)
     );
     if m.cohesion == CohesionKind::Sjkr {
         s.push_str(" cohesion sjkr");
@@ -211,13 +211,4 @@ pub fn text_from(a: &Args, from: usize) -> String {
         .map(|w| w.text.as_str())
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-/// The name of `kind` in `table` (every kind of a model table has one).
-fn name_of<K: PartialEq + std::fmt::Debug>(table: &[(&'static str, K)], kind: K) -> &'static str {
-    table
-        .iter()
-        .find(|(_, v)| *v == kind)
-        .map(|(n, _)| *n)
-        .unwrap_or_else(|| panic!("{kind:?} has no name in its table"))
 }

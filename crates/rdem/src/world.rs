@@ -221,9 +221,10 @@ impl World {
     }
 
     /// Renumbers the particles 1..N keeping the order of their tags (LIGGGHTS'
-    /// `compress yes` after removing particles), after [`World::remove_particles`]: the
-    /// saved contact history follows the new tags. Returns whether any tag changed (on
-    /// any rank). Not for bonded particles or clumps, whose stores keep tags.
+    /// `compress yes` after removing particles; call with the contact history saved, as
+    /// [`World::remove_particles`] leaves it): the saved history follows the new tags.
+    /// Returns whether any tag changed (on any rank). The bond and clump stores are not
+    /// renamed.
     pub fn renumber_tags(&mut self) -> bool {
         let p = &mut self.particles;
         let nlocal = p.nlocal();

@@ -76,22 +76,8 @@ pub(super) fn delete_atoms(sim: &mut Sim, a: &mut Args) -> CmdResult {
     // A clump goes whole (LIGGGHTS removes a body with any of its spheres).
     w.remove_whole_bodies(&mut remove);
     let n = w.comm.sum_count(w.particles.remove_locals(&remove) as u64);
-    let mut renumbered = false;
-    if compress {
-        // Renumber tags 1..N keeping their order (LIGGGHTS' compress yes): a tag's new
-        // value is its rank among the tags of all ranks.
-        let p = &mut w.particles;
-        let mine: Vec<f64> = p.tag[..p.nlocal()].iter().map(|&t| t as f64).collect();
-        let mut all = w.comm.all_gather(&mine);
-        all.sort_by(f64::total_cmp);
-        let nlocal = p.nlocal();
-        for t in &mut p.tag[..nlocal] {
-            let new = all.partition_point(|&x| x < *t as f64) as u64 + 1;
-            renumbered |= *t != new;
-            *t = new;
-        }
-        renumbered = w.comm.any(renumbered);
-    }
+    // Renumber tags 1..N keeping their order (LIGGGHTS' compress yes).
+    let renumbered = compress && w.renumber_tags();
     let total = w.natoms();
     if renumbered {
         // Saved contact history is keyed by the old tags: start it afresh. Without

@@ -161,7 +161,7 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         restart_read: true,
         restart_write: true,
         verbose: false,
-        compress: sim.setup.bond_gran.is_none(),
+        compress: true,
         monitor_heat: false,
         groupbit: head.groupbit,
         next: step + every,
@@ -170,7 +170,6 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
         integrated: 0.0,
         heat: 0.0,
     };
-    let mut compress = true;
     while !a.is_done() {
         match a.keyword(
             "fix remove keyword",
@@ -205,11 +204,12 @@ fn parse(sim: &Sim, a: &mut Args, head: &FixHead) -> CmdResult<Box<dyn ScriptFix
             "restart_read" => fix.restart_read = a.yes_no("restart_read")?,
             "restart_write" => fix.restart_write = a.yes_no("restart_write")?,
             "verbose" => fix.verbose = a.yes_no("verbose")?,
-            "compress" => compress = a.yes_no("compress")?,
+            "compress" => fix.compress = a.yes_no("compress")?,
             _ => fix.monitor_heat = a.yes_no("monitor_heat")?,
         }
     }
-    fix.compress &= compress;
+    // The fork never renumbers molecular systems.
+    fix.compress &= sim.setup.bond_gran.is_none();
     Ok(Box::new(fix))
 }
 
@@ -218,6 +218,12 @@ struct Eligible {
     tag: f64,
     mass: f64,
     radius: f64,
+}
+
+/// Whether `tag` is in `tags` (tags as numbers, sorted).
+fn listed(tags: &[f64], tag: rdem::Tag) -> bool {
+    tags.binary_search_by(|t| t.total_cmp(&(tag as f64)))
+        .is_ok()
 }
 
 impl Remove {
@@ -369,10 +375,7 @@ impl Remove {
         if let Some((ratio, tags)) = &keep_fraction {
             let r_ratio = ratio.cbrt();
             for &i in &mine {
-                if tags
-                    .binary_search_by(|t| t.total_cmp(&(w.particles.tag[i] as f64)))
-                    .is_ok()
-                {
+                if listed(tags, w.particles.tag[i]) {
                     let m = w.particles.rmass[i];
                     heat += self.heat_of(w, i, (1.0 - ratio) * m)?;
                     let p = &mut w.particles;
@@ -385,10 +388,7 @@ impl Remove {
         let mut any = false;
         delete.sort_by(f64::total_cmp);
         for &i in &mine {
-            if delete
-                .binary_search_by(|t| t.total_cmp(&(w.particles.tag[i] as f64)))
-                .is_ok()
-            {
+            if listed(&delete, w.particles.tag[i]) {
                 heat += self.heat_of(w, i, w.particles.rmass[i])?;
                 gone[i] = true;
                 any = true;

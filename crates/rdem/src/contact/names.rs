@@ -21,6 +21,19 @@ pub const SURFACE_MODELS: &[(&str, SurfaceKind)] = SurfaceKind::NAMES;
 /// Rolling friction models (`rolling_friction ...`).
 pub const ROLLING_MODELS: &[(&str, RollingKind)] = RollingKind::NAMES;
 
+/// The script name of `kind` in `table` (every kind of a model table has one: a law and
+/// its name are one row of `contact/mod.rs`, and the tests below check the tables).
+pub fn name_of<K: PartialEq + std::fmt::Debug>(
+    table: &[(&'static str, K)],
+    kind: K,
+) -> &'static str {
+    table
+        .iter()
+        .find(|(_, v)| *v == kind)
+        .map(|(n, _)| *n)
+        .unwrap_or_else(|| panic!("{kind:?} has no name in its table"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
